@@ -1,0 +1,109 @@
+//! What the checker refuses.
+
+use thiserror::Error;
+
+use crate::catalog::RuleViolation;
+use crate::span::Span;
+
+/// A name, arity or argument problem found before any evaluation.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum CheckError {
+    /// A call of a name that is no function of the language.
+    #[error("unknown function {name}{suggestions}")]
+    UnknownFunction {
+        /// The name as written.
+        name: String,
+        /// " (did you mean STEP?)" or nothing.
+        suggestions: String,
+        /// The name.
+        span: Span,
+    },
+    /// A constant or system variable written as a call.
+    #[error("{name} is {what}, not a function: write it without parentheses")]
+    NotAFunction {
+        /// The canonical name.
+        name: String,
+        /// "a constant" or "a system variable".
+        what: &'static str,
+        /// The call.
+        span: Span,
+    },
+    /// A function name used as a value.
+    #[error("{name} is a function: call it with its arguments, {usage}")]
+    FunctionWithoutCall {
+        /// The canonical name.
+        name: String,
+        /// `STEP(x, x0, h0, x1, h1)`.
+        usage: String,
+        /// The name.
+        span: Span,
+    },
+    /// The wrong number of arguments.
+    #[error("{function} takes {expected}, but {found} given: {usage}")]
+    Arity {
+        /// The canonical name.
+        function: String,
+        /// "5 arguments", "1 to 3 arguments", "2 or more arguments".
+        expected: String,
+        /// "6 were", "1 was".
+        found: String,
+        /// `STEP(x, x0, h0, x1, h1)`.
+        usage: String,
+        /// The call.
+        span: Span,
+    },
+    /// An argument that must be a marker is something else.
+    #[error("{param} of {function} is a marker: write its id (0 for ground) or its name")]
+    MarkerExpected {
+        /// The canonical name.
+        function: String,
+        /// The parameter name.
+        param: String,
+        /// The argument.
+        span: Span,
+    },
+    /// An argument that must name a model statement is something else.
+    #[error("{param} of {function} names a model statement: write its id or its name")]
+    ObjectExpected {
+        /// The canonical name.
+        function: String,
+        /// The parameter name.
+        param: String,
+        /// The argument.
+        span: Span,
+    },
+    /// An argument that must be a whole-number constant is something else.
+    #[error("{param} of {function} must be a whole number written as a constant")]
+    FlagExpected {
+        /// The canonical name.
+        function: String,
+        /// The parameter name.
+        param: String,
+        /// The argument.
+        span: Span,
+    },
+    /// Constant arguments that break a rule of the function (SPEC 3.3).
+    #[error("{violation}")]
+    RuleBroken {
+        /// The rule and the values.
+        violation: RuleViolation,
+        /// The offending argument(s).
+        span: Span,
+    },
+}
+
+impl CheckError {
+    /// The place in the text the error speaks of.
+    pub fn span(&self) -> Span {
+        match self {
+            CheckError::UnknownFunction { span, .. }
+            | CheckError::NotAFunction { span, .. }
+            | CheckError::FunctionWithoutCall { span, .. }
+            | CheckError::Arity { span, .. }
+            | CheckError::MarkerExpected { span, .. }
+            | CheckError::ObjectExpected { span, .. }
+            | CheckError::FlagExpected { span, .. }
+            | CheckError::RuleBroken { span, .. } => *span,
+        }
+    }
+}

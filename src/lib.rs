@@ -1,0 +1,9 @@
+//! mbexpr: read, check and evaluate the function expressions of multibody models.
+pub mod catalog;
+pub mod check;
+pub mod span;
+pub mod syntax;
+
+pub use check::{CheckError, Checked, check};
+pub use span::{Location, Span};
+pub use syntax::{ParseError, parse};

@@ -1,0 +1,186 @@
+//! Text to syntax tree, with pest and its Pratt parser. No pest type leaves
+//! this file.
+
+use std::sync::LazyLock;
+
+use pest::Parser;
+use pest::iterators::{Pair, Pairs};
+use pest::pratt_parser::{Assoc, Op, PrattParser};
+use pest_derive::Parser;
+
+use super::ast::{BinaryOp, Call, Expr, ExprKind, If, Number, UnaryOp};
+use super::error::ParseError;
+use super::scan::{check_nesting, diagnose};
+use crate::span::Span;
+
+#[derive(Parser)]
+#[grammar = "../grammar/expression.pest"]
+struct ExpressionParser;
+
+/// Operator precedence, loosest first (SPEC section 1): `**` binds tighter
+/// than a unary sign, so `-2**2` is `-(2**2)`.
+static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
+    PrattParser::new()
+        .op(Op::infix(Rule::add, Assoc::Left) | Op::infix(Rule::sub, Assoc::Left))
+        .op(Op::infix(Rule::mul, Assoc::Left) | Op::infix(Rule::div, Assoc::Left))
+        .op(Op::prefix(Rule::neg) | Op::prefix(Rule::plus))
+        .op(Op::infix(Rule::pow, Assoc::Right))
+});
+
+/// Parses the text of one expression into its syntax tree.
+///
+/// ```
+/// let tree = mbexpr::parse("-2**2 + STEP(TIME, 0, 0, 1, 90D)").unwrap();
+/// assert_eq!(tree.to_string(), "(+ (neg (** 2 2)) (STEP TIME 0 0 1 90D))");
+/// ```
+pub fn parse(text: &str) -> Result<Expr, ParseError> {
+    check_nesting(text)?;
+    let mut pairs = ExpressionParser::parse(Rule::expression, text).map_err(|error| {
+        let offset = match error.location {
+            pest::error::InputLocation::Pos(offset) => offset,
+            pest::error::InputLocation::Span((start, _)) => start,
+        };
+        diagnose(text, offset)
+    })?;
+    let expr = pairs.next().expect("the grammar's top rule yields one `expr`");
+    build_expr(expr.into_inner())
+}
+
+fn span_of(pair: &Pair<'_, Rule>) -> Span {
+    let span = pair.as_span();
+    Span::new(span.start(), span.end())
+}
+
+/// Folds an `expr`'s flat run of operands and operators by precedence.
+fn build_expr(pairs: Pairs<'_, Rule>) -> Result<Expr, ParseError> {
+    PRATT
+        .map_primary(build_primary)
+        .map_prefix(|op, operand| {
+            let operand = operand?;
+            let unary = match op.as_rule() {
+                Rule::neg => UnaryOp::Neg,
+                _ => UnaryOp::Plus,
+            };
+            Ok(Expr {
+                span: span_of(&op).to(operand.span),
+                kind: ExprKind::Unary(unary, Box::new(operand)),
+            })
+        })
+        .map_infix(|lhs, op, rhs| {
+            let (lhs, rhs) = (lhs?, rhs?);
+            let binary = match op.as_rule() {
+                Rule::add => BinaryOp::Add,
+                Rule::sub => BinaryOp::Sub,
+                Rule::mul => BinaryOp::Mul,
+                Rule::div => BinaryOp::Div,
+                _ => BinaryOp::Pow,
+            };
+            Ok(Expr {
+                span: lhs.span.to(rhs.span),
+                kind: ExprKind::Binary(binary, Box::new(lhs), Box::new(rhs)),
+            })
+        })
+        .parse(pairs)
+}
+
+fn build_primary(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
+    let span = span_of(&pair);
+    let kind = match pair.as_rule() {
+        Rule::number => ExprKind::Number(build_number(pair)?),
+        Rule::name => ExprKind::Name(pair.as_str().to_string()),
+        Rule::call => return build_call(pair),
+        // A parenthesised `expr`: the parentheses leave no node of their own.
+        _ => return build_expr(pair.into_inner()),
+    };
+    Ok(Expr { kind, span })
+}
+
+fn build_number(pair: Pair<'_, Rule>) -> Result<Number, ParseError> {
+    let text = pair.as_str();
+    let span = span_of(&pair);
+    let degrees = pair.into_inner().any(|part| part.as_rule() == Rule::degrees);
+    let digits = if degrees { &text[..text.len() - 1] } else { text };
+    // The grammar admits only what Rust's float syntax reads (`1.`, `.5`, `1E+07`).
+    let value: f64 = digits.parse().unwrap_or(f64::INFINITY);
+    if !value.is_finite() {
+        return Err(ParseError::NumberTooLarge {
+            text: text.to_string(),
+            span,
+        });
+    }
+    Ok(Number {
+        value: if degrees { value.to_radians() } else { value },
+        text: text.to_string(),
+    })
+}
+
+fn build_call(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
+    let span = span_of(&pair);
+    let mut inner = pair.into_inner();
+    let name_pair = inner.next().expect("a call starts with its name");
+    let name = name_pair.as_str().to_string();
+    let name_span = span_of(&name_pair);
+    let mut args = Vec::new();
+    let mut colons = Vec::new();
+    let mut first_separator = None;
+    for part in inner {
+        match part.as_rule() {
+            Rule::expr => args.push(build_expr(part.into_inner())?),
+            rule => {
+                first_separator.get_or_insert((rule, span_of(&part)));
+                if rule == Rule::colon {
+                    colons.push((args.len(), span_of(&part)));
+                }
+            }
+        }
+    }
+    if !name.eq_ignore_ascii_case("IF") {
+        if let Some(&(_, colon)) = colons.first() {
+            return Err(ParseError::MisplacedColon {
+                function: name.to_uppercase(),
+                span: colon,
+            });
+        }
+        let call = Call {
+            name,
+            name_span,
+            args,
+        };
+        return Ok(Expr {
+            kind: ExprKind::Call(call),
+            span,
+        });
+    }
+    if let Some(&(_, colon)) = colons.iter().find(|(position, _)| *position != 1) {
+        return Err(ParseError::MisplacedColon {
+            function: "IF".to_string(),
+            span: colon,
+        });
+    }
+    if args.len() != 4 {
+        return Err(ParseError::IfArity {
+            found: match args.len() {
+                0 => "no arguments".to_string(),
+                1 => "one argument".to_string(),
+                count => format!("{count} arguments"),
+            },
+            span,
+        });
+    }
+    if colons.is_empty() {
+        let (_, separator) = first_separator.expect("four arguments have separators");
+        return Err(ParseError::IfWithoutColon { span: separator });
+    }
+    let mut args = args.into_iter();
+    let mut next = || args.next().expect("checked: four arguments");
+    let branches = If {
+        condition: next(),
+        negative: next(),
+        zero: next(),
+        positive: next(),
+    };
+    Ok(Expr {
+        kind: ExprKind::If(Box::new(branches)),
+        span,
+    })
+}
