@@ -65,10 +65,10 @@ pub struct RuleViolation {
     pub values: Vec<f64>,
 }
 
-impl RuleViolation {
+impl Rule {
     /// The argument positions the rule speaks of.
-    pub fn positions(&self) -> Vec<usize> {
-        match self.rule {
+    pub fn positions(self) -> Vec<usize> {
+        match self {
             Rule::Less(a, b) => vec![a, b],
             Rule::Positive(a) | Rule::NonNegative(a) | Rule::NonZero(a) => vec![a],
         }
@@ -100,7 +100,14 @@ impl fmt::Display for RuleViolation {
 /// Checks `function`'s argument rules against the values that are known
 /// (`None` for an argument that is not a constant yet).
 pub fn check_rules(function: Function, values: &[Option<f64>]) -> Result<(), RuleViolation> {
-    let value = |position: usize| values.get(position).copied().flatten();
+    check_rules_with(function, |position| values.get(position).copied().flatten())
+}
+
+/// [`check_rules`] with the argument values given by `value(position)`.
+pub fn check_rules_with(
+    function: Function,
+    value: impl Fn(usize) -> Option<f64>,
+) -> Result<(), RuleViolation> {
     for &rule in function.rules() {
         let broken = match rule {
             Rule::Less(a, b) => match (value(a), value(b)) {
@@ -121,6 +128,9 @@ pub fn check_rules(function: Function, values: &[Option<f64>]) -> Result<(), Rul
     }
     Ok(())
 }
+
+/// The `max` of a function that takes any number of arguments.
+pub const MANY: usize = usize::MAX;
 
 /// The fixed facts of one function.
 #[derive(Debug)]
@@ -152,7 +162,7 @@ impl Signature {
 
 macro_rules! functions {
     ($( $variant:ident $name:literal $family:ident [$($kind:ident),*] $rest:ident
-        $min:literal..=$max:literal ($($param:literal),*) $summary:literal; )*) => {
+        $min:literal..=$max:tt ($($param:literal),*) $summary:literal; )*) => {
         /// Every function of the language (SPEC sections 3 and 4).
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
         pub enum Function {
@@ -201,8 +211,8 @@ functions! {
     Aint "AINT" Intrinsic [] Value 1..=1 ("a") "truncation toward zero (derivative 0)";
     Anint "ANINT" Intrinsic [] Value 1..=1 ("a") "nearest whole number, halves away from zero (derivative 0)";
     Dim "DIM" Intrinsic [] Value 2..=2 ("a", "b") "positive difference: a - b if a > b, else 0";
-    Max "MAX" Intrinsic [] Value 2..=255 ("a", "b", "...") "largest of two or more values";
-    Min "MIN" Intrinsic [] Value 2..=255 ("a", "b", "...") "smallest of two or more values";
+    Max "MAX" Intrinsic [] Value 2..=MANY ("a", "b", "...") "largest of two or more values";
+    Min "MIN" Intrinsic [] Value 2..=MANY ("a", "b", "...") "smallest of two or more values";
     Mod "MOD" Intrinsic [] Value 2..=2 ("a", "b") "remainder a - AINT(a/b)*b, with the sign of a";
     Sign "SIGN" Intrinsic [] Value 2..=2 ("a", "b") "ABS(a) if b >= 0, else -ABS(a)";
     Step "STEP" Step [] Value 5..=5 ("x", "x0", "h0", "x1", "h1") "cubic step from h0 at x0 to h1 at x1";

@@ -9,7 +9,7 @@ pub use error::CheckError;
 pub use tree::{Argument, Node, NodeKind, Reference};
 
 use crate::catalog::{
-    ArgKind, Constant, Family, Function, SystemVariable, check_rules, closest, did_you_mean,
+    self, ArgKind, Constant, Family, Function, SystemVariable, check_rules, closest, did_you_mean,
 };
 use crate::span::Span;
 use crate::syntax::ast::{BinaryOp, Call, Expr, ExprKind, If, UnaryOp};
@@ -195,7 +195,7 @@ fn expected_count(min: usize, max: usize) -> String {
     match (min, max) {
         (1, 1) => "1 argument".to_string(),
         (min, max) if min == max => format!("{min} arguments"),
-        (min, 255) => format!("{min} or more arguments"),
+        (min, catalog::MANY) => format!("{min} or more arguments"),
         (min, max) => format!("{min} to {max} arguments"),
     }
 }
@@ -273,6 +273,7 @@ fn check_constant_rules(function: Function, args: &[Argument], errors: &mut Vec<
         .collect();
     if let Err(violation) = check_rules(function, &values) {
         let span = violation
+            .rule
             .positions()
             .into_iter()
             .map(|position| args[position].span())

@@ -143,7 +143,7 @@ pub enum ParseError {
         span: Span,
     },
     /// Parentheses, signs or powers nested deeper than the evaluator allows.
-    #[error("the expression nests deeper than {limit} levels (parentheses, calls, signs and powers); split it into smaller expressions")]
+    #[error("the expression nests deeper than {limit} levels (each parenthesis, call, and operator of one group adds a level); split it into smaller expressions")]
     TooDeep {
         /// The limit.
         limit: usize,

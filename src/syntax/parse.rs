@@ -35,14 +35,17 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
 /// ```
 pub fn parse(text: &str) -> Result<Expr, ParseError> {
     check_nesting(text)?;
-    let mut pairs = ExpressionParser::parse(Rule::expression, text).map_err(|error| {
+    let pairs = ExpressionParser::parse(Rule::expression, text).map_err(|error| {
         let offset = match error.location {
             pest::error::InputLocation::Pos(offset) => offset,
             pest::error::InputLocation::Span((start, _)) => start,
         };
         diagnose(text, offset)
     })?;
-    let expr = pairs.next().expect("the grammar's top rule yields one `expr`");
+    let expr = { pairs }
+        .next()
+        .and_then(|expression| expression.into_inner().next())
+        .expect("the grammar's top rule holds one `expr`");
     build_expr(expr.into_inner())
 }
 
@@ -87,8 +90,7 @@ fn build_primary(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
     let span = span_of(&pair);
     let kind = match pair.as_rule() {
         Rule::number => ExprKind::Number(build_number(pair)?),
-        Rule::name => ExprKind::Name(pair.as_str().to_string()),
-        Rule::call => return build_call(pair),
+        Rule::named => return build_named(pair),
         // A parenthesised `expr`: the parentheses leave no node of their own.
         _ => return build_expr(pair.into_inner()),
     };
@@ -98,7 +100,7 @@ fn build_primary(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
 fn build_number(pair: Pair<'_, Rule>) -> Result<Number, ParseError> {
     let text = pair.as_str();
     let span = span_of(&pair);
-    let degrees = pair.into_inner().any(|part| part.as_rule() == Rule::degrees);
+    let degrees = text.ends_with(['d', 'D']);
     let digits = if degrees { &text[..text.len() - 1] } else { text };
     // The grammar admits only what Rust's float syntax reads (`1.`, `.5`, `1E+07`).
     let value: f64 = digits.parse().unwrap_or(f64::INFINITY);
@@ -114,24 +116,26 @@ fn build_number(pair: Pair<'_, Rule>) -> Result<Number, ParseError> {
     })
 }
 
-fn build_call(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
+/// A name, or a call when arguments follow it.
+fn build_named(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
     let span = span_of(&pair);
+    let input = pair.get_input();
     let mut inner = pair.into_inner();
-    let name_pair = inner.next().expect("a call starts with its name");
+    let name_pair = inner.next().expect("`named` starts with a name");
     let name = name_pair.as_str().to_string();
     let name_span = span_of(&name_pair);
+    let Some(arguments) = inner.next() else {
+        return Ok(Expr {
+            kind: ExprKind::Name(name),
+            span,
+        });
+    };
     let mut args = Vec::new();
     let mut colons = Vec::new();
-    let mut first_separator = None;
-    for part in inner {
+    for part in arguments.into_inner() {
         match part.as_rule() {
             Rule::expr => args.push(build_expr(part.into_inner())?),
-            rule => {
-                first_separator.get_or_insert((rule, span_of(&part)));
-                if rule == Rule::colon {
-                    colons.push((args.len(), span_of(&part)));
-                }
-            }
+            _ => colons.push((args.len(), span_of(&part))),
         }
     }
     if !name.eq_ignore_ascii_case("IF") {
@@ -168,8 +172,12 @@ fn build_call(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
         });
     }
     if colons.is_empty() {
-        let (_, separator) = first_separator.expect("four arguments have separators");
-        return Err(ParseError::IfWithoutColon { span: separator });
+        // The first separator, a comma, stands between the first two arguments.
+        let between = Span::new(args[0].span.end, args[1].span.start);
+        let comma = input[between.range()].find(',').map_or(between.start, |at| between.start + at);
+        return Err(ParseError::IfWithoutColon {
+            span: Span::new(comma, comma + 1),
+        });
     }
     let mut args = args.into_iter();
     let mut next = || args.next().expect("checked: four arguments");

@@ -5,9 +5,10 @@
 use super::error::ParseError;
 use crate::span::{Location, Span};
 
-/// The deepest nesting of parentheses, calls, unary signs and `**` chains
-/// that the parser and every later stage accept. Real expressions stay below 30.
-pub const MAX_NESTING: usize = 200;
+/// The deepest tree the parser and every later stage accept: parentheses,
+/// calls, and the operators of one group each add a level. The real corpus
+/// stays below 40.
+pub const MAX_NESTING: usize = 500;
 
 /// The kinds of token.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -132,41 +133,39 @@ fn ends_operand(kind: Option<Kind>) -> bool {
     matches!(kind, Some(Kind::Number | Kind::Name | Kind::Close))
 }
 
-/// Refuses text that nests deeper than [`MAX_NESTING`], before any recursive
-/// parser sees it. Counts open parentheses, runs of unary signs and chains of
-/// `**`, which are what the parser and the later stages recurse on.
+/// Refuses text whose tree would be deeper than [`MAX_NESTING`], before any
+/// recursive parser sees it. Each open parenthesis adds a level, and so does
+/// each operator in a run of operators within one group (between `(`, `,`
+/// and `:`), since `a+b+c` nests `(a+b)+c` and `-x**y` nests too.
 pub fn check_nesting(text: &str) -> Result<(), ParseError> {
-    // `chain` is the unary/power chain at the current level; `saved` keeps the
-    // chain of each enclosing level, `depth` their total with the parentheses.
+    // `run` counts the operators of the current group; `saved` keeps the run
+    // of each enclosing group; `depth` is their total with the parentheses.
     let mut depth = 0usize;
-    let mut chain = 0usize;
+    let mut run = 0usize;
     let mut saved = Vec::new();
-    let mut previous: Option<Kind> = None;
     for token in Tokens::new(text) {
         match token.kind {
             Kind::Open => {
-                depth += 1 + chain;
-                saved.push(chain);
-                chain = 0;
+                depth += 1 + run;
+                saved.push(run);
+                run = 0;
             }
             Kind::Close => {
                 if let Some(outer) = saved.pop() {
                     depth -= 1 + outer;
-                    chain = outer;
+                    run = outer;
                 }
             }
-            Kind::Operator if text[token.span.range()] == *"**" => chain += 1,
-            Kind::Operator if !ends_operand(previous) => chain += 1,
-            Kind::Operator | Kind::Comma | Kind::Colon => chain = 0,
+            Kind::Operator => run += 1,
+            Kind::Comma | Kind::Colon => run = 0,
             _ => {}
         }
-        if depth + chain > MAX_NESTING {
+        if depth + run > MAX_NESTING {
             return Err(ParseError::TooDeep {
                 limit: MAX_NESTING,
                 span: token.span,
             });
         }
-        previous = Some(token.kind);
     }
     Ok(())
 }
@@ -178,22 +177,35 @@ struct Opener {
     span: Span,
 }
 
-/// Explains a failed parse: `offset` is where the grammar could go no further.
+/// Explains a failed parse. The scanner walks the tokens as the grammar
+/// would and reports the first one that cannot stand where it is; pest's
+/// `offset` (where its furthest rule attempt failed) is only the fallback for
+/// input whose tokens are in order.
 pub fn diagnose(text: &str, offset: usize) -> ParseError {
     let mut openers: Vec<Opener> = Vec::new();
     let mut previous: Option<Token> = None;
-    let mut tokens = Tokens::new(text);
-    let failing = loop {
-        let Some(token) = tokens.next() else {
-            break None;
+    for token in Tokens::new(text) {
+        let expects_operand = !ends_operand(previous.map(|token| token.kind));
+        let found = &text[token.span.range()];
+        let fits = match token.kind {
+            Kind::Number | Kind::Name => expects_operand,
+            Kind::Open => {
+                expects_operand || previous.is_some_and(|token| token.kind == Kind::Name)
+            }
+            Kind::Close => !expects_operand && !openers.is_empty(),
+            Kind::Comma | Kind::Colon => {
+                !expects_operand && openers.last().is_some_and(|opener| opener.function.is_some())
+            }
+            Kind::Operator => !expects_operand || found == "+" || found == "-",
+            Kind::Other => false,
         };
-        if token.span.start >= offset {
-            break Some(token);
+        if !fits {
+            return misplaced(text, token, previous, &openers, expects_operand);
         }
         match token.kind {
             Kind::Open => openers.push(Opener {
                 function: previous
-                    .filter(|token| token.kind == Kind::Name)
+                    .filter(|token| token.kind == Kind::Name && !expects_operand)
                     .map(|token| text[token.span.range()].to_uppercase()),
                 span: token.span,
             }),
@@ -203,11 +215,34 @@ pub fn diagnose(text: &str, offset: usize) -> ParseError {
             _ => {}
         }
         previous = Some(token);
-    };
+    }
     let expects_operand = !ends_operand(previous.map(|token| token.kind));
-    let Some(token) = failing else {
+    if expects_operand || !openers.is_empty() {
         return end_of_input(text, previous, openers.last(), expects_operand);
-    };
+    }
+    // The tokens are in order; pest stopped for a reason of its own.
+    let rest = text[offset.min(text.len())..].trim_start();
+    let at = text.len() - rest.len();
+    match Tokens::new(&text[at..]).next() {
+        Some(token) => {
+            let token = Token {
+                kind: token.kind,
+                span: token.span.shifted(at),
+            };
+            misplaced(text, token, None, &[], false)
+        }
+        None => end_of_input(text, previous, None, true),
+    }
+}
+
+/// The error for `token`, which cannot stand where it is.
+fn misplaced(
+    text: &str,
+    token: Token,
+    previous: Option<Token>,
+    openers: &[Opener],
+    expects_operand: bool,
+) -> ParseError {
     let found = &text[token.span.range()];
     let span = token.span;
     let character = found.chars().next().unwrap_or(' ');
@@ -245,7 +280,7 @@ pub fn diagnose(text: &str, offset: usize) -> ParseError {
     }
     match token.kind {
         Kind::Close if openers.is_empty() => return ParseError::UnmatchedClose { span },
-        Kind::Comma | Kind::Colon if openers.is_empty() => {
+        Kind::Comma | Kind::Colon if openers.iter().all(|opener| opener.function.is_none()) => {
             return ParseError::SeparatorOutsideCall {
                 separator: character,
                 span,

@@ -1,0 +1,67 @@
+//! What keeps a checked expression from being compiled for a context.
+
+use thiserror::Error;
+
+use crate::span::Span;
+
+/// A reference the evaluation context cannot provide.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum CompileError {
+    /// A variable with no value.
+    #[error("{name} has no value{suggestions}")]
+    UnboundVariable {
+        /// The name as written.
+        name: String,
+        /// " (did you mean x?)" or nothing.
+        suggestions: String,
+        /// Where it is used.
+        span: Span,
+    },
+    /// A kinematic measure outside a scene.
+    #[error("{function} is a kinematic measure between markers: evaluating it needs a scene with those markers")]
+    NeedsScene {
+        /// The measure's name.
+        function: &'static str,
+        /// The call.
+        span: Span,
+    },
+    /// A function whose value comes from a model statement.
+    #[error("{function}({id}) needs {statement} of a model: not available when evaluating an expression on its own")]
+    NeedsModel {
+        /// The function's name.
+        function: &'static str,
+        /// The statement id or name, as written.
+        id: String,
+        /// The statement kind that would provide the data, e.g. `VARIABLE/3`.
+        statement: String,
+        /// The call.
+        span: Span,
+    },
+    /// A result of a running solver.
+    #[error("{function} is a result of a running solver: not available when evaluating an expression on its own")]
+    NeedsSolver {
+        /// The function's name.
+        function: &'static str,
+        /// The call.
+        span: Span,
+    },
+    /// `USER(...)`, which only passes constants to a user subroutine.
+    #[error("USER(...) passes its constants to a user subroutine, which is not part of mbexpr: there is no value to compute")]
+    UserSubroutine {
+        /// The call.
+        span: Span,
+    },
+}
+
+impl CompileError {
+    /// The place in the text the error speaks of.
+    pub fn span(&self) -> Span {
+        match self {
+            CompileError::UnboundVariable { span, .. }
+            | CompileError::NeedsScene { span, .. }
+            | CompileError::NeedsModel { span, .. }
+            | CompileError::NeedsSolver { span, .. }
+            | CompileError::UserSubroutine { span } => *span,
+        }
+    }
+}

@@ -1,0 +1,329 @@
+//! Stage 3, compile: a checked tree to a flat [`Program`] for a given list of
+//! inputs. Constants are folded, every subexpression is computed once, and
+//! only the branch an `IF` chooses is run.
+
+mod error;
+mod program;
+
+use std::collections::HashMap;
+
+pub use error::CompileError;
+pub use program::{Instruction, Op, Program, Slot};
+
+use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
+use crate::check::{Argument, Checked, Node, NodeKind, Reference};
+use crate::eval::execute;
+use crate::laws::power::as_integer;
+use crate::span::Span;
+use crate::syntax::ast::BinaryOp;
+
+/// Compiles `checked` for inputs named `inputs` (case-insensitive; `TIME`
+/// and `MODE` may be among them; `MODE` is 4 when not). The values of the
+/// inputs are later passed in this order.
+///
+/// Every name the expression uses must be an input; every problem is
+/// reported, in source order.
+pub fn compile<S: AsRef<str>>(checked: &Checked, inputs: &[S]) -> Result<Program, Vec<CompileError>> {
+    let mut compiler = Compiler {
+        inputs: inputs.iter().map(|name| name.as_ref().to_string()).collect(),
+        constant_values: Vec::new(),
+        constants: Vec::new(),
+        code: Vec::new(),
+        spans: Vec::new(),
+        memo: vec![HashMap::new()],
+        loaded: HashMap::new(),
+        errors: Vec::new(),
+    };
+    let result = compiler.node(&checked.root);
+    if !compiler.errors.is_empty() {
+        compiler.errors.sort_by_key(|error| error.span().start);
+        return Err(compiler.errors);
+    }
+    Ok(Program {
+        slot_count: compiler.constant_values.len(),
+        inputs: compiler.inputs,
+        constants: compiler.constants,
+        code: compiler.code,
+        spans: compiler.spans,
+        result,
+    })
+}
+
+struct Compiler {
+    inputs: Vec<String>,
+    /// The value of each slot when it is a compile-time constant.
+    constant_values: Vec<Option<f64>>,
+    constants: Vec<(Slot, f64)>,
+    code: Vec<Instruction>,
+    spans: Vec<Span>,
+    /// Computed ops by scope: the outer scopes' entries hold inside an IF
+    /// branch, a branch's own entries are dropped when it ends.
+    memo: Vec<HashMap<Op, Slot>>,
+    loaded: HashMap<usize, Slot>,
+    errors: Vec<CompileError>,
+}
+
+impl Compiler {
+    fn new_slot(&mut self, constant: Option<f64>) -> Slot {
+        self.constant_values.push(constant);
+        Slot::try_from(self.constant_values.len() - 1).expect("fewer than 2^32 slots")
+    }
+
+    fn constant(&mut self, value: f64) -> Slot {
+        let bits = value.to_bits();
+        if let Some(&(slot, _)) = self.constants.iter().find(|(_, v)| v.to_bits() == bits) {
+            return slot;
+        }
+        let slot = self.new_slot(Some(value));
+        self.constants.push((slot, value));
+        slot
+    }
+
+    fn emit(&mut self, instruction: Instruction, span: Span) -> u32 {
+        self.code.push(instruction);
+        self.spans.push(span);
+        u32::try_from(self.code.len() - 1).expect("fewer than 2^32 instructions")
+    }
+
+    fn input(&mut self, index: usize, span: Span) -> Slot {
+        if let Some(&slot) = self.loaded.get(&index) {
+            return slot;
+        }
+        let slot = self.new_slot(None);
+        let input = u32::try_from(index).expect("fewer than 2^32 inputs");
+        self.emit(Instruction::Load { dst: slot, input }, span);
+        self.loaded.insert(index, slot);
+        slot
+    }
+
+    /// The slot of `op`: folded when its operands are constants, reused when
+    /// it was computed before in scope, else a new instruction.
+    fn compute(&mut self, op: Op, span: Span) -> Slot {
+        if let Some(slot) = self.memo.iter().rev().find_map(|scope| scope.get(&op)) {
+            return *slot;
+        }
+        if let Some(value) = self.fold(&op) {
+            return self.constant(value);
+        }
+        let dst = self.new_slot(None);
+        self.emit(Instruction::Compute { dst, op: op.clone() }, span);
+        self.memo.last_mut().expect("a scope").insert(op, dst);
+        dst
+    }
+
+    /// The value of `op` when all its operands are constants and it has one.
+    fn fold(&self, op: &Op) -> Option<f64> {
+        let operands: Vec<Slot> = match op {
+            Op::Neg(a) | Op::PowInt(a, _) | Op::PowReal(a, _) => vec![*a],
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Pow(a, b) => {
+                vec![*a, *b]
+            }
+            Op::Call { args, .. } => args.to_vec(),
+        };
+        if operands
+            .iter()
+            .any(|&slot| self.constant_values[slot as usize].is_none())
+        {
+            return None;
+        }
+        let values: Vec<f64> = self
+            .constant_values
+            .iter()
+            .map(|value| value.unwrap_or(0.0))
+            .collect();
+        execute(op, &values).ok().filter(|value| value.is_finite())
+    }
+
+    fn node(&mut self, node: &Node) -> Slot {
+        let span = node.span;
+        match &node.kind {
+            NodeKind::Number(value) => self.constant(*value),
+            NodeKind::Constant(constant) => self.constant(constant.value()),
+            NodeKind::System(variable) => self.system(*variable, span),
+            NodeKind::Variable(name) => self.variable(name, span),
+            NodeKind::Neg(operand) => {
+                let a = self.node(operand);
+                self.compute(Op::Neg(a), span)
+            }
+            NodeKind::Binary(op, lhs, rhs) => self.binary(*op, lhs, rhs, span),
+            NodeKind::Call(function, args) => self.call(*function, args, span),
+            NodeKind::If(branches) => self.arithmetic_if(branches, span),
+        }
+    }
+
+    fn system(&mut self, variable: SystemVariable, span: Span) -> Slot {
+        match self.input_index(variable.name()) {
+            Some(index) => self.input(index, span),
+            None if variable == SystemVariable::Mode => self.constant(SystemVariable::DEFAULT_MODE),
+            None => self.unbound(variable.name(), span),
+        }
+    }
+
+    fn input_index(&self, name: &str) -> Option<usize> {
+        self.inputs
+            .iter()
+            .position(|input| input.eq_ignore_ascii_case(name))
+    }
+
+    fn variable(&mut self, name: &str, span: Span) -> Slot {
+        match self.input_index(name) {
+            Some(index) => self.input(index, span),
+            None => self.unbound(name, span),
+        }
+    }
+
+    fn unbound(&mut self, name: &str, span: Span) -> Slot {
+        let suggestions = did_you_mean(&closest(name, self.inputs.iter().map(String::as_str)));
+        self.errors.push(CompileError::UnboundVariable {
+            name: name.to_string(),
+            suggestions,
+            span,
+        });
+        self.constant(0.0)
+    }
+
+    fn binary(&mut self, op: BinaryOp, lhs: &Node, rhs: &Node, span: Span) -> Slot {
+        let a = self.node(lhs);
+        let b = self.node(rhs);
+        let op = match op {
+            BinaryOp::Add => Op::Add(a, b),
+            BinaryOp::Sub => Op::Sub(a, b),
+            BinaryOp::Mul => Op::Mul(a, b),
+            BinaryOp::Div => Op::Div(a, b),
+            BinaryOp::Pow => match self.constant_values[b as usize] {
+                Some(exponent) => match as_integer(exponent) {
+                    Some(n) => Op::PowInt(a, n),
+                    None => Op::PowReal(a, exponent.to_bits()),
+                },
+                None => Op::Pow(a, b),
+            },
+        };
+        self.compute(op, span)
+    }
+
+    fn call(&mut self, function: Function, args: &[Argument], span: Span) -> Slot {
+        let error = match function.family() {
+            Family::Intrinsic | Family::Step | Family::Contact | Family::Series => None,
+            Family::Measure => Some(CompileError::NeedsScene {
+                function: function.name(),
+                span,
+            }),
+            Family::ModelData => Some(model_data_error(function, args, span)),
+            Family::Solver => Some(CompileError::NeedsSolver {
+                function: function.name(),
+                span,
+            }),
+            Family::User => Some(CompileError::UserSubroutine { span }),
+        };
+        if let Some(error) = error {
+            self.errors.push(error);
+            return self.constant(0.0);
+        }
+        let slots: Box<[Slot]> = args
+            .iter()
+            .map(|arg| match arg {
+                Argument::Value(node) => self.node(node),
+                _ => unreachable!("the checker gives {function} only value arguments"),
+            })
+            .collect();
+        let constants: Vec<Option<f64>> = slots
+            .iter()
+            .map(|&slot| self.constant_values[slot as usize])
+            .collect();
+        // Rules whose arguments are all constants are checked once, here;
+        // the others at every evaluation.
+        let all_known = function.rules().iter().all(|rule| {
+            rule.positions()
+                .into_iter()
+                .all(|position| constants[position].is_some())
+        });
+        let check_rules = !(all_known && check_rules(function, &constants).is_ok());
+        self.compute(
+            Op::Call {
+                function,
+                args: slots,
+                check_rules,
+            },
+            span,
+        )
+    }
+
+    fn arithmetic_if(&mut self, branches: &[Node; 4], span: Span) -> Slot {
+        let [condition, negative, zero, positive] = branches;
+        let condition_slot = self.node(condition);
+        if let Some(value) = self.constant_values[condition_slot as usize] {
+            let chosen = if value < 0.0 {
+                negative
+            } else if value == 0.0 {
+                zero
+            } else {
+                positive
+            };
+            return self.node(chosen);
+        }
+        let result = self.new_slot(None);
+        let branch = self.emit(
+            Instruction::Branch {
+                condition: condition_slot,
+                zero: 0,
+                positive: 0,
+            },
+            span,
+        );
+        let mut starts = Vec::new();
+        let mut jumps = Vec::new();
+        for (index, node) in [negative, zero, positive].into_iter().enumerate() {
+            starts.push(u32::try_from(self.code.len()).expect("fewer than 2^32 instructions"));
+            self.memo.push(HashMap::new());
+            let loaded_before = self.loaded.clone();
+            let value = self.node(node);
+            self.loaded = loaded_before;
+            self.memo.pop();
+            self.emit(Instruction::Copy { dst: result, src: value }, node.span);
+            if index < 2 {
+                jumps.push(self.emit(Instruction::Jump { target: 0 }, span));
+            }
+        }
+        let end = u32::try_from(self.code.len()).expect("fewer than 2^32 instructions");
+        self.code[branch as usize] = Instruction::Branch {
+            condition: condition_slot,
+            zero: starts[1],
+            positive: starts[2],
+        };
+        for jump in jumps {
+            self.code[jump as usize] = Instruction::Jump { target: end };
+        }
+        result
+    }
+}
+
+/// The error for a model-data function: which statement would provide it.
+fn model_data_error(function: Function, args: &[Argument], span: Span) -> CompileError {
+    let object = args.iter().find_map(|arg| match arg {
+        Argument::Object(reference, _) => Some(reference),
+        _ => None,
+    });
+    let id = object.map_or_else(String::new, Reference::to_string);
+    let kind = match function {
+        Function::Varval => "VARIABLE",
+        Function::Aryval => "ARRAY",
+        Function::Dif | Function::Dif1 => "DIFF",
+        Function::Pinval => "PINPUT",
+        Function::Pouval => "POUTPUT",
+        Function::Senval => "SENSOR",
+        Function::Curve => "CURVE",
+        Function::Interp => "a data table",
+        _ => "SPLINE",
+    };
+    let statement = if kind.starts_with('a') {
+        kind.to_string()
+    } else {
+        format!("{kind}/{id}")
+    };
+    CompileError::NeedsModel {
+        function: function.name(),
+        id,
+        statement,
+        span,
+    }
+}

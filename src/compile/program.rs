@@ -1,0 +1,178 @@
+//! The compiled form: a flat program of instructions over numbered slots.
+
+use std::fmt;
+
+use crate::catalog::Function;
+use crate::span::Span;
+
+/// The index of a slot: an input, a constant or an instruction's result.
+pub type Slot = u32;
+
+/// A computation of one value from slots.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Op {
+    /// `-a`
+    Neg(Slot),
+    /// `a + b`
+    Add(Slot, Slot),
+    /// `a - b`
+    Sub(Slot, Slot),
+    /// `a * b`
+    Mul(Slot, Slot),
+    /// `a / b`
+    Div(Slot, Slot),
+    /// `a ** n` for a constant whole `n`.
+    PowInt(Slot, i32),
+    /// `a ** e` for a constant real `e`, kept as its bits so ops can be hashed.
+    PowReal(Slot, u64),
+    /// `a ** b` for a varying `b`.
+    Pow(Slot, Slot),
+    /// A function of the intrinsic, step, contact or series family.
+    Call {
+        /// The function.
+        function: Function,
+        /// Its argument slots.
+        args: Box<[Slot]>,
+        /// Whether the function's argument rules must be checked at run time
+        /// (some of the arguments they speak of are not constants).
+        check_rules: bool,
+    },
+}
+
+/// One step of a program.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Instruction {
+    /// `slots[dst] = inputs[input]`
+    Load {
+        /// Destination slot.
+        dst: Slot,
+        /// Index into the program's inputs.
+        input: u32,
+    },
+    /// `slots[dst] = op(slots)`
+    Compute {
+        /// Destination slot.
+        dst: Slot,
+        /// What to compute.
+        op: Op,
+    },
+    /// The arithmetic IF: continue with the next instruction when
+    /// `slots[condition] < 0`, jump to `zero` when it is 0, to `positive` when greater.
+    Branch {
+        /// The condition's slot.
+        condition: Slot,
+        /// First instruction of the zero branch.
+        zero: u32,
+        /// First instruction of the positive branch.
+        positive: u32,
+    },
+    /// `slots[dst] = slots[src]` (a branch's result into the IF's slot).
+    Copy {
+        /// Destination slot.
+        dst: Slot,
+        /// Source slot.
+        src: Slot,
+    },
+    /// Continue at instruction `target`.
+    Jump {
+        /// The next instruction to run.
+        target: u32,
+    },
+}
+
+/// A checked expression compiled for a given list of inputs: ready to be
+/// evaluated over `f64` or dual numbers, any number of times.
+#[derive(Clone, Debug)]
+pub struct Program {
+    pub(crate) inputs: Vec<String>,
+    pub(crate) slot_count: usize,
+    pub(crate) constants: Vec<(Slot, f64)>,
+    pub(crate) code: Vec<Instruction>,
+    /// The span of the expression text each instruction comes from.
+    pub(crate) spans: Vec<Span>,
+    pub(crate) result: Slot,
+}
+
+impl Program {
+    /// The input names, in the order their values are passed.
+    pub fn inputs(&self) -> &[String] {
+        &self.inputs
+    }
+
+    /// The index of input `name` (case-insensitive).
+    pub fn input_index(&self, name: &str) -> Option<usize> {
+        self.inputs
+            .iter()
+            .position(|input| input.eq_ignore_ascii_case(name))
+    }
+
+    /// The number of instructions (a constant expression has none).
+    pub fn len(&self) -> usize {
+        self.code.len()
+    }
+
+    /// Whether the program is a constant (no instruction at all).
+    pub fn is_empty(&self) -> bool {
+        self.code.is_empty()
+    }
+}
+
+/// One instruction per line, `s3 = BISTOP(s0, s1, ...)`, constants first.
+impl fmt::Display for Program {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (slot, value) in &self.constants {
+            writeln!(f, "s{slot} = {value}")?;
+        }
+        for (index, instruction) in self.code.iter().enumerate() {
+            write!(f, "{index:>3}: ")?;
+            match instruction {
+                Instruction::Load { dst, input } => {
+                    writeln!(f, "s{dst} = input {}", self.inputs[*input as usize])?
+                }
+                Instruction::Compute { dst, op } => writeln!(f, "s{dst} = {op}")?,
+                Instruction::Branch {
+                    condition,
+                    zero,
+                    positive,
+                } => writeln!(f, "if s{condition} = 0 goto {zero}; if > 0 goto {positive}")?,
+                Instruction::Copy { dst, src } => writeln!(f, "s{dst} = s{src}")?,
+                Instruction::Jump { target } => writeln!(f, "goto {target}")?,
+            }
+        }
+        write!(f, "result s{}", self.result)
+    }
+}
+
+impl fmt::Display for Op {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Op::Neg(a) => write!(f, "-s{a}"),
+            Op::Add(a, b) => write!(f, "s{a} + s{b}"),
+            Op::Sub(a, b) => write!(f, "s{a} - s{b}"),
+            Op::Mul(a, b) => write!(f, "s{a} * s{b}"),
+            Op::Div(a, b) => write!(f, "s{a} / s{b}"),
+            Op::PowInt(a, n) => write!(f, "s{a} ** {n}"),
+            Op::PowReal(a, bits) => write!(f, "s{a} ** {}", f64::from_bits(*bits)),
+            Op::Pow(a, b) => write!(f, "s{a} ** s{b}"),
+            Op::Call { function, args, .. } => {
+                let args: Vec<String> = args.iter().map(|slot| format!("s{slot}")).collect();
+                write!(f, "{function}({})", args.join(", "))
+            }
+        }
+    }
+}
+
+impl Op {
+    /// The operation's name in messages: `STEP`, `` `*` ``.
+    pub fn name(&self) -> String {
+        match self {
+            Op::Neg(_) => "`-`".to_string(),
+            Op::Add(..) => "`+`".to_string(),
+            Op::Sub(..) => "`-`".to_string(),
+            Op::Mul(..) => "`*`".to_string(),
+            Op::Div(..) => "`/`".to_string(),
+            Op::PowInt(..) | Op::PowReal(..) | Op::Pow(..) => "`**`".to_string(),
+            Op::Call { function, .. } => function.name().to_string(),
+        }
+    }
+}

@@ -1,0 +1,254 @@
+//! Stage 4, evaluate: run a [`Program`] over `f64` (the value) or over dual
+//! numbers (the value with its gradient, or with gradient and Hessian) in
+//! any number of derivative directions.
+//!
+//! Only the inputs named as derivative directions are seeded; every other
+//! number carries no derivative part at all, and order 0 runs on plain `f64`.
+
+mod error;
+
+pub use error::EvalError;
+
+use nalgebra::{DMatrix, DVector};
+use num_dual::{Dual2DVec64, Dual2SVec64, DualDVec64, DualSVec64};
+
+use crate::catalog::check_rules_with;
+use crate::compile::{Instruction, Op, Program, Slot};
+use crate::laws::{self, LawError, power};
+use crate::number::{Directional, Number};
+
+/// How many orders of derivatives to compute.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Order {
+    /// The value only.
+    Value,
+    /// The value and the gradient.
+    Gradient,
+    /// The value, the gradient and the Hessian.
+    Hessian,
+}
+
+impl Order {
+    /// The order for 0, 1 or 2.
+    pub fn from_number(order: u8) -> Option<Order> {
+        match order {
+            0 => Some(Order::Value),
+            1 => Some(Order::Gradient),
+            2 => Some(Order::Hessian),
+            _ => None,
+        }
+    }
+}
+
+/// A value with the derivatives that were asked for, in the order of the
+/// derivative directions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Evaluation {
+    /// The value.
+    pub value: f64,
+    /// First derivatives, for [`Order::Gradient`] and [`Order::Hessian`].
+    pub gradient: Option<DVector<f64>>,
+    /// Second derivatives, for [`Order::Hessian`].
+    pub hessian: Option<DMatrix<f64>>,
+}
+
+/// Computes `op` from the slots. The compiler folds constants with it, the
+/// evaluator runs every instruction through it.
+pub(crate) fn execute<T: Number>(op: &Op, slots: &[T]) -> Result<T, LawError> {
+    let slot = |index: Slot| &slots[index as usize];
+    Ok(match op {
+        Op::Neg(a) => -slot(*a).clone(),
+        Op::Add(a, b) => slot(*a).clone() + slot(*b).clone(),
+        Op::Sub(a, b) => slot(*a).clone() - slot(*b).clone(),
+        Op::Mul(a, b) => slot(*a).clone() * slot(*b).clone(),
+        Op::Div(a, b) => power::divide(slot(*a), slot(*b))?,
+        Op::PowInt(a, n) => power::powi(slot(*a), *n)?,
+        Op::PowReal(a, bits) => power::powf(slot(*a), f64::from_bits(*bits))?,
+        Op::Pow(a, b) => power::pow(slot(*a), slot(*b))?,
+        Op::Call {
+            function,
+            args,
+            check_rules,
+        } => {
+            if *check_rules {
+                check_rules_with(*function, |position| {
+                    args.get(position).map(|&index| slot(index).value())
+                })
+                .map_err(LawError::Rule)?;
+            }
+            // Up to eight arguments (all but the longest series) stay on the stack.
+            const INLINE: usize = 8;
+            if args.len() <= INLINE {
+                let values: [T; INLINE] =
+                    std::array::from_fn(|position| slot(args[position.min(args.len() - 1)]).clone());
+                laws::apply(*function, &values[..args.len()])?
+            } else {
+                let values: Vec<T> = args.iter().map(|&index| slot(index).clone()).collect();
+                laws::apply(*function, &values)?
+            }
+        }
+    })
+}
+
+/// Evaluates one program over one number type, reusing its buffers from
+/// call to call: the way to evaluate in a loop.
+pub struct Evaluator<'p, T> {
+    program: &'p Program,
+    slots: Vec<T>,
+}
+
+impl Program {
+    /// An evaluator over number type `T` (`f64`, or a dual number from num-dual
+    /// such as `DualSVec64<2>` or `Dual2SVec64<2>`).
+    pub fn evaluator<T: Number>(&self) -> Evaluator<'_, T> {
+        let mut slots = vec![T::zero(); self.slot_count];
+        for &(slot, value) in &self.constants {
+            slots[slot as usize] = T::from(value);
+        }
+        Evaluator {
+            program: self,
+            slots,
+        }
+    }
+
+    /// The value at `inputs` (in the order of [`Program::inputs`]).
+    pub fn value(&self, inputs: &[f64]) -> Result<f64, EvalError> {
+        self.evaluator::<f64>().value(inputs)
+    }
+
+    /// The value and, for [`Order::Gradient`] and [`Order::Hessian`], its
+    /// derivatives in the directions `wrt` (indices into [`Program::inputs`]).
+    pub fn evaluate(&self, inputs: &[f64], wrt: &[usize], order: Order) -> Result<Evaluation, EvalError> {
+        macro_rules! with {
+            ($number:ty) => {
+                self.evaluator::<$number>().derivatives(inputs, wrt)
+            };
+        }
+        match (order, wrt.len()) {
+            (Order::Value, _) | (_, 0) => {
+                let value = self.value(inputs)?;
+                Ok(Evaluation {
+                    value,
+                    gradient: (order >= Order::Gradient).then(|| DVector::zeros(0)),
+                    hessian: (order >= Order::Hessian).then(|| DMatrix::zeros(0, 0)),
+                })
+            }
+            (Order::Gradient, 1) => with!(DualSVec64<1>),
+            (Order::Gradient, 2) => with!(DualSVec64<2>),
+            (Order::Gradient, 3) => with!(DualSVec64<3>),
+            (Order::Gradient, 4) => with!(DualSVec64<4>),
+            (Order::Gradient, _) => with!(DualDVec64),
+            (Order::Hessian, 1) => with!(Dual2SVec64<1>),
+            (Order::Hessian, 2) => with!(Dual2SVec64<2>),
+            (Order::Hessian, 3) => with!(Dual2SVec64<3>),
+            (Order::Hessian, 4) => with!(Dual2SVec64<4>),
+            (Order::Hessian, _) => with!(Dual2DVec64),
+        }
+    }
+}
+
+impl<T: Number> Evaluator<'_, T> {
+    /// Runs the program with the inputs already placed by `seed(input index)`.
+    fn run(&mut self, inputs: &[f64], seed: impl Fn(usize, f64) -> T) -> Result<T, EvalError> {
+        let program = self.program;
+        if inputs.len() != program.inputs.len() {
+            return Err(EvalError::InputCount {
+                expected: program.inputs.len(),
+                found: inputs.len(),
+            });
+        }
+        let code = &program.code;
+        let mut pc = 0;
+        while let Some(instruction) = code.get(pc) {
+            pc += 1;
+            match instruction {
+                Instruction::Load { dst, input } => {
+                    let index = *input as usize;
+                    let value = inputs[index];
+                    if !value.is_finite() {
+                        return Err(EvalError::InputNotFinite {
+                            name: program.inputs[index].clone(),
+                            value,
+                            span: program.spans[pc - 1],
+                        });
+                    }
+                    self.slots[*dst as usize] = seed(index, value);
+                }
+                Instruction::Compute { dst, op } => {
+                    let span = program.spans[pc - 1];
+                    let result = execute(op, &self.slots).map_err(|error| EvalError::Law { error, span })?;
+                    if !result.is_all_finite() {
+                        let operation = op.name();
+                        return Err(if result.value().is_finite() {
+                            EvalError::DerivativeNotFinite { operation, span }
+                        } else {
+                            EvalError::NotFinite {
+                                operation,
+                                value: result.value(),
+                                span,
+                            }
+                        });
+                    }
+                    self.slots[*dst as usize] = result;
+                }
+                Instruction::Branch {
+                    condition,
+                    zero,
+                    positive,
+                } => {
+                    let value = self.slots[*condition as usize].value();
+                    if value == 0.0 {
+                        pc = *zero as usize;
+                    } else if value > 0.0 {
+                        pc = *positive as usize;
+                    }
+                }
+                Instruction::Copy { dst, src } => {
+                    self.slots[*dst as usize] = self.slots[*src as usize].clone();
+                }
+                Instruction::Jump { target } => pc = *target as usize,
+            }
+        }
+        Ok(self.slots[program.result as usize].clone())
+    }
+}
+
+impl Evaluator<'_, f64> {
+    /// The value at `inputs`.
+    pub fn value(&mut self, inputs: &[f64]) -> Result<f64, EvalError> {
+        self.run(inputs, |_, value| value)
+    }
+}
+
+impl<T: Directional> Evaluator<'_, T> {
+    /// The result as a dual number, with input `wrt[j]` seeded as direction `j`.
+    pub fn dual(&mut self, inputs: &[f64], wrt: &[usize]) -> Result<T, EvalError> {
+        let count = wrt.len();
+        for (position, &direction) in wrt.iter().enumerate() {
+            let reason = if direction >= inputs.len() {
+                format!("there are only {} inputs", inputs.len())
+            } else if wrt[..position].contains(&direction) {
+                "named twice".to_string()
+            } else {
+                continue;
+            };
+            return Err(EvalError::BadDirection { direction, reason });
+        }
+        self.run(inputs, |index, value| {
+            match wrt.iter().position(|&direction| direction == index) {
+                Some(position) => T::variable(value, position, count),
+                None => T::from(value),
+            }
+        })
+    }
+
+    /// The value and its derivatives in the directions `wrt`.
+    pub fn derivatives(&mut self, inputs: &[f64], wrt: &[usize]) -> Result<Evaluation, EvalError> {
+        let result = self.dual(inputs, wrt)?;
+        Ok(Evaluation {
+            value: result.value(),
+            gradient: Some(result.gradient(wrt.len())),
+            hessian: result.hessian(wrt.len()),
+        })
+    }
+}

@@ -1,0 +1,98 @@
+//! Arithmetic that can fail: division and powers. Constant exponents use
+//! integer or real powers with their own derivative rules (never the
+//! dual-exponent power, and never a formula that overflows for a tiny base).
+
+use super::{LawError, domain};
+use crate::number::Number;
+
+/// `a / b`.
+pub fn divide<T: Number>(a: &T, b: &T) -> Result<T, LawError> {
+    if b.value() == 0.0 {
+        return domain("`/`", format!("division by zero ({} / 0)", a.value()));
+    }
+    Ok(a.clone() / b.clone())
+}
+
+/// Value, first and second derivative of `x^n` at `x` for a whole `n`.
+fn integer_rule(x: f64, n: i32) -> (f64, f64, f64) {
+    match n {
+        0 => (1.0, 0.0, 0.0),
+        1 => (x, 1.0, 0.0),
+        2 => (x * x, 2.0 * x, 2.0),
+        _ => {
+            let n_f = f64::from(n);
+            (
+                x.powi(n),
+                n_f * x.powi(n - 1),
+                n_f * (n_f - 1.0) * x.powi(n - 2),
+            )
+        }
+    }
+}
+
+/// Value, first and second derivative of `x^e` at `x >= 0` for a real `e`.
+pub fn real_rule(x: f64, e: f64) -> (f64, f64, f64) {
+    if let Some(n) = as_integer(e) {
+        return integer_rule(x, n);
+    }
+    (
+        x.powf(e),
+        e * x.powf(e - 1.0),
+        e * (e - 1.0) * x.powf(e - 2.0),
+    )
+}
+
+/// `e` as an `i32` when it is a whole number in range.
+pub fn as_integer(e: f64) -> Option<i32> {
+    (e.fract() == 0.0 && e.abs() <= f64::from(i32::MAX)).then_some(e as i32)
+}
+
+/// `x ** n` for a constant whole `n`: any sign of `x`, exact for small `n`.
+pub fn powi<T: Number>(x: &T, n: i32) -> Result<T, LawError> {
+    let x0 = x.value();
+    if x0 == 0.0 && n < 0 {
+        return domain("`**`", format!("0 to the negative power {n} is infinite"));
+    }
+    if n == 2 {
+        return Ok(x.clone() * x.clone());
+    }
+    let (f0, f1, f2) = integer_rule(x0, n);
+    Ok(x.chain(f0, f1, f2))
+}
+
+/// `x ** e` for a constant real `e` (a whole `e` goes to [`powi`]).
+pub fn powf<T: Number>(x: &T, e: f64) -> Result<T, LawError> {
+    if let Some(n) = as_integer(e) {
+        return powi(x, n);
+    }
+    let x0 = x.value();
+    if x0 < 0.0 {
+        return domain(
+            "`**`",
+            format!("a negative base ({x0}) to the non-integer power {e} is not a real number"),
+        );
+    }
+    if x0 == 0.0 && e < 0.0 {
+        return domain("`**`", format!("0 to the negative power {e} is infinite"));
+    }
+    let (f0, f1, f2) = real_rule(x0, e);
+    Ok(x.chain(f0, f1, f2))
+}
+
+/// `x ** y` for any `y`: a constant exponent takes [`powf`]; a varying one
+/// needs a positive base.
+pub fn pow<T: Number>(x: &T, y: &T) -> Result<T, LawError> {
+    if y.is_constant() {
+        return powf(x, y.value());
+    }
+    let x0 = x.value();
+    if x0 <= 0.0 {
+        return domain(
+            "`**`",
+            format!(
+                "the base ({x0}) must be positive when the exponent varies (the derivative in the exponent is x**y*LOG(x))"
+            ),
+        );
+    }
+    Ok((x.ln() * y.clone()).exp())
+}

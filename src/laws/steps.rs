@@ -1,0 +1,50 @@
+//! `STEP`, `STEP5` and `HAVSIN` (SPEC 3.2): `h0` for `x <= x0`, `h1` for
+//! `x >= x1`, a smooth ramp between. The rule `x0 < x1` is checked by the caller.
+
+use crate::catalog::Function;
+use crate::number::Number;
+
+/// Which ramp.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// `STEP`: cubic, continuous first derivative.
+    Cubic,
+    /// `STEP5`: quintic, continuous second derivative.
+    Quintic,
+    /// `HAVSIN`: half a cosine wave, continuous first derivative.
+    Haversine,
+}
+
+impl Shape {
+    /// The shape of `STEP`, `STEP5` or `HAVSIN`.
+    pub fn of(function: Function) -> Shape {
+        match function {
+            Function::Step5 => Shape::Quintic,
+            Function::Havsin => Shape::Haversine,
+            _ => Shape::Cubic,
+        }
+    }
+}
+
+/// `STEP(x, x0, h0, x1, h1)` and its siblings.
+pub fn step<T: Number>(shape: Shape, x: &T, x0: &T, h0: &T, x1: &T, h1: &T) -> T {
+    if x.value() <= x0.value() {
+        return h0.clone();
+    }
+    if x.value() >= x1.value() {
+        return h1.clone();
+    }
+    let u = (x.clone() - x0.clone()) / (x1.clone() - x0.clone());
+    let rise = h1.clone() - h0.clone();
+    match shape {
+        Shape::Cubic => h0.clone() + rise * u.clone() * u.clone() * (-u * 2.0 + 3.0),
+        Shape::Quintic => {
+            let cube = u.clone() * u.clone() * u.clone();
+            h0.clone() + rise * cube * ((u.clone() * 6.0 - 15.0) * u + 10.0)
+        }
+        Shape::Haversine => {
+            let mean = (h0.clone() + h1.clone()) * 0.5;
+            mean - rise * 0.5 * (u * std::f64::consts::PI).cos()
+        }
+    }
+}

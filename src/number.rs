@@ -1,0 +1,155 @@
+//! The number types the evaluator runs on: `f64` for values, and num-dual's
+//! forward-mode dual numbers for gradients (`DualVec`) and Hessians
+//! (`Dual2Vec`), with any number of directions.
+//!
+//! Every math rule in [`crate::laws`] is written once, generic over
+//! [`Number`], and branches on the real part.
+
+use nalgebra::allocator::Allocator;
+use nalgebra::{DMatrix, DVector, DefaultAllocator, Dim, U1};
+use num_dual::{Derivative, Dual2Vec, DualNum, DualVec};
+
+/// A real number with optional derivative parts.
+pub trait Number: DualNum<Primitive = f64> + Clone + 'static {
+    /// The real part.
+    fn value(&self) -> f64 {
+        self.re()
+    }
+
+    /// `f(self)` for a scalar function `f` whose value and first two
+    /// derivatives at `self.value()` are `f0`, `f1`, `f2`: the chain rule,
+    /// with no arithmetic on derivative parts that are absent.
+    fn chain(&self, f0: f64, f1: f64, f2: f64) -> Self;
+
+    /// Whether the number carries no derivative part (a constant).
+    fn is_constant(&self) -> bool;
+
+    /// Whether the value and every derivative part are finite.
+    fn is_all_finite(&self) -> bool;
+}
+
+impl Number for f64 {
+    fn chain(&self, f0: f64, _: f64, _: f64) -> Self {
+        f0
+    }
+
+    fn is_constant(&self) -> bool {
+        true
+    }
+
+    fn is_all_finite(&self) -> bool {
+        self.is_finite()
+    }
+}
+
+fn all_finite<R: Dim, C: Dim>(derivative: &Derivative<f64, R, C>) -> bool
+where
+    DefaultAllocator: Allocator<R, C>,
+{
+    derivative
+        .0
+        .as_ref()
+        .is_none_or(|matrix| matrix.iter().all(|entry| entry.is_finite()))
+}
+
+impl<D: Dim> Number for DualVec<f64, D>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    fn chain(&self, f0: f64, f1: f64, _: f64) -> Self {
+        DualVec::new(f0, &self.eps * f1)
+    }
+
+    fn is_constant(&self) -> bool {
+        self.eps.0.is_none()
+    }
+
+    fn is_all_finite(&self) -> bool {
+        self.re.is_finite() && all_finite(&self.eps)
+    }
+}
+
+impl<D: Dim> Number for Dual2Vec<f64, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    fn chain(&self, f0: f64, f1: f64, f2: f64) -> Self {
+        let gradient = &self.v1 * f1;
+        let hessian = &self.v2 * f1 + self.v1.tr_mul(&self.v1) * f2;
+        Dual2Vec::new(f0, gradient, hessian)
+    }
+
+    fn is_constant(&self) -> bool {
+        self.v1.0.is_none() && self.v2.0.is_none()
+    }
+
+    fn is_all_finite(&self) -> bool {
+        self.re.is_finite() && all_finite(&self.v1) && all_finite(&self.v2)
+    }
+}
+
+/// A number type that carries derivatives in `count` directions: how to seed
+/// an input and how to read the result.
+pub trait Directional: Number {
+    /// The highest order of derivative carried (1 or 2).
+    const ORDER: usize;
+
+    /// An input with value `value` that is derivative direction `direction`
+    /// of `count`.
+    fn variable(value: f64, direction: usize, count: usize) -> Self;
+
+    /// The gradient (zeros where no derivative part is present).
+    fn gradient(&self, count: usize) -> DVector<f64>;
+
+    /// The Hessian, for second-order numbers.
+    fn hessian(&self, count: usize) -> Option<DMatrix<f64>>;
+}
+
+impl<D: Dim> Directional for DualVec<f64, D>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    const ORDER: usize = 1;
+
+    fn variable(value: f64, direction: usize, count: usize) -> Self {
+        let seed = Derivative::derivative_generic(D::from_usize(count), U1, direction);
+        DualVec::new(value, seed)
+    }
+
+    fn gradient(&self, count: usize) -> DVector<f64> {
+        match &self.eps.0 {
+            Some(eps) => DVector::from_iterator(count, eps.iter().copied()),
+            None => DVector::zeros(count),
+        }
+    }
+
+    fn hessian(&self, _: usize) -> Option<DMatrix<f64>> {
+        None
+    }
+}
+
+impl<D: Dim> Directional for Dual2Vec<f64, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    const ORDER: usize = 2;
+
+    fn variable(value: f64, direction: usize, count: usize) -> Self {
+        let seed = Derivative::derivative_generic(U1, D::from_usize(count), direction);
+        Dual2Vec::new(value, seed, Derivative::none())
+    }
+
+    fn gradient(&self, count: usize) -> DVector<f64> {
+        match &self.v1.0 {
+            Some(v1) => DVector::from_iterator(count, v1.iter().copied()),
+            None => DVector::zeros(count),
+        }
+    }
+
+    fn hessian(&self, count: usize) -> Option<DMatrix<f64>> {
+        Some(match &self.v2.0 {
+            Some(v2) => DMatrix::from_iterator(count, count, v2.iter().copied()),
+            None => DMatrix::zeros(count, count),
+        })
+    }
+}

@@ -1,0 +1,127 @@
+//! The built binary, driven as a user would: arguments, piped input, exit codes.
+
+use std::io::Write;
+use std::process::{Command, Stdio};
+
+/// Runs `mbexpr args...` with `stdin`, returning stdout, stderr and the exit code.
+fn mbexpr(args: &[&str], stdin: &str) -> (String, String, i32) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mbexpr"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    child
+        .stdin
+        .take()
+        .expect("piped")
+        .write_all(stdin.as_bytes())
+        .expect("stdin accepts input");
+    let output = child.wait_with_output().expect("the binary ends");
+    (
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+        output.status.code().unwrap_or(-1),
+    )
+}
+
+/// `$ mbexpr args` then what it printed and its exit code.
+fn check(args: &[&str], stdin: &str) -> String {
+    let (stdout, stderr, code) = mbexpr(args, stdin);
+    format!("$ mbexpr {}\n{stdout}{stderr}[exit {code}]\n", args.join(" "))
+}
+
+const EXPRESSIONS: &str = "STEP(TIME, 0, 0, 1, 10)
+! a comment line
+
+BISTOP(DX(2,1,1), VX(2,1,1,1), -5, 5, 1e5, 2.2, 100, 0.1)
+2*STPE(TIME, 0, 0, 1, 1)
+IF(TIME-1, 0, 0, 1)
+BISTOP(x, v, 5, -5, 1e5, 2.2, 100, 0)
+x^2 + (y
+";
+
+#[test]
+fn check_reports_every_error_with_its_place() {
+    insta::assert_snapshot!(
+        check(&["check", "-"], EXPRESSIONS) + &check(&["check", "--format", "jsonl", "-"], EXPRESSIONS)
+    );
+}
+
+#[test]
+fn check_exit_codes() {
+    assert_eq!(mbexpr(&["check", "-"], "STEP(TIME,0,0,1,1)\n").2, 0);
+    assert_eq!(mbexpr(&["check", "-"], "STPE(TIME,0,0,1,1)\n").2, 1);
+    assert_eq!(mbexpr(&["check", "/no/such/file"], "").2, 2);
+    assert_eq!(mbexpr(&["check"], "").2, 2);
+    assert_eq!(mbexpr(&["check", "--format", "yaml", "-"], "").2, 2);
+}
+
+#[test]
+fn parse_prints_the_tree() {
+    insta::assert_snapshot!(
+        check(&["parse", "-2**2 + step(time, 0, 0, 1, 90D)"], "") + &check(&["parse", "1.0D3"], "")
+    );
+}
+
+#[test]
+fn eval_prints_value_gradient_and_hessian() {
+    let bistop = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
+    insta::assert_snapshot!(
+        check(&["eval", bistop, "--set", "x=10.05", "--set", "v=0.7"], "")
+            + &check(&["eval", bistop, "--set", "X=10.05", "--set", "v=0.7", "--wrt", "x,v"], "")
+            + &check(&["eval", bistop, "--set", "x=10.05", "--set", "v=0.7", "--wrt", "x,v", "--order", "2"], "")
+            + &check(&["eval", bistop, "--set", "x=10.05", "--set", "v=0.7", "--wrt", "x,v", "--order", "2", "--format", "json"], "")
+            + &check(&["eval", bistop, "--set", "x=10.05", "--set", "v=0.7", "--wrt", "v", "--format", "jsonl"], "")
+            + &check(&["eval", "STEP(TIME, 0, 0, 1, 10)", "--set", "time=0.5", "--wrt", "TIME"], "")
+    );
+}
+
+#[test]
+fn eval_errors() {
+    let bistop = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
+    insta::assert_snapshot!(
+        check(&["eval", bistop, "--set", "x=1"], "")
+            + &check(&["eval", bistop, "--set", "x=1", "--set", "v=1", "--wrt", "y"], "")
+            + &check(&["eval", bistop, "--set", "x=one"], "")
+            + &check(&["eval", "LOG(x)", "--set", "x=0"], "")
+            + &check(&["eval", "STPE(x)", "--set", "x=0"], "")
+            + &check(&["eval", "x", "--order", "3"], "")
+    );
+}
+
+#[test]
+fn eval_points_gives_one_line_per_row_and_goes_on_after_errors() {
+    let dir = std::env::temp_dir().join(format!("mbexpr-points-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("points.csv");
+    std::fs::write(&csv, "x,v\n10.05,0.7\n0,1\nbad,1\n-10.5,2\n1,2,3\n").unwrap();
+    let path = csv.to_str().unwrap();
+    let bistop = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
+    let report = check(&["eval", bistop, "--wrt", "x,v", "--points", path, "--format", "jsonl"], "")
+        + &check(&["eval", "LOG(x)", "--points", path, "--format", "json"], "");
+    std::fs::remove_dir_all(&dir).unwrap();
+    insta::assert_snapshot!(report.replace(path, "points.csv"));
+}
+
+#[test]
+fn a_closed_pipe_ends_the_run_quietly() {
+    let many = "x + 1\n".repeat(200_000);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mbexpr"))
+        .args(["check", "--format", "jsonl", "-"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child.stdin.take().unwrap().write_all(many.as_bytes()).unwrap();
+    // Read a little, then close our end of the pipe.
+    let mut stdout = child.stdout.take().unwrap();
+    let mut first = [0u8; 64];
+    std::io::Read::read_exact(&mut stdout, &mut first).unwrap();
+    drop(stdout);
+    let output = child.wait_with_output().unwrap();
+    assert_eq!(output.status.code(), Some(0));
+    assert!(output.stderr.is_empty(), "{}", String::from_utf8_lossy(&output.stderr));
+}

@@ -1,0 +1,231 @@
+//! Compile and evaluate: values, derivatives and evaluation errors, one case
+//! per line: `EXPRESSION ; name=value ... ; wrt name,name ; order N`.
+
+use mbexpr::{Order, check as check_expr, compile, parse};
+
+/// Evaluates a case line and prints the value, gradient and Hessian, or the error.
+fn check(case: &str) -> String {
+    let mut parts = case.split(';').map(str::trim);
+    let text = parts.next().unwrap_or_default();
+    let mut names = Vec::new();
+    let mut values = Vec::new();
+    let mut wrt_names: Vec<&str> = Vec::new();
+    let mut order = Order::Value;
+    for part in parts {
+        if let Some(list) = part.strip_prefix("wrt ") {
+            wrt_names = list.split(',').map(str::trim).collect();
+            order = order.max(Order::Gradient);
+        } else if let Some(number) = part.strip_prefix("order ") {
+            order = Order::from_number(number.parse().unwrap()).unwrap();
+        } else {
+            for assignment in part.split_whitespace() {
+                let (name, value) = assignment.split_once('=').unwrap();
+                names.push(name);
+                values.push(value.parse::<f64>().unwrap());
+            }
+        }
+    }
+    let tree = match parse(text) {
+        Ok(tree) => tree,
+        Err(error) => return format!("syntax error: {error}"),
+    };
+    let checked = match check_expr(&tree) {
+        Ok(checked) => checked,
+        Err(errors) => return format!("check error: {}", errors[0]),
+    };
+    let program = match compile(&checked, &names) {
+        Ok(program) => program,
+        Err(errors) => return format!("compile error: {}", errors[0]),
+    };
+    let wrt: Vec<usize> = wrt_names.iter().map(|name| program.input_index(name).unwrap()).collect();
+    match program.evaluate(&values, &wrt, order) {
+        Err(error) => {
+            let span = error.span();
+            format!("error at `{}`: {error}", &text[span.range()])
+        }
+        Ok(evaluation) => {
+            let tidy = |value: f64| format!("{:.12e}", value + 0.0);
+            let mut out = tidy(evaluation.value);
+            if let Some(gradient) = evaluation.gradient {
+                let entries: Vec<String> = gradient.iter().map(|&g| tidy(g)).collect();
+                out += &format!(" | grad [{}]", entries.join(", "));
+            }
+            if let Some(hessian) = evaluation.hessian {
+                let rows: Vec<String> = hessian
+                    .row_iter()
+                    .map(|row| row.iter().map(|&h| tidy(h)).collect::<Vec<_>>().join(", "))
+                    .collect();
+                out += &format!(" | hess [{}]", rows.join("; "));
+            }
+            out
+        }
+    }
+}
+
+fn table(cases: &str) -> String {
+    cases
+        .lines()
+        .map(str::trim)
+        .filter(|case| !case.is_empty())
+        .map(|case| format!("{case}\n  => {}\n", check(case)))
+        .collect()
+}
+
+#[test]
+fn arithmetic_and_constants() {
+    insta::assert_snapshot!(table(
+        r"
+        2**3
+        2**3**2
+        -2**2
+        (x-3)**3 ; x=1 ; wrt x ; order 2
+        x**-2 ; x=2 ; wrt x ; order 2
+        x**0.5 ; x=4 ; wrt x ; order 2
+        x**y ; x=2 y=3 ; wrt x,y ; order 2
+        PI + DTOR + RTOD
+        90D
+        MODE
+        MODE ; MODE=1
+        TIME*2 ; time=3 ; wrt TIME
+        a*b ; a=2 b=5 ; wrt a ; order 2
+        a*b ; a=2 b=5 ; wrt b,a ; order 2
+        "
+    ));
+}
+
+#[test]
+fn every_function() {
+    insta::assert_snapshot!(table(
+        r"
+        ABS(x) ; x=-2 ; wrt x ; order 2
+        ABS(x) ; x=0 ; wrt x
+        SIN(x)+COS(x)+TAN(x) ; x=0.3 ; wrt x ; order 2
+        ASIN(x)+ACOS(x)+ATAN(x) ; x=0.3 ; wrt x ; order 2
+        ATAN2(y, x) ; y=1 x=-1 ; wrt y,x ; order 2
+        ATAN2(y, x) ; y=0 x=0 ; wrt y,x ; order 2
+        SINH(x)+COSH(x)+TANH(x) ; x=0.3 ; wrt x ; order 2
+        EXP(x)+LOG(x)+LOG10(x)+SQRT(x) ; x=2 ; wrt x ; order 2
+        AINT(x)+ANINT(y) ; x=-2.7 y=2.5 ; wrt x,y
+        ANINT(-2.5)
+        DIM(a, b) ; a=3 b=1 ; wrt a,b
+        DIM(a, b) ; a=1 b=3 ; wrt a,b
+        MAX(a, b, c) ; a=1 b=3 c=2 ; wrt a,b,c
+        MIN(a, b) ; a=1 b=1 ; wrt a,b
+        MOD(a, b) ; a=-7 b=3 ; wrt a,b
+        SIGN(a, b) ; a=-2 b=0 ; wrt a
+        SIGN(a, b) ; a=2 b=-1 ; wrt a
+        STEP(x, 0, 0, 1, 10) ; x=0.5 ; wrt x ; order 2
+        STEP(x, 0, 0, 1, 10) ; x=0 ; wrt x ; order 2
+        STEP(x, 0, 0, 1, 10) ; x=1 ; wrt x ; order 2
+        STEP5(x, 0, 0, 1, 10) ; x=0.25 ; wrt x ; order 2
+        HAVSIN(x, 0, 0, 1, 10) ; x=0.25 ; wrt x ; order 2
+        SHF(x, 0, 2, 3, 0.5, 1) ; x=0.25 ; wrt x ; order 2
+        POLY(x, 1, 1, 2, 3) ; x=2 ; wrt x ; order 2
+        CHEBY(x, 0, 1, 2, 3) ; x=0.5 ; wrt x ; order 2
+        FORCOS(x, 0, 2, 1, 2, 3) ; x=0.5 ; wrt x ; order 2
+        FORSIN(x, 0, 2, 1, 2, 3) ; x=0.5 ; wrt x ; order 2
+        SWEEP(x, 2, 1, 1, 3, 5, 0.5) ; x=2 ; wrt x ; order 2
+        IF(x: 1, 2, 3) ; x=-1
+        IF(x: 1, 2, 3) ; x=0
+        IF(x: 1, 2, 3) ; x=1
+        IF(x: 1/0, 2, x**2) ; x=3 ; wrt x ; order 2
+        "
+    ));
+}
+
+#[test]
+fn contact_branches() {
+    insta::assert_snapshot!(table(
+        r"
+        BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) ; x=0 v=0.7 ; wrt x,v ; order 2
+        BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) ; x=10 v=0.7 ; wrt x,v ; order 2
+        BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) ; x=-10 v=0.7 ; wrt x,v ; order 2
+        BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) ; x=10.05 v=0.7 ; wrt x,v ; order 2
+        BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) ; x=10.1 v=0.7 ; wrt x,v ; order 2
+        BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) ; x=10.5 v=0.7 ; wrt x,v ; order 2
+        BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) ; x=10.05 v=-100 ; wrt x,v ; order 2
+        BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) ; x=-10.05 v=-0.7 ; wrt x,v ; order 2
+        BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) ; x=-10.5 v=0.7 ; wrt x,v ; order 2
+        BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) ; x=-10.05 v=100 ; wrt x,v ; order 2
+        BISTOP(x, v, -1, 1, 1e3, 1, 10, 0.1) ; x=1.05 v=0 ; wrt x,v ; order 2
+        BISTOP(x, v, -1, 1, 1e3, 0.8, 10, 0.1) ; x=1.05 v=0 ; wrt x,v ; order 2
+        BISTOP(x, v, -1, 1, 1e3, 1.5, 10, 0.1) ; x=1.05 v=0 ; wrt x,v ; order 2
+        BISTOP(x, v, -1, 1, 1e3, e, 10, 0.1) ; x=1.05 v=0 e=1.5 ; wrt x,e ; order 2
+        IMPACT(x, v, 1, 1e4, 1.5, 10, 0.1) ; x=2 v=-1 ; wrt x,v ; order 2
+        IMPACT(x, v, 1, 1e4, 1.5, 10, 0.1) ; x=1 v=-1 ; wrt x,v ; order 2
+        IMPACT(x, v, 1, 1e4, 1.5, 10, 0.1) ; x=0.95 v=-1 ; wrt x,v ; order 2
+        IMPACT(x, v, 1, 1e4, 1.5, 10, 0.1) ; x=0.5 v=-1 ; wrt x,v ; order 2
+        IMPACT(x, v, 1, 1e4, 1.5, 10, 0.1) ; x=0.95 v=1e6 ; wrt x,v ; order 2
+        IMPACT(x, v, 1, 0, 1.5, 10, 0.1) ; x=0.95 v=-1 ; wrt x,v ; order 2
+        "
+    ));
+}
+
+#[test]
+fn evaluation_errors_name_the_operation() {
+    insta::assert_snapshot!(table(
+        r"
+        LOG(x) ; x=0
+        LOG10(x) ; x=-1
+        SQRT(x) ; x=-1
+        SQRT(x) ; x=0 ; wrt x
+        ASIN(x) ; x=1.5
+        ACOS(x) ; x=-1.5
+        1/x ; x=0
+        x**-1 ; x=0
+        x**0.5 ; x=-1
+        x**y ; x=-1 y=2 ; wrt y
+        MOD(x, y) ; x=1 y=0
+        EXP(x) ; x=1000
+        x*1e308*10 ; x=1
+        STEP(t, a, 0, b, 1) ; t=0 a=2 b=1
+        BISTOP(x, v, a, 1, 1e5, 2.2, 100, 0.1) ; x=0 v=0 a=2
+        BISTOP(x, v, -1, 1, k, 2.2, 100, 0.1) ; x=0 v=0 k=-1
+        IMPACT(x, v, 1, 1e4, e, 10, d) ; x=0 v=0 e=0 d=1
+        IMPACT(x, v, 1, 1e4, 1.5, 10, d) ; x=0 v=0 d=0
+        IMPACT(x, v, 1, 1e4, 0.5, 10, 0.1) ; x=1e-300 v=0 ; wrt x ; order 2
+        x ; x=1 ; wrt x
+        "
+    ));
+}
+
+#[test]
+fn compile_errors_name_what_is_missing() {
+    insta::assert_snapshot!(table(
+        r"
+        x + y ; x=1
+        stifness*2 ; stiffness=1
+        TIME
+        DX(2, 1, 1)
+        VARVAL(3)
+        ARYVAL(.m.arr, 2)
+        FX(12, 3)
+        SFORCE(1002, 0, 8, 9006936)
+        USER(1, 2)
+        "
+    ));
+}
+
+#[test]
+fn a_constant_expression_compiles_to_no_instruction() {
+    let checked = check_expr(&parse("2*PI*STEP(0.5, 0, 0, 1, 1) + SIN(90D)").unwrap()).unwrap();
+    let program = compile::<&str>(&checked, &[]).unwrap();
+    assert!(program.is_empty(), "{program}");
+    assert_eq!(program.value(&[]).unwrap(), std::f64::consts::PI + 1.0);
+}
+
+#[test]
+fn each_subexpression_is_computed_once() {
+    let checked = check_expr(&parse("SIN(x)*SIN(x) + SIN(x)").unwrap()).unwrap();
+    let program = compile(&checked, &["x"]).unwrap();
+    insta::assert_snapshot!(program.to_string());
+}
+
+#[test]
+fn only_the_chosen_branch_is_run() {
+    let checked = check_expr(&parse("IF(x: LOG(x), 0, LOG(x) + SIN(x))").unwrap()).unwrap();
+    let program = compile(&checked, &["x"]).unwrap();
+    insta::assert_snapshot!(program.to_string());
+    assert_eq!(program.value(&[0.0]).unwrap(), 0.0);
+    assert!(program.value(&[-1.0]).is_err());
+}

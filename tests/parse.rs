@@ -1,0 +1,190 @@
+//! Parse stage: trees and syntax errors, one case per line.
+
+use mbexpr::{Location, parse};
+
+/// The tree as an S-expression, or `error LINE:COL: message`.
+fn check(input: &str) -> String {
+    match parse(input) {
+        Ok(tree) => tree.to_string(),
+        Err(error) => {
+            let at = Location::of(input, error.span().start);
+            format!("error {at}: {error}")
+        }
+    }
+}
+
+/// `input\n  => output` for every non-blank line of `cases`.
+fn table(cases: &str) -> String {
+    cases
+        .lines()
+        .map(str::trim)
+        .filter(|case| !case.is_empty())
+        .map(|case| format!("{case}\n  => {}\n", check(case)))
+        .collect()
+}
+
+#[test]
+fn numbers() {
+    insta::assert_snapshot!(table(
+        r"
+        1
+        1.
+        .5
+        2.25
+        1e5
+        1E+07
+        3.582e-09
+        1.0E+007
+        0.00000000000000000e+000
+        90D
+        -40d
+        1.5D
+        0.0d
+        .5D
+        0201
+        1.0D3
+        2D-5
+        2d+3*x
+        1E400
+        20E0301
+        "
+    ));
+}
+
+#[test]
+fn operators_and_precedence() {
+    insta::assert_snapshot!(table(
+        r"
+        a + b - c
+        a - b - c
+        a / b * c
+        a + b * c
+        (a + b) * c
+        2**3**2
+        -2**2
+        - -8.3E-03*RTOD
+        + -0.5
+        +-1.0515424217E+06*WZ(1)
+        a*-b
+        x**-2
+        x**-y**2
+        -a*b
+        -(a)**2
+        a/-b/c
+        "
+    ));
+}
+
+#[test]
+fn names_and_calls() {
+    insta::assert_snapshot!(table(
+        r"
+        step(time, 0, 0, 1, 10)
+        STEP (TIME, 0, 0, 1, 10)
+        .model_1.PART_2.MAR_3
+        Body1.Marker2
+        DX(.m.a, .m.b, .m.b)
+        ORIENT(27,1,0201,0101)
+        k_stop*x_1
+        WZ( 99)
+        VR()
+        IF(TIME-2: 0, 0, 1)
+        IF (TIME-2 : 0, 0, 1)
+        IF(IF(x: -1, 0, 1): a, b, IF(y: 1, 2, 3))
+        BISTOP(DX(2,1,1), VX(2,1,1,1), -5, 5, 1e5, 2.2, 100, 0.1)
+        "
+    ));
+}
+
+#[test]
+fn refusals() {
+    insta::assert_snapshot!(table(
+        r"
+        x^2
+        x < 3
+        x >= 3
+        a == b
+        a && b
+        IF(a, b, c, d)
+        IF(a: b, c)
+        IF(a: b, c, d, e)
+        IF(a, b: c, d)
+        STEP(x: 0, 0, 1, 1)
+        5*DELAY(DIF(2), DIF(1)-3*DIF(2), 0.95))
+        (DELAY(DIFF1, 1,1,777)
+        STEP(x, 0, 0, 1 1)
+        STEP(x,)
+        ()
+        a +
+        * a
+        2 x
+        x,y
+        a : b
+        -AZ({j_st_wheel.i.id, %d})*RTOD
+        a $ b
+        a # b
+        1.0D3 + 2
+        (((x)
+        STEP(x, 0, 0, 1, 1
+        "
+    ));
+}
+
+#[test]
+fn an_empty_input_is_refused() {
+    assert_eq!(check(""), "error 1:1: the expression is empty");
+    assert_eq!(check("   \n  "), "error 2:3: the expression is empty");
+}
+
+#[test]
+fn spans_cover_the_text_of_each_node() {
+    let text = "STEP(TIME, 0, 0, 1, 10) + 2*x";
+    let tree = parse(text).unwrap();
+    assert_eq!(tree.span, mbexpr::Span::new(0, text.len()));
+    let mbexpr::syntax::ast::ExprKind::Binary(_, call, product) = &tree.kind else {
+        panic!("a sum")
+    };
+    assert_eq!(&text[call.span.range()], "STEP(TIME, 0, 0, 1, 10)");
+    assert_eq!(&text[product.span.range()], "2*x");
+}
+
+#[test]
+fn nesting_at_the_limit_parses_and_past_it_is_refused() {
+    let limit = mbexpr::syntax::MAX_NESTING;
+    let deep = |depth: usize| format!("{}x{}", "(".repeat(depth), ")".repeat(depth));
+    let at_limit = deep(limit - 1);
+    // Run where the stack is smallest: a test thread has 2 MiB.
+    assert!(parse(&at_limit).is_ok());
+    let refused = check(&deep(100_000));
+    assert!(refused.contains("nests deeper than"), "{refused}");
+    let signs = format!("{}x", "-".repeat(100_000));
+    assert!(check(&signs).contains("nests deeper than"));
+    let powers = format!("x{}", "**x".repeat(100_000));
+    assert!(check(&powers).contains("nests deeper than"));
+}
+
+#[test]
+fn a_tree_at_the_depth_limit_goes_through_every_stage() {
+    let limit = mbexpr::syntax::MAX_NESTING;
+    let sum = "x+".repeat(limit + 1) + "x";
+    assert!(check(&sum).contains("nests deeper than"));
+    let sum = "x+".repeat(limit - 1) + "x";
+    let checked = mbexpr::check(&parse(&sum).unwrap()).unwrap();
+    let program = mbexpr::compile(&checked, &["x"]).unwrap();
+    assert_eq!(program.value(&[1.0]).unwrap(), limit as f64);
+    let nested = format!("{}x{}", "SIN(-".repeat(limit / 2 - 1), ")".repeat(limit / 2 - 1));
+    let checked = mbexpr::check(&parse(&nested).unwrap()).unwrap();
+    assert!(checked.root.to_string().starts_with("(SIN (neg (SIN"));
+}
+
+#[test]
+fn a_ten_megabyte_input_is_parsed_or_refused() {
+    // A long sum is refused by the depth limit before any parsing.
+    let long_sum = "x+".repeat(5 * 1024 * 1024) + "x";
+    assert!(check(&long_sum).contains("nests deeper than"));
+    // Ten megabytes of arguments parse and check.
+    let arguments = "MAX(".to_string() + &"x, ".repeat(3 * 1024 * 1024) + "x)";
+    let tree = parse(&arguments).expect("a long argument list parses");
+    assert_eq!(tree.span.len(), arguments.len());
+    assert!(mbexpr::check(&tree).is_ok());
+}
