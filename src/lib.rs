@@ -1,4 +1,41 @@
-//! mbexpr: read, check and evaluate the function expressions of multibody models.
+//! mbexpr reads the function expressions of multibody-dynamics models (the
+//! language of the Adams family of solvers: `STEP(TIME, 0, 0, 1, 10)`,
+//! `BISTOP(DX(2,1,1), VX(2,1,1,1), -5, 5, 1e5, 2.2, 100, 0.1)`), checks them,
+//! and evaluates them with exact first and second derivatives.
+//!
+//! The pipeline has one stage per module, each with its own error type:
+//!
+//! 1. [`parse`] — text to a syntax tree with byte spans ([`syntax`]);
+//! 2. [`check`] — names resolved, arguments counted and sorted, constant
+//!    arguments checked against the functions' rules ([`mod@check`]);
+//! 3. [`compile`] — a flat [`Program`] for a list of inputs, constants folded
+//!    ([`mod@compile`]);
+//! 4. evaluate — the value over `f64`, or value, gradient and Hessian over
+//!    dual numbers ([`eval`]).
+//!
+//! ```
+//! use mbexpr::Order;
+//!
+//! let tree = mbexpr::parse("BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)")?;
+//! let checked = mbexpr::check(&tree).map_err(|errors| errors[0].clone())?;
+//! let program = mbexpr::compile(&checked, &["x", "v"]).map_err(|errors| errors[0].clone())?;
+//!
+//! // Beyond the upper wall (x2 = 10) by 0.05, moving outwards at 0.7:
+//! let force = program.value(&[10.05, 0.7])?;
+//! assert!(force < 0.0);
+//!
+//! // The gradient and Hessian in (x, v), for an implicit integrator.
+//! let result = program.evaluate(&[10.05, 0.7], &[0, 1], Order::Hessian)?;
+//! let gradient = result.gradient.unwrap();
+//! assert_eq!(result.value, force);
+//! assert!((gradient[1] - -50.0).abs() < 1e-9); // dF/dv = -c, half of cmax mid-ramp
+//! assert!(result.hessian.unwrap()[(1, 1)] == 0.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! Errors carry the [`Span`] of the text they speak of; the library never
+//! prints. [`Location::of`] turns a span's offset into a line and column.
+
 pub mod catalog;
 pub mod check;
 pub mod compile;
@@ -9,7 +46,7 @@ pub mod span;
 pub mod syntax;
 
 pub use check::{CheckError, Checked, check};
-pub use span::{Location, Span};
-pub use syntax::{ParseError, parse};
 pub use compile::{CompileError, Program, compile};
 pub use eval::{EvalError, Evaluation, Evaluator, Order};
+pub use span::{Location, Span};
+pub use syntax::{ParseError, parse};
