@@ -4,6 +4,7 @@
 //!
 //! Later stages match on [`Function`], never on strings.
 
+use std::cmp::Ordering;
 use std::fmt;
 
 /// What an argument position holds.
@@ -111,11 +112,23 @@ pub fn check_rules_with(
     for &rule in function.rules() {
         let broken = match rule {
             Rule::Less(a, b) => match (value(a), value(b)) {
-                (Some(lower), Some(upper)) => (!(lower < upper)).then(|| vec![lower, upper]),
+                // Written so that a NaN breaks every rule.
+                (Some(lower), Some(upper)) => {
+                    (lower.partial_cmp(&upper) != Some(Ordering::Less)).then(|| vec![lower, upper])
+                }
                 _ => None,
             },
-            Rule::Positive(a) => value(a).filter(|v| !(*v > 0.0)).map(|v| vec![v]),
-            Rule::NonNegative(a) => value(a).filter(|v| !(*v >= 0.0)).map(|v| vec![v]),
+            Rule::Positive(a) => value(a)
+                .filter(|v| v.partial_cmp(&0.0) != Some(Ordering::Greater))
+                .map(|v| vec![v]),
+            Rule::NonNegative(a) => value(a)
+                .filter(|v| {
+                    !matches!(
+                        v.partial_cmp(&0.0),
+                        Some(Ordering::Greater | Ordering::Equal)
+                    )
+                })
+                .map(|v| vec![v]),
             Rule::NonZero(a) => value(a).filter(|v| *v == 0.0).map(|v| vec![v]),
         };
         if let Some(values) = broken {

@@ -17,8 +17,8 @@
 //! use mbexpr::Order;
 //!
 //! let tree = mbexpr::parse("BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)")?;
-//! let checked = mbexpr::check(&tree).map_err(|errors| errors[0].clone())?;
-//! let program = mbexpr::compile(&checked, &["x", "v"]).map_err(|errors| errors[0].clone())?;
+//! let checked = mbexpr::check(&tree)?;
+//! let program = mbexpr::compile(&checked, &["x", "v"])?;
 //!
 //! // Beyond the upper wall (x2 = 10) by 0.05, moving outwards at 0.7:
 //! let force = program.value(&[10.05, 0.7])?;
@@ -39,6 +39,7 @@
 pub mod catalog;
 pub mod check;
 pub mod compile;
+mod errors;
 pub mod eval;
 pub mod laws;
 pub mod number;
@@ -47,6 +48,7 @@ pub mod syntax;
 
 pub use check::{CheckError, Checked, check};
 pub use compile::{CompileError, Program, compile};
+pub use errors::Errors;
 pub use eval::{EvalError, Evaluation, Evaluator, Order};
 pub use span::{Location, Span};
 pub use syntax::{ParseError, parse};

@@ -29,7 +29,10 @@ fn mbexpr(args: &[&str], stdin: &str) -> (String, String, i32) {
 /// `$ mbexpr args` then what it printed and its exit code.
 fn check(args: &[&str], stdin: &str) -> String {
     let (stdout, stderr, code) = mbexpr(args, stdin);
-    format!("$ mbexpr {}\n{stdout}{stderr}[exit {code}]\n", args.join(" "))
+    format!(
+        "$ mbexpr {}\n{stdout}{stderr}[exit {code}]\n",
+        args.join(" ")
+    )
 }
 
 const EXPRESSIONS: &str = "STEP(TIME, 0, 0, 1, 10)
@@ -45,7 +48,8 @@ x^2 + (y
 #[test]
 fn check_reports_every_error_with_its_place() {
     insta::assert_snapshot!(
-        check(&["check", "-"], EXPRESSIONS) + &check(&["check", "--format", "jsonl", "-"], EXPRESSIONS)
+        check(&["check", "-"], EXPRESSIONS)
+            + &check(&["check", "--format", "jsonl", "-"], EXPRESSIONS)
     );
 }
 
@@ -70,11 +74,44 @@ fn eval_prints_value_gradient_and_hessian() {
     let bistop = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
     insta::assert_snapshot!(
         check(&["eval", bistop, "--set", "x=10.05", "--set", "v=0.7"], "")
-            + &check(&["eval", bistop, "--set", "X=10.05", "--set", "v=0.7", "--wrt", "x,v"], "")
-            + &check(&["eval", bistop, "--set", "x=10.05", "--set", "v=0.7", "--wrt", "x,v", "--order", "2"], "")
-            + &check(&["eval", bistop, "--set", "x=10.05", "--set", "v=0.7", "--wrt", "x,v", "--order", "2", "--format", "json"], "")
-            + &check(&["eval", bistop, "--set", "x=10.05", "--set", "v=0.7", "--wrt", "v", "--format", "jsonl"], "")
-            + &check(&["eval", "STEP(TIME, 0, 0, 1, 10)", "--set", "time=0.5", "--wrt", "TIME"], "")
+            + &check(
+                &[
+                    "eval", bistop, "--set", "X=10.05", "--set", "v=0.7", "--wrt", "x,v"
+                ],
+                ""
+            )
+            + &check(
+                &[
+                    "eval", bistop, "--set", "x=10.05", "--set", "v=0.7", "--wrt", "x,v",
+                    "--order", "2"
+                ],
+                ""
+            )
+            + &check(
+                &[
+                    "eval", bistop, "--set", "x=10.05", "--set", "v=0.7", "--wrt", "x,v",
+                    "--order", "2", "--format", "json"
+                ],
+                ""
+            )
+            + &check(
+                &[
+                    "eval", bistop, "--set", "x=10.05", "--set", "v=0.7", "--wrt", "v", "--format",
+                    "jsonl"
+                ],
+                ""
+            )
+            + &check(
+                &[
+                    "eval",
+                    "STEP(TIME, 0, 0, 1, 10)",
+                    "--set",
+                    "time=0.5",
+                    "--wrt",
+                    "TIME"
+                ],
+                ""
+            )
     );
 }
 
@@ -83,7 +120,10 @@ fn eval_errors() {
     let bistop = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
     insta::assert_snapshot!(
         check(&["eval", bistop, "--set", "x=1"], "")
-            + &check(&["eval", bistop, "--set", "x=1", "--set", "v=1", "--wrt", "y"], "")
+            + &check(
+                &["eval", bistop, "--set", "x=1", "--set", "v=1", "--wrt", "y"],
+                ""
+            )
             + &check(&["eval", bistop, "--set", "x=one"], "")
             + &check(&["eval", "LOG(x)", "--set", "x=0"], "")
             + &check(&["eval", "STPE(x)", "--set", "x=0"], "")
@@ -99,8 +139,15 @@ fn eval_points_gives_one_line_per_row_and_goes_on_after_errors() {
     std::fs::write(&csv, "x,v\n10.05,0.7\n0,1\nbad,1\n-10.5,2\n1,2,3\n").unwrap();
     let path = csv.to_str().unwrap();
     let bistop = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
-    let report = check(&["eval", bistop, "--wrt", "x,v", "--points", path, "--format", "jsonl"], "")
-        + &check(&["eval", "LOG(x)", "--points", path, "--format", "json"], "");
+    let report = check(
+        &[
+            "eval", bistop, "--wrt", "x,v", "--points", path, "--format", "jsonl",
+        ],
+        "",
+    ) + &check(
+        &["eval", "LOG(x)", "--points", path, "--format", "json"],
+        "",
+    );
     std::fs::remove_dir_all(&dir).unwrap();
     insta::assert_snapshot!(report.replace(path, "points.csv"));
 }
@@ -115,7 +162,12 @@ fn a_closed_pipe_ends_the_run_quietly() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    child.stdin.take().unwrap().write_all(many.as_bytes()).unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(many.as_bytes())
+        .unwrap();
     // Read a little, then close our end of the pipe.
     let mut stdout = child.stdout.take().unwrap();
     let mut first = [0u8; 64];
@@ -123,5 +175,9 @@ fn a_closed_pipe_ends_the_run_quietly() {
     drop(stdout);
     let output = child.wait_with_output().unwrap();
     assert_eq!(output.status.code(), Some(0));
-    assert!(output.stderr.is_empty(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
 }

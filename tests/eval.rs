@@ -37,7 +37,10 @@ fn check(case: &str) -> String {
         Ok(program) => program,
         Err(errors) => return format!("compile error: {}", errors[0]),
     };
-    let wrt: Vec<usize> = wrt_names.iter().map(|name| program.input_index(name).unwrap()).collect();
+    let wrt: Vec<usize> = wrt_names
+        .iter()
+        .map(|name| program.input_index(name).unwrap())
+        .collect();
     match program.evaluate(&values, &wrt, order) {
         Err(error) => {
             let span = error.span();

@@ -172,7 +172,11 @@ fn a_tree_at_the_depth_limit_goes_through_every_stage() {
     let checked = mbexpr::check(&parse(&sum).unwrap()).unwrap();
     let program = mbexpr::compile(&checked, &["x"]).unwrap();
     assert_eq!(program.value(&[1.0]).unwrap(), limit as f64);
-    let nested = format!("{}x{}", "SIN(-".repeat(limit / 2 - 1), ")".repeat(limit / 2 - 1));
+    let nested = format!(
+        "{}x{}",
+        "SIN(-".repeat(limit / 2 - 1),
+        ")".repeat(limit / 2 - 1)
+    );
     let checked = mbexpr::check(&parse(&nested).unwrap()).unwrap();
     assert!(checked.root.to_string().starts_with("(SIN (neg (SIN"));
 }

@@ -11,6 +11,7 @@ pub use tree::{Argument, Node, NodeKind, Reference};
 use crate::catalog::{
     self, ArgKind, Constant, Family, Function, SystemVariable, check_rules, closest, did_you_mean,
 };
+use crate::errors::Errors;
 use crate::span::Span;
 use crate::syntax::ast::{BinaryOp, Call, Expr, ExprKind, If, UnaryOp};
 
@@ -67,7 +68,10 @@ pub fn visit<'a>(node: &'a Node, f: &mut impl FnMut(&'a Node)) {
             }
         }
         NodeKind::If(branches) => branches.iter().for_each(|branch| visit(branch, f)),
-        NodeKind::Number(_) | NodeKind::Constant(_) | NodeKind::System(_) | NodeKind::Variable(_) => {}
+        NodeKind::Number(_)
+        | NodeKind::Constant(_)
+        | NodeKind::System(_)
+        | NodeKind::Variable(_) => {}
     }
 }
 
@@ -78,14 +82,14 @@ pub fn visit<'a>(node: &'a Node, f: &mut impl FnMut(&'a Node)) {
 /// let errors = mbexpr::check(&tree).unwrap_err();
 /// assert_eq!(errors[0].to_string(), "BISTOP: x1 (5) must be less than x2 (-5)");
 /// ```
-pub fn check(expr: &Expr) -> Result<Checked, Vec<CheckError>> {
+pub fn check(expr: &Expr) -> Result<Checked, Errors<CheckError>> {
     let mut errors = Vec::new();
     let root = check_expr(expr, &mut errors);
     if errors.is_empty() {
         Ok(Checked { root })
     } else {
         errors.sort_by_key(|error| error.span().start);
-        Err(errors)
+        Err(Errors(errors))
     }
 }
 
@@ -113,7 +117,9 @@ fn check_expr(expr: &Expr, errors: &mut Vec<CheckError>) -> Node {
                 zero,
                 positive,
             } = branches.as_ref();
-            NodeKind::If(Box::new([condition, negative, zero, positive].map(|branch| check_expr(branch, errors))))
+            NodeKind::If(Box::new(
+                [condition, negative, zero, positive].map(|branch| check_expr(branch, errors)),
+            ))
         }
     };
     Node { kind, span }

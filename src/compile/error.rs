@@ -18,7 +18,9 @@ pub enum CompileError {
         span: Span,
     },
     /// A kinematic measure outside a scene.
-    #[error("{function} is a kinematic measure between markers: evaluating it needs a scene with those markers")]
+    #[error(
+        "{function} is a kinematic measure between markers: evaluating it needs a scene with those markers"
+    )]
     NeedsScene {
         /// The measure's name.
         function: &'static str,
@@ -26,7 +28,9 @@ pub enum CompileError {
         span: Span,
     },
     /// A function whose value comes from a model statement.
-    #[error("{function}({id}) needs {statement} of a model: not available when evaluating an expression on its own")]
+    #[error(
+        "{function}({id}) needs {statement} of a model: not available when evaluating an expression on its own"
+    )]
     NeedsModel {
         /// The function's name.
         function: &'static str,
@@ -38,7 +42,9 @@ pub enum CompileError {
         span: Span,
     },
     /// A result of a running solver.
-    #[error("{function} is a result of a running solver: not available when evaluating an expression on its own")]
+    #[error(
+        "{function} is a result of a running solver: not available when evaluating an expression on its own"
+    )]
     NeedsSolver {
         /// The function's name.
         function: &'static str,
@@ -46,7 +52,9 @@ pub enum CompileError {
         span: Span,
     },
     /// `USER(...)`, which only passes constants to a user subroutine.
-    #[error("USER(...) passes its constants to a user subroutine, which is not part of mbexpr: there is no value to compute")]
+    #[error(
+        "USER(...) passes its constants to a user subroutine, which is not part of mbexpr: there is no value to compute"
+    )]
     UserSubroutine {
         /// The call.
         span: Span,

@@ -12,6 +12,7 @@ pub use program::{Instruction, Op, Program, Slot};
 
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
+use crate::errors::Errors;
 use crate::eval::execute;
 use crate::laws::power::as_integer;
 use crate::span::Span;
@@ -23,9 +24,15 @@ use crate::syntax::ast::BinaryOp;
 ///
 /// Every name the expression uses must be an input; every problem is
 /// reported, in source order.
-pub fn compile<S: AsRef<str>>(checked: &Checked, inputs: &[S]) -> Result<Program, Vec<CompileError>> {
+pub fn compile<S: AsRef<str>>(
+    checked: &Checked,
+    inputs: &[S],
+) -> Result<Program, Errors<CompileError>> {
     let mut compiler = Compiler {
-        inputs: inputs.iter().map(|name| name.as_ref().to_string()).collect(),
+        inputs: inputs
+            .iter()
+            .map(|name| name.as_ref().to_string())
+            .collect(),
         constant_values: Vec::new(),
         constants: Vec::new(),
         code: Vec::new(),
@@ -37,7 +44,7 @@ pub fn compile<S: AsRef<str>>(checked: &Checked, inputs: &[S]) -> Result<Program
     let result = compiler.node(&checked.root);
     if !compiler.errors.is_empty() {
         compiler.errors.sort_by_key(|error| error.span().start);
-        return Err(compiler.errors);
+        return Err(Errors(compiler.errors));
     }
     Ok(Program {
         slot_count: compiler.constant_values.len(),
@@ -106,7 +113,13 @@ impl Compiler {
             return self.constant(value);
         }
         let dst = self.new_slot(None);
-        self.emit(Instruction::Compute { dst, op: op.clone() }, span);
+        self.emit(
+            Instruction::Compute {
+                dst,
+                op: op.clone(),
+            },
+            span,
+        );
         self.memo.last_mut().expect("a scope").insert(op, dst);
         dst
     }
@@ -279,7 +292,13 @@ impl Compiler {
             let value = self.node(node);
             self.loaded = loaded_before;
             self.memo.pop();
-            self.emit(Instruction::Copy { dst: result, src: value }, node.span);
+            self.emit(
+                Instruction::Copy {
+                    dst: result,
+                    src: value,
+                },
+                node.span,
+            );
             if index < 2 {
                 jumps.push(self.emit(Instruction::Jump { target: 0 }, span));
             }

@@ -29,7 +29,9 @@ pub enum EvalError {
         span: Span,
     },
     /// A derivative of an operation is not a finite number.
-    #[error("a derivative of {operation} is not a finite number here (the function is not differentiable at this point, or its slope passes the range of a double)")]
+    #[error(
+        "a derivative of {operation} is not a finite number here (the function is not differentiable at this point, or its slope passes the range of a double)"
+    )]
     DerivativeNotFinite {
         /// The function or operator.
         operation: String,

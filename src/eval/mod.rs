@@ -79,8 +79,9 @@ pub(crate) fn execute<T: Number>(op: &Op, slots: &[T]) -> Result<T, LawError> {
             // Up to eight arguments (all but the longest series) stay on the stack.
             const INLINE: usize = 8;
             if args.len() <= INLINE {
-                let values: [T; INLINE] =
-                    std::array::from_fn(|position| slot(args[position.min(args.len() - 1)]).clone());
+                let values: [T; INLINE] = std::array::from_fn(|position| {
+                    slot(args[position.min(args.len() - 1)]).clone()
+                });
                 laws::apply(*function, &values[..args.len()])?
             } else {
                 let values: Vec<T> = args.iter().map(|&index| slot(index).clone()).collect();
@@ -118,7 +119,12 @@ impl Program {
 
     /// The value and, for [`Order::Gradient`] and [`Order::Hessian`], its
     /// derivatives in the directions `wrt` (indices into [`Program::inputs`]).
-    pub fn evaluate(&self, inputs: &[f64], wrt: &[usize], order: Order) -> Result<Evaluation, EvalError> {
+    pub fn evaluate(
+        &self,
+        inputs: &[f64],
+        wrt: &[usize],
+        order: Order,
+    ) -> Result<Evaluation, EvalError> {
         macro_rules! with {
             ($number:ty) => {
                 self.evaluator::<$number>().derivatives(inputs, wrt)
@@ -176,7 +182,8 @@ impl<T: Number> Evaluator<'_, T> {
                 }
                 Instruction::Compute { dst, op } => {
                     let span = program.spans[pc - 1];
-                    let result = execute(op, &self.slots).map_err(|error| EvalError::Law { error, span })?;
+                    let result =
+                        execute(op, &self.slots).map_err(|error| EvalError::Law { error, span })?;
                     if !result.is_all_finite() {
                         let operation = op.name();
                         return Err(if result.value().is_finite() {

@@ -27,7 +27,11 @@ fn ramp<T: Number>(p: &T, d: &T) -> T {
     let w0 = p0 / d0;
     let r0 = (d0 - p0) / d0;
     let w = p.clone() / d.clone();
-    w.chain(w0 * w0 * (1.0 + 2.0 * r0), 6.0 * w0 * r0, 6.0 * (d0 - 2.0 * p0) / d0)
+    w.chain(
+        w0 * w0 * (1.0 + 2.0 * r0),
+        6.0 * w0 * r0,
+        6.0 * (d0 - 2.0 * p0) / d0,
+    )
 }
 
 /// `k * p^e` for `p > 0`; exactly 0 when `k` is a constant 0.

@@ -19,7 +19,11 @@ pub(super) fn apply<T: Number>(function: Function, args: &[T]) -> Result<T, LawE
                 let name = if function == F::Asin { "ASIN" } else { "ACOS" };
                 return domain(name, format!("the argument ({x}) must be between -1 and 1"));
             }
-            if function == F::Asin { a.asin() } else { a.acos() }
+            if function == F::Asin {
+                a.asin()
+            } else {
+                a.acos()
+            }
         }
         F::Atan => a.atan(),
         F::Atan2 => atan2(a, &args[1]),
@@ -32,7 +36,11 @@ pub(super) fn apply<T: Number>(function: Function, args: &[T]) -> Result<T, LawE
                 let name = if function == F::Log { "LOG" } else { "LOG10" };
                 return domain(name, format!("the argument ({x}) must be positive"));
             }
-            if function == F::Log { a.ln() } else { a.log10() }
+            if function == F::Log {
+                a.ln()
+            } else {
+                a.log10()
+            }
         }
         F::Sqrt => {
             if x < 0.0 {
@@ -72,7 +80,11 @@ pub(super) fn apply<T: Number>(function: Function, args: &[T]) -> Result<T, LawE
 
 /// `ABS(a)`: at 0 the derivative is the one of `a` itself (the `a >= 0` branch).
 pub fn abs<T: Number>(a: &T) -> T {
-    if a.value() < 0.0 { -a.clone() } else { a.clone() }
+    if a.value() < 0.0 {
+        -a.clone()
+    } else {
+        a.clone()
+    }
 }
 
 /// `ATAN2(y, x)`, 0 with zero derivatives at the origin.

@@ -46,9 +46,14 @@ pub fn apply<T: Number>(function: Function, args: &[T]) -> Result<T, LawError> {
     use Function as F;
     let arg = |position: usize| &args[position];
     Ok(match function {
-        F::Step | F::Step5 | F::Havsin => {
-            steps::step(steps::Shape::of(function), arg(0), arg(1), arg(2), arg(3), arg(4))
-        }
+        F::Step | F::Step5 | F::Havsin => steps::step(
+            steps::Shape::of(function),
+            arg(0),
+            arg(1),
+            arg(2),
+            arg(3),
+            arg(4),
+        ),
         F::Impact => contact::impact(arg(0), arg(1), arg(2), arg(3), arg(4), arg(5), arg(6)),
         F::Bistop => contact::bistop(
             arg(0),

@@ -119,7 +119,9 @@ pub enum ParseError {
         span: Span,
     },
     /// `IF(a, b, c, d)`: commas only.
-    #[error("IF needs a colon after its condition: write IF(e1: e2, e3, e4), not IF(e1, e2, e3, e4)")]
+    #[error(
+        "IF needs a colon after its condition: write IF(e1: e2, e3, e4), not IF(e1, e2, e3, e4)"
+    )]
     IfWithoutColon {
         /// The separator that should be a colon.
         span: Span,
@@ -135,7 +137,9 @@ pub enum ParseError {
         span: Span,
     },
     /// A colon anywhere but after the first argument of IF.
-    #[error("a colon belongs only after the condition of IF(e1: e2, e3, e4); separate the arguments of {function} with `,`")]
+    #[error(
+        "a colon belongs only after the condition of IF(e1: e2, e3, e4); separate the arguments of {function} with `,`"
+    )]
     MisplacedColon {
         /// The function whose argument list holds the colon.
         function: String,
@@ -143,7 +147,9 @@ pub enum ParseError {
         span: Span,
     },
     /// Parentheses, signs or powers nested deeper than the evaluator allows.
-    #[error("the expression nests deeper than {limit} levels (each parenthesis, call, and operator of one group adds a level); split it into smaller expressions")]
+    #[error(
+        "the expression nests deeper than {limit} levels (each parenthesis, call, and operator of one group adds a level); split it into smaller expressions"
+    )]
     TooDeep {
         /// The limit.
         limit: usize,

@@ -101,7 +101,11 @@ fn build_number(pair: Pair<'_, Rule>) -> Result<Number, ParseError> {
     let text = pair.as_str();
     let span = span_of(&pair);
     let degrees = text.ends_with(['d', 'D']);
-    let digits = if degrees { &text[..text.len() - 1] } else { text };
+    let digits = if degrees {
+        &text[..text.len() - 1]
+    } else {
+        text
+    };
     // The grammar admits only what Rust's float syntax reads (`1.`, `.5`, `1E+07`).
     let value: f64 = digits.parse().unwrap_or(f64::INFINITY);
     if !value.is_finite() {
@@ -174,7 +178,9 @@ fn build_named(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
     if colons.is_empty() {
         // The first separator, a comma, stands between the first two arguments.
         let between = Span::new(args[0].span.end, args[1].span.start);
-        let comma = input[between.range()].find(',').map_or(between.start, |at| between.start + at);
+        let comma = input[between.range()]
+            .find(',')
+            .map_or(between.start, |at| between.start + at);
         return Err(ParseError::IfWithoutColon {
             span: Span::new(comma, comma + 1),
         });

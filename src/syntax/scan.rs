@@ -118,7 +118,10 @@ impl Iterator for Tokens<'_> {
             b'*' if rest.get(1) == Some(&b'*') => (Kind::Operator, 2),
             b'+' | b'-' | b'*' | b'/' => (Kind::Operator, 1),
             _ => {
-                let len = self.text[self.offset..].chars().next().map_or(1, char::len_utf8);
+                let len = self.text[self.offset..]
+                    .chars()
+                    .next()
+                    .map_or(1, char::len_utf8);
                 (Kind::Other, len)
             }
         };
@@ -189,12 +192,13 @@ pub fn diagnose(text: &str, offset: usize) -> ParseError {
         let found = &text[token.span.range()];
         let fits = match token.kind {
             Kind::Number | Kind::Name => expects_operand,
-            Kind::Open => {
-                expects_operand || previous.is_some_and(|token| token.kind == Kind::Name)
-            }
+            Kind::Open => expects_operand || previous.is_some_and(|token| token.kind == Kind::Name),
             Kind::Close => !expects_operand && !openers.is_empty(),
             Kind::Comma | Kind::Colon => {
-                !expects_operand && openers.last().is_some_and(|opener| opener.function.is_some())
+                !expects_operand
+                    && openers
+                        .last()
+                        .is_some_and(|opener| opener.function.is_some())
             }
             Kind::Operator => !expects_operand || found == "+" || found == "-",
             Kind::Other => false,
@@ -359,7 +363,10 @@ fn what_may_follow(innermost: Option<&Opener>) -> (&'static str, String) {
         Some(Opener {
             function: Some(function),
             ..
-        }) => ("an operator, `,` or `)`", format!(" in the call of {function}")),
+        }) => (
+            "an operator, `,` or `)`",
+            format!(" in the call of {function}"),
+        ),
         Some(_) => ("an operator or `)`", String::new()),
         None => ("an operator or the end of the expression", String::new()),
     }

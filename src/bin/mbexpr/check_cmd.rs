@@ -60,14 +60,19 @@ fn read(file: &str) -> Result<String, Fatal> {
             .map_err(|error| Fatal::usage(format!("error: cannot read standard input: {error}")))?;
         return Ok(text);
     }
-    std::fs::read_to_string(file).map_err(|error| Fatal::usage(format!("error: cannot read {file}: {error}")))
+    std::fs::read_to_string(file)
+        .map_err(|error| Fatal::usage(format!("error: cannot read {file}: {error}")))
 }
 
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let (mut expressions, mut errors) = (0usize, 0usize);
     for file in &args.files {
         let text = read(file)?;
-        let origin = if file == "-" { "<stdin>" } else { file.as_str() };
+        let origin = if file == "-" {
+            "<stdin>"
+        } else {
+            file.as_str()
+        };
         let mut offset = 0;
         for (index, raw_line) in text.split_inclusive('\n').enumerate() {
             let line_start = offset;
@@ -107,7 +112,12 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         let plural = |count: usize, word: &str| {
             format!("{count} {word}{}", if count == 1 { "" } else { "s" })
         };
-        writeln!(out, "{}, {}", plural(expressions, "expression"), plural(errors, "error"))?;
+        writeln!(
+            out,
+            "{}, {}",
+            plural(expressions, "expression"),
+            plural(errors, "error")
+        )?;
     }
     Ok(if errors == 0 {
         Outcome::Success

@@ -48,10 +48,15 @@ fn parse_assignment(assignment: &str) -> Result<(String, f64), Fatal> {
         .split_once('=')
         .ok_or_else(|| Fatal::usage(format!("error: --set {assignment}: write NAME=VALUE")))?;
     let value: f64 = value.trim().parse().map_err(|_| {
-        Fatal::usage(format!("error: --set {assignment}: `{}` is not a number", value.trim()))
+        Fatal::usage(format!(
+            "error: --set {assignment}: `{}` is not a number",
+            value.trim()
+        ))
     })?;
     if !value.is_finite() {
-        return Err(Fatal::usage(format!("error: --set {assignment}: the value must be finite")));
+        return Err(Fatal::usage(format!(
+            "error: --set {assignment}: the value must be finite"
+        )));
     }
     Ok((name.trim().to_string(), value))
 }
@@ -67,15 +72,24 @@ fn read_points(path: &str) -> Result<Points, Fatal> {
     let text = std::fs::read_to_string(path)
         .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
     let mut lines = text.lines().filter(|line| !line.trim().is_empty());
-    let header = lines
-        .next()
-        .ok_or_else(|| Fatal::usage(format!("error: {path} is empty: it needs a header row of variable names")))?;
-    let names: Vec<String> = header.split(',').map(|name| name.trim().to_string()).collect();
+    let header = lines.next().ok_or_else(|| {
+        Fatal::usage(format!(
+            "error: {path} is empty: it needs a header row of variable names"
+        ))
+    })?;
+    let names: Vec<String> = header
+        .split(',')
+        .map(|name| name.trim().to_string())
+        .collect();
     let rows = lines
         .map(|line| {
             let cells: Vec<&str> = line.split(',').map(str::trim).collect();
             if cells.len() != names.len() {
-                return Err(format!("the row has {} values for {} columns", cells.len(), names.len()));
+                return Err(format!(
+                    "the row has {} values for {} columns",
+                    cells.len(),
+                    names.len()
+                ));
             }
             cells
                 .iter()
@@ -111,11 +125,20 @@ fn to_json(evaluation: &Evaluation) -> Value {
 
 fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
     let mut text = format!("value  {}\n", tidy(evaluation.value));
-    let width = wrt.iter().map(|name| name.len() + 2).max().unwrap_or(0).max(5);
+    let width = wrt
+        .iter()
+        .map(|name| name.len() + 2)
+        .max()
+        .unwrap_or(0)
+        .max(5);
     if let Some(gradient) = &evaluation.gradient {
         text.push_str("gradient\n");
         for (name, entry) in wrt.iter().zip(gradient.iter()) {
-            text.push_str(&format!("  {:<width$} {}\n", format!("d/d{name}"), tidy(*entry)));
+            text.push_str(&format!(
+                "  {:<width$} {}\n",
+                format!("d/d{name}"),
+                tidy(*entry)
+            ));
         }
     }
     if let Some(hessian) = &evaluation.hessian {
@@ -163,7 +186,10 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let mut values: Vec<f64> = Vec::new();
     for assignment in &args.set {
         let (name, value) = parse_assignment(assignment)?;
-        match names.iter().position(|known| known.eq_ignore_ascii_case(&name)) {
+        match names
+            .iter()
+            .position(|known| known.eq_ignore_ascii_case(&name))
+        {
             Some(index) => values[index] = value,
             None => {
                 names.push(name);
@@ -174,7 +200,10 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let points = args.points.as_deref().map(read_points).transpose()?;
     let mut columns = Vec::new();
     for name in points.iter().flat_map(|points| &points.names) {
-        let index = match names.iter().position(|known| known.eq_ignore_ascii_case(name)) {
+        let index = match names
+            .iter()
+            .position(|known| known.eq_ignore_ascii_case(name))
+        {
             Some(index) => index,
             None => {
                 names.push(name.clone());

@@ -66,7 +66,11 @@ impl From<io::Error> for Fatal {
     fn from(error: io::Error) -> Fatal {
         Fatal {
             message: format!("error: {error}"),
-            code: if error.kind() == io::ErrorKind::BrokenPipe { 0 } else { 2 },
+            code: if error.kind() == io::ErrorKind::BrokenPipe {
+                0
+            } else {
+                2
+            },
         }
     }
 }
