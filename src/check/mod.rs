@@ -216,28 +216,30 @@ fn check_argument(
     let param = || function.param_name(position);
     match function.signature().kind(position) {
         ArgKind::Value => Argument::Value(check_expr(arg, errors)),
-        ArgKind::Marker => reference(arg).map_or_else(
-            || {
-                errors.push(CheckError::MarkerExpected {
-                    function: function.name().to_string(),
-                    param: param(),
-                    span,
+        kind @ (ArgKind::Marker | ArgKind::Object) => {
+            let reference = reference(arg).unwrap_or_else(|| {
+                let (function, param) = (function.name().to_string(), param());
+                errors.push(if kind == ArgKind::Marker {
+                    CheckError::MarkerExpected {
+                        function,
+                        param,
+                        span,
+                    }
+                } else {
+                    CheckError::ObjectExpected {
+                        function,
+                        param,
+                        span,
+                    }
                 });
-                Argument::Marker(Reference::Id(0), span)
-            },
-            |reference| Argument::Marker(reference, span),
-        ),
-        ArgKind::Object => reference(arg).map_or_else(
-            || {
-                errors.push(CheckError::ObjectExpected {
-                    function: function.name().to_string(),
-                    param: param(),
-                    span,
-                });
-                Argument::Object(Reference::Id(0), span)
-            },
-            |reference| Argument::Object(reference, span),
-        ),
+                Reference::Id(0)
+            });
+            if kind == ArgKind::Marker {
+                Argument::Marker(reference, span)
+            } else {
+                Argument::Object(reference, span)
+            }
+        }
         ArgKind::Flag => {
             let value = constant_value(&check_expr(arg, errors));
             match value.filter(|v| v.fract() == 0.0 && v.abs() < 1e15) {
