@@ -43,12 +43,14 @@ mod errors;
 pub mod eval;
 pub mod laws;
 pub mod number;
+pub mod scene;
 pub mod span;
 pub mod syntax;
 
 pub use check::{CheckError, Checked, check};
-pub use compile::{CompileError, Program, compile};
+pub use compile::{CompileError, Program, compile, compile_in_scene};
 pub use errors::Errors;
 pub use eval::{EvalError, Evaluation, Evaluator, Order};
+pub use scene::Scene;
 pub use span::{Location, Span};
 pub use syntax::{ParseError, parse};

@@ -10,7 +10,7 @@ use nalgebra::{DMatrix, DVector, DefaultAllocator, Dim, U1};
 use num_dual::{Derivative, Dual2Vec, DualNum, DualVec};
 
 /// A real number with optional derivative parts.
-pub trait Number: DualNum<Primitive = f64> + Clone + 'static {
+pub trait Number: DualNum<Primitive = f64> + nalgebra::RealField + Clone + 'static {
     /// The real part.
     fn value(&self) -> f64 {
         self.re()
@@ -55,6 +55,7 @@ where
 impl<D: Dim> Number for DualVec<f64, D>
 where
     DefaultAllocator: Allocator<D>,
+    <DefaultAllocator as Allocator<D>>::Buffer<f64>: Send + Sync,
 {
     fn chain(&self, f0: f64, f1: f64, _: f64) -> Self {
         DualVec::new(f0, &self.eps * f1)
@@ -72,6 +73,8 @@ where
 impl<D: Dim> Number for Dual2Vec<f64, D>
 where
     DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+    <DefaultAllocator as Allocator<U1, D>>::Buffer<f64>: Send + Sync,
+    <DefaultAllocator as Allocator<D, D>>::Buffer<f64>: Send + Sync,
 {
     fn chain(&self, f0: f64, f1: f64, f2: f64) -> Self {
         let gradient = &self.v1 * f1;
@@ -108,6 +111,7 @@ pub trait Directional: Number {
 impl<D: Dim> Directional for DualVec<f64, D>
 where
     DefaultAllocator: Allocator<D>,
+    <DefaultAllocator as Allocator<D>>::Buffer<f64>: Send + Sync,
 {
     const ORDER: usize = 1;
 
@@ -131,6 +135,8 @@ where
 impl<D: Dim> Directional for Dual2Vec<f64, D>
 where
     DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+    <DefaultAllocator as Allocator<U1, D>>::Buffer<f64>: Send + Sync,
+    <DefaultAllocator as Allocator<D, D>>::Buffer<f64>: Send + Sync,
 {
     const ORDER: usize = 2;
 

@@ -2,6 +2,7 @@
 
 use thiserror::Error;
 
+use crate::scene::SceneError;
 use crate::span::Span;
 
 /// A reference the evaluation context cannot provide.
@@ -51,6 +52,34 @@ pub enum CompileError {
         /// The call.
         span: Span,
     },
+    /// A marker the scene does not have.
+    #[error("{error}")]
+    Scene {
+        /// What the scene said.
+        error: SceneError,
+        /// The marker reference.
+        span: Span,
+    },
+    /// An acceleration measure on a body whose accelerations the scene does not give.
+    #[error(
+        "{function} needs the acceleration and angular acceleration of body {body}, which the scene does not give"
+    )]
+    NoAcceleration {
+        /// The measure.
+        function: &'static str,
+        /// The body.
+        body: String,
+        /// The marker on that body.
+        span: Span,
+    },
+    /// A measure that scenes do not evaluate.
+    #[error("{function} is recognised but not evaluated in scenes")]
+    NotInScene {
+        /// The measure.
+        function: &'static str,
+        /// The call.
+        span: Span,
+    },
     /// `USER(...)`, which only passes constants to a user subroutine.
     #[error(
         "USER(...) passes its constants to a user subroutine, which is not part of mbexpr: there is no value to compute"
@@ -69,6 +98,9 @@ impl CompileError {
             | CompileError::NeedsScene { span, .. }
             | CompileError::NeedsModel { span, .. }
             | CompileError::NeedsSolver { span, .. }
+            | CompileError::Scene { span, .. }
+            | CompileError::NoAcceleration { span, .. }
+            | CompileError::NotInScene { span, .. }
             | CompileError::UserSubroutine { span } => *span,
         }
     }

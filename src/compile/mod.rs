@@ -8,13 +8,15 @@ mod program;
 use std::collections::HashMap;
 
 pub use error::CompileError;
-pub use program::{Instruction, Op, Program, Slot};
+pub use program::{FrameArg, Instruction, Op, Program, Slot};
 
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
 use crate::errors::Errors;
 use crate::eval::execute;
 use crate::laws::power::as_integer;
+use crate::scene::kinematics::FrameData;
+use crate::scene::{Scene, StateComponent, Target};
 use crate::span::Span;
 use crate::syntax::ast::BinaryOp;
 
@@ -28,7 +30,31 @@ pub fn compile<S: AsRef<str>>(
     checked: &Checked,
     inputs: &[S],
 ) -> Result<Program, Errors<CompileError>> {
+    compile_with(checked, inputs, None)
+}
+
+/// Compiles `checked` in `scene`: like [`compile`], and the kinematic
+/// measures are evaluated between the scene's markers. The states of the
+/// bodies the measures use become further inputs, named `BODY.x` ...
+/// `BODY.wz` (see [`Program::inputs`]); [`Scene::values`] gives their values.
+/// Nothing of the scene that the expression does not use is kept.
+pub fn compile_in_scene<S: AsRef<str>>(
+    checked: &Checked,
+    inputs: &[S],
+    scene: &Scene,
+) -> Result<Program, Errors<CompileError>> {
+    compile_with(checked, inputs, Some(scene))
+}
+
+fn compile_with<S: AsRef<str>>(
+    checked: &Checked,
+    inputs: &[S],
+    scene: Option<&Scene>,
+) -> Result<Program, Errors<CompileError>> {
     let mut compiler = Compiler {
+        scene,
+        frames: Vec::new(),
+        frame_of: HashMap::new(),
         inputs: inputs
             .iter()
             .map(|name| name.as_ref().to_string())
@@ -53,10 +79,15 @@ pub fn compile<S: AsRef<str>>(
         code: compiler.code,
         spans: compiler.spans,
         result,
+        frames: compiler.frames,
     })
 }
 
-struct Compiler {
+struct Compiler<'s> {
+    scene: Option<&'s Scene>,
+    /// The constants of the marker frames used, and where each marker's went.
+    frames: Vec<FrameData>,
+    frame_of: HashMap<Target, u32>,
     inputs: Vec<String>,
     /// The value of each slot when it is a compile-time constant.
     constant_values: Vec<Option<f64>>,
@@ -70,7 +101,7 @@ struct Compiler {
     errors: Vec<CompileError>,
 }
 
-impl Compiler {
+impl Compiler<'_> {
     fn new_slot(&mut self, constant: Option<f64>) -> Slot {
         self.constant_values.push(constant);
         Slot::try_from(self.constant_values.len() - 1).expect("fewer than 2^32 slots")
@@ -132,6 +163,10 @@ impl Compiler {
                 vec![*a, *b]
             }
             Op::Call { args, .. } => args.to_vec(),
+            Op::Measure { frames, .. } => frames
+                .iter()
+                .flat_map(|frame| frame.state.into_iter().flatten())
+                .collect(),
         };
         if operands
             .iter()
@@ -144,7 +179,9 @@ impl Compiler {
             .iter()
             .map(|value| value.unwrap_or(0.0))
             .collect();
-        execute(op, &values).ok().filter(|value| value.is_finite())
+        execute(op, &values, &self.frames)
+            .ok()
+            .filter(|value| value.is_finite())
     }
 
     fn node(&mut self, node: &Node) -> Slot {
@@ -217,10 +254,13 @@ impl Compiler {
     fn call(&mut self, function: Function, args: &[Argument], span: Span) -> Slot {
         let error = match function.family() {
             Family::Intrinsic | Family::Step | Family::Contact | Family::Series => None,
-            Family::Measure => Some(CompileError::NeedsScene {
-                function: function.name(),
-                span,
-            }),
+            Family::Measure => match self.scene {
+                Some(scene) => return self.measure(scene, function, args, span),
+                None => Some(CompileError::NeedsScene {
+                    function: function.name(),
+                    span,
+                }),
+            },
             Family::ModelData => Some(model_data_error(function, args, span)),
             Family::Solver => Some(CompileError::NeedsSolver {
                 function: function.name(),
@@ -259,6 +299,123 @@ impl Compiler {
             },
             span,
         )
+    }
+
+    /// A measure between the scene's markers; omitted markers are ground.
+    fn measure(
+        &mut self,
+        scene: &Scene,
+        function: Function,
+        args: &[Argument],
+        span: Span,
+    ) -> Slot {
+        if matches!(function, Function::Incang | Function::Orient) {
+            self.errors.push(CompileError::NotInScene {
+                function: function.name(),
+                span,
+            });
+            return self.constant(0.0);
+        }
+        let needs_accelerations = matches!(
+            function,
+            Function::Accx
+                | Function::Accy
+                | Function::Accz
+                | Function::Accm
+                | Function::Wdtx
+                | Function::Wdty
+                | Function::Wdtz
+                | Function::Wdtm
+        );
+        let mut frames = Vec::new();
+        for position in 0..function.signature().max {
+            let (target, marker_span) = match args.get(position) {
+                Some(Argument::Marker(reference, marker_span)) => {
+                    match scene.find_marker(reference) {
+                        Ok(target) => (target, *marker_span),
+                        Err(error) => {
+                            self.errors.push(CompileError::Scene {
+                                error,
+                                span: *marker_span,
+                            });
+                            return self.constant(0.0);
+                        }
+                    }
+                }
+                _ => (Target::Ground, span),
+            };
+            if needs_accelerations
+                && let Target::Marker(index) = target
+                && let Some(body) = scene.markers[index].body.map(|body| &scene.bodies[body])
+                && (body.acceleration.is_none() || body.angular_acceleration.is_none())
+            {
+                self.errors.push(CompileError::NoAcceleration {
+                    function: function.name(),
+                    body: body.name.clone(),
+                    span: marker_span,
+                });
+                return self.constant(0.0);
+            }
+            frames.push(self.frame(scene, target, marker_span));
+        }
+        self.compute(
+            Op::Measure {
+                function,
+                frames: frames.into(),
+            },
+            span,
+        )
+    }
+
+    /// The frame argument of a marker: its constants once per program, and
+    /// its body's state inputs.
+    fn frame(&mut self, scene: &Scene, target: Target, span: Span) -> FrameArg {
+        let data = match self.frame_of.get(&target) {
+            Some(&data) => data,
+            None => {
+                let data = match target {
+                    Target::Ground => FrameData::ground(),
+                    Target::Marker(index) => {
+                        let marker = &scene.markers[index];
+                        let body = marker.body.map(|body| &scene.bodies[body]);
+                        FrameData {
+                            label: marker.label(),
+                            body_orientation: body
+                                .map_or_else(nalgebra::Matrix3::identity, |body| {
+                                    body.orientation.to_rotation_matrix().into_inner()
+                                }),
+                            offset: marker.position,
+                            axes: marker.orientation.to_rotation_matrix().into_inner(),
+                            acceleration: body
+                                .map_or(Some(nalgebra::Vector3::zeros()), |body| body.acceleration),
+                            angular_acceleration: body
+                                .map_or(Some(nalgebra::Vector3::zeros()), |body| {
+                                    body.angular_acceleration
+                                }),
+                        }
+                    }
+                };
+                self.frames.push(data);
+                let index = u32::try_from(self.frames.len() - 1).expect("fewer than 2^32 frames");
+                self.frame_of.insert(target, index);
+                index
+            }
+        };
+        let body = match target {
+            Target::Marker(index) => scene.markers[index].body,
+            Target::Ground => None,
+        };
+        let state = body.map(|body| {
+            StateComponent::ALL.map(|component| {
+                let name = scene.state_name(body, component);
+                let index = self.input_index(&name).unwrap_or_else(|| {
+                    self.inputs.push(name);
+                    self.inputs.len() - 1
+                });
+                self.input(index, span)
+            })
+        });
+        FrameArg { data, state }
     }
 
     fn arithmetic_if(&mut self, branches: &[Node; 4], span: Span) -> Slot {

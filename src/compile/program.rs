@@ -3,6 +3,7 @@
 use std::fmt;
 
 use crate::catalog::Function;
+use crate::scene::kinematics::FrameData;
 use crate::span::Span;
 
 /// The index of a slot: an input, a constant or an instruction's result.
@@ -27,6 +28,13 @@ pub enum Op {
     PowReal(Slot, u64),
     /// `a ** b` for a varying `b`.
     Pow(Slot, Slot),
+    /// A kinematic measure between marker frames (SPEC 4), in a scene.
+    Measure {
+        /// The measure.
+        function: Function,
+        /// One frame per marker of the signature, omitted ones as ground.
+        frames: Box<[FrameArg]>,
+    },
     /// A function of the intrinsic, step, contact or series family.
     Call {
         /// The function.
@@ -37,6 +45,17 @@ pub enum Op {
         /// (some of the arguments they speak of are not constants).
         check_rules: bool,
     },
+}
+
+/// A marker frame as a measure's argument: the constants of the marker (an
+/// index into the program's frame table) and, for a marker on a body, the
+/// slots of the body's twelve state inputs (`x y z rx ry rz vx vy vz wx wy wz`).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct FrameArg {
+    /// Index into the program's frame table.
+    pub data: u32,
+    /// The body's state slots; `None` for a marker on ground.
+    pub state: Option<[Slot; 12]>,
 }
 
 /// One step of a program.
@@ -91,6 +110,8 @@ pub struct Program {
     /// The span of the expression text each instruction comes from.
     pub(crate) spans: Vec<Span>,
     pub(crate) result: Slot,
+    /// The constants of the marker frames the measures use.
+    pub(crate) frames: Vec<FrameData>,
 }
 
 impl Program {
@@ -158,6 +179,18 @@ impl fmt::Display for Op {
                 let args: Vec<String> = args.iter().map(|slot| format!("s{slot}")).collect();
                 write!(f, "{function}({})", args.join(", "))
             }
+            Op::Measure { function, frames } => {
+                let frames: Vec<String> = frames
+                    .iter()
+                    .map(|frame| match frame.state {
+                        Some(state) => {
+                            format!("frame{}[s{}..s{}]", frame.data, state[0], state[11])
+                        }
+                        None => format!("frame{}", frame.data),
+                    })
+                    .collect();
+                write!(f, "{function}({})", frames.join(", "))
+            }
         }
     }
 }
@@ -172,7 +205,7 @@ impl Op {
             Op::Mul(..) => "`*`".to_string(),
             Op::Div(..) => "`/`".to_string(),
             Op::PowInt(..) | Op::PowReal(..) | Op::Pow(..) => "`**`".to_string(),
-            Op::Call { function, .. } => function.name().to_string(),
+            Op::Call { function, .. } | Op::Measure { function, .. } => function.name().to_string(),
         }
     }
 }

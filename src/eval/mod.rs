@@ -16,6 +16,7 @@ use crate::catalog::check_rules_with;
 use crate::compile::{Instruction, Op, Program, Slot};
 use crate::laws::{self, LawError, power};
 use crate::number::{Directional, Number};
+use crate::scene::kinematics::{self, Frame, FrameData};
 
 /// How many orders of derivatives to compute.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -54,7 +55,11 @@ pub struct Evaluation {
 
 /// Computes `op` from the slots. The compiler folds constants with it, the
 /// evaluator runs every instruction through it.
-pub(crate) fn execute<T: Number>(op: &Op, slots: &[T]) -> Result<T, LawError> {
+pub(crate) fn execute<T: Number>(
+    op: &Op,
+    slots: &[T],
+    frames: &[FrameData],
+) -> Result<T, LawError> {
     let slot = |index: Slot| &slots[index as usize];
     Ok(match op {
         Op::Neg(a) => -slot(*a).clone(),
@@ -65,6 +70,22 @@ pub(crate) fn execute<T: Number>(op: &Op, slots: &[T]) -> Result<T, LawError> {
         Op::PowInt(a, n) => power::powi(slot(*a), *n)?,
         Op::PowReal(a, bits) => power::powf(slot(*a), f64::from_bits(*bits))?,
         Op::Pow(a, b) => power::pow(slot(*a), slot(*b))?,
+        Op::Measure {
+            function,
+            frames: args,
+        } => {
+            let frames: Vec<Frame<T>> = args
+                .iter()
+                .map(|arg| {
+                    let data = &frames[arg.data as usize];
+                    match &arg.state {
+                        Some(state) => Frame::on_body(data, state.map(|index| slot(index))),
+                        None => Frame::fixed(data),
+                    }
+                })
+                .collect();
+            kinematics::measure(*function, &frames)?
+        }
         Op::Call {
             function,
             args,
@@ -182,8 +203,8 @@ impl<T: Number> Evaluator<'_, T> {
                 }
                 Instruction::Compute { dst, op } => {
                     let span = program.spans[pc - 1];
-                    let result =
-                        execute(op, &self.slots).map_err(|error| EvalError::Law { error, span })?;
+                    let result = execute(op, &self.slots, &program.frames)
+                        .map_err(|error| EvalError::Law { error, span })?;
                     if !result.is_all_finite() {
                         let operation = op.name();
                         return Err(if result.value().is_finite() {

@@ -4,7 +4,7 @@
 use std::io::Write;
 
 use clap::ValueEnum;
-use mbexpr::{Evaluation, Order, Program};
+use mbexpr::{Evaluation, Order, Program, Scene};
 use serde_json::{Value, json};
 
 use crate::render::diagnostic;
@@ -23,8 +23,12 @@ pub enum Format {
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// The expression, e.g. "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)".
-    expression: String,
+    /// The expression, e.g. "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
+    /// with --scene and no expression, every named expression of the scene.
+    expression: Option<String>,
+    /// A scene (TOML): bodies, markers, time, variables and named expressions.
+    #[arg(long, value_name = "FILE.toml")]
+    scene: Option<String>,
     /// A variable's value, NAME=VALUE (repeatable; names are case-insensitive; TIME too).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     set: Vec<String>,
@@ -109,6 +113,17 @@ fn tidy(value: f64) -> f64 {
     value + 0.0
 }
 
+/// A number for the text tables: shortest round-trip digits, in exponent
+/// form when very small or very large.
+fn show(value: f64) -> String {
+    let value = tidy(value);
+    if value != 0.0 && !(1e-4..1e15).contains(&value.abs()) {
+        format!("{value:e}")
+    } else {
+        value.to_string()
+    }
+}
+
 fn to_json(evaluation: &Evaluation) -> Value {
     let mut object = json!({"value": tidy(evaluation.value)});
     if let Some(gradient) = &evaluation.gradient {
@@ -124,10 +139,10 @@ fn to_json(evaluation: &Evaluation) -> Value {
 }
 
 fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
-    let mut text = format!("value  {}\n", tidy(evaluation.value));
+    let mut text = format!("value  {}\n", show(evaluation.value));
     let width = wrt
         .iter()
-        .map(|name| name.len() + 2)
+        .map(|name| name.len() + 3)
         .max()
         .unwrap_or(0)
         .max(5);
@@ -137,7 +152,7 @@ fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
             text.push_str(&format!(
                 "  {:<width$} {}\n",
                 format!("d/d{name}"),
-                tidy(*entry)
+                show(*entry)
             ));
         }
     }
@@ -145,7 +160,7 @@ fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
         text.push_str("hessian\n");
         let cells: Vec<Vec<String>> = hessian
             .row_iter()
-            .map(|row| row.iter().map(|&entry| tidy(entry).to_string()).collect())
+            .map(|row| row.iter().map(|&entry| show(entry)).collect())
             .collect();
         let column = cells
             .iter()
@@ -170,51 +185,128 @@ fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
     text
 }
 
+fn read_scene(path: &str) -> Result<Scene, Fatal> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
+    Scene::from_toml(&text).map_err(|error| Fatal::usage(format!("error: {path}: {error}")))
+}
+
+/// Adds `name` to `names` unless it is there (case-insensitively); its index.
+fn name_index(names: &mut Vec<String>, name: &str) -> usize {
+    match names
+        .iter()
+        .position(|known| known.eq_ignore_ascii_case(name))
+    {
+        Some(index) => index,
+        None => {
+            names.push(name.to_string());
+            names.len() - 1
+        }
+    }
+}
+
+/// What every expression of one run shares.
+struct Context<'a> {
+    args: &'a Args,
+    scene: Option<&'a Scene>,
+    assignments: Vec<(String, f64)>,
+    points: Option<Points>,
+}
+
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
-    let source = &args.expression;
-    let fail = |span, message: String| Fatal::input(diagnostic("", source, span, &message));
+    let scene = args.scene.as_deref().map(read_scene).transpose()?;
+    let expressions: Vec<(Option<String>, String)> = match (&args.expression, &scene) {
+        (Some(text), _) => vec![(None, text.clone())],
+        (None, Some(scene)) if !scene.expressions.is_empty() => scene
+            .expressions
+            .iter()
+            .map(|(name, text)| (Some(name.clone()), text.clone()))
+            .collect(),
+        (None, Some(_)) => {
+            return Err(Fatal::usage(
+                "error: the scene has no [expressions]: give an expression to evaluate",
+            ));
+        }
+        (None, None) => {
+            return Err(Fatal::usage(
+                "error: give an expression, or --scene FILE whose [expressions] to evaluate",
+            ));
+        }
+    };
+    let context = Context {
+        args,
+        scene: scene.as_ref(),
+        assignments: args
+            .set
+            .iter()
+            .map(|assignment| parse_assignment(assignment))
+            .collect::<Result<_, _>>()?,
+        points: args.points.as_deref().map(read_points).transpose()?,
+    };
+    let mut outcome = Outcome::Success;
+    let several = expressions.len() > 1;
+    for (label, text) in &expressions {
+        match evaluate_expression(&context, label.as_deref(), text, out) {
+            Ok(Outcome::Success) => {}
+            Ok(Outcome::Failure) => outcome = Outcome::Failure,
+            // With several expressions, one that fails does not stop the others.
+            Err(fatal) if several && fatal.is_input() => {
+                out.flush()?;
+                eprint!("{}", fatal.message());
+                outcome = Outcome::Failure;
+            }
+            Err(fatal) => return Err(fatal),
+        }
+    }
+    Ok(outcome)
+}
+
+fn evaluate_expression(
+    context: &Context<'_>,
+    label: Option<&str>,
+    source: &str,
+    out: &mut impl Write,
+) -> Result<Outcome, Fatal> {
+    let args = context.args;
+    let origin = label.unwrap_or_default();
+    let fail = |span, message: String| Fatal::input(diagnostic(origin, source, span, &message));
     let tree = mbexpr::parse(source).map_err(|error| fail(error.span(), error.to_string()))?;
     let checked = mbexpr::check(&tree).map_err(|errors| {
         let texts: Vec<String> = errors
             .iter()
-            .map(|error| diagnostic("", source, error.span(), &error.to_string()))
+            .map(|error| diagnostic(origin, source, error.span(), &error.to_string()))
             .collect();
         Fatal::input(texts.concat())
     })?;
 
+    // The inputs: --set names, --points columns, what the scene gives, and
+    // the state components named as derivative directions.
     let mut names: Vec<String> = Vec::new();
-    let mut values: Vec<f64> = Vec::new();
-    for assignment in &args.set {
-        let (name, value) = parse_assignment(assignment)?;
-        match names
-            .iter()
-            .position(|known| known.eq_ignore_ascii_case(&name))
-        {
-            Some(index) => values[index] = value,
-            None => {
-                names.push(name);
-                values.push(value);
+    for (name, _) in &context.assignments {
+        name_index(&mut names, name);
+    }
+    let columns: Vec<usize> = context
+        .points
+        .iter()
+        .flat_map(|points| &points.names)
+        .map(|name| name_index(&mut names, name))
+        .collect();
+    if let Some(scene) = context.scene {
+        for name in scene.input_names() {
+            name_index(&mut names, &name);
+        }
+        for name in &args.wrt {
+            if scene.parse_state_name(name).is_some() {
+                name_index(&mut names, name);
             }
         }
     }
-    let points = args.points.as_deref().map(read_points).transpose()?;
-    let mut columns = Vec::new();
-    for name in points.iter().flat_map(|points| &points.names) {
-        let index = match names
-            .iter()
-            .position(|known| known.eq_ignore_ascii_case(name))
-        {
-            Some(index) => index,
-            None => {
-                names.push(name.clone());
-                values.push(0.0);
-                names.len() - 1
-            }
-        };
-        columns.push(index);
-    }
 
-    let program: Program = mbexpr::compile(&checked, &names).map_err(|errors| {
+    let compiled = match context.scene {
+        Some(scene) => mbexpr::compile_in_scene(&checked, &names, scene),
+        None => mbexpr::compile(&checked, &names),
+    };
+    let program: Program = compiled.map_err(|errors| {
         let texts: Vec<String> = errors
             .iter()
             .map(|error| {
@@ -224,16 +316,38 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
                     }
                     _ => error.to_string(),
                 };
-                diagnostic("", source, error.span(), &hint)
+                diagnostic(origin, source, error.span(), &hint)
             })
             .collect();
         Fatal::input(texts.concat())
     })?;
+    let inputs = program.inputs();
+    let mut values = Vec::with_capacity(inputs.len());
+    for name in inputs {
+        let set = context
+            .assignments
+            .iter()
+            .rev()
+            .find(|(known, _)| known.eq_ignore_ascii_case(name));
+        values.push(match (set, context.scene) {
+            (Some((_, value)), _) => *value,
+            (None, Some(scene))
+                if !columns
+                    .iter()
+                    .any(|&column| names[column].eq_ignore_ascii_case(name)) =>
+            {
+                scene
+                    .value_of(name)
+                    .map_err(|error| Fatal::usage(format!("error: {error}")))?
+            }
+            _ => 0.0,
+        });
+    }
 
     let mut wrt = Vec::new();
     for name in &args.wrt {
         let Some(index) = program.input_index(name) else {
-            let known = names.iter().map(String::as_str);
+            let known = inputs.iter().map(String::as_str);
             let suggestion = mbexpr::catalog::did_you_mean(&mbexpr::catalog::closest(name, known));
             return Err(Fatal::usage(format!(
                 "error: --wrt {name}: {name} has no value, so it cannot be a derivative direction; set it with --set {name}=VALUE{suggestion}"
@@ -249,16 +363,27 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         None if wrt.is_empty() => Order::Value,
         None => Order::Gradient,
     };
-    let wrt_names: Vec<String> = wrt.iter().map(|&index| names[index].clone()).collect();
+    let wrt_names: Vec<String> = wrt.iter().map(|&index| inputs[index].clone()).collect();
+    let labelled = |mut object: Value| {
+        if let (Some(label), Value::Object(map)) = (label, &mut object) {
+            map.shift_insert(0, "name".to_string(), Value::String(label.to_string()));
+        }
+        object
+    };
+    if let Some(label) = label
+        && args.format == Format::Text
+    {
+        writeln!(out, "== {label}")?;
+    }
 
     let evaluate = |values: &[f64]| program.evaluate(values, &wrt, order);
-    let Some(points) = points else {
+    let Some(points) = &context.points else {
         return match evaluate(&values) {
             Ok(evaluation) => {
                 match args.format {
                     Format::Text => write!(out, "{}", to_text(&evaluation, &wrt_names))?,
-                    Format::Json => writeln!(out, "{:#}", to_json(&evaluation))?,
-                    Format::Jsonl => writeln!(out, "{}", to_json(&evaluation))?,
+                    Format::Json => writeln!(out, "{:#}", labelled(to_json(&evaluation)))?,
+                    Format::Jsonl => writeln!(out, "{}", labelled(to_json(&evaluation)))?,
                 }
                 Ok(Outcome::Success)
             }
@@ -271,8 +396,10 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     for (row_number, row) in points.rows.iter().enumerate() {
         let result = row.clone().and_then(|row| {
             let mut point = values.clone();
-            for (&index, value) in columns.iter().zip(row) {
-                point[index] = value;
+            for (&column, value) in columns.iter().zip(row) {
+                if let Some(index) = program.input_index(&names[column]) {
+                    point[index] = value;
+                }
             }
             evaluate(&point).map_err(|error| error.to_string())
         });
@@ -286,8 +413,8 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
             },
             Format::Json | Format::Jsonl => {
                 let object = match &result {
-                    Ok(evaluation) => to_json(evaluation),
-                    Err(message) => json!({"error": message}),
+                    Ok(evaluation) => labelled(to_json(evaluation)),
+                    Err(message) => labelled(json!({"error": message})),
                 };
                 if args.format == Format::Jsonl {
                     writeln!(out, "{object}")?;

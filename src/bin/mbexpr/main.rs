@@ -62,6 +62,18 @@ impl Fatal {
     }
 }
 
+impl Fatal {
+    /// Whether the error is in the input (exit status 1) rather than the call.
+    pub fn is_input(&self) -> bool {
+        self.code == 1
+    }
+
+    /// The message for standard error.
+    pub fn message(&self) -> &str {
+        &self.message
+    }
+}
+
 impl From<io::Error> for Fatal {
     fn from(error: io::Error) -> Fatal {
         Fatal {

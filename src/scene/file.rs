@@ -1,0 +1,192 @@
+//! Reading a scene from TOML. The format, with a commented example, is in
+//! `examples/scenes/README.md`.
+
+use std::f64::consts::PI;
+
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use serde::Deserialize;
+
+use super::{Body, Marker, Scene, SceneError};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    #[serde(default)]
+    time: f64,
+    mode: Option<f64>,
+    #[serde(default)]
+    variables: toml::Table,
+    #[serde(default)]
+    expressions: toml::Table,
+    #[serde(default, rename = "body")]
+    bodies: Vec<BodyFile>,
+    #[serde(default, rename = "marker")]
+    markers: Vec<MarkerFile>,
+}
+
+/// How an orientation is written: a quaternion or 3-1-3 Euler angles.
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct OrientationFile {
+    /// `[w, x, y, z]`, normalised on reading.
+    quaternion: Option<[f64; 4]>,
+    /// Body-fixed 3-1-3 angles `[psi, theta, phi]`.
+    euler: Option<[f64; 3]>,
+    /// `"radians"` (the default) or `"degrees"`, for `euler`.
+    angles: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BodyFile {
+    name: String,
+    #[serde(default)]
+    position: [f64; 3],
+    #[serde(flatten)]
+    orientation: OrientationFile,
+    #[serde(default)]
+    velocity: [f64; 3],
+    #[serde(default)]
+    angular_velocity: [f64; 3],
+    acceleration: Option<[f64; 3]>,
+    angular_acceleration: Option<[f64; 3]>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MarkerFile {
+    name: Option<String>,
+    id: Option<u64>,
+    body: Option<String>,
+    #[serde(default)]
+    position: [f64; 3],
+    #[serde(flatten)]
+    orientation: OrientationFile,
+}
+
+/// The rotation of body-fixed 3-1-3 angles: `Rz(psi) Rx(theta) Rz(phi)`.
+pub fn euler_313(psi: f64, theta: f64, phi: f64) -> UnitQuaternion<f64> {
+    let z = Vector3::z_axis();
+    let x = Vector3::x_axis();
+    UnitQuaternion::from_axis_angle(&z, psi)
+        * UnitQuaternion::from_axis_angle(&x, theta)
+        * UnitQuaternion::from_axis_angle(&z, phi)
+}
+
+impl OrientationFile {
+    fn read(&self, owner: &str) -> Result<UnitQuaternion<f64>, SceneError> {
+        let scale = match self.angles.as_deref() {
+            None | Some("radians") => 1.0,
+            Some("degrees") => PI / 180.0,
+            Some(other) => {
+                return Err(SceneError::File(format!(
+                    "{owner}: angles = \"{other}\": write \"radians\" or \"degrees\""
+                )));
+            }
+        };
+        match (self.quaternion, self.euler) {
+            (Some(_), Some(_)) => Err(SceneError::File(format!(
+                "{owner}: give either quaternion or euler, not both"
+            ))),
+            (Some([w, x, y, z]), None) => {
+                let quaternion = Quaternion::new(w, x, y, z);
+                if !(quaternion.norm() > 0.0) || !quaternion.norm().is_finite() {
+                    return Err(SceneError::File(format!(
+                        "{owner}: the quaternion must have a finite, nonzero length"
+                    )));
+                }
+                Ok(UnitQuaternion::from_quaternion(quaternion))
+            }
+            (None, Some([psi, theta, phi])) => {
+                Ok(euler_313(psi * scale, theta * scale, phi * scale))
+            }
+            (None, None) => Ok(UnitQuaternion::identity()),
+        }
+    }
+}
+
+fn number_table(table: &toml::Table, what: &str) -> Result<Vec<(String, f64)>, SceneError> {
+    table
+        .iter()
+        .map(|(name, value)| match value {
+            toml::Value::Float(number) => Ok((name.clone(), *number)),
+            toml::Value::Integer(number) => Ok((name.clone(), *number as f64)),
+            _ => Err(SceneError::File(format!("{what}.{name} must be a number"))),
+        })
+        .collect()
+}
+
+impl Scene {
+    /// Reads a scene from the text of a TOML file.
+    pub fn from_toml(text: &str) -> Result<Scene, SceneError> {
+        let file: SceneFile =
+            toml::from_str(text).map_err(|error| SceneError::File(error.to_string()))?;
+        let variables = number_table(&file.variables, "variables")?;
+        let expressions = file
+            .expressions
+            .iter()
+            .map(|(name, value)| match value {
+                toml::Value::String(text) => Ok((name.clone(), text.clone())),
+                _ => Err(SceneError::File(format!(
+                    "expressions.{name} must be a string holding an expression"
+                ))),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut scene = Scene {
+            time: file.time,
+            mode: file.mode,
+            variables,
+            expressions,
+            bodies: Vec::new(),
+            markers: Vec::new(),
+        };
+        for body in &file.bodies {
+            if scene.find_body(&body.name).is_some() || body.name.eq_ignore_ascii_case("ground") {
+                return Err(SceneError::File(format!(
+                    "body {} is defined twice",
+                    body.name
+                )));
+            }
+            scene.bodies.push(Body {
+                name: body.name.clone(),
+                position: body.position.into(),
+                orientation: body.orientation.read(&format!("body {}", body.name))?,
+                velocity: body.velocity.into(),
+                angular_velocity: body.angular_velocity.into(),
+                acceleration: body.acceleration.map(Into::into),
+                angular_acceleration: body.angular_acceleration.map(Into::into),
+            });
+        }
+        for marker in &file.markers {
+            let owner = match (&marker.name, marker.id) {
+                (Some(name), _) => format!("marker {name}"),
+                (None, Some(id)) => format!("marker {id}"),
+                (None, None) => {
+                    return Err(SceneError::File(
+                        "a marker needs a name or an id".to_string(),
+                    ));
+                }
+            };
+            if marker.id == Some(0) {
+                return Err(SceneError::File(format!(
+                    "{owner}: id 0 is the ground frame"
+                )));
+            }
+            let body = match marker.body.as_deref() {
+                None => None,
+                Some(name) if name.eq_ignore_ascii_case("ground") => None,
+                Some(name) => Some(scene.find_body(name).ok_or_else(|| {
+                    SceneError::File(format!("{owner}: there is no body {name}"))
+                })?),
+            };
+            scene.markers.push(Marker {
+                id: marker.id,
+                name: marker.name.clone(),
+                body,
+                position: marker.position.into(),
+                orientation: marker.orientation.read(&owner)?,
+            });
+        }
+        Ok(scene)
+    }
+}

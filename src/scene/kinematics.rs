@@ -1,0 +1,244 @@
+//! Marker frames and the kinematic measures of SPEC section 4, generic over
+//! [`Number`] so that derivatives flow from the body states through the
+//! frames (nalgebra over num-dual scalars).
+
+use nalgebra::{Matrix3, Vector3};
+use num_dual::DualNum;
+
+use crate::catalog::Function;
+use crate::laws::intrinsics::atan2;
+use crate::laws::{LawError, domain};
+use crate::number::Number;
+
+/// What a program keeps of one marker: the constants of its body and of its
+/// place on the body. The body's state comes from the program's inputs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameData {
+    /// The marker's name or id, for messages.
+    pub label: String,
+    /// The body's orientation at the scene's time (identity for ground).
+    pub body_orientation: Matrix3<f64>,
+    /// The marker's origin in the body frame.
+    pub offset: Vector3<f64>,
+    /// The marker's axes relative to the body frame.
+    pub axes: Matrix3<f64>,
+    /// The body's acceleration, when the scene gives it (zero on ground).
+    pub acceleration: Option<Vector3<f64>>,
+    /// The body's angular acceleration, when the scene gives it (zero on ground).
+    pub angular_acceleration: Option<Vector3<f64>>,
+}
+
+impl FrameData {
+    /// The ground frame itself.
+    pub fn ground() -> FrameData {
+        FrameData {
+            label: "ground".to_string(),
+            body_orientation: Matrix3::identity(),
+            offset: Vector3::zeros(),
+            axes: Matrix3::identity(),
+            acceleration: Some(Vector3::zeros()),
+            angular_acceleration: Some(Vector3::zeros()),
+        }
+    }
+}
+
+/// A marker frame at the current state, in ground.
+#[derive(Clone, Debug)]
+pub struct Frame<T: Number> {
+    /// Origin.
+    pub origin: Vector3<T>,
+    /// Axes as columns.
+    pub axes: Matrix3<T>,
+    /// Velocity of the origin.
+    pub velocity: Vector3<T>,
+    /// Angular velocity.
+    pub omega: Vector3<T>,
+    /// Acceleration of the origin (zero where the scene gives none).
+    pub acceleration: Vector3<T>,
+    /// Angular acceleration (zero where the scene gives none).
+    pub alpha: Vector3<T>,
+}
+
+fn lift_vector<T: Number>(vector: &Vector3<f64>) -> Vector3<T> {
+    vector.map(T::from)
+}
+
+fn lift_matrix<T: Number>(matrix: &Matrix3<f64>) -> Matrix3<T> {
+    matrix.map(T::from)
+}
+
+fn skew<T: Number>(v: &Vector3<T>) -> Matrix3<T> {
+    let zero = T::zero();
+    Matrix3::new(
+        zero.clone(),
+        -v[2].clone(),
+        v[1].clone(),
+        v[2].clone(),
+        zero.clone(),
+        -v[0].clone(),
+        -v[1].clone(),
+        v[0].clone(),
+        zero,
+    )
+}
+
+/// The rotation by the rotation vector `r` (Rodrigues); at `r = 0`,
+/// `I + S + S²/2`, exact to second order in the derivative parts.
+fn rotation<T: Number>(r: &Vector3<T>) -> Matrix3<T> {
+    let s = skew(r);
+    let s2 = &s * &s;
+    let angle = r.map(|component| component.value()).norm();
+    if angle == 0.0 {
+        return Matrix3::identity() + s + s2 * T::from(0.5);
+    }
+    let theta = DualNum::sqrt(&r.dot(r));
+    let a = DualNum::sin(&theta) / theta.clone();
+    let b = (T::one() - DualNum::cos(&theta)) / (theta.clone() * theta);
+    Matrix3::identity() + s * a + s2 * b
+}
+
+impl<T: Number> Frame<T> {
+    /// The frame of a marker on ground.
+    pub fn fixed(data: &FrameData) -> Frame<T> {
+        Frame {
+            origin: lift_vector(&data.offset),
+            axes: lift_matrix(&data.axes),
+            velocity: Vector3::zeros(),
+            omega: Vector3::zeros(),
+            acceleration: Vector3::zeros(),
+            alpha: Vector3::zeros(),
+        }
+    }
+
+    /// The frame of a marker on a body whose state is `state`: position,
+    /// small rotation, velocity and angular velocity, three each.
+    pub fn on_body(data: &FrameData, state: [&T; 12]) -> Frame<T> {
+        let vector = |first: usize| {
+            Vector3::new(
+                state[first].clone(),
+                state[first + 1].clone(),
+                state[first + 2].clone(),
+            )
+        };
+        let (position, small_rotation, velocity, omega) =
+            (vector(0), vector(3), vector(6), vector(9));
+        let body_axes = rotation(&small_rotation) * lift_matrix::<T>(&data.body_orientation);
+        let arm = &body_axes * lift_vector::<T>(&data.offset);
+        let acceleration = data
+            .acceleration
+            .map_or_else(Vector3::zeros, |a| lift_vector(&a));
+        let alpha = data
+            .angular_acceleration
+            .map_or_else(Vector3::zeros, |a| lift_vector(&a));
+        Frame {
+            origin: position + &arm,
+            axes: &body_axes * lift_matrix::<T>(&data.axes),
+            velocity: velocity + omega.cross(&arm),
+            acceleration: acceleration + alpha.cross(&arm) + omega.cross(&omega.cross(&arm)),
+            omega,
+            alpha,
+        }
+    }
+
+    fn axis(&self, index: usize) -> Vector3<T> {
+        self.axes.column(index).into_owned()
+    }
+}
+
+/// `|v|`, an error where the derivative of the length is not defined.
+fn length<T: Number>(v: &Vector3<T>) -> T {
+    DualNum::sqrt(&v.dot(v))
+}
+
+/// The value of `measure` for frames `i, j, k, l` as its signature orders
+/// them (omitted markers already replaced by ground).
+pub fn measure<T: Number>(function: Function, frames: &[Frame<T>]) -> Result<T, LawError> {
+    use Function as F;
+    let i = &frames[0];
+    let j = &frames[1];
+    let d = &i.origin - &j.origin;
+    // Time derivative of d in frame `l`: d' = (v_i - v_j) - w_l x d.
+    let rate_in = |l: &Frame<T>| (&i.velocity - &j.velocity) - l.omega.cross(&d);
+    let acceleration_in = |l: &Frame<T>| {
+        let rate = rate_in(l);
+        (&i.acceleration - &j.acceleration)
+            - l.alpha.cross(&d)
+            - l.omega.cross(&rate) * T::from(2.0)
+            - l.omega.cross(&l.omega.cross(&d))
+    };
+    let omega = &i.omega - &j.omega;
+    let omega_rate_in = |l: &Frame<T>| (&i.alpha - &j.alpha) - l.omega.cross(&omega);
+    Ok(match function {
+        F::Dx | F::Dy | F::Dz => d.dot(&frames[2].axis(axis_of(function))),
+        F::Dm => length(&d),
+        F::Vx | F::Vy | F::Vz => rate_in(&frames[3]).dot(&frames[2].axis(axis_of(function))),
+        F::Vm => length(&rate_in(&frames[2])),
+        F::Vr => {
+            let distance = length(&d);
+            if distance.value() == 0.0 {
+                return domain(
+                    "VR",
+                    "the markers coincide: the radial direction is not defined".to_string(),
+                );
+            }
+            d.dot(&rate_in(&frames[2])) / distance
+        }
+        F::Accx | F::Accy | F::Accz => {
+            acceleration_in(&frames[3]).dot(&frames[2].axis(axis_of(function)))
+        }
+        F::Accm => length(&acceleration_in(&frames[2])),
+        F::Wx | F::Wy | F::Wz => omega.dot(&frames[2].axis(axis_of(function))),
+        F::Wm => length(&omega),
+        F::Wdtx | F::Wdty | F::Wdtz => {
+            omega_rate_in(&frames[3]).dot(&frames[2].axis(axis_of(function)))
+        }
+        F::Wdtm => length(&omega_rate_in(&frames[2])),
+        F::Ax | F::Ay | F::Az => {
+            // The rotation of i about one axis of j: the next axis of i,
+            // seen in the plane of j's other two axes.
+            let (next, after) = match function {
+                F::Ax => (1, 2),
+                F::Ay => (2, 0),
+                _ => (0, 1),
+            };
+            let moved = i.axis(next);
+            atan2(&moved.dot(&j.axis(after)), &moved.dot(&j.axis(next)))
+        }
+        F::Psi | F::Theta | F::Phi | F::Yaw | F::Pitch | F::Roll => {
+            let relative = j.axes.transpose() * &i.axes;
+            let c = |row: usize, column: usize| relative[(row, column)].clone();
+            match function {
+                F::Psi => atan2(&c(0, 2), &-c(1, 2)),
+                F::Theta => DualNum::acos(&within_unit("THETA", c(2, 2))?),
+                F::Phi => atan2(&c(2, 0), &c(2, 1)),
+                F::Yaw => atan2(&c(1, 0), &c(0, 0)),
+                F::Pitch => DualNum::asin(&within_unit("PITCH", c(2, 0))?),
+                _ => atan2(&c(2, 1), &c(2, 2)),
+            }
+        }
+        _ => unreachable!("{function} is not a measure a scene evaluates"),
+    })
+}
+
+/// A cosine or sine from rotation matrices, clamped to [-1, 1] against
+/// rounding (a value beyond it by more than rounding is an error).
+fn within_unit<T: Number>(name: &'static str, value: T) -> Result<T, LawError> {
+    let v = value.value();
+    if v.abs() > 1.0 + 1e-12 {
+        return domain(name, format!("the orientation is not a rotation ({v})"));
+    }
+    if v.abs() > 1.0 {
+        return Ok(T::from(v.signum()));
+    }
+    Ok(value)
+}
+
+/// 0, 1, 2 for the x, y, z variant of a measure.
+fn axis_of(function: Function) -> usize {
+    let name = function.name();
+    match name.as_bytes()[name.len() - 1] {
+        b'X' => 0,
+        b'Y' => 1,
+        _ => 2,
+    }
+}

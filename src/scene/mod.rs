@@ -1,0 +1,292 @@
+//! Scenes: the world a kinematic measure is evaluated in — ground, rigid
+//! bodies with their states, markers fixed on them, the time, the mode, user
+//! variables and named expressions.
+//!
+//! A scene is read from TOML ([`Scene::from_toml`], format in
+//! `examples/scenes/README.md`) or built in code. Compiling an expression
+//! against a scene ([`crate::compile::compile_in_scene`]) keeps only the
+//! markers and bodies it uses; their state components become inputs named
+//! `BODY.x` ... `BODY.wz` that can be derivative directions.
+
+mod file;
+pub mod kinematics;
+
+use nalgebra::{UnitQuaternion, Vector3};
+use thiserror::Error;
+
+use crate::catalog::{SystemVariable, closest, did_you_mean};
+use crate::check::Reference;
+
+/// A rigid body and its state at the scene's time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body {
+    /// The body's name (state inputs are `NAME.x` ...).
+    pub name: String,
+    /// Position of the body frame's origin in ground.
+    pub position: Vector3<f64>,
+    /// Orientation of the body frame relative to ground.
+    pub orientation: UnitQuaternion<f64>,
+    /// Velocity of the origin, in ground.
+    pub velocity: Vector3<f64>,
+    /// Angular velocity, in ground.
+    pub angular_velocity: Vector3<f64>,
+    /// Acceleration of the origin, in ground, when known.
+    pub acceleration: Option<Vector3<f64>>,
+    /// Angular acceleration, in ground, when known.
+    pub angular_acceleration: Option<Vector3<f64>>,
+}
+
+impl Body {
+    /// A body named `name` at rest at the origin, aligned with ground.
+    pub fn new(name: impl Into<String>) -> Body {
+        Body {
+            name: name.into(),
+            position: Vector3::zeros(),
+            orientation: UnitQuaternion::identity(),
+            velocity: Vector3::zeros(),
+            angular_velocity: Vector3::zeros(),
+            acceleration: None,
+            angular_acceleration: None,
+        }
+    }
+}
+
+/// A coordinate frame fixed on a body (or on ground).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Marker {
+    /// The marker's id, when it has one.
+    pub id: Option<u64>,
+    /// The marker's name, when it has one.
+    pub name: Option<String>,
+    /// Index of the body it is fixed on in [`Scene::bodies`]; `None` for ground.
+    pub body: Option<usize>,
+    /// Position of the marker's origin in the body frame.
+    pub position: Vector3<f64>,
+    /// Orientation of the marker relative to the body frame.
+    pub orientation: UnitQuaternion<f64>,
+}
+
+impl Marker {
+    /// A marker at the origin of `body` (`None`: ground), aligned with it.
+    pub fn new(body: Option<usize>) -> Marker {
+        Marker {
+            id: None,
+            name: None,
+            body,
+            position: Vector3::zeros(),
+            orientation: UnitQuaternion::identity(),
+        }
+    }
+
+    /// The marker's name, or its id as text.
+    pub fn label(&self) -> String {
+        match (&self.name, self.id) {
+            (Some(name), _) => name.clone(),
+            (None, Some(id)) => id.to_string(),
+            (None, None) => "(unnamed)".to_string(),
+        }
+    }
+}
+
+/// The components of a body's state that can be derivative directions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StateComponent {
+    /// Position along ground x, y, z (index 0 to 2).
+    Position(usize),
+    /// A small rotation about ground x, y, z at the current orientation.
+    Rotation(usize),
+    /// Velocity along ground x, y, z.
+    Velocity(usize),
+    /// Angular velocity about ground x, y, z.
+    AngularVelocity(usize),
+}
+
+impl StateComponent {
+    /// All twelve, in input order: x y z rx ry rz vx vy vz wx wy wz.
+    pub const ALL: [StateComponent; 12] = [
+        StateComponent::Position(0),
+        StateComponent::Position(1),
+        StateComponent::Position(2),
+        StateComponent::Rotation(0),
+        StateComponent::Rotation(1),
+        StateComponent::Rotation(2),
+        StateComponent::Velocity(0),
+        StateComponent::Velocity(1),
+        StateComponent::Velocity(2),
+        StateComponent::AngularVelocity(0),
+        StateComponent::AngularVelocity(1),
+        StateComponent::AngularVelocity(2),
+    ];
+
+    /// `x`, `rx`, `vx`, `wx` ...
+    pub fn suffix(self) -> String {
+        let (prefix, axis) = match self {
+            StateComponent::Position(axis) => ("", axis),
+            StateComponent::Rotation(axis) => ("r", axis),
+            StateComponent::Velocity(axis) => ("v", axis),
+            StateComponent::AngularVelocity(axis) => ("w", axis),
+        };
+        format!("{prefix}{}", ["x", "y", "z"][axis])
+    }
+
+    /// The component named by `suffix` (case-insensitive).
+    pub fn parse(suffix: &str) -> Option<StateComponent> {
+        StateComponent::ALL
+            .into_iter()
+            .find(|component| component.suffix().eq_ignore_ascii_case(suffix))
+    }
+}
+
+/// What a scene cannot provide.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum SceneError {
+    /// A marker reference that matches no marker.
+    #[error("there is no marker {reference} in the scene{suggestions}")]
+    UnknownMarker {
+        /// The reference as written.
+        reference: String,
+        /// " (did you mean ...?)" or nothing.
+        suggestions: String,
+    },
+    /// A name that is neither a variable, a system variable nor a state component.
+    #[error("the scene has no value for {name}{suggestions}")]
+    UnknownName {
+        /// The name.
+        name: String,
+        /// " (did you mean ...?)" or nothing.
+        suggestions: String,
+    },
+    /// A scene file that cannot be read or understood.
+    #[error("{0}")]
+    File(String),
+}
+
+/// Ground, bodies, markers, time, mode, variables and named expressions.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Scene {
+    /// The current time.
+    pub time: f64,
+    /// The analysis mode; 4 (dynamics) when not given.
+    pub mode: Option<f64>,
+    /// User variables and their values.
+    pub variables: Vec<(String, f64)>,
+    /// Named expressions, in the order given.
+    pub expressions: Vec<(String, String)>,
+    /// The rigid bodies (ground is implicit).
+    pub bodies: Vec<Body>,
+    /// The markers.
+    pub markers: Vec<Marker>,
+}
+
+/// Where a marker reference leads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Target {
+    /// The ground frame itself (`0`).
+    Ground,
+    /// The marker at this index of [`Scene::markers`].
+    Marker(usize),
+}
+
+impl Scene {
+    /// The marker `reference` names: `0` is ground, other ids and names
+    /// (case-insensitive) are looked up among the markers.
+    pub fn find_marker(&self, reference: &Reference) -> Result<Target, SceneError> {
+        let found = match reference {
+            Reference::Id(0) => return Ok(Target::Ground),
+            Reference::Id(id) => self
+                .markers
+                .iter()
+                .position(|marker| marker.id == Some(*id)),
+            Reference::Name(name) => self.markers.iter().position(|marker| {
+                marker
+                    .name
+                    .as_deref()
+                    .is_some_and(|marker_name| marker_name.eq_ignore_ascii_case(name))
+            }),
+        };
+        found.map(Target::Marker).ok_or_else(|| {
+            let labels: Vec<String> = self.markers.iter().map(Marker::label).collect();
+            let suggestions = did_you_mean(&closest(
+                &reference.to_string(),
+                labels.iter().map(String::as_str),
+            ));
+            SceneError::UnknownMarker {
+                reference: reference.to_string(),
+                suggestions,
+            }
+        })
+    }
+
+    /// The index of the body named `name` (case-insensitive).
+    pub fn find_body(&self, name: &str) -> Option<usize> {
+        self.bodies
+            .iter()
+            .position(|body| body.name.eq_ignore_ascii_case(name))
+    }
+
+    /// The input name of a body's state component: `ball.vx`.
+    pub fn state_name(&self, body: usize, component: StateComponent) -> String {
+        format!("{}.{}", self.bodies[body].name, component.suffix())
+    }
+
+    /// The body and component an input name such as `ball.vx` stands for.
+    pub fn parse_state_name(&self, name: &str) -> Option<(usize, StateComponent)> {
+        let (body, suffix) = name.rsplit_once('.')?;
+        Some((self.find_body(body)?, StateComponent::parse(suffix)?))
+    }
+
+    /// The value the scene gives the input `name`: `TIME`, `MODE`, a user
+    /// variable, or a state component (`ball.x`; rotations are 0, since they
+    /// are perturbations of the current orientation).
+    pub fn value_of(&self, name: &str) -> Result<f64, SceneError> {
+        match SystemVariable::lookup(name) {
+            Some(SystemVariable::Time) => return Ok(self.time),
+            Some(SystemVariable::Mode) => {
+                return Ok(self.mode.unwrap_or(SystemVariable::DEFAULT_MODE));
+            }
+            None => {}
+        }
+        if let Some((_, value)) = self
+            .variables
+            .iter()
+            .find(|(variable, _)| variable.eq_ignore_ascii_case(name))
+        {
+            return Ok(*value);
+        }
+        if let Some((index, component)) = self.parse_state_name(name) {
+            let body = &self.bodies[index];
+            return Ok(match component {
+                StateComponent::Position(axis) => body.position[axis],
+                StateComponent::Rotation(_) => 0.0,
+                StateComponent::Velocity(axis) => body.velocity[axis],
+                StateComponent::AngularVelocity(axis) => body.angular_velocity[axis],
+            });
+        }
+        let mut known: Vec<String> = self
+            .variables
+            .iter()
+            .map(|(name, _)| name.clone())
+            .collect();
+        known.extend(["TIME".to_string(), "MODE".to_string()]);
+        for index in 0..self.bodies.len() {
+            known.extend(StateComponent::ALL.map(|component| self.state_name(index, component)));
+        }
+        Err(SceneError::UnknownName {
+            name: name.to_string(),
+            suggestions: did_you_mean(&closest(name, known.iter().map(String::as_str))),
+        })
+    }
+
+    /// The values of `names` (a program's inputs), each by [`Scene::value_of`].
+    pub fn values(&self, names: &[String]) -> Result<Vec<f64>, SceneError> {
+        names.iter().map(|name| self.value_of(name)).collect()
+    }
+
+    /// The names a program over this scene may bind without further input:
+    /// `TIME`, `MODE` and the user variables.
+    pub fn input_names(&self) -> Vec<String> {
+        let mut names = vec!["TIME".to_string(), "MODE".to_string()];
+        names.extend(self.variables.iter().map(|(name, _)| name.clone()));
+        names
+    }
+}
