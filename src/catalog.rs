@@ -445,7 +445,12 @@ pub fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) ->
     let mut scored: Vec<(f64, &str)> = candidates
         .into_iter()
         .map(|candidate| {
-            let score = strsim::jaro_winkler(&name, &candidate.to_uppercase());
+            let upper = candidate.to_uppercase();
+            let mut score = strsim::jaro_winkler(&name, &upper);
+            // Short names score low however alike: one edit apart is close.
+            if name.len() >= 2 && strsim::levenshtein(&name, &upper) == 1 {
+                score = score.max(0.8);
+            }
             (score, candidate)
         })
         .filter(|(score, _)| *score >= 0.8)

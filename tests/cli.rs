@@ -181,3 +181,56 @@ fn a_closed_pipe_ends_the_run_quietly() {
         String::from_utf8_lossy(&output.stderr)
     );
 }
+
+#[test]
+fn eval_in_a_scene() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let ball = format!("{root}/examples/scenes/ball_between_walls.toml");
+    let slider = format!("{root}/examples/scenes/slider_in_slot.toml");
+    let dir = std::env::temp_dir().join(format!("mbexpr-scene-points-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("points.csv");
+    std::fs::write(&csv, "ball.x,ball.vx\n0.0,1\n0.52,0.7\n-0.6,-2\n").unwrap();
+    let points = csv.to_str().unwrap();
+    let report = check(
+        &[
+            "eval",
+            "--scene",
+            &ball,
+            "--wrt",
+            "ball.x,ball.vx",
+            "--order",
+            "2",
+        ],
+        "",
+    ) + &check(&["eval", "--scene", &slider, "--format", "jsonl"], "")
+        + &check(
+            &[
+                "eval",
+                "DM(ball, wall)",
+                "--scene",
+                &ball,
+                "--wrt",
+                "ball.y",
+            ],
+            "",
+        )
+        + &check(&["eval", "DX(ball, wal)", "--scene", &ball], "")
+        + &check(
+            &[
+                "eval",
+                "BISTOP(DX(ball, wall, wall), VX(ball, wall, wall, wall), -0.5, 0.5, 1e5, 2.2, 100, 0.05)",
+                "--scene",
+                &ball,
+                "--points",
+                points,
+                "--wrt",
+                "ball.x",
+                "--format",
+                "jsonl",
+            ],
+            "",
+        );
+    std::fs::remove_dir_all(&dir).unwrap();
+    insta::assert_snapshot!(report.replace(root, "ROOT").replace(points, "points.csv"));
+}

@@ -8,3 +8,4 @@ mod cli;
 mod corpus;
 mod eval;
 mod parse;
+mod scene;

@@ -207,12 +207,22 @@ pub fn measure<T: Number>(function: Function, frames: &[Frame<T>]) -> Result<T, 
         F::Psi | F::Theta | F::Phi | F::Yaw | F::Pitch | F::Roll => {
             let relative = j.axes.transpose() * &i.axes;
             let c = |row: usize, column: usize| relative[(row, column)].clone();
+            // At gimbal lock (THETA = 0 or pi; PITCH = +-90 degrees) the
+            // first and third angles turn about one axis: the first takes the
+            // whole turn and the third is 0.
+            let zero = |row: usize, column: usize| c(row, column).value() == 0.0;
+            let euler_locked = zero(0, 2) && zero(1, 2);
+            let cardan_locked = zero(0, 0) && zero(1, 0);
             match function {
+                F::Psi if euler_locked => atan2(&c(1, 0), &c(0, 0)),
                 F::Psi => atan2(&c(0, 2), &-c(1, 2)),
                 F::Theta => DualNum::acos(&within_unit("THETA", c(2, 2))?),
+                F::Phi if euler_locked => T::zero(),
                 F::Phi => atan2(&c(2, 0), &c(2, 1)),
+                F::Yaw if cardan_locked => T::zero(),
                 F::Yaw => atan2(&c(1, 0), &c(0, 0)),
                 F::Pitch => DualNum::asin(&within_unit("PITCH", c(2, 0))?),
+                _ if cardan_locked => atan2(&-c(1, 2), &c(1, 1)),
                 _ => atan2(&c(2, 1), &c(2, 2)),
             }
         }

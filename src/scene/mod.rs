@@ -11,6 +11,8 @@
 mod file;
 pub mod kinematics;
 
+pub use file::euler_313;
+
 use nalgebra::{UnitQuaternion, Vector3};
 use thiserror::Error;
 
