@@ -42,6 +42,7 @@ pub mod compile;
 mod errors;
 pub mod eval;
 pub mod laws;
+pub mod model;
 pub mod number;
 pub mod scene;
 pub mod span;

@@ -4,6 +4,8 @@ use std::io::{self, Read, Write};
 
 use clap::ValueEnum;
 
+use mbexpr::model::{self, FileKind};
+
 use crate::render::diagnostic;
 use crate::{Fatal, Outcome};
 
@@ -64,8 +66,101 @@ fn read(file: &str) -> Result<String, Fatal> {
         .map_err(|error| Fatal::usage(format!("error: cannot read {file}: {error}")))
 }
 
+/// Checks a model file: every problem at its place, then a summary line.
+/// Returns the number of expressions and of errors.
+fn check_model_file(
+    origin: &str,
+    text: &str,
+    kind: FileKind,
+    format: Format,
+    out: &mut impl Write,
+) -> Result<(usize, usize), Fatal> {
+    let dataset = model::read(text, kind);
+    let report = model::check_model(&dataset);
+    let statement_fields =
+        |index: Option<usize>| match index.map(|index| &dataset.statements[index]) {
+            Some(statement) => (
+                serde_json::Value::String(statement.name.clone()),
+                statement
+                    .id
+                    .map_or(serde_json::Value::Null, serde_json::Value::from),
+            ),
+            None => (serde_json::Value::Null, serde_json::Value::Null),
+        };
+    match format {
+        Format::Text => {
+            for problem in &report.problems {
+                let message = problem.error.to_string();
+                write!(
+                    out,
+                    "{}",
+                    diagnostic(origin, text, problem.error.span(), &message)
+                )?;
+            }
+            writeln!(
+                out,
+                "{origin}: {}, {}, {}",
+                plural(dataset.statements.len(), "statement"),
+                plural(report.expressions.len(), "expression"),
+                plural(report.problems.len(), "error")
+            )?;
+        }
+        Format::Jsonl => {
+            for (index, found) in report.expressions.iter().enumerate() {
+                let (statement, id) = statement_fields(Some(found.statement));
+                let location = mbexpr::Location::of(text, found.span.start);
+                let mut record = serde_json::json!({
+                    "file": origin,
+                    "line": location.line,
+                    "statement": statement,
+                    "id": id,
+                    "keyword": found.keyword,
+                    "ok": true,
+                });
+                if let Some(problem) = report
+                    .problems
+                    .iter()
+                    .find(|problem| problem.expression == Some(index))
+                {
+                    let at = mbexpr::Location::of(text, problem.error.span().start);
+                    record["ok"] = false.into();
+                    record["line"] = at.line.into();
+                    record["column"] = at.column.into();
+                    record["error"] = problem.error.to_string().into();
+                }
+                writeln!(out, "{record}")?;
+            }
+            for problem in report
+                .problems
+                .iter()
+                .filter(|problem| problem.expression.is_none())
+            {
+                let (statement, id) = statement_fields(problem.statement);
+                let at = mbexpr::Location::of(text, problem.error.span().start);
+                let record = serde_json::json!({
+                    "file": origin,
+                    "line": at.line,
+                    "statement": statement,
+                    "id": id,
+                    "ok": false,
+                    "column": at.column,
+                    "error": problem.error.to_string(),
+                });
+                writeln!(out, "{record}")?;
+            }
+        }
+    }
+    Ok((report.expressions.len(), report.problems.len()))
+}
+
+/// `3 errors`, `1 error`.
+fn plural(count: usize, word: &str) -> String {
+    format!("{count} {word}{}", if count == 1 { "" } else { "s" })
+}
+
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let (mut expressions, mut errors) = (0usize, 0usize);
+    let mut models = 0;
     for file in &args.files {
         let text = read(file)?;
         let origin = if file == "-" {
@@ -73,6 +168,13 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         } else {
             file.as_str()
         };
+        if let Some(kind) = FileKind::of_path(file) {
+            let (found, problems) = check_model_file(origin, &text, kind, args.format, out)?;
+            expressions += found;
+            errors += problems;
+            models += 1;
+            continue;
+        }
         let mut offset = 0;
         for (index, raw_line) in text.split_inclusive('\n').enumerate() {
             let line_start = offset;
@@ -108,10 +210,8 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
             }
         }
     }
-    if args.format == Format::Text {
-        let plural = |count: usize, word: &str| {
-            format!("{count} {word}{}", if count == 1 { "" } else { "s" })
-        };
+    // A single model file has its own summary line already.
+    if args.format == Format::Text && !(models == 1 && args.files.len() == 1) {
         writeln!(
             out,
             "{}, {}",

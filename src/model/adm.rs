@@ -1,0 +1,166 @@
+//! Reading Adams solver datasets (`.adm`) and command files (`.acf`) with
+//! `grammar/dataset.pest`. No pest type leaves this file.
+
+use pest::Parser;
+use pest::iterators::Pair;
+use pest_derive::Parser;
+
+use super::text::Embedded;
+use super::{Argument, Dataset, FileKind, ReadError, Statement, Value, ValueItem};
+use crate::span::Span;
+
+#[derive(Parser)]
+#[grammar = "../grammar/dataset.pest"]
+struct DatasetParser;
+
+fn span_of(pair: &Pair<'_, Rule>) -> Span {
+    Span::new(pair.as_span().start(), pair.as_span().end())
+}
+
+/// Reads the statements of a dataset (`FileKind::Adm`, with its title line)
+/// or command file (`FileKind::Acf`). Lines that are no statement are
+/// reported and skipped; the rest is read.
+pub fn read(text: &str, kind: FileKind) -> Dataset {
+    let rule = match kind {
+        FileKind::Acf => Rule::acf,
+        _ => Rule::adm,
+    };
+    let mut dataset = Dataset {
+        kind,
+        title: None,
+        statements: Vec::new(),
+        problems: Vec::new(),
+    };
+    let top = match DatasetParser::parse(rule, text) {
+        Ok(mut pairs) => pairs.next().expect("the top rule matched"),
+        Err(error) => {
+            // The grammar takes any line (`unreadable`), so this is rare: a
+            // stray byte pest cannot take at all.
+            let offset = match error.location {
+                pest::error::InputLocation::Pos(offset) => offset,
+                pest::error::InputLocation::Span((start, _)) => start,
+            };
+            dataset.problems.push(ReadError::Unreadable {
+                span: Span::new(offset, offset),
+            });
+            return dataset;
+        }
+    };
+    for pair in top.into_inner() {
+        match pair.as_rule() {
+            Rule::title => dataset.title = Some(pair.as_str().trim_end().to_string()),
+            Rule::statement => dataset.statements.push(statement(pair)),
+            Rule::unreadable => dataset.problems.push(ReadError::Unreadable {
+                span: trimmed_span(&pair),
+            }),
+            _ => {}
+        }
+    }
+    dataset
+}
+
+/// The span of a pair without its trailing blanks and line break.
+fn trimmed_span(pair: &Pair<'_, Rule>) -> Span {
+    let span = span_of(pair);
+    Span::new(span.start, span.start + pair.as_str().trim_end().len())
+}
+
+fn statement(pair: Pair<'_, Rule>) -> Statement {
+    let span = trimmed_span(&pair);
+    let mut name = String::new();
+    let mut id = None;
+    let mut arguments = Vec::new();
+    for part in pair.into_inner() {
+        match part.as_rule() {
+            Rule::statement_name => name = part.as_str().to_uppercase(),
+            Rule::id => id = part.as_str().parse().ok(),
+            Rule::expression_argument => arguments.push(expression_argument(part)),
+            Rule::plain_argument => arguments.push(plain_argument(part)),
+            _ => {}
+        }
+    }
+    Statement {
+        name,
+        id,
+        span,
+        arguments,
+    }
+}
+
+fn expression_argument(pair: Pair<'_, Rule>) -> Argument {
+    let span = span_of(&pair);
+    let mut keyword = String::new();
+    let mut keyword_span = span;
+    let mut embedded = Embedded::default();
+    let mut expression_span = Span::at(span.end);
+    for part in pair.into_inner() {
+        match part.as_rule() {
+            Rule::expression_key => {
+                keyword = part.as_str().to_uppercase();
+                keyword_span = span_of(&part);
+            }
+            Rule::expression => {
+                expression_span = span_of(&part);
+                // The expression's text without its continuation markers.
+                let text = part.as_str();
+                let base = expression_span.start;
+                let mut cursor = 0;
+                for continuation in part.into_inner() {
+                    let cut = span_of(&continuation);
+                    embedded.push(&text[cursor..cut.start - base], base + cursor);
+                    cursor = cut.end - base;
+                }
+                embedded.push(&text[cursor..], base + cursor);
+            }
+            _ => {}
+        }
+    }
+    Argument {
+        keyword,
+        keyword_span,
+        span,
+        value: Value::Expression {
+            text: embedded,
+            span: expression_span,
+        },
+    }
+}
+
+fn plain_argument(pair: Pair<'_, Rule>) -> Argument {
+    let span = span_of(&pair);
+    let mut keyword = String::new();
+    let mut keyword_span = span;
+    let mut items = Vec::new();
+    for part in pair.into_inner() {
+        match part.as_rule() {
+            Rule::keyword => {
+                keyword = part.as_str().to_uppercase();
+                keyword_span = span_of(&part);
+            }
+            Rule::values => {
+                for item in part
+                    .into_inner()
+                    .filter(|item| item.as_rule() == Rule::value)
+                {
+                    let text = item.as_str().trim_end();
+                    let start = item.as_span().start();
+                    items.push(ValueItem {
+                        text: text.to_string(),
+                        span: Span::new(start, start + text.len()),
+                    });
+                }
+            }
+            _ => {}
+        }
+    }
+    Argument {
+        keyword,
+        keyword_span,
+        span,
+        value: if items.is_empty() {
+            Value::Flag
+        } else {
+            Value::List(items)
+        },
+    }
+}

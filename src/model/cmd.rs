@@ -1,0 +1,139 @@
+//! Reading Adams View command files (`.cmd`) with `grammar/command.pest`.
+//! No pest type leaves this file.
+
+use pest::Parser;
+use pest::iterators::Pair;
+use pest_derive::Parser;
+
+use super::text::Embedded;
+use super::{Argument, Dataset, FileKind, ReadError, Statement, Value, ValueItem};
+use crate::span::Span;
+
+#[derive(Parser)]
+#[grammar = "../grammar/command.pest"]
+struct CommandParser;
+
+fn span_of(pair: &Pair<'_, Rule>) -> Span {
+    Span::new(pair.as_span().start(), pair.as_span().end())
+}
+
+/// Whether a parameter holds an expression: `function`, `*_function`, `f1` ... `f8`.
+fn holds_expression(name: &str) -> bool {
+    let name = name.to_ascii_lowercase();
+    name == "function"
+        || name.ends_with("_function")
+        || (name.len() == 2 && name.starts_with('f') && name.as_bytes()[1].is_ascii_digit())
+}
+
+/// Reads the commands of a View command file.
+pub fn read(text: &str) -> Dataset {
+    let mut dataset = Dataset {
+        kind: FileKind::Cmd,
+        title: None,
+        statements: Vec::new(),
+        problems: Vec::new(),
+    };
+    let top = match CommandParser::parse(Rule::cmd, text) {
+        Ok(mut pairs) => pairs.next().expect("the top rule matched"),
+        Err(error) => {
+            let offset = match error.location {
+                pest::error::InputLocation::Pos(offset) => offset,
+                pest::error::InputLocation::Span((start, _)) => start,
+            };
+            dataset.problems.push(ReadError::Unreadable {
+                span: Span::at(offset),
+            });
+            return dataset;
+        }
+    };
+    for pair in top.into_inner() {
+        match pair.as_rule() {
+            Rule::command => dataset.statements.push(command(pair)),
+            Rule::unreadable => {
+                let span = span_of(&pair);
+                let length = pair.as_str().trim_end().len();
+                dataset.problems.push(ReadError::Unreadable {
+                    span: Span::new(span.start, span.start + length),
+                });
+            }
+            _ => {}
+        }
+    }
+    dataset
+}
+
+fn command(pair: Pair<'_, Rule>) -> Statement {
+    let span = span_of(&pair);
+    let span = Span::new(span.start, span.start + pair.as_str().trim_end().len());
+    let mut words = Vec::new();
+    let mut arguments = Vec::new();
+    for part in pair.into_inner() {
+        match part.as_rule() {
+            Rule::words => words.extend(part.into_inner().map(|word| word.as_str().to_uppercase())),
+            Rule::parameter => arguments.push(parameter(part)),
+            _ => {}
+        }
+    }
+    let id = arguments
+        .iter()
+        .find(|argument: &&Argument| argument.keyword == "ADAMS_ID")
+        .and_then(|argument| match &argument.value {
+            Value::List(items) => items.first().and_then(|item| item.text.parse().ok()),
+            _ => None,
+        });
+    Statement {
+        name: words.join(" "),
+        id,
+        span,
+        arguments,
+    }
+}
+
+fn parameter(pair: Pair<'_, Rule>) -> Argument {
+    let span = span_of(&pair);
+    let mut inner = pair.into_inner();
+    let name = inner.next().expect("a parameter starts with its name");
+    let keyword = name.as_str().to_uppercase();
+    let keyword_span = span_of(&name);
+    let values: Vec<Pair<'_, Rule>> = inner.flat_map(|values| values.into_inner()).collect();
+    let value = if holds_expression(&keyword) {
+        let mut embedded = Embedded::default();
+        let mut expression_span: Option<Span> = None;
+        for value in &values {
+            let (text, start) = match value.as_rule() {
+                Rule::string => {
+                    let body = value
+                        .clone()
+                        .into_inner()
+                        .next()
+                        .expect("a string has a body");
+                    (body.as_str(), body.as_span().start())
+                }
+                _ => (value.as_str(), value.as_span().start()),
+            };
+            embedded.push(text, start);
+            let piece = span_of(value);
+            expression_span = Some(expression_span.map_or(piece, |known| known.to(piece)));
+        }
+        Value::Expression {
+            text: embedded,
+            span: expression_span.unwrap_or(span),
+        }
+    } else {
+        Value::List(
+            values
+                .iter()
+                .map(|value| ValueItem {
+                    text: value.as_str().trim_matches('"').to_string(),
+                    span: span_of(value),
+                })
+                .collect(),
+        )
+    };
+    Argument {
+        keyword,
+        keyword_span,
+        span,
+        value,
+    }
+}

@@ -1,0 +1,180 @@
+//! Model files: Adams solver datasets (`.adm`), command files (`.acf`) and
+//! Adams View command files (`.cmd`). Every expression in them is found, with
+//! the way back from each place in the expression to its line and column in
+//! the file, checked, and its references to other statements verified.
+
+mod adm;
+mod cmd;
+mod references;
+mod text;
+
+use thiserror::Error;
+
+pub use references::{FoundExpression, ModelCheck, ModelError, Problem, check_model};
+pub use text::Embedded;
+
+use crate::span::Span;
+
+/// Which reader a file takes, by its extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileKind {
+    /// A solver dataset: a title line, then statements.
+    Adm,
+    /// A solver command file: statements, `&` continuations.
+    Acf,
+    /// An Adams View command file.
+    Cmd,
+}
+
+impl FileKind {
+    /// The kind of a file named `path`, if it is a model file.
+    pub fn of_path(path: &str) -> Option<FileKind> {
+        let extension = path.rsplit_once('.')?.1.to_ascii_lowercase();
+        match extension.as_str() {
+            "adm" => Some(FileKind::Adm),
+            "acf" => Some(FileKind::Acf),
+            "cmd" => Some(FileKind::Cmd),
+            _ => None,
+        }
+    }
+}
+
+/// A model file as statements.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dataset {
+    /// Which reader read it.
+    pub kind: FileKind,
+    /// The title line of a solver dataset.
+    pub title: Option<String>,
+    /// The statements (or View commands), in file order.
+    pub statements: Vec<Statement>,
+    /// Lines the reader could not read.
+    pub problems: Vec<ReadError>,
+}
+
+/// One statement `NAME/id, KEY = value, ...` (or View command).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Statement {
+    /// The statement name, upper case (`SFORCE`; for View commands the
+    /// command words, `FORCE CREATE DIRECT SINGLE_COMPONENT_FORCE`).
+    pub name: String,
+    /// The id after the slash, when there is one.
+    pub id: Option<u64>,
+    /// The statement's text in the file.
+    pub span: Span,
+    /// The arguments in order.
+    pub arguments: Vec<Argument>,
+}
+
+impl Statement {
+    /// `SFORCE/7`, `PART`, for messages.
+    pub fn label(&self) -> String {
+        match self.id {
+            Some(id) => format!("{}/{id}", self.name),
+            None => self.name.clone(),
+        }
+    }
+
+    /// The argument whose keyword is `keyword` or abbreviates it (as the
+    /// solver allows: `FUNC` for `FUNCTION`), given at least `shortest` letters.
+    pub fn argument(&self, keyword: &str, shortest: usize) -> Option<&Argument> {
+        self.arguments.iter().find(|argument| {
+            argument.keyword.len() >= shortest.min(keyword.len())
+                && keyword.starts_with(argument.keyword.as_str())
+        })
+    }
+
+    /// The expressions among the arguments.
+    pub fn expressions(&self) -> impl Iterator<Item = (&Argument, &Embedded)> {
+        self.arguments
+            .iter()
+            .filter_map(|argument| match &argument.value {
+                Value::Expression { text, .. } => Some((argument, text)),
+                _ => None,
+            })
+    }
+}
+
+/// `KEY = value` or a bare `KEY`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Argument {
+    /// The keyword, upper case, as written (possibly abbreviated).
+    pub keyword: String,
+    /// Where the keyword stands.
+    pub keyword_span: Span,
+    /// The whole argument.
+    pub span: Span,
+    /// What follows the `=`.
+    pub value: Value,
+}
+
+/// The value of an argument.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// A bare keyword (`GROUND`, `TRANSLATIONAL`).
+    Flag,
+    /// A list of values (`QP = 12, 0, 0`), each as written.
+    List(Vec<ValueItem>),
+    /// A function expression, joined across its continuation lines.
+    Expression {
+        /// The joined text and its map back to the file.
+        text: Embedded,
+        /// Where the expression stands in the file, continuations included.
+        span: Span,
+    },
+}
+
+/// One item of a value list.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ValueItem {
+    /// The item as written.
+    pub text: String,
+    /// Where it stands.
+    pub span: Span,
+}
+
+impl ValueItem {
+    /// The item as a number; a `D` suffix means degrees (converted to radians).
+    pub fn number(&self) -> Option<f64> {
+        let text = self.text.trim();
+        let (digits, scale) = match text.strip_suffix(['d', 'D']) {
+            Some(digits) => (digits, std::f64::consts::PI / 180.0),
+            None => (text, 1.0),
+        };
+        digits
+            .parse::<f64>()
+            .ok()
+            .filter(|value| value.is_finite())
+            .map(|value| value * scale)
+    }
+}
+
+/// A line a reader could not read.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ReadError {
+    /// Text that is no statement.
+    #[error(
+        "this line is not a statement: expected NAME/id, KEY = value, ... (or a comment starting with `!`)"
+    )]
+    Unreadable {
+        /// The line.
+        span: Span,
+    },
+}
+
+impl ReadError {
+    /// Where the problem is.
+    pub fn span(&self) -> Span {
+        match self {
+            ReadError::Unreadable { span } => *span,
+        }
+    }
+}
+
+/// Reads a model file of the given kind.
+pub fn read(text: &str, kind: FileKind) -> Dataset {
+    match kind {
+        FileKind::Adm | FileKind::Acf => adm::read(text, kind),
+        FileKind::Cmd => cmd::read(text),
+    }
+}

@@ -1,0 +1,51 @@
+//! Expression text joined from pieces of a file, with the way back: every
+//! byte of the joined text maps to its byte in the file.
+
+use crate::span::Span;
+
+/// An expression as the language sees it (continuations removed) and where
+/// each piece of it stands in the file.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Embedded {
+    /// The joined expression text.
+    pub text: String,
+    /// `(offset in text, offset in file)` at the start of each piece, in order.
+    pieces: Vec<(usize, usize)>,
+}
+
+impl Embedded {
+    /// Appends `piece`, which starts at byte `file_offset` of the file.
+    pub fn push(&mut self, piece: &str, file_offset: usize) {
+        if piece.is_empty() {
+            return;
+        }
+        self.pieces.push((self.text.len(), file_offset));
+        self.text.push_str(piece);
+    }
+
+    /// The file offset of byte `offset` of the joined text (the end of the
+    /// text maps to just after its last byte).
+    pub fn file_offset(&self, offset: usize) -> usize {
+        let index = self
+            .pieces
+            .partition_point(|&(start, _)| start <= offset)
+            .saturating_sub(1);
+        match self.pieces.get(index) {
+            Some(&(start, file)) => file + (offset - start),
+            None => 0,
+        }
+    }
+
+    /// The span in the file of `span` in the joined text. A span that runs
+    /// across a continuation is cut at the end of its first piece.
+    pub fn file_span(&self, span: Span) -> Span {
+        let start = self.file_offset(span.start);
+        let piece_end = self
+            .pieces
+            .iter()
+            .find(|&&(piece_start, _)| piece_start > span.start)
+            .map_or(self.text.len(), |&(piece_start, _)| piece_start);
+        let end = self.file_offset(span.start) + (span.end.min(piece_end) - span.start);
+        Span::new(start, end.max(start))
+    }
+}
