@@ -7,5 +7,6 @@ mod checker;
 mod cli;
 mod corpus;
 mod eval;
+mod model;
 mod parse;
 mod scene;

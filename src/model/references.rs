@@ -7,9 +7,11 @@ use std::collections::{HashMap, HashSet};
 
 use thiserror::Error;
 
-use super::{Dataset, FileKind, ReadError, Statement, Value};
+use super::{Dataset, Embedded, FileKind, ReadError, Statement, Value};
+use crate::ParseError;
 use crate::catalog::{ArgKind, Function};
 use crate::check::{Argument, Checked, NodeKind, Reference, visit};
+use crate::span::Location;
 use crate::span::Span;
 
 /// A problem found in a model file.
@@ -123,8 +125,24 @@ pub struct ModelCheck {
     pub problems: Vec<Problem>,
 }
 
-/// Finds and checks every expression of a model file read into `dataset`.
-pub fn check_model(dataset: &Dataset) -> ModelCheck {
+/// A parse error's message, with a column inside the joined expression
+/// turned into the line and column in the file.
+fn file_message(error: &ParseError, embedded: &Embedded, text: &str) -> String {
+    match error {
+        ParseError::Unclosed { opener, opened, .. } => {
+            let at = Location::of(text, embedded.file_offset(opened.start));
+            format!(
+                "expected `)` to close {opener} opened at line {}, column {}",
+                at.line, at.column
+            )
+        }
+        _ => error.to_string(),
+    }
+}
+
+/// Finds and checks every expression of the model file `text`, read into
+/// `dataset` by [`super::read`].
+pub fn check_model(text: &str, dataset: &Dataset) -> ModelCheck {
     let mut problems: Vec<Problem> = dataset
         .problems
         .iter()
@@ -152,7 +170,7 @@ pub fn check_model(dataset: &Dataset) -> ModelCheck {
             };
             let checked = match crate::parse(&embedded.text) {
                 Err(error) => {
-                    report(error.to_string(), error.span());
+                    report(file_message(&error, embedded, text), error.span());
                     None
                 }
                 Ok(tree) => match crate::check(&tree) {

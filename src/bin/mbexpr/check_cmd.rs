@@ -76,7 +76,7 @@ fn check_model_file(
     out: &mut impl Write,
 ) -> Result<(usize, usize), Fatal> {
     let dataset = model::read(text, kind);
-    let report = model::check_model(&dataset);
+    let report = model::check_model(text, &dataset);
     let statement_fields =
         |index: Option<usize>| match index.map(|index| &dataset.statements[index]) {
             Some(statement) => (

@@ -1,0 +1,265 @@
+//! Model files: the reader rules, cross-references and loops, errors at their
+//! line and column, the real models of the corpus, and robustness.
+
+use mbexpr::model::{self, FileKind, Value};
+use mbexpr::{Location, Span};
+use proptest::prelude::*;
+
+/// Every expression found (statement, keyword, joined text) and every
+/// problem as `LINE:COL: message` with the line and a caret.
+fn check(text: &str, kind: FileKind) -> String {
+    let dataset = model::read(text, kind);
+    let report = model::check_model(text, &dataset);
+    let mut out = String::new();
+    for found in &report.expressions {
+        let statement = &dataset.statements[found.statement];
+        out += &format!("{} {} = {}\n", statement.label(), found.keyword, found.text);
+    }
+    for problem in &report.problems {
+        let span = problem.error.span();
+        let at = Location::of(text, span.start);
+        let line = text.lines().nth(at.line - 1).unwrap_or_default();
+        out += &format!(
+            "{at}: {}\n    {line}\n    {}{}\n",
+            problem.error,
+            " ".repeat(at.column - 1),
+            "^".repeat(span.len().max(1))
+        );
+    }
+    out + &format!(
+        "{} statements, {} expressions, {} errors\n",
+        dataset.statements.len(),
+        report.expressions.len(),
+        report.problems.len()
+    )
+}
+
+const READER_RULES: &str = r"Title line: anything at all, even = and ,
+! a comment line
+UNITS/FORCE = NEWTON, MASS = KILOGRAM
+PART/1, GROUND
+PART/2, QG = 1, 2, 3, REULER = 270D, 90D, 180D ! comment after arguments
+, VX = 0.5
+MARKER/11, PART = 2, QP = 0, 0, 0
+MARKER/12, PART = 1, FLOATING
+MARKER/13
+, PART = 1
+, QP = 12, 0, 0
+SFORCE/1, TRANSLATIONAL, I = 11, J = 13, FUNCTION = -1E4*(DM(11,13)-50)
+,-10*VR(11,13)
+SFORCE/2, TRANSLATIONAL, I = 11, J = 13
+, FUNCTION =
+, -STEP(TIME, 0, 0, 1, 10)
+SFORCE/3, I = 11, J = 13, FUNC = IMPACT(DZ(11,13,13),
+,VZ(11,13,13,13), 1.0, 100, 1.5, 25, 0.1)
+SFORCE/4, I = 11, J = 13, FU = MOD(ATAN2(DX(11,13),
+, DY(11,13))+2*PI,
+, 2*PI)*RTOD\
+, ROUTINE = none
+GFORCE/1, I = 11, JFLOAT = 12, RM = 13, FX = 1\FY = 2\FZ = STEP(TIME,0,0,1,1)\
+, TX = 0, TY = 0, TZ = 0
+REQUEST/1, F2=ORIENT(27,1,11,13)\F3=DX(11)
+, F8=JOINT(1,0,8,0),C=RForce
+VARIABLE/1, FUNCTION = USER(1, 2, 3)\
+, ROUTINE = lib::sub
+VARIABLE/2, IC = 0.5, FUNCTION = VARVAL(1)*2;
+ARRAY/1, NUMBERS = 1, 2, 3
+JOINT/1, REVOLUTE, I = 11, J = 13
+END
+";
+
+#[test]
+fn reader_rules() {
+    insta::assert_snapshot!(check(READER_RULES, FileKind::Adm));
+}
+
+#[test]
+fn command_file_rules() {
+    let acf = "file/model=pendulum\nVARIABLE/1, FUNC = IF(TIME-4.0: 0, 0, &\n -PI*IF(TIME-5: 1, 2, 3))\nsimulate/dynamic, end=10, steps=100\nDEACTIVATE/SFORCE, ID=3\nstop\n";
+    insta::assert_snapshot!(check(acf, FileKind::Acf));
+}
+
+#[test]
+fn view_command_rules() {
+    let cmd = r#"! Adams View command file
+model create model_name = model_1
+force create direct single_component_force  &
+   single_component_force_name = .model_1.SFORCE_1  &
+   adams_id = 1  &
+   type_of_freedom = translational  &
+   i_marker_name = .model_1.PART_2.MARKER_1  &
+   j_marker_name = .model_1.ground.MARKER_2  &
+   function = "-1E4*(DM(.model_1.PART_2.MARKER_1, .model_1.ground.MARKER_2)",  &
+              " - 50)/117.85",  &
+              " + STEP(time, 0, 0, 1, .model_1.DV_1)"
+force create direct general_force  &
+   general_force_name = .model_1.GFORCE_1  &
+   x_force_function = "0"  &
+   y_force_function = "STPE(time, 0, 0, 1, 1)"  &
+   location = (LOC_RELATIVE_TO({0, 0, 0}, .model_1.ground))
+output_control create request request_name = .model_1.REQ_1 f1 = "DX(.model_1.PART_2.MARKER_1)" f2 = "IF(time, 1, 2, 3)"
+"#;
+    insta::assert_snapshot!(check(cmd, FileKind::Cmd));
+}
+
+#[test]
+fn cross_references_and_loops() {
+    let adm = r"cross references
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/2, PART = 1
+VARIABLE/1, FUNCTION = VARVAL(2) + DX(1, 2) + DX(1, 99)
+VARIABLE/2, FUNCTION = VARVAL(3)
+VARIABLE/3, FUNCTION = VARVAL(1)
+VARIABLE/4, FUNCTION = VARVAL(4)
+VARIABLE/5, FUNCTION = VARVAL(42) + ARYVAL(1, 4) + ARYVAL(1, 3) + ARYVAL(7, 1)
+ARRAY/1, NUMBERS = 1, 2, 3
+DIFF/1, IC = 0, FUNCTION = DIF(1) + DIF1(2)
+SFORCE/1, I = 1, J = 2, FUNCTION = SFORCE(1, 0, 2, 0) + JOINT(3, 0, 2, 0) + FX(1, 2)
+SFORCE/2, I = 1, J = 2, FUNCTION = STPE(TIME, 0, 0, 1, 1) + AKISPL(TIME, 0, 5)
+";
+    insta::assert_snapshot!(check(adm, FileKind::Adm));
+}
+
+#[test]
+fn errors_inside_continued_expressions_point_at_their_line() {
+    let adm = "errors\nPART/1, GROUND\nMARKER/1, PART = 1\nSFORCE/1, I = 1, J = 1, FUNCTION = 2*STEP(TIME,\n, 0, 0, 1, 1) + 3*STPE(TIME,\n,0,0,1,1)\n, + BISTOP(DX(1), VX(1), 5, -5,\n, 1e5, 2.2, 100, 0.1) + (1\nthis is not a statement\nVARIABLE/1, FUNCTION = 1.0D3\n";
+    insta::assert_snapshot!(check(adm, FileKind::Adm));
+}
+
+/// The real models in `../shared/corpus/models` (read in place, never copied).
+fn corpus_models() -> Vec<(String, String)> {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/models");
+    let Ok(entries) = std::fs::read_dir(&folder) else {
+        eprintln!(
+            "note: {} not found; corpus model tests skipped",
+            folder.display()
+        );
+        return Vec::new();
+    };
+    let mut models: Vec<(String, String)> = entries
+        .filter_map(Result::ok)
+        .map(|entry| entry.path())
+        .filter(|path| path.extension().is_some_and(|extension| extension == "adm"))
+        .map(|path| {
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            (name, std::fs::read_to_string(&path).unwrap())
+        })
+        .collect();
+    models.sort();
+    models
+}
+
+/// Expression arguments counted the simple way: `KEY =` at a line start, after
+/// a comma or a `\`, outside comments.
+fn expression_keys(text: &str) -> usize {
+    let keys = [
+        "FUNCTION", "FUNC", "FU", "FX", "FY", "FZ", "TX", "TY", "TZ", "CRATIO", "EVALUATE",
+    ];
+    text.lines()
+        .filter(|line| !line.trim_start().starts_with('!'))
+        .map(|line| {
+            let upper = line.to_uppercase();
+            upper
+                .split([',', '\\', ';'])
+                .filter(|piece| {
+                    let piece = piece.trim();
+                    let Some((key, _)) = piece.split_once('=') else {
+                        return false;
+                    };
+                    let key = key.trim();
+                    keys.contains(&key)
+                        || (key.len() == 2
+                            && key.starts_with('F')
+                            && key.as_bytes()[1].is_ascii_digit())
+                })
+                .count()
+        })
+        .sum()
+}
+
+#[test]
+fn the_real_models_check_cleanly_and_every_expression_is_found() {
+    for (name, text) in corpus_models() {
+        let dataset = model::read(&text, FileKind::Adm);
+        let report = model::check_model(&text, &dataset);
+        let problems: Vec<String> = report
+            .problems
+            .iter()
+            .map(|problem| {
+                format!(
+                    "{}: {}",
+                    Location::of(&text, problem.error.span().start),
+                    problem.error
+                )
+            })
+            .collect();
+        assert!(problems.is_empty(), "{name}: {problems:#?}");
+        assert_eq!(report.expressions.len(), expression_keys(&text), "{name}");
+        assert!(
+            report
+                .expressions
+                .iter()
+                .all(|found| found.checked.is_some())
+        );
+    }
+}
+
+#[test]
+fn joined_expressions_map_back_to_the_file() {
+    let dataset = model::read(READER_RULES, FileKind::Adm);
+    for statement in &dataset.statements {
+        for (_, embedded) in statement.expressions() {
+            // Every character of the joined text is the character at its place in the file.
+            for (offset, character) in embedded.text.char_indices() {
+                let at = embedded.file_offset(offset);
+                assert_eq!(
+                    READER_RULES[at..].chars().next(),
+                    Some(character),
+                    "{}",
+                    embedded.text
+                );
+            }
+        }
+    }
+    let values: Vec<f64> = dataset
+        .statements
+        .iter()
+        .find(|statement| statement.label() == "PART/2")
+        .unwrap()
+        .argument("REULER", 2)
+        .map(|argument| match &argument.value {
+            Value::List(items) => items.iter().filter_map(|item| item.number()).collect(),
+            _ => Vec::new(),
+        })
+        .unwrap();
+    assert_eq!(
+        values,
+        [270f64.to_radians(), 90f64.to_radians(), 180f64.to_radians()]
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Truncating or mangling a dataset anywhere never panics, and every
+    /// problem points at a real place in the text.
+    #[test]
+    fn mangled_datasets_never_panic(cut in 0usize..2000, at in 0usize..2000, junk in "[ -~\n]{0,8}") {
+        let mut text = READER_RULES.to_string();
+        let cut = cut.min(text.len());
+        while !text.is_char_boundary(cut) { unreachable!() }
+        text.truncate(cut.max(1));
+        let at = at.min(text.len());
+        text.insert_str(at, &junk);
+        for kind in [FileKind::Adm, FileKind::Acf, FileKind::Cmd] {
+            let dataset = model::read(&text, kind);
+            let report = model::check_model(&text, &dataset);
+            for problem in &report.problems {
+                let span: Span = problem.error.span();
+                prop_assert!(span.start <= span.end && span.end <= text.len(), "{span:?} in {} bytes", text.len());
+                prop_assert!(text.is_char_boundary(span.start));
+            }
+        }
+    }
+}
