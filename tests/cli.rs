@@ -234,3 +234,46 @@ fn eval_in_a_scene() {
     std::fs::remove_dir_all(&dir).unwrap();
     insta::assert_snapshot!(report.replace(root, "ROOT").replace(points, "points.csv"));
 }
+
+const SMALL_MODEL: &str = "initial configuration
+PART/1, GROUND
+PART/2, QG = 1, 2, 3, REULER = 90D, 0, 0, VX = 0.5
+MARKER/10, PART = 2, QP = 1, 0, 0
+MARKER/20, PART = 1
+VARIABLE/1, FUNCTION = DX(10, 20)
+VARIABLE/2, FUNCTION = 2*VARVAL(1)
+ARRAY/1, NUMBERS = 5, 6
+SFORCE/1, I = 10, J = 20, FUNCTION = VARVAL(2) + ARYVAL(1, 2) + VX(10, 20)
+SFORCE/2, I = 10, J = 20, FUNCTION = SFORCE(1, 0, 2, 0) + DIF(3)
+SFORCE/3, I = 10, J = 20, FUNCTION = LOG(DX(10, 20) - 2)
+REQUEST/1, F2 = DY(10, 20)\\F3 = DZ(10)
+";
+
+#[test]
+fn check_and_eval_a_model_file() {
+    let dir = std::env::temp_dir().join(format!("mbexpr-model-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("small.adm");
+    std::fs::write(&path, SMALL_MODEL).unwrap();
+    let broken = dir.join("broken.adm");
+    std::fs::write(
+        &broken,
+        SMALL_MODEL
+            .replace("DX(10, 20)\n", "DX(10, 21)\n")
+            .replace("VARVAL(2)", "VARVL(2)"),
+    )
+    .unwrap();
+    let (small, broken_path) = (path.to_str().unwrap(), broken.to_str().unwrap());
+    let report = check(&["check", small], "")
+        + &check(&["check", broken_path], "")
+        + &check(&["check", "--format", "jsonl", broken_path], "")
+        + &check(
+            &["eval", "--model", small, "--wrt", "PART/2.x,PART/2.rz"],
+            "",
+        )
+        + &check(&["eval", "--model", small, "--format", "jsonl"], "")
+        + &check(&["eval", "--model", small, "--wrt", "x"], "");
+    std::fs::remove_dir_all(&dir).unwrap();
+    let folder = dir.to_str().unwrap();
+    insta::assert_snapshot!(report.replace(folder, "DIR"));
+}

@@ -42,10 +42,22 @@ pub enum CompileError {
         /// The call.
         span: Span,
     },
-    /// A result of a running solver.
+    /// A state or signal that a running solver computes (`DIF`, `SENVAL`, ...).
     #[error(
-        "{function} is a result of a running solver: not available when evaluating an expression on its own"
+        "{function}({id}) is a value of {statement} that a running solver computes: it has no value outside a simulation"
     )]
+    NeedsSolverState {
+        /// The function's name.
+        function: &'static str,
+        /// The statement id or name, as written.
+        id: String,
+        /// The statement, e.g. `DIFF/3`.
+        statement: String,
+        /// The call.
+        span: Span,
+    },
+    /// A result of a running solver.
+    #[error("{function} is a result of a running solver: it has no value outside a simulation")]
     NeedsSolver {
         /// The function's name.
         function: &'static str,
@@ -80,6 +92,26 @@ pub enum CompileError {
         /// The call.
         span: Span,
     },
+    /// VARIABLE functions that read each other in a loop.
+    #[error("VARVAL loops: {cycle}")]
+    VariableLoop {
+        /// `VARIABLE/1 -> VARIABLE/2 -> VARIABLE/1`.
+        cycle: String,
+        /// The VARVAL that closes the loop.
+        span: Span,
+    },
+    /// `ARYVAL(id, i)` beyond the array.
+    #[error("ARYVAL({id}, {entry}): ARRAY/{id} has {count} entries")]
+    ArrayEntry {
+        /// The array.
+        id: u64,
+        /// The entry asked for.
+        entry: i64,
+        /// How many there are.
+        count: usize,
+        /// The call.
+        span: Span,
+    },
     /// `USER(...)`, which only passes constants to a user subroutine.
     #[error(
         "USER(...) passes its constants to a user subroutine, which is not part of mbexpr: there is no value to compute"
@@ -91,6 +123,19 @@ pub enum CompileError {
 }
 
 impl CompileError {
+    /// Whether nothing is wrong with the expression, only its value is not
+    /// to be had here: a solver result or state, a user subroutine, or a
+    /// measure scenes do not evaluate.
+    pub fn is_unavailable(&self) -> bool {
+        matches!(
+            self,
+            CompileError::NeedsSolver { .. }
+                | CompileError::NeedsSolverState { .. }
+                | CompileError::UserSubroutine { .. }
+                | CompileError::NotInScene { .. }
+        )
+    }
+
     /// The place in the text the error speaks of.
     pub fn span(&self) -> Span {
         match self {
@@ -98,7 +143,10 @@ impl CompileError {
             | CompileError::NeedsScene { span, .. }
             | CompileError::NeedsModel { span, .. }
             | CompileError::NeedsSolver { span, .. }
+            | CompileError::NeedsSolverState { span, .. }
             | CompileError::Scene { span, .. }
+            | CompileError::VariableLoop { span, .. }
+            | CompileError::ArrayEntry { span, .. }
             | CompileError::NoAcceleration { span, .. }
             | CompileError::NotInScene { span, .. }
             | CompileError::UserSubroutine { span } => *span,

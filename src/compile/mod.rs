@@ -53,6 +53,7 @@ fn compile_with<S: AsRef<str>>(
 ) -> Result<Program, Errors<CompileError>> {
     let mut compiler = Compiler {
         scene,
+        inlining: Vec::new(),
         frames: Vec::new(),
         frame_of: HashMap::new(),
         inputs: inputs
@@ -85,6 +86,8 @@ fn compile_with<S: AsRef<str>>(
 
 struct Compiler<'s> {
     scene: Option<&'s Scene>,
+    /// The VARIABLEs being compiled in place, outermost first.
+    inlining: Vec<u64>,
     /// The constants of the marker frames used, and where each marker's went.
     frames: Vec<FrameData>,
     frame_of: HashMap<Target, u32>,
@@ -261,7 +264,13 @@ impl Compiler<'_> {
                     span,
                 }),
             },
-            Family::ModelData => Some(model_data_error(function, args, span)),
+            Family::ModelData => match self.scene {
+                Some(scene) => match self.statement_data(scene, function, args, span) {
+                    Ok(slot) => return slot,
+                    Err(error) => Some(error),
+                },
+                None => Some(model_data_error(function, args, span)),
+            },
             Family::Solver => Some(CompileError::NeedsSolver {
                 function: function.name(),
                 span,
@@ -299,6 +308,69 @@ impl Compiler<'_> {
             },
             span,
         )
+    }
+
+    /// `VARVAL(id)` as the VARIABLE's own expression, compiled in place (so
+    /// its derivatives flow), and `ARYVAL(id, i)` as a constant, from the
+    /// scene's statement data.
+    fn statement_data(
+        &mut self,
+        scene: &Scene,
+        function: Function,
+        args: &[Argument],
+        span: Span,
+    ) -> Result<Slot, CompileError> {
+        let id = match args.first() {
+            Some(Argument::Object(Reference::Id(id), _)) => Some(*id),
+            _ => None,
+        };
+        match (function, id) {
+            (Function::Varval, Some(id)) if scene.statements.variables.contains_key(&id) => {
+                if self.inlining.contains(&id) {
+                    let mut cycle: Vec<String> = self
+                        .inlining
+                        .iter()
+                        .map(|id| format!("VARIABLE/{id}"))
+                        .collect();
+                    cycle.push(format!("VARIABLE/{id}"));
+                    return Err(CompileError::VariableLoop {
+                        cycle: cycle.join(" -> "),
+                        span,
+                    });
+                }
+                self.inlining.push(id);
+                let root = &scene.statements.variables[&id].root;
+                // The VARIABLE's text is elsewhere: its instructions take the
+                // span of this VARVAL.
+                let spans_before = self.spans.len();
+                let slot = self.node(root);
+                for instruction_span in &mut self.spans[spans_before..] {
+                    *instruction_span = span;
+                }
+                self.inlining.pop();
+                Ok(slot)
+            }
+            (Function::Aryval, Some(id)) if scene.statements.arrays.contains_key(&id) => {
+                let values = &scene.statements.arrays[&id];
+                let entry = match args.get(1) {
+                    Some(Argument::Flag(entry, _)) => *entry,
+                    _ => 0,
+                };
+                match usize::try_from(entry)
+                    .ok()
+                    .and_then(|entry| values.get(entry.checked_sub(1)?))
+                {
+                    Some(&value) => Ok(self.constant(value)),
+                    None => Err(CompileError::ArrayEntry {
+                        id,
+                        entry,
+                        count: values.len(),
+                        span,
+                    }),
+                }
+            }
+            _ => Err(model_data_error(function, args, span)),
+        }
     }
 
     /// A measure between the scene's markers; omitted markers are ground.
@@ -473,28 +545,35 @@ impl Compiler<'_> {
     }
 }
 
-/// The error for a model-data function: which statement would provide it.
+/// The error for a model-data function: which statement would provide it,
+/// or that only a running solver has its value.
 fn model_data_error(function: Function, args: &[Argument], span: Span) -> CompileError {
     let object = args.iter().find_map(|arg| match arg {
         Argument::Object(reference, _) => Some(reference),
         _ => None,
     });
     let id = object.map_or_else(String::new, Reference::to_string);
-    let kind = match function {
-        Function::Varval => "VARIABLE",
-        Function::Aryval => "ARRAY",
-        Function::Dif | Function::Dif1 => "DIFF",
-        Function::Pinval => "PINPUT",
-        Function::Pouval => "POUTPUT",
-        Function::Senval => "SENSOR",
-        Function::Curve => "CURVE",
-        Function::Interp => "a data table",
-        _ => "SPLINE",
+    let solver_state = match function {
+        Function::Dif | Function::Dif1 => Some("DIFF"),
+        Function::Pinval => Some("PINPUT"),
+        Function::Pouval => Some("POUTPUT"),
+        Function::Senval => Some("SENSOR"),
+        _ => None,
     };
-    let statement = if kind.starts_with('a') {
-        kind.to_string()
-    } else {
-        format!("{kind}/{id}")
+    if let Some(kind) = solver_state {
+        return CompileError::NeedsSolverState {
+            function: function.name(),
+            statement: format!("{kind}/{id}"),
+            id,
+            span,
+        };
+    }
+    let statement = match function {
+        Function::Varval => format!("VARIABLE/{id}"),
+        Function::Aryval => format!("ARRAY/{id}"),
+        Function::Curve => format!("CURVE/{id}"),
+        Function::Interp => "a data table".to_string(),
+        _ => format!("SPLINE/{id}"),
     };
     CompileError::NeedsModel {
         function: function.name(),

@@ -5,11 +5,13 @@
 
 mod adm;
 mod cmd;
+mod initial;
 mod references;
 mod text;
 
 use thiserror::Error;
 
+pub use initial::{ConfigurationError, initial_scene};
 pub use references::{FoundExpression, ModelCheck, ModelError, Problem, check_model};
 pub use text::Embedded;
 
@@ -177,4 +179,15 @@ pub fn read(text: &str, kind: FileKind) -> Dataset {
         FileKind::Adm | FileKind::Acf => adm::read(text, kind),
         FileKind::Cmd => cmd::read(text),
     }
+}
+
+/// Whether a statement named `name` is of `kind` (statement names may be
+/// abbreviated to four letters or more).
+pub fn is_kind(name: &str, kind: &str) -> bool {
+    name == kind || (name.len() >= 4 && kind.starts_with(name))
+}
+
+/// Whether `statement` is of `kind`.
+pub fn is_statement(statement: &Statement, kind: &str) -> bool {
+    is_kind(&statement.name, kind)
 }

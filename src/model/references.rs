@@ -7,7 +7,7 @@ use std::collections::{HashMap, HashSet};
 
 use thiserror::Error;
 
-use super::{Dataset, Embedded, FileKind, ReadError, Statement, Value};
+use super::{Dataset, Embedded, FileKind, ReadError, Statement, Value, is_kind};
 use crate::ParseError;
 use crate::catalog::{ArgKind, Function};
 use crate::check::{Argument, Checked, NodeKind, Reference, visit};
@@ -240,12 +240,6 @@ fn statement_kind(function: Function) -> Option<&'static str> {
         F::Cvcv => "CVCV",
         _ => return None,
     })
-}
-
-/// Whether a statement named `name` is of `kind` (statement names may be
-/// abbreviated to four letters or more).
-fn is_kind(name: &str, kind: &str) -> bool {
-    name == kind || (name.len() >= 4 && kind.starts_with(name))
 }
 
 impl References {

@@ -139,6 +139,7 @@ impl Scene {
             expressions,
             bodies: Vec::new(),
             markers: Vec::new(),
+            statements: Default::default(),
         };
         for body in &file.bodies {
             if scene.find_body(&body.name).is_some() || body.name.eq_ignore_ascii_case("ground") {

@@ -13,11 +13,13 @@ pub mod kinematics;
 
 pub use file::euler_313;
 
+use std::collections::HashMap;
+
 use nalgebra::{UnitQuaternion, Vector3};
 use thiserror::Error;
 
 use crate::catalog::{SystemVariable, closest, did_you_mean};
-use crate::check::Reference;
+use crate::check::{Checked, Reference};
 
 /// A rigid body and its state at the scene's time.
 #[derive(Clone, Debug, PartialEq)]
@@ -178,6 +180,19 @@ pub struct Scene {
     pub bodies: Vec<Body>,
     /// The markers.
     pub markers: Vec<Marker>,
+    /// The data of a model's statements that expressions read: VARIABLE
+    /// functions (for `VARVAL`) and ARRAY values (for `ARYVAL`).
+    pub statements: StatementData,
+}
+
+/// What a model's data statements give expressions evaluated in its scene.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StatementData {
+    /// VARIABLE id to its checked FUNCTION: `VARVAL(id)` is that expression,
+    /// evaluated in the same scene (so derivatives flow through it).
+    pub variables: HashMap<u64, Checked>,
+    /// ARRAY id to its NUMBERS: `ARYVAL(id, i)` is entry `i` (from 1).
+    pub arrays: HashMap<u64, Vec<f64>>,
 }
 
 /// Where a marker reference leads.

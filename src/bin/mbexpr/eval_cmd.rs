@@ -25,25 +25,29 @@ pub enum Format {
 pub struct Args {
     /// The expression, e.g. "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
     /// with --scene and no expression, every named expression of the scene.
-    expression: Option<String>,
+    pub expression: Option<String>,
     /// A scene (TOML): bodies, markers, time, variables and named expressions.
-    #[arg(long, value_name = "FILE.toml")]
-    scene: Option<String>,
+    #[arg(long, value_name = "FILE.toml", conflicts_with = "model")]
+    pub scene: Option<String>,
+    /// A solver dataset: evaluate every expression in it at its initial
+    /// configuration (TIME = 0); --wrt names part states such as PART/3.x.
+    #[arg(long, value_name = "FILE.adm", conflicts_with_all = ["expression", "points"])]
+    model: Option<String>,
     /// A variable's value, NAME=VALUE (repeatable; names are case-insensitive; TIME too).
     #[arg(long = "set", value_name = "NAME=VALUE")]
-    set: Vec<String>,
+    pub set: Vec<String>,
     /// Derivative directions, comma-separated.
     #[arg(long, value_name = "NAME,NAME", value_delimiter = ',')]
-    wrt: Vec<String>,
+    pub wrt: Vec<String>,
     /// 0 (value), 1 (gradient) or 2 (Hessian); default 0, or 1 when --wrt is given.
     #[arg(long, value_parser = clap::value_parser!(u8).range(0..=2))]
-    order: Option<u8>,
+    pub order: Option<u8>,
     /// Output format.
     #[arg(long, value_enum, default_value = "text")]
-    format: Format,
+    pub format: Format,
     /// A CSV file: a header row of variable names, then one point per row.
     #[arg(long, value_name = "FILE.csv")]
-    points: Option<String>,
+    pub points: Option<String>,
 }
 
 /// `NAME=VALUE` to its parts.
@@ -109,13 +113,13 @@ fn read_points(path: &str) -> Result<Points, Fatal> {
 }
 
 /// `-0` prints as `0`.
-fn tidy(value: f64) -> f64 {
+pub fn tidy(value: f64) -> f64 {
     value + 0.0
 }
 
 /// A number for the text tables: shortest round-trip digits, in exponent
 /// form when very small or very large.
-fn show(value: f64) -> String {
+pub fn show(value: f64) -> String {
     let value = tidy(value);
     if value != 0.0 && !(1e-4..1e15).contains(&value.abs()) {
         format!("{value:e}")
@@ -124,7 +128,7 @@ fn show(value: f64) -> String {
     }
 }
 
-fn to_json(evaluation: &Evaluation) -> Value {
+pub fn to_json(evaluation: &Evaluation) -> Value {
     let mut object = json!({"value": tidy(evaluation.value)});
     if let Some(gradient) = &evaluation.gradient {
         object["gradient"] = gradient.iter().map(|&entry| tidy(entry)).collect();
@@ -214,6 +218,9 @@ struct Context<'a> {
 }
 
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
+    if let Some(path) = &args.model {
+        return crate::model_eval::run(args, path, out);
+    }
     let scene = args.scene.as_deref().map(read_scene).transpose()?;
     let expressions: Vec<(Option<String>, String)> = match (&args.expression, &scene) {
         (Some(text), _) => vec![(None, text.clone())],

@@ -2,6 +2,7 @@
 
 mod check_cmd;
 mod eval_cmd;
+mod model_eval;
 mod render;
 
 use std::io::{self, Write};

@@ -1,0 +1,204 @@
+//! The initial configuration of a solver dataset as a [`Scene`]: PART and
+//! MARKER statements give bodies and markers (REULER is body-fixed 3-1-3,
+//! radians unless written with `D`), VARIABLE functions give `VARVAL`, ARRAY
+//! NUMBERS give `ARYVAL`; the time is 0.
+
+use nalgebra::{UnitQuaternion, Vector3};
+use thiserror::Error;
+
+use super::{ModelCheck, Statement, Value, is_statement};
+use crate::scene::{Body, Marker, Scene, euler_313};
+use crate::span::Span;
+
+/// A statement whose data cannot make a scene.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ConfigurationError {
+    /// A value list that is not the numbers it should be.
+    #[error("{statement}: {keyword} needs {count} numbers")]
+    Numbers {
+        /// `PART/3`.
+        statement: String,
+        /// `QG`.
+        keyword: String,
+        /// How many numbers.
+        count: usize,
+        /// The argument.
+        span: Span,
+    },
+    /// A marker on a part that is not defined.
+    #[error("{statement}: there is no PART/{part}")]
+    UnknownPart {
+        /// `MARKER/12`.
+        statement: String,
+        /// The part id.
+        part: u64,
+        /// The statement.
+        span: Span,
+    },
+}
+
+impl ConfigurationError {
+    /// The place in the file.
+    pub fn span(&self) -> Span {
+        match self {
+            ConfigurationError::Numbers { span, .. }
+            | ConfigurationError::UnknownPart { span, .. } => *span,
+        }
+    }
+}
+
+/// The numbers of argument `keyword` (`count` of them), or `default`.
+fn numbers<const N: usize>(
+    statement: &Statement,
+    keyword: &str,
+    default: [f64; N],
+) -> Result<[f64; N], ConfigurationError> {
+    let Some(argument) = statement.argument(keyword, keyword.len().min(2)) else {
+        return Ok(default);
+    };
+    let error = || ConfigurationError::Numbers {
+        statement: statement.label(),
+        keyword: keyword.to_string(),
+        count: N,
+        span: argument.span,
+    };
+    let Value::List(items) = &argument.value else {
+        return Err(error());
+    };
+    let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
+    values.try_into().map_err(|_| error())
+}
+
+/// One number, `keyword = value`, or `default`.
+fn number(statement: &Statement, keyword: &str, default: f64) -> Result<f64, ConfigurationError> {
+    numbers(statement, keyword, [default]).map(|[value]| value)
+}
+
+fn orientation(statement: &Statement) -> Result<UnitQuaternion<f64>, ConfigurationError> {
+    let [psi, theta, phi] = numbers(statement, "REULER", [0.0; 3])?;
+    Ok(euler_313(psi, theta, phi))
+}
+
+/// The scene of a dataset's initial configuration, from the statements of
+/// `dataset` and the expressions `report` checked.
+pub fn initial_scene(
+    dataset: &super::Dataset,
+    report: &ModelCheck,
+) -> Result<Scene, Vec<ConfigurationError>> {
+    let mut scene = Scene::default();
+    let mut errors = Vec::new();
+    let mut ground_parts = Vec::new();
+    // PART id -> (body index, CM marker id).
+    let mut parts = std::collections::HashMap::new();
+    for statement in dataset
+        .statements
+        .iter()
+        .filter(|s| is_statement(s, "PART"))
+    {
+        let Some(id) = statement.id else { continue };
+        if statement.argument("GROUND", 3).is_some() {
+            ground_parts.push(id);
+            continue;
+        }
+        let mut body = Body::new(statement.label());
+        let read = (|| {
+            body.position = Vector3::from(numbers(statement, "QG", [0.0; 3])?);
+            body.orientation = orientation(statement)?;
+            body.velocity = Vector3::new(
+                number(statement, "VX", 0.0)?,
+                number(statement, "VY", 0.0)?,
+                number(statement, "VZ", 0.0)?,
+            );
+            body.angular_velocity = Vector3::new(
+                number(statement, "WX", 0.0)?,
+                number(statement, "WY", 0.0)?,
+                number(statement, "WZ", 0.0)?,
+            );
+            number(statement, "CM", 0.0)
+        })();
+        match read {
+            Ok(cm) => {
+                parts.insert(id, (scene.bodies.len(), cm as u64));
+                scene.bodies.push(body);
+            }
+            Err(error) => errors.push(error),
+        }
+    }
+    for statement in dataset
+        .statements
+        .iter()
+        .filter(|s| is_statement(s, "MARKER"))
+    {
+        let Some(id) = statement.id else { continue };
+        if statement.argument("FLOATING", 3).is_some() {
+            continue;
+        }
+        let part = match number(statement, "PART", 0.0) {
+            Ok(part) => part as u64,
+            Err(error) => {
+                errors.push(error);
+                continue;
+            }
+        };
+        let body = if ground_parts.contains(&part) {
+            None
+        } else if let Some(&(index, _)) = parts.get(&part) {
+            Some(index)
+        } else {
+            errors.push(ConfigurationError::UnknownPart {
+                statement: statement.label(),
+                part,
+                span: statement.span,
+            });
+            continue;
+        };
+        let mut marker = Marker::new(body);
+        marker.id = Some(id);
+        match (numbers(statement, "QP", [0.0; 3]), orientation(statement)) {
+            (Ok(position), Ok(rotation)) => {
+                marker.position = Vector3::from(position);
+                marker.orientation = rotation;
+                scene.markers.push(marker);
+            }
+            (Err(error), _) | (_, Err(error)) => errors.push(error),
+        }
+    }
+    // A part's VX ... and WX ... are those of its CM marker (WX ... about the
+    // CM marker's axes): carry them to the part's origin.
+    for &(index, cm) in parts.values() {
+        let Some(marker) = scene.markers.iter().find(|marker| marker.id == Some(cm)) else {
+            continue;
+        };
+        let body = &mut scene.bodies[index];
+        let cm_axes = body.orientation * marker.orientation;
+        body.angular_velocity = cm_axes * body.angular_velocity;
+        let arm = body.orientation * marker.position;
+        body.velocity -= body.angular_velocity.cross(&arm);
+    }
+    for found in &report.expressions {
+        let statement = &dataset.statements[found.statement];
+        if is_statement(statement, "VARIABLE")
+            && "FUNCTION".starts_with(found.keyword.as_str())
+            && let (Some(id), Some(checked)) = (statement.id, &found.checked)
+        {
+            scene.statements.variables.insert(id, checked.clone());
+        }
+    }
+    for statement in dataset
+        .statements
+        .iter()
+        .filter(|s| is_statement(s, "ARRAY"))
+    {
+        if let (Some(id), Some(argument)) = (statement.id, statement.argument("NUMBERS", 2))
+            && let Value::List(items) = &argument.value
+        {
+            let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
+            scene.statements.arrays.insert(id, values);
+        }
+    }
+    if errors.is_empty() {
+        Ok(scene)
+    } else {
+        Err(errors)
+    }
+}
