@@ -41,6 +41,7 @@ pub mod check;
 pub mod compile;
 mod errors;
 pub mod eval;
+pub mod kinks;
 pub mod laws;
 pub mod model;
 pub mod number;

@@ -277,3 +277,88 @@ fn check_and_eval_a_model_file() {
     let folder = dir.to_str().unwrap();
     insta::assert_snapshot!(report.replace(folder, "DIR"));
 }
+
+#[test]
+fn repl_session_from_a_pipe() {
+    let session = "\
+:set k = 1e4
+:set v = 0.3
+BISTOP(x, v, -1, 1, k, 1.5, 50, 0.1)
+:set x = 1.05
+BISTOP(x, v, -1, 1, k,
+  1.5, 50, 0.1)
+:wrt x, v
+:order 2
+BISTOP(x, v, -1, 1, k, 1.5, 50, 0.1)
+:help bistop
+:help pi
+STPE(x)
+LOG(x - 2)
+:vars
+:bogus
+:order 7
+:quit
+x
+";
+    insta::assert_snapshot!(check(&["repl"], session));
+    let root = env!("CARGO_MANIFEST_DIR");
+    let scene = format!("{root}/examples/scenes/slider_in_slot.toml");
+    let in_scene = ":wrt slider.x\nVX(slider, slot, slot, slot)\n:scene /no/such/file.toml\n";
+    insta::assert_snapshot!(check(&["repl", "--scene", &scene], in_scene).replace(root, "ROOT"));
+}
+
+#[test]
+fn plot_writes_a_well_formed_svg_holding_the_curve() {
+    let dir = std::env::temp_dir().join(format!("mbexpr-plot-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("bistop.svg");
+    let path = svg.to_str().unwrap();
+    let (stdout, stderr, code) = mbexpr(
+        &[
+            "plot",
+            "BISTOP(x, v, -1, 1, 1e4, 1.5, 50, 0.2)",
+            "--over",
+            "x=-1.5..1.5",
+            "--set",
+            "v=0.3",
+            "--derivatives",
+            "--samples",
+            "101",
+            "-o",
+            path,
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{stderr}");
+    // 101 samples and the break points -1.2, -1, 1, 1.2 (one may fall on a sample).
+    let points: usize = stdout
+        .split(" (")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|count| count.parse().ok())
+        .unwrap_or_default();
+    assert!((104..=105).contains(&points), "{stdout}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let document = roxmltree::Document::parse(&text).expect("well-formed SVG");
+    let lines: Vec<_> = document
+        .descendants()
+        .filter(|node| node.has_tag_name("polyline"))
+        .filter_map(|node| node.attribute("points"))
+        .filter(|points| points.split_whitespace().count() >= 100)
+        .collect();
+    assert_eq!(lines.len(), 3, "value, first and second derivative");
+    let texts: Vec<&str> = document
+        .descendants()
+        .filter_map(|node| node.text())
+        .map(str::trim)
+        .collect();
+    assert!(texts.contains(&"x") && texts.contains(&"d/dx"), "{texts:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+    insta::assert_snapshot!(
+        check(
+            &["plot", "LOG(x)", "--over", "x=-2..-1", "-o", "/dev/null"],
+            ""
+        ) + &check(&["plot", "x", "--over", "x=1..1", "-o", "/dev/null"], "")
+            + &check(&["plot", "x", "--over", "y", "-o", "/dev/null"], "")
+    );
+}

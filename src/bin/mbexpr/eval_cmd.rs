@@ -51,7 +51,7 @@ pub struct Args {
 }
 
 /// `NAME=VALUE` to its parts.
-fn parse_assignment(assignment: &str) -> Result<(String, f64), Fatal> {
+pub fn parse_assignment(assignment: &str) -> Result<(String, f64), Fatal> {
     let (name, value) = assignment
         .split_once('=')
         .ok_or_else(|| Fatal::usage(format!("error: --set {assignment}: write NAME=VALUE")))?;
@@ -189,7 +189,7 @@ fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
     text
 }
 
-fn read_scene(path: &str) -> Result<Scene, Fatal> {
+pub fn read_scene(path: &str) -> Result<Scene, Fatal> {
     let text = std::fs::read_to_string(path)
         .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
     Scene::from_toml(&text).map_err(|error| Fatal::usage(format!("error: {path}: {error}")))

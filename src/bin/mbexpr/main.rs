@@ -1,9 +1,12 @@
 //! The `mbexpr` command: a thin layer over the library.
 
+mod binding;
 mod check_cmd;
 mod eval_cmd;
 mod model_eval;
+mod plot;
 mod render;
+mod repl;
 
 use std::io::{self, Write};
 use std::process::ExitCode;
@@ -29,6 +32,10 @@ enum Command {
     Check(check_cmd::Args),
     /// Evaluate an expression, with its derivatives on request.
     Eval(eval_cmd::Args),
+    /// Plot an expression against one variable to an SVG file.
+    Plot(plot::Args),
+    /// Evaluate expressions interactively (or line by line from a pipe).
+    Repl(repl::Args),
 }
 
 /// How a run ended, as the process's exit status.
@@ -104,6 +111,8 @@ fn run(cli: Cli) -> Result<Outcome, Fatal> {
         },
         Command::Check(args) => check_cmd::run(&args, &mut out)?,
         Command::Eval(args) => eval_cmd::run(&args, &mut out)?,
+        Command::Plot(args) => plot::run(&args, &mut out)?,
+        Command::Repl(args) => repl::run(&args, &mut out)?,
     };
     out.flush()?;
     Ok(outcome)

@@ -1,0 +1,61 @@
+//! From a checked expression, the values a user gave and a scene, to a
+//! program and the values of its inputs: shared by `plot` and the REPL.
+
+use mbexpr::{Checked, Program, Scene};
+
+/// A compiled program and the value of each of its inputs.
+pub struct Bound {
+    /// The program.
+    pub program: Program,
+    /// One value per input of the program.
+    pub values: Vec<f64>,
+}
+
+/// Compiles `checked` with the names of `bindings`, `extra` names (derivative
+/// directions, a plotted variable) and what `scene` provides as inputs. An
+/// input takes its value from the last binding of its name, else from the
+/// scene, else 0. Errors come back as messages for `diagnostic`.
+pub fn bind(
+    checked: &Checked,
+    scene: Option<&Scene>,
+    bindings: &[(String, f64)],
+    extra: &[String],
+) -> Result<Bound, Vec<(mbexpr::Span, String)>> {
+    let mut names: Vec<String> = Vec::new();
+    let mut add = |name: &str| {
+        if !names.iter().any(|known| known.eq_ignore_ascii_case(name)) {
+            names.push(name.to_string());
+        }
+    };
+    bindings.iter().for_each(|(name, _)| add(name));
+    extra.iter().for_each(|name| add(name));
+    if let Some(scene) = scene {
+        scene.input_names().iter().for_each(|name| add(name));
+    }
+    let program = match scene {
+        Some(scene) => mbexpr::compile_in_scene(checked, &names, scene),
+        None => mbexpr::compile(checked, &names),
+    }
+    .map_err(|errors| {
+        errors
+            .iter()
+            .map(|error| (error.span(), error.to_string()))
+            .collect::<Vec<_>>()
+    })?;
+    let values = program
+        .inputs()
+        .iter()
+        .map(|name| {
+            let bound = bindings
+                .iter()
+                .rev()
+                .find(|(known, _)| known.eq_ignore_ascii_case(name));
+            match (bound, scene) {
+                (Some((_, value)), _) => *value,
+                (None, Some(scene)) => scene.value_of(name).unwrap_or(0.0),
+                (None, None) => 0.0,
+            }
+        })
+        .collect();
+    Ok(Bound { program, values })
+}

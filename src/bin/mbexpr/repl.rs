@@ -1,0 +1,559 @@
+//! `mbexpr repl`: type an expression, see its value and derivatives; change a
+//! parameter, plot a curve. With standard input from a file or a pipe it runs
+//! as a batch: no prompt, one result line per input line, errors on standard
+//! error with their line number.
+
+use std::io::{self, BufRead, IsTerminal, Write};
+
+use mbexpr::catalog::{Constant, Function, SystemVariable};
+use mbexpr::{Order, Scene};
+use rustyline::completion::{Completer, Pair};
+use rustyline::validate::{ValidationContext, ValidationResult, Validator};
+use rustyline::{Context, Helper, Highlighter, Hinter};
+
+use crate::eval_cmd::{read_scene, show};
+use crate::render::diagnostic;
+use crate::{Fatal, Outcome};
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// A scene (TOML) to evaluate measures in.
+    #[arg(long, value_name = "FILE.toml")]
+    scene: Option<String>,
+}
+
+const COMMANDS: [&str; 9] = [
+    ":set", ":wrt", ":order", ":scene", ":vars", ":help", ":plot", ":quit", ":q",
+];
+
+const HELP: &str = "\
+expressions: type one, e.g. STEP(TIME, 0, 0, 1, 10) or BISTOP(x, v, -1, 1, 1e4, 1.5, 50, 0.1)
+:set NAME = VALUE     give a variable a value (VALUE may be an expression)
+:wrt NAME, NAME       derivative directions (:wrt alone: none)
+:order 0|1|2          value, gradient, or gradient and Hessian
+:scene FILE.toml      evaluate measures in a scene
+:vars                 what is bound
+:help NAME            the signature and meaning of a function
+:plot EXPR over NAME in A..B to FILE.svg
+:quit                 leave (also Ctrl-D)";
+
+/// What the REPL knows between lines.
+#[derive(Default)]
+pub struct Session {
+    bindings: Vec<(String, f64)>,
+    wrt: Vec<String>,
+    order: Option<u8>,
+    scene: Option<Scene>,
+}
+
+/// The answer to one input.
+pub enum Reply {
+    /// Text to show (may be empty).
+    Text(String),
+    /// Leave the REPL.
+    Quit,
+}
+
+/// Parentheses still open in `text` (never below zero).
+fn open_parentheses(text: &str) -> usize {
+    text.chars().fold(0usize, |depth, c| match c {
+        '(' => depth + 1,
+        ')' => depth.saturating_sub(1),
+        _ => depth,
+    })
+}
+
+impl Session {
+    fn order(&self) -> Order {
+        match self.order {
+            Some(order) => Order::from_number(order).unwrap_or(Order::Value),
+            None if self.wrt.is_empty() => Order::Value,
+            None => Order::Gradient,
+        }
+    }
+
+    /// Evaluates `text` with the session's bindings: its value, or rendered errors.
+    fn evaluate(&self, text: &str, compact: bool) -> Result<String, String> {
+        let tree = mbexpr::parse(text)
+            .map_err(|error| diagnostic("", text, error.span(), &error.to_string()))?;
+        let checked = mbexpr::check(&tree).map_err(|errors| {
+            errors
+                .iter()
+                .map(|error| diagnostic("", text, error.span(), &error.to_string()))
+                .collect::<String>()
+        })?;
+        let bound = crate::binding::bind(&checked, self.scene.as_ref(), &self.bindings, &self.wrt)
+            .map_err(|errors| {
+                errors
+                    .iter()
+                    .map(|(span, message)| {
+                        let hint = if message.contains("has no value") {
+                            ": set it with :set NAME = VALUE"
+                        } else {
+                            ""
+                        };
+                        diagnostic("", text, *span, &format!("{message}{hint}"))
+                    })
+                    .collect::<String>()
+            })?;
+        let directions: Vec<usize> = self
+            .wrt
+            .iter()
+            .filter_map(|name| bound.program.input_index(name))
+            .collect();
+        let evaluation = bound
+            .program
+            .evaluate(&bound.values, &directions, self.order())
+            .map_err(|error| diagnostic("", text, error.span(), &error.to_string()))?;
+        Ok(format_result(&evaluation, &self.wrt, compact))
+    }
+
+    /// Handles one complete input.
+    pub fn handle(&mut self, input: &str, compact: bool) -> Result<Reply, String> {
+        let input = input.trim();
+        let Some(command) = input.strip_prefix(':') else {
+            if input.is_empty() {
+                return Ok(Reply::Text(String::new()));
+            }
+            return self.evaluate(input, compact).map(Reply::Text);
+        };
+        let (word, rest) = command
+            .split_once(char::is_whitespace)
+            .unwrap_or((command, ""));
+        let rest = rest.trim();
+        match word {
+            "quit" | "q" | "exit" => Ok(Reply::Quit),
+            "set" => {
+                let (name, value) = rest
+                    .split_once('=')
+                    .ok_or_else(|| "error: write :set NAME = VALUE".to_string())?;
+                let name = name.trim();
+                if name.is_empty()
+                    || !name
+                        .chars()
+                        .all(|c| c.is_ascii_alphanumeric() || "_./".contains(c))
+                {
+                    return Err(format!("error: `{name}` is not a variable name"));
+                }
+                let value = self.constant(value.trim())?;
+                self.bindings
+                    .retain(|(known, _)| !known.eq_ignore_ascii_case(name));
+                self.bindings.push((name.to_string(), value));
+                Ok(Reply::Text(format!("{name} = {}", show(value))))
+            }
+            "wrt" => {
+                self.wrt = rest
+                    .split(',')
+                    .map(str::trim)
+                    .filter(|name| !name.is_empty())
+                    .map(str::to_string)
+                    .collect();
+                Ok(Reply::Text(if self.wrt.is_empty() {
+                    "no derivative directions".to_string()
+                } else {
+                    format!("derivatives in {}", self.wrt.join(", "))
+                }))
+            }
+            "order" => match rest {
+                "0" | "1" | "2" => {
+                    self.order = rest.parse().ok();
+                    Ok(Reply::Text(format!("order {rest}")))
+                }
+                _ => Err("error: write :order 0, :order 1 or :order 2".to_string()),
+            },
+            "scene" => {
+                let scene =
+                    read_scene(rest).map_err(|fatal| fatal.message().trim_end().to_string())?;
+                let summary = format!(
+                    "scene {rest}: {} bodies, {} markers, {} expressions",
+                    scene.bodies.len(),
+                    scene.markers.len(),
+                    scene.expressions.len()
+                );
+                self.scene = Some(scene);
+                Ok(Reply::Text(summary))
+            }
+            "vars" => Ok(Reply::Text(self.vars())),
+            "help" => Ok(Reply::Text(help(rest))),
+            "plot" => self.plot(rest).map(Reply::Text),
+            _ => Err(format!("error: unknown command :{word} (try :help)")),
+        }
+    }
+
+    /// The value of a constant expression (or one over bound variables).
+    fn constant(&self, text: &str) -> Result<f64, String> {
+        let saved_order = Order::Value;
+        let tree = mbexpr::parse(text)
+            .map_err(|error| diagnostic("", text, error.span(), &error.to_string()))?;
+        let checked = mbexpr::check(&tree)
+            .map_err(|errors| diagnostic("", text, errors[0].span(), &errors[0].to_string()))?;
+        let bound = crate::binding::bind(&checked, self.scene.as_ref(), &self.bindings, &[])
+            .map_err(|errors| diagnostic("", text, errors[0].0, &errors[0].1))?;
+        let evaluation = bound
+            .program
+            .evaluate(&bound.values, &[], saved_order)
+            .map_err(|error| diagnostic("", text, error.span(), &error.to_string()))?;
+        Ok(evaluation.value)
+    }
+
+    fn vars(&self) -> String {
+        let mut lines: Vec<String> = self
+            .bindings
+            .iter()
+            .map(|(name, value)| format!("{name} = {}", show(*value)))
+            .collect();
+        if let Some(scene) = &self.scene {
+            lines.push(format!("TIME = {} (scene)", show(scene.time)));
+            for (name, value) in &scene.variables {
+                lines.push(format!("{name} = {} (scene)", show(*value)));
+            }
+            let markers: Vec<String> = scene
+                .markers
+                .iter()
+                .map(mbexpr::scene::Marker::label)
+                .collect();
+            lines.push(format!("markers: {}", markers.join(", ")));
+            let bodies: Vec<&str> = scene.bodies.iter().map(|body| body.name.as_str()).collect();
+            lines.push(format!(
+                "bodies: {} (state components BODY.x ... BODY.wz)",
+                bodies.join(", ")
+            ));
+        }
+        lines.push(match self.wrt.as_slice() {
+            [] => "no derivative directions".to_string(),
+            wrt => format!("derivatives in {}", wrt.join(", ")),
+        });
+        lines.push(format!("order {}", self.order() as u8));
+        lines.join("\n")
+    }
+
+    /// `:plot EXPR over NAME in A..B to FILE.svg`
+    fn plot(&self, rest: &str) -> Result<String, String> {
+        let usage = || "error: write :plot EXPR over NAME in A..B to FILE.svg".to_string();
+        let (expression, rest) = rest.rsplit_once(" over ").ok_or_else(usage)?;
+        let (name, rest) = rest.split_once(" in ").ok_or_else(usage)?;
+        let (range, file) = rest.split_once(" to ").ok_or_else(usage)?;
+        let (over, start, end) =
+            crate::plot::parse_range(&format!("{}={}", name.trim(), range.trim()))
+                .map_err(|message| format!("error: {message}"))?;
+        let expression = expression.trim();
+        let tree = mbexpr::parse(expression)
+            .map_err(|error| diagnostic("", expression, error.span(), &error.to_string()))?;
+        let checked = mbexpr::check(&tree).map_err(|errors| {
+            diagnostic("", expression, errors[0].span(), &errors[0].to_string())
+        })?;
+        let request = crate::plot::PlotRequest {
+            text: expression,
+            checked: &checked,
+            scene: self.scene.as_ref(),
+            bindings: &self.bindings,
+            over: &over,
+            range: (start, end),
+            samples: 400,
+            derivatives: self.order() > Order::Value,
+        };
+        let plot = crate::plot::curves(&request).map_err(|message| format!("error: {message}"))?;
+        let file = file.trim();
+        crate::plot::render_svg(file, &over, &plot)
+            .map_err(|message| format!("error: cannot write {file}: {message}"))?;
+        Ok(format!(
+            "wrote {file} ({} points)",
+            plot.curves[0].points.len()
+        ))
+    }
+
+    /// The words a name at the cursor may complete to.
+    pub fn candidates(&self, line: &str, pos: usize) -> (usize, Vec<String>) {
+        let before = &line[..pos];
+        let start = before
+            .rfind(|c: char| !(c.is_ascii_alphanumeric() || "_.:/".contains(c)))
+            .map_or(0, |index| index + 1);
+        let prefix = &before[start..];
+        let mut words: Vec<String> = Vec::new();
+        if start == 0 && prefix.starts_with(':') {
+            words.extend(COMMANDS.iter().map(|command| command.to_string()));
+        } else {
+            words.extend(
+                Function::ALL
+                    .iter()
+                    .map(|function| function.name().to_string()),
+            );
+            words.extend(
+                Constant::ALL
+                    .iter()
+                    .map(|constant| constant.name().to_string()),
+            );
+            words.extend(["TIME", "MODE"].map(str::to_string));
+            words.extend(self.bindings.iter().map(|(name, _)| name.clone()));
+            if let Some(scene) = &self.scene {
+                words.extend(scene.variables.iter().map(|(name, _)| name.clone()));
+                words.extend(
+                    scene
+                        .markers
+                        .iter()
+                        .filter_map(|marker| marker.name.clone()),
+                );
+                for (index, _) in scene.bodies.iter().enumerate() {
+                    words.extend(
+                        mbexpr::scene::StateComponent::ALL
+                            .map(|component| scene.state_name(index, component)),
+                    );
+                }
+            }
+        }
+        let upper = prefix.to_uppercase();
+        let mut matches: Vec<String> = words
+            .into_iter()
+            .filter(|word| word.to_uppercase().starts_with(&upper))
+            .collect();
+        matches.sort();
+        matches.dedup();
+        (start, matches)
+    }
+}
+
+/// `:help NAME`: signature and meaning; `:help` alone: the commands.
+fn help(name: &str) -> String {
+    if name.is_empty() {
+        return HELP.to_string();
+    }
+    if let Some(function) = Function::lookup(name) {
+        return format!("{}\n  {}", function.usage(), function.signature().summary);
+    }
+    if let Some(constant) = Constant::lookup(name) {
+        return format!("{} = {}", constant.name(), show(constant.value()));
+    }
+    match SystemVariable::lookup(name) {
+        Some(SystemVariable::Time) => "TIME: the current time, a variable like any other".to_string(),
+        Some(SystemVariable::Mode) => "MODE: the analysis mode (1 kinematics, 3 initial conditions, 4 dynamics, 5 statics, 6 quasi-statics, 7 linear); 4 unless set".to_string(),
+        None => {
+            let known = Function::ALL.iter().map(|function| function.name());
+            format!(
+                "no function, constant or system variable {name}{}",
+                mbexpr::catalog::did_you_mean(&mbexpr::catalog::closest(name, known))
+            )
+        }
+    }
+}
+
+/// The value and labelled derivatives: on one line (`compact`) or as a table.
+fn format_result(evaluation: &mbexpr::Evaluation, wrt: &[String], compact: bool) -> String {
+    let mut text = show(evaluation.value);
+    let Some(gradient) = &evaluation.gradient else {
+        return text;
+    };
+    let entries: Vec<String> = wrt
+        .iter()
+        .zip(gradient.iter())
+        .map(|(name, entry)| format!("d/d{name} = {}", show(*entry)))
+        .collect();
+    if compact {
+        text += &format!("  gradient [{}]", entries.join(", "));
+    } else {
+        for entry in &entries {
+            text += &format!("\n  {entry}");
+        }
+    }
+    if let Some(hessian) = &evaluation.hessian {
+        let rows: Vec<String> = hessian
+            .row_iter()
+            .map(|row| {
+                row.iter()
+                    .map(|entry| show(*entry))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            })
+            .collect();
+        if compact {
+            text += &format!("  hessian [[{}]]", rows.join("], ["));
+        } else {
+            text += &format!("\n  hessian ({})", wrt.join(", "));
+            for (name, row) in wrt.iter().zip(&rows) {
+                text += &format!("\n    {name}: [{row}]");
+            }
+        }
+    }
+    text
+}
+
+/// rustyline's helper: completion and waiting for closing parentheses.
+#[derive(Helper, Highlighter, Hinter)]
+struct Editor {
+    session: std::rc::Rc<std::cell::RefCell<Session>>,
+}
+
+impl Completer for Editor {
+    type Candidate = Pair;
+
+    fn complete(
+        &self,
+        line: &str,
+        pos: usize,
+        _: &Context<'_>,
+    ) -> rustyline::Result<(usize, Vec<Pair>)> {
+        let (start, words) = self.session.borrow().candidates(line, pos);
+        let pairs = words
+            .into_iter()
+            .map(|word| Pair {
+                display: word.clone(),
+                replacement: word,
+            })
+            .collect();
+        Ok((start, pairs))
+    }
+}
+
+impl Validator for Editor {
+    fn validate(&self, context: &mut ValidationContext<'_>) -> rustyline::Result<ValidationResult> {
+        Ok(if open_parentheses(context.input()) > 0 {
+            ValidationResult::Incomplete
+        } else {
+            ValidationResult::Valid(None)
+        })
+    }
+}
+
+fn history_path() -> Option<std::path::PathBuf> {
+    std::env::var_os("HOME").map(|home| std::path::PathBuf::from(home).join(".mbexpr_history"))
+}
+
+pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
+    let mut session = Session::default();
+    if let Some(path) = &args.scene {
+        session.scene = Some(read_scene(path)?);
+    }
+    if io::stdin().is_terminal() {
+        interactive(session)
+    } else {
+        batch(session, out)
+    }
+}
+
+/// Standard input is a file or a pipe: one result line per complete input.
+fn batch(mut session: Session, out: &mut impl Write) -> Result<Outcome, Fatal> {
+    let mut failures = 0;
+    let mut pending = String::new();
+    let mut first_line = 0;
+    for (index, line) in io::stdin().lock().lines().enumerate() {
+        let line = line
+            .map_err(|error| Fatal::usage(format!("error: cannot read standard input: {error}")))?;
+        if pending.is_empty() {
+            first_line = index + 1;
+        } else {
+            pending.push(' ');
+        }
+        pending.push_str(&line);
+        if open_parentheses(&pending) > 0 {
+            continue;
+        }
+        let input = std::mem::take(&mut pending);
+        if input.trim().is_empty() || input.trim_start().starts_with('!') {
+            continue;
+        }
+        match session.handle(&input, true) {
+            Ok(Reply::Quit) => break,
+            Ok(Reply::Text(text)) => {
+                if !text.is_empty() {
+                    writeln!(out, "{text}")?;
+                }
+            }
+            Err(message) => {
+                failures += 1;
+                out.flush()?;
+                eprint!("line {first_line}: {message}");
+                if !message.ends_with('\n') {
+                    eprintln!();
+                }
+            }
+        }
+    }
+    if !pending.trim().is_empty() {
+        failures += 1;
+        eprintln!("line {first_line}: the input ended with a parenthesis still open");
+    }
+    Ok(if failures == 0 {
+        Outcome::Success
+    } else {
+        Outcome::Failure
+    })
+}
+
+fn interactive(session: Session) -> Result<Outcome, Fatal> {
+    let session = std::rc::Rc::new(std::cell::RefCell::new(session));
+    let mut editor = rustyline::Editor::<Editor, rustyline::history::DefaultHistory>::new()
+        .map_err(|error| Fatal::usage(format!("error: cannot start the line editor: {error}")))?;
+    editor.set_helper(Some(Editor {
+        session: session.clone(),
+    }));
+    let history = history_path();
+    if let Some(path) = &history {
+        // A missing history file is the first run, not an error.
+        let _ = editor.load_history(path);
+    }
+    println!(
+        "mbexpr {} — :help for commands, :quit to leave",
+        env!("CARGO_PKG_VERSION")
+    );
+    loop {
+        match editor.readline("mbexpr> ") {
+            Ok(line) => {
+                let _ = editor.add_history_entry(line.as_str());
+                let reply = session.borrow_mut().handle(&line, false);
+                match reply {
+                    Ok(Reply::Quit) => break,
+                    Ok(Reply::Text(text)) if text.is_empty() => {}
+                    Ok(Reply::Text(text)) => println!("{text}"),
+                    Err(message) => eprint!(
+                        "{}",
+                        if message.ends_with('\n') {
+                            message
+                        } else {
+                            message + "\n"
+                        }
+                    ),
+                }
+            }
+            Err(rustyline::error::ReadlineError::Interrupted) => continue,
+            Err(rustyline::error::ReadlineError::Eof) => break,
+            Err(error) => return Err(Fatal::usage(format!("error: {error}"))),
+        }
+    }
+    if let Some(path) = &history {
+        let _ = editor.save_history(path);
+    }
+    Ok(Outcome::Success)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn names(session: &Session, line: &str) -> Vec<String> {
+        session.candidates(line, line.len()).1
+    }
+
+    #[test]
+    fn completion_offers_functions_constants_variables_commands_and_markers() {
+        let mut session = Session::default();
+        assert_eq!(names(&session, "2*BIS"), ["BISTOP"]);
+        assert_eq!(names(&session, "ste"), ["STEP", "STEP5"]);
+        assert_eq!(
+            names(&session, "x + P"),
+            [
+                "PHI", "PI", "PINVAL", "PITCH", "POLY", "POUVAL", "PSI", "PTCV"
+            ]
+        );
+        assert_eq!(names(&session, ":s"), [":scene", ":set"]);
+        session.bindings.push(("stiffness".to_string(), 1e5));
+        assert_eq!(names(&session, "IMPACT(x, v, 1, stif"), ["stiffness"]);
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/examples/scenes/ball_between_walls.toml"
+        ))
+        .unwrap();
+        session.scene = Some(Scene::from_toml(&text).unwrap());
+        assert_eq!(names(&session, "DX(wa"), ["wall"]);
+        assert_eq!(names(&session, "ball.v"), ["ball.vx", "ball.vy", "ball.vz"]);
+        assert_eq!(session.candidates("DX(ba", 5).0, 3);
+    }
+}
