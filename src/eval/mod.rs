@@ -79,7 +79,7 @@ pub(crate) fn execute<T: Number>(
                 .map(|arg| {
                     let data = &frames[arg.data as usize];
                     match &arg.state {
-                        Some(state) => Frame::on_body(data, state.map(|index| slot(index))),
+                        Some(state) => Frame::on_body(data, state.map(&slot)),
                         None => Frame::fixed(data),
                     }
                 })

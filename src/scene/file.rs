@@ -90,7 +90,8 @@ impl OrientationFile {
             ))),
             (Some([w, x, y, z]), None) => {
                 let quaternion = Quaternion::new(w, x, y, z);
-                if !(quaternion.norm() > 0.0) || !quaternion.norm().is_finite() {
+                let length = quaternion.norm();
+                if length == 0.0 || !length.is_finite() {
                     return Err(SceneError::File(format!(
                         "{owner}: the quaternion must have a finite, nonzero length"
                     )));
