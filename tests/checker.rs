@@ -20,12 +20,7 @@ fn check(input: &str) -> String {
 }
 
 fn table(cases: &str) -> String {
-    cases
-        .lines()
-        .map(str::trim)
-        .filter(|case| !case.is_empty())
-        .map(|case| format!("{case}\n  => {}\n", check(case)))
-        .collect()
+    crate::table(cases, check)
 }
 
 #[test]

@@ -66,12 +66,7 @@ fn check(case: &str) -> String {
 }
 
 fn table(cases: &str) -> String {
-    cases
-        .lines()
-        .map(str::trim)
-        .filter(|case| !case.is_empty())
-        .map(|case| format!("{case}\n  => {}\n", check(case)))
-        .collect()
+    crate::table(cases, check)
 }
 
 #[test]

@@ -10,3 +10,14 @@ mod eval;
 mod model;
 mod parse;
 mod scene;
+
+/// `case\n  => check(case)\n` for every non-blank line of `cases`: the
+/// snapshot form of a data-driven test.
+fn table(cases: &str, check: impl Fn(&str) -> String) -> String {
+    cases
+        .lines()
+        .map(str::trim)
+        .filter(|case| !case.is_empty())
+        .map(|case| format!("{case}\n  => {}\n", check(case)))
+        .collect()
+}

@@ -36,10 +36,7 @@ pub fn read(text: &str, kind: FileKind) -> Dataset {
         Err(error) => {
             // The grammar takes any line (`unreadable`), so this is rare: a
             // stray byte pest cannot take at all.
-            let offset = match error.location {
-                pest::error::InputLocation::Pos(offset) => offset,
-                pest::error::InputLocation::Span((start, _)) => start,
-            };
+            let offset = super::pest_offset(&error);
             dataset.problems.push(ReadError::Unreadable {
                 span: Span::new(offset, offset),
             });

@@ -36,10 +36,7 @@ pub fn read(text: &str) -> Dataset {
     let top = match CommandParser::parse(Rule::cmd, text) {
         Ok(mut pairs) => pairs.next().expect("the top rule matched"),
         Err(error) => {
-            let offset = match error.location {
-                pest::error::InputLocation::Pos(offset) => offset,
-                pest::error::InputLocation::Span((start, _)) => start,
-            };
+            let offset = super::pest_offset(&error);
             dataset.problems.push(ReadError::Unreadable {
                 span: Span::at(offset),
             });

@@ -191,3 +191,11 @@ pub fn is_kind(name: &str, kind: &str) -> bool {
 pub fn is_statement(statement: &Statement, kind: &str) -> bool {
     is_kind(&statement.name, kind)
 }
+
+/// The byte offset where a pest parse stopped.
+fn pest_offset<R>(error: &pest::error::Error<R>) -> usize {
+    match error.location {
+        pest::error::InputLocation::Pos(offset) => offset,
+        pest::error::InputLocation::Span((start, _)) => start,
+    }
+}
