@@ -1,7 +1,7 @@
 //! From a checked expression, the values a user gave and a scene, to a
 //! program and the values of its inputs: shared by `plot` and the REPL.
 
-use mbexpr::{Checked, Program, Scene};
+use mbexpr::{Checked, CompileError, Errors, Program, Scene};
 
 /// A compiled program and the value of each of its inputs.
 pub struct Bound {
@@ -14,13 +14,13 @@ pub struct Bound {
 /// Compiles `checked` with the names of `bindings`, `extra` names (derivative
 /// directions, a plotted variable) and what `scene` provides as inputs. An
 /// input takes its value from the last binding of its name, else from the
-/// scene, else 0. Errors come back as messages for `diagnostic`.
+/// scene, else 0.
 pub fn bind(
     checked: &Checked,
     scene: Option<&Scene>,
     bindings: &[(String, f64)],
     extra: &[String],
-) -> Result<Bound, Vec<(mbexpr::Span, String)>> {
+) -> Result<Bound, Errors<CompileError>> {
     let mut names: Vec<String> = Vec::new();
     let mut add = |name: &str| {
         if !names.iter().any(|known| known.eq_ignore_ascii_case(name)) {
@@ -35,13 +35,7 @@ pub fn bind(
     let program = match scene {
         Some(scene) => mbexpr::compile_in_scene(checked, &names, scene),
         None => mbexpr::compile(checked, &names),
-    }
-    .map_err(|errors| {
-        errors
-            .iter()
-            .map(|error| (error.span(), error.to_string()))
-            .collect::<Vec<_>>()
-    })?;
+    }?;
     let values = program
         .inputs()
         .iter()
@@ -58,4 +52,26 @@ pub fn bind(
         })
         .collect();
     Ok(Bound { program, values })
+}
+
+/// Every compile error rendered under the expression, an unbound variable
+/// with a hint in the words of the caller (`--set x=VALUE`, `:set x = VALUE`).
+pub fn render(
+    errors: &Errors<CompileError>,
+    origin: &str,
+    source: &str,
+    how_to_set: impl Fn(&str) -> String,
+) -> String {
+    errors
+        .iter()
+        .map(|error| {
+            let message = match error {
+                CompileError::UnboundVariable { name, .. } => {
+                    format!("{error}: set it with {}", how_to_set(name))
+                }
+                _ => error.to_string(),
+            };
+            crate::render::diagnostic(origin, source, error.span(), &message)
+        })
+        .collect()
 }

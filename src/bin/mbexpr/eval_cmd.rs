@@ -195,20 +195,6 @@ pub fn read_scene(path: &str) -> Result<Scene, Fatal> {
     Scene::from_toml(&text).map_err(|error| Fatal::usage(format!("error: {path}: {error}")))
 }
 
-/// Adds `name` to `names` unless it is there (case-insensitively); its index.
-fn name_index(names: &mut Vec<String>, name: &str) -> usize {
-    match names
-        .iter()
-        .position(|known| known.eq_ignore_ascii_case(name))
-    {
-        Some(index) => index,
-        None => {
-            names.push(name.to_string());
-            names.len() - 1
-        }
-    }
-}
-
 /// What every expression of one run shares.
 struct Context<'a> {
     args: &'a Args,
@@ -286,70 +272,34 @@ fn evaluate_expression(
         Fatal::input(texts.concat())
     })?;
 
-    // The inputs: --set names, --points columns, what the scene gives, and
-    // the state components named as derivative directions.
-    let mut names: Vec<String> = Vec::new();
-    for (name, _) in &context.assignments {
-        name_index(&mut names, name);
-    }
-    let columns: Vec<usize> = context
+    // The inputs beyond --set and the scene: --points columns, and the state
+    // components named as derivative directions.
+    let columns: Vec<String> = context
         .points
         .iter()
-        .flat_map(|points| &points.names)
-        .map(|name| name_index(&mut names, name))
+        .flat_map(|points| points.names.iter().cloned())
         .collect();
+    let mut extra = columns.clone();
     if let Some(scene) = context.scene {
-        for name in scene.input_names() {
-            name_index(&mut names, &name);
-        }
-        for name in &args.wrt {
-            if scene.parse_state_name(name).is_some() {
-                name_index(&mut names, name);
-            }
-        }
+        extra.extend(
+            args.wrt
+                .iter()
+                .filter(|name| scene.parse_state_name(name).is_some())
+                .cloned(),
+        );
     }
-
-    let compiled = match context.scene {
-        Some(scene) => mbexpr::compile_in_scene(&checked, &names, scene),
-        None => mbexpr::compile(&checked, &names),
-    };
-    let program: Program = compiled.map_err(|errors| {
-        let texts: Vec<String> = errors
-            .iter()
-            .map(|error| {
-                let hint = match error {
-                    mbexpr::CompileError::UnboundVariable { name, .. } => {
-                        format!("{error}: set it with --set {name}=VALUE")
-                    }
-                    _ => error.to_string(),
-                };
-                diagnostic(origin, source, error.span(), &hint)
-            })
-            .collect();
-        Fatal::input(texts.concat())
-    })?;
+    let bound = crate::binding::bind(&checked, context.scene, &context.assignments, &extra)
+        .map_err(|errors| {
+            Fatal::input(crate::binding::render(&errors, origin, source, |name| {
+                format!("--set {name}=VALUE")
+            }))
+        })?;
+    let (program, values): (Program, Vec<f64>) = (bound.program, bound.values);
     let inputs = program.inputs();
-    let mut values = Vec::with_capacity(inputs.len());
-    for name in inputs {
-        let set = context
-            .assignments
-            .iter()
-            .rev()
-            .find(|(known, _)| known.eq_ignore_ascii_case(name));
-        values.push(match (set, context.scene) {
-            (Some((_, value)), _) => *value,
-            (None, Some(scene))
-                if !columns
-                    .iter()
-                    .any(|&column| names[column].eq_ignore_ascii_case(name)) =>
-            {
-                scene
-                    .value_of(name)
-                    .map_err(|error| Fatal::usage(format!("error: {error}")))?
-            }
-            _ => 0.0,
-        });
-    }
+    let columns: Vec<Option<usize>> = columns
+        .iter()
+        .map(|name| program.input_index(name))
+        .collect();
 
     let mut wrt = Vec::new();
     for name in &args.wrt {
@@ -403,9 +353,9 @@ fn evaluate_expression(
     for (row_number, row) in points.rows.iter().enumerate() {
         let result = row.clone().and_then(|row| {
             let mut point = values.clone();
-            for (&column, value) in columns.iter().zip(row) {
-                if let Some(index) = program.input_index(&names[column]) {
-                    point[index] = value;
+            for (column, value) in columns.iter().zip(row) {
+                if let Some(index) = column {
+                    point[*index] = value;
                 }
             }
             evaluate(&point).map_err(|error| error.to_string())

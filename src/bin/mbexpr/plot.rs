@@ -50,7 +50,7 @@ pub fn curves(request: &PlotRequest<'_>) -> Result<Plot, String> {
         request.bindings,
         &[request.over.to_string()],
     )
-    .map_err(|errors| errors[0].1.clone())?;
+    .map_err(|errors| errors.to_string())?;
     let (program, mut values) = (bound.program, bound.values);
     let over = program
         .input_index(request.over)

@@ -84,17 +84,7 @@ impl Session {
         })?;
         let bound = crate::binding::bind(&checked, self.scene.as_ref(), &self.bindings, &self.wrt)
             .map_err(|errors| {
-                errors
-                    .iter()
-                    .map(|(span, message)| {
-                        let hint = if message.contains("has no value") {
-                            ": set it with :set NAME = VALUE"
-                        } else {
-                            ""
-                        };
-                        diagnostic("", text, *span, &format!("{message}{hint}"))
-                    })
-                    .collect::<String>()
+                crate::binding::render(&errors, "", text, |name| format!(":set {name} = VALUE"))
             })?;
         let directions: Vec<usize> = self
             .wrt
@@ -182,16 +172,17 @@ impl Session {
 
     /// The value of a constant expression (or one over bound variables).
     fn constant(&self, text: &str) -> Result<f64, String> {
-        let saved_order = Order::Value;
         let tree = mbexpr::parse(text)
             .map_err(|error| diagnostic("", text, error.span(), &error.to_string()))?;
         let checked = mbexpr::check(&tree)
             .map_err(|errors| diagnostic("", text, errors[0].span(), &errors[0].to_string()))?;
         let bound = crate::binding::bind(&checked, self.scene.as_ref(), &self.bindings, &[])
-            .map_err(|errors| diagnostic("", text, errors[0].0, &errors[0].1))?;
+            .map_err(|errors| {
+                crate::binding::render(&errors, "", text, |name| format!(":set {name} = VALUE"))
+            })?;
         let evaluation = bound
             .program
-            .evaluate(&bound.values, &[], saved_order)
+            .evaluate(&bound.values, &[], Order::Value)
             .map_err(|error| diagnostic("", text, error.span(), &error.to_string()))?;
         Ok(evaluation.value)
     }
