@@ -16,10 +16,11 @@ pub trait Number: DualNum<Primitive = f64> + nalgebra::RealField + Clone + 'stat
         self.re()
     }
 
-    /// `f(self)` for a scalar function `f` whose value and first two
-    /// derivatives at `self.value()` are `f0`, `f1`, `f2`: the chain rule,
-    /// with no arithmetic on derivative parts that are absent.
-    fn chain(&self, f0: f64, f1: f64, f2: f64) -> Self;
+    /// `f(self)` for a scalar function `f` whose value at `self.value()` is
+    /// `f0` and whose first two derivatives there `derivatives` gives: the
+    /// chain rule, with no arithmetic on derivative parts that are absent
+    /// (and `derivatives` not even called for a plain `f64`).
+    fn chain(&self, f0: f64, derivatives: impl FnOnce() -> (f64, f64)) -> Self;
 
     /// Whether the number carries no derivative part (a constant).
     fn is_constant(&self) -> bool;
@@ -29,7 +30,7 @@ pub trait Number: DualNum<Primitive = f64> + nalgebra::RealField + Clone + 'stat
 }
 
 impl Number for f64 {
-    fn chain(&self, f0: f64, _: f64, _: f64) -> Self {
+    fn chain(&self, f0: f64, _: impl FnOnce() -> (f64, f64)) -> Self {
         f0
     }
 
@@ -57,7 +58,11 @@ where
     DefaultAllocator: Allocator<D>,
     <DefaultAllocator as Allocator<D>>::Buffer<f64>: Send + Sync,
 {
-    fn chain(&self, f0: f64, f1: f64, _: f64) -> Self {
+    fn chain(&self, f0: f64, derivatives: impl FnOnce() -> (f64, f64)) -> Self {
+        if self.eps.0.is_none() {
+            return DualVec::from_re(f0);
+        }
+        let (f1, _) = derivatives();
         DualVec::new(f0, &self.eps * f1)
     }
 
@@ -76,7 +81,11 @@ where
     <DefaultAllocator as Allocator<U1, D>>::Buffer<f64>: Send + Sync,
     <DefaultAllocator as Allocator<D, D>>::Buffer<f64>: Send + Sync,
 {
-    fn chain(&self, f0: f64, f1: f64, f2: f64) -> Self {
+    fn chain(&self, f0: f64, derivatives: impl FnOnce() -> (f64, f64)) -> Self {
+        if self.is_constant() {
+            return Dual2Vec::from_re(f0);
+        }
+        let (f1, f2) = derivatives();
         let gradient = &self.v1 * f1;
         let hessian = &self.v2 * f1 + self.v1.tr_mul(&self.v1) * f2;
         Dual2Vec::new(f0, gradient, hessian)

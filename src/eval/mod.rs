@@ -55,6 +55,7 @@ pub struct Evaluation {
 
 /// Computes `op` from the slots. The compiler folds constants with it, the
 /// evaluator runs every instruction through it.
+#[inline]
 pub(crate) fn execute<T: Number>(
     op: &Op,
     slots: &[T],

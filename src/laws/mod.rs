@@ -42,6 +42,7 @@ pub(crate) fn domain<T>(operation: &'static str, reason: String) -> Result<T, La
 /// # Panics
 /// When `function` belongs to another family (measures, model data, solver
 /// results): the compiler never emits those as calls.
+#[inline]
 pub fn apply<T: Number>(function: Function, args: &[T]) -> Result<T, LawError> {
     use Function as F;
     let arg = |position: usize| &args[position];

@@ -13,38 +13,51 @@ pub fn divide<T: Number>(a: &T, b: &T) -> Result<T, LawError> {
     Ok(a.clone() / b.clone())
 }
 
-/// Value, first and second derivative of `x^n` at `x` for a whole `n`.
-fn integer_rule(x: f64, n: i32) -> (f64, f64, f64) {
+/// `x^n` for a whole `n`.
+#[inline]
+fn integer_power(x: f64, n: i32) -> f64 {
     match n {
-        0 => (1.0, 0.0, 0.0),
-        1 => (x, 1.0, 0.0),
-        2 => (x * x, 2.0 * x, 2.0),
+        2 => x * x,
+        _ => x.powi(n),
+    }
+}
+
+/// First and second derivative of `x^n` at `x` for a whole `n`.
+fn integer_slopes(x: f64, n: i32) -> (f64, f64) {
+    match n {
+        0 => (0.0, 0.0),
+        1 => (1.0, 0.0),
+        2 => (2.0 * x, 2.0),
         _ => {
             let n_f = f64::from(n);
-            (
-                x.powi(n),
-                n_f * x.powi(n - 1),
-                n_f * (n_f - 1.0) * x.powi(n - 2),
-            )
+            (n_f * x.powi(n - 1), n_f * (n_f - 1.0) * x.powi(n - 2))
         }
     }
 }
 
-/// Value, first and second derivative of `x^e` at `x >= 0` for a real `e`.
-pub fn real_rule(x: f64, e: f64) -> (f64, f64, f64) {
-    if let Some(n) = as_integer(e) {
-        return integer_rule(x, n);
+/// `x^e` at `x >= 0` for a real `e` (integer powers for a whole `e`).
+#[inline]
+pub fn real_power(x: f64, e: f64) -> f64 {
+    match as_integer(e) {
+        Some(n) => integer_power(x, n),
+        None => x.powf(e),
     }
-    (
-        x.powf(e),
-        e * x.powf(e - 1.0),
-        e * (e - 1.0) * x.powf(e - 2.0),
-    )
+}
+
+/// First and second derivative of `x^e` at `x >= 0` for a real `e`.
+pub fn real_slopes(x: f64, e: f64) -> (f64, f64) {
+    match as_integer(e) {
+        Some(n) => integer_slopes(x, n),
+        None => (e * x.powf(e - 1.0), e * (e - 1.0) * x.powf(e - 2.0)),
+    }
 }
 
 /// `e` as an `i32` when it is a whole number in range.
+#[inline]
 pub fn as_integer(e: f64) -> Option<i32> {
-    (e.fract() == 0.0 && e.abs() <= f64::from(i32::MAX)).then_some(e as i32)
+    // A saturating cast and a comparison: no call to `trunc` on a hot path.
+    let n = e as i32;
+    (f64::from(n) == e && n != i32::MIN && n != i32::MAX).then_some(n)
 }
 
 /// `x ** n` for a constant whole `n`: any sign of `x`, exact for small `n`.
@@ -56,8 +69,7 @@ pub fn powi<T: Number>(x: &T, n: i32) -> Result<T, LawError> {
     if n == 2 {
         return Ok(x.clone() * x.clone());
     }
-    let (f0, f1, f2) = integer_rule(x0, n);
-    Ok(x.chain(f0, f1, f2))
+    Ok(x.chain(integer_power(x0, n), || integer_slopes(x0, n)))
 }
 
 /// `x ** e` for a constant real `e` (a whole `e` goes to [`powi`]).
@@ -75,8 +87,7 @@ pub fn powf<T: Number>(x: &T, e: f64) -> Result<T, LawError> {
     if x0 == 0.0 && e < 0.0 {
         return domain("`**`", format!("0 to the negative power {e} is infinite"));
     }
-    let (f0, f1, f2) = real_rule(x0, e);
-    Ok(x.chain(f0, f1, f2))
+    Ok(x.chain(real_power(x0, e), || real_slopes(x0, e)))
 }
 
 /// `x ** y` for any `y`: a constant exponent takes [`powf`]; a varying one
