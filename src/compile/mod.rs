@@ -8,7 +8,7 @@ mod program;
 use std::collections::HashMap;
 
 pub use error::CompileError;
-pub use program::{FrameArg, Instruction, Op, Program, Slot};
+pub use program::{FrameArg, InputSlot, Instruction, Op, Program, Slot};
 
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
@@ -65,7 +65,7 @@ fn compile_with<S: AsRef<str>>(
         code: Vec::new(),
         spans: Vec::new(),
         memo: vec![HashMap::new()],
-        loaded: HashMap::new(),
+        loads: Vec::new(),
         errors: Vec::new(),
     };
     let result = compiler.node(&checked.root);
@@ -81,6 +81,7 @@ fn compile_with<S: AsRef<str>>(
         spans: compiler.spans,
         result,
         frames: compiler.frames,
+        loads: compiler.loads,
     })
 }
 
@@ -100,7 +101,8 @@ struct Compiler<'s> {
     /// Computed ops by scope: the outer scopes' entries hold inside an IF
     /// branch, a branch's own entries are dropped when it ends.
     memo: Vec<HashMap<Op, Slot>>,
-    loaded: HashMap<usize, Slot>,
+    /// Where each input used is placed, and where it is first used.
+    loads: Vec<InputSlot>,
     errors: Vec<CompileError>,
 }
 
@@ -126,14 +128,14 @@ impl Compiler<'_> {
         u32::try_from(self.code.len() - 1).expect("fewer than 2^32 instructions")
     }
 
+    /// The slot input `index` is placed in before the program runs.
     fn input(&mut self, index: usize, span: Span) -> Slot {
-        if let Some(&slot) = self.loaded.get(&index) {
-            return slot;
+        if let Some(load) = self.loads.iter().find(|load| load.input as usize == index) {
+            return load.slot;
         }
         let slot = self.new_slot(None);
         let input = u32::try_from(index).expect("fewer than 2^32 inputs");
-        self.emit(Instruction::Load { dst: slot, input }, span);
-        self.loaded.insert(index, slot);
+        self.loads.push(InputSlot { input, slot, span });
         slot
     }
 
@@ -517,9 +519,7 @@ impl Compiler<'_> {
         for (index, node) in [negative, zero, positive].into_iter().enumerate() {
             starts.push(u32::try_from(self.code.len()).expect("fewer than 2^32 instructions"));
             self.memo.push(HashMap::new());
-            let loaded_before = self.loaded.clone();
             let value = self.node(node);
-            self.loaded = loaded_before;
             self.memo.pop();
             self.emit(
                 Instruction::Copy {

@@ -58,16 +58,20 @@ pub struct FrameArg {
     pub state: Option<[Slot; 12]>,
 }
 
+/// An input the program uses, placed in its slot before the first instruction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct InputSlot {
+    /// Index into the program's inputs.
+    pub input: u32,
+    /// The slot it is placed in.
+    pub slot: Slot,
+    /// Where the expression first uses it.
+    pub span: Span,
+}
+
 /// One step of a program.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Instruction {
-    /// `slots[dst] = inputs[input]`
-    Load {
-        /// Destination slot.
-        dst: Slot,
-        /// Index into the program's inputs.
-        input: u32,
-    },
     /// `slots[dst] = op(slots)`
     Compute {
         /// Destination slot.
@@ -112,6 +116,8 @@ pub struct Program {
     pub(crate) result: Slot,
     /// The constants of the marker frames the measures use.
     pub(crate) frames: Vec<FrameData>,
+    /// The inputs used, and their slots.
+    pub(crate) loads: Vec<InputSlot>,
 }
 
 impl Program {
@@ -144,12 +150,16 @@ impl fmt::Display for Program {
         for (slot, value) in &self.constants {
             writeln!(f, "s{slot} = {value}")?;
         }
+        for load in &self.loads {
+            writeln!(
+                f,
+                "s{} = input {}",
+                load.slot, self.inputs[load.input as usize]
+            )?;
+        }
         for (index, instruction) in self.code.iter().enumerate() {
             write!(f, "{index:>3}: ")?;
             match instruction {
-                Instruction::Load { dst, input } => {
-                    writeln!(f, "s{dst} = input {}", self.inputs[*input as usize])?
-                }
                 Instruction::Compute { dst, op } => writeln!(f, "s{dst} = {op}")?,
                 Instruction::Branch {
                     condition,

@@ -53,6 +53,20 @@ pub struct Evaluation {
     pub hessian: Option<DMatrix<f64>>,
 }
 
+/// `-a`, `a + b`, `a - b`, `a * b`: the operations that cannot fail, which
+/// the evaluator's loop runs without a detour.
+#[inline(always)]
+fn arithmetic<T: Number>(op: &Op, slots: &[T]) -> Option<T> {
+    let slot = |index: &Slot| slots[*index as usize].clone();
+    Some(match op {
+        Op::Neg(a) => -slot(a),
+        Op::Add(a, b) => slot(a) + slot(b),
+        Op::Sub(a, b) => slot(a) - slot(b),
+        Op::Mul(a, b) => slot(a) * slot(b),
+        _ => return None,
+    })
+}
+
 /// Computes `op` from the slots. The compiler folds constants with it, the
 /// evaluator runs every instruction through it.
 #[inline]
@@ -61,12 +75,14 @@ pub(crate) fn execute<T: Number>(
     slots: &[T],
     frames: &[FrameData],
 ) -> Result<T, LawError> {
+    if let Some(value) = arithmetic(op, slots) {
+        return Ok(value);
+    }
     let slot = |index: Slot| &slots[index as usize];
     Ok(match op {
-        Op::Neg(a) => -slot(*a).clone(),
-        Op::Add(a, b) => slot(*a).clone() + slot(*b).clone(),
-        Op::Sub(a, b) => slot(*a).clone() - slot(*b).clone(),
-        Op::Mul(a, b) => slot(*a).clone() * slot(*b).clone(),
+        Op::Neg(_) | Op::Add(..) | Op::Sub(..) | Op::Mul(..) => {
+            unreachable!("`arithmetic` computes {op}")
+        }
         Op::Div(a, b) => power::divide(slot(*a), slot(*b))?,
         Op::PowInt(a, n) => power::powi(slot(*a), *n)?,
         Op::PowReal(a, bits) => power::powf(slot(*a), f64::from_bits(*bits))?,
@@ -185,38 +201,36 @@ impl<T: Number> Evaluator<'_, T> {
                 found: inputs.len(),
             });
         }
+        for load in &program.loads {
+            let index = load.input as usize;
+            let value = inputs[index];
+            if !value.is_finite() {
+                return Err(EvalError::InputNotFinite {
+                    name: program.inputs[index].clone(),
+                    value,
+                    span: load.span,
+                });
+            }
+            self.slots[load.slot as usize] = seed(index, value);
+        }
         let code = &program.code;
         let mut pc = 0;
         while let Some(instruction) = code.get(pc) {
             pc += 1;
             match instruction {
-                Instruction::Load { dst, input } => {
-                    let index = *input as usize;
-                    let value = inputs[index];
-                    if !value.is_finite() {
-                        return Err(EvalError::InputNotFinite {
-                            name: program.inputs[index].clone(),
-                            value,
-                            span: program.spans[pc - 1],
-                        });
-                    }
-                    self.slots[*dst as usize] = seed(index, value);
-                }
                 Instruction::Compute { dst, op } => {
-                    let span = program.spans[pc - 1];
-                    let result = execute(op, &self.slots, &program.frames)
-                        .map_err(|error| EvalError::Law { error, span })?;
-                    if !result.is_all_finite() {
-                        let operation = op.name();
-                        return Err(if result.value().is_finite() {
-                            EvalError::DerivativeNotFinite { operation, span }
-                        } else {
-                            EvalError::NotFinite {
-                                operation,
-                                value: result.value(),
-                                span,
+                    let result = match arithmetic(op, &self.slots) {
+                        Some(result) => result,
+                        None => match execute(op, &self.slots, &program.frames) {
+                            Ok(result) => result,
+                            Err(error) => {
+                                let span = program.spans[pc - 1];
+                                return Err(EvalError::Law { error, span });
                             }
-                        });
+                        },
+                    };
+                    if !result.is_all_finite() {
+                        return Err(not_finite(op, &result, program.spans[pc - 1]));
                     }
                     self.slots[*dst as usize] = result;
                 }
@@ -239,6 +253,21 @@ impl<T: Number> Evaluator<'_, T> {
             }
         }
         Ok(self.slots[program.result as usize].clone())
+    }
+}
+
+/// The error for a result that is not a finite number.
+#[cold]
+fn not_finite<T: Number>(op: &Op, result: &T, span: crate::span::Span) -> EvalError {
+    let operation = op.name();
+    if result.value().is_finite() {
+        EvalError::DerivativeNotFinite { operation, span }
+    } else {
+        EvalError::NotFinite {
+            operation,
+            value: result.value(),
+            span,
+        }
     }
 }
 
