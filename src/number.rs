@@ -22,6 +22,11 @@ pub trait Number: DualNum<Primitive = f64> + nalgebra::RealField + Clone + 'stat
     /// (and `derivatives` not even called for a plain `f64`).
     fn chain(&self, f0: f64, derivatives: impl FnOnce() -> (f64, f64)) -> Self;
 
+    /// `f(self, other)` for a scalar function of two arguments whose value
+    /// is `f0` and whose partial derivatives `derivatives` gives as
+    /// `[f_a, f_b, f_aa, f_ab, f_bb]` (`a` is `self`, `b` is `other`).
+    fn chain2(&self, other: &Self, f0: f64, derivatives: impl FnOnce() -> [f64; 5]) -> Self;
+
     /// Whether the number carries no derivative part (a constant).
     fn is_constant(&self) -> bool;
 
@@ -31,6 +36,10 @@ pub trait Number: DualNum<Primitive = f64> + nalgebra::RealField + Clone + 'stat
 
 impl Number for f64 {
     fn chain(&self, f0: f64, _: impl FnOnce() -> (f64, f64)) -> Self {
+        f0
+    }
+
+    fn chain2(&self, _: &Self, f0: f64, _: impl FnOnce() -> [f64; 5]) -> Self {
         f0
     }
 
@@ -66,6 +75,14 @@ where
         DualVec::new(f0, &self.eps * f1)
     }
 
+    fn chain2(&self, other: &Self, f0: f64, derivatives: impl FnOnce() -> [f64; 5]) -> Self {
+        if self.is_constant() && other.is_constant() {
+            return DualVec::from_re(f0);
+        }
+        let [fa, fb, ..] = derivatives();
+        DualVec::new(f0, &self.eps * fa + &other.eps * fb)
+    }
+
     fn is_constant(&self) -> bool {
         self.eps.0.is_none()
     }
@@ -88,6 +105,21 @@ where
         let (f1, f2) = derivatives();
         let gradient = &self.v1 * f1;
         let hessian = &self.v2 * f1 + self.v1.tr_mul(&self.v1) * f2;
+        Dual2Vec::new(f0, gradient, hessian)
+    }
+
+    fn chain2(&self, other: &Self, f0: f64, derivatives: impl FnOnce() -> [f64; 5]) -> Self {
+        if self.is_constant() && other.is_constant() {
+            return Dual2Vec::from_re(f0);
+        }
+        let [fa, fb, faa, fab, fbb] = derivatives();
+        let (a, b) = (&self.v1, &other.v1);
+        let gradient = a * fa + b * fb;
+        let hessian = &self.v2 * fa
+            + &other.v2 * fb
+            + a.tr_mul(a) * faa
+            + (a.tr_mul(b) + b.tr_mul(a)) * fab
+            + b.tr_mul(b) * fbb;
         Dual2Vec::new(f0, gradient, hessian)
     }
 

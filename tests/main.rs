@@ -9,6 +9,7 @@ mod corpus;
 mod eval;
 mod model;
 mod parse;
+mod reference;
 mod scene;
 
 /// `case\n  => check(case)\n` for every non-blank line of `cases`: the

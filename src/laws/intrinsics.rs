@@ -87,13 +87,24 @@ pub fn abs<T: Number>(a: &T) -> T {
     }
 }
 
-/// `ATAN2(y, x)`, 0 with zero derivatives at the origin.
+/// `ATAN2(y, x)`, 0 with zero derivatives at the origin. The derivatives
+/// come from `x / r^2` and `-y / r^2`, finite wherever `(x, y) != (0, 0)`.
 pub fn atan2<T: Number>(y: &T, x: &T) -> T {
-    if y.value() == 0.0 && x.value() == 0.0 {
-        T::zero()
-    } else {
-        y.atan2(x.clone())
+    let (y0, x0) = (y.value(), x.value());
+    if y0 == 0.0 && x0 == 0.0 {
+        return T::zero();
     }
+    y.chain2(x, y0.atan2(x0), || {
+        let r2 = x0 * x0 + y0 * y0;
+        let r4 = r2 * r2;
+        [
+            x0 / r2,
+            -y0 / r2,
+            -2.0 * x0 * y0 / r4,
+            (y0 * y0 - x0 * x0) / r4,
+            2.0 * x0 * y0 / r4,
+        ]
+    })
 }
 
 /// The argument that `better` prefers to all others; the first on a tie.
