@@ -8,7 +8,9 @@ mod cli;
 mod corpus;
 mod eval;
 mod model;
+mod numerics;
 mod parse;
+mod properties;
 mod reference;
 mod scene;
 
