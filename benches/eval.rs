@@ -1,0 +1,146 @@
+//! Evaluation, side by side in one run so that the report is ratios:
+//! a hand-written native BISTOP (the limit), the same over num-dual,
+//! fasteval with BISTOP as a native function, and mbexpr.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use mbexpr::Order;
+use num_dual::{Dual2SVec64, DualNum, DualSVec64};
+
+const BISTOP: &str = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
+const LINEAR: &str = "-1E4*(x-50)-10*v + 3*sin(2*pi*t)";
+const POINT: [f64; 2] = [10.05, 0.7];
+
+/// BISTOP written out by hand for these parameters (SPEC 3.3), generic so
+/// that num-dual gives its derivatives: what a hand-coded force would be.
+fn native_bistop<D: DualNum<Primitive = f64> + Copy>(x: D, v: D) -> D {
+    let (x1, x2, k, e, cmax, d) = (-10.0, 10.0, 1e5, 2.2, 100.0, 0.1);
+    let damping = |p: D| {
+        if p.re() >= d {
+            D::from(cmax)
+        } else {
+            let w = p / d;
+            w * w * (w * -2.0 + 3.0) * cmax
+        }
+    };
+    if x.re() < x1 {
+        let p = -x + x1;
+        let raw = p.powf(e) * k - damping(p) * v;
+        if raw.re() > 0.0 { raw } else { D::zero() }
+    } else if x.re() > x2 {
+        let p = x - x2;
+        let raw = -(p.powf(e) * k) - damping(p) * v;
+        if raw.re() < 0.0 { raw } else { D::zero() }
+    } else {
+        D::zero()
+    }
+}
+
+fn native_linear(x: f64, v: f64, t: f64) -> f64 {
+    -1e4 * (x - 50.0) - 10.0 * v + 3.0 * (2.0 * std::f64::consts::PI * t).sin()
+}
+
+fn program(text: &str, inputs: &[&str]) -> mbexpr::Program {
+    mbexpr::compile(
+        &mbexpr::check(&mbexpr::parse(text).unwrap()).unwrap(),
+        inputs,
+    )
+    .unwrap()
+}
+
+fn bistop(c: &mut Criterion) {
+    let mut group = c.benchmark_group("bistop");
+    group
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    let program = program(BISTOP, &["x", "v"]);
+
+    group.bench_function("value: native f64", |b| {
+        b.iter(|| native_bistop(black_box(POINT[0]), black_box(POINT[1])))
+    });
+    group.bench_function("value: mbexpr", |b| {
+        let mut evaluator = program.evaluator::<f64>();
+        b.iter(|| evaluator.value(black_box(&POINT)).unwrap())
+    });
+    group.bench_function("value: fasteval with BISTOP as a native function", |b| {
+        use fasteval::{Compiler, Evaler};
+        let parser = fasteval::Parser::new();
+        let mut slab = fasteval::Slab::new();
+        let compiled = parser
+            .parse("bistop(x, v)", &mut slab.ps)
+            .unwrap()
+            .from(&slab.ps)
+            .compile(&slab.ps, &mut slab.cs);
+        b.iter(|| {
+            let (x, v) = (black_box(POINT[0]), black_box(POINT[1]));
+            let mut namespace = |name: &str, args: Vec<f64>| match name {
+                "x" => Some(x),
+                "v" => Some(v),
+                "bistop" => Some(native_bistop(args[0], args[1])),
+                _ => None,
+            };
+            compiled.eval(&slab, &mut namespace).unwrap()
+        })
+    });
+    group.bench_function("gradient: native num-dual DualSVec64<2>", |b| {
+        b.iter(|| {
+            let x = DualSVec64::<2>::from_re(black_box(POINT[0])).derivative(0);
+            let v = DualSVec64::<2>::from_re(black_box(POINT[1])).derivative(1);
+            native_bistop(x, v)
+        })
+    });
+    group.bench_function("gradient: mbexpr DualSVec64<2>", |b| {
+        let mut evaluator = program.evaluator::<DualSVec64<2>>();
+        b.iter(|| evaluator.dual(black_box(&POINT), &[0, 1]).unwrap())
+    });
+    group.bench_function("hessian: native num-dual Dual2SVec64<2>", |b| {
+        b.iter(|| {
+            let x = Dual2SVec64::<2>::from_re(black_box(POINT[0])).derivative(0);
+            let v = Dual2SVec64::<2>::from_re(black_box(POINT[1])).derivative(1);
+            native_bistop(x, v)
+        })
+    });
+    group.bench_function("hessian: mbexpr Dual2SVec64<2>", |b| {
+        let mut evaluator = program.evaluator::<Dual2SVec64<2>>();
+        b.iter(|| evaluator.dual(black_box(&POINT), &[0, 1]).unwrap())
+    });
+    group.bench_function(
+        "hessian: mbexpr Program::evaluate (allocates the result)",
+        |b| {
+            b.iter(|| {
+                program
+                    .evaluate(black_box(&POINT), &[0, 1], Order::Hessian)
+                    .unwrap()
+            })
+        },
+    );
+    group.finish();
+}
+
+fn linear(c: &mut Criterion) {
+    let mut group = c.benchmark_group("linear");
+    group
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    let program = program(LINEAR, &["x", "v", "t"]);
+    let point = [10.05, 0.7, 0.3];
+    group.bench_function("value: native f64", |b| {
+        b.iter(|| {
+            native_linear(
+                black_box(point[0]),
+                black_box(point[1]),
+                black_box(point[2]),
+            )
+        })
+    });
+    group.bench_function("value: mbexpr", |b| {
+        let mut evaluator = program.evaluator::<f64>();
+        b.iter(|| evaluator.value(black_box(&point)).unwrap())
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bistop, linear);
+criterion_main!(benches);
