@@ -117,12 +117,11 @@ pub(crate) fn execute<T: Number>(
             // Up to eight arguments (all but the longest series) stay on the stack.
             const INLINE: usize = 8;
             if args.len() <= INLINE {
-                let values: [T; INLINE] = std::array::from_fn(|position| {
-                    slot(args[position.min(args.len() - 1)]).clone()
-                });
+                let values: [&T; INLINE] =
+                    std::array::from_fn(|position| slot(args[position.min(args.len() - 1)]));
                 laws::apply(*function, &values[..args.len()])?
             } else {
-                let values: Vec<T> = args.iter().map(|&index| slot(index).clone()).collect();
+                let values: Vec<&T> = args.iter().map(|&index| slot(index)).collect();
                 laws::apply(*function, &values)?
             }
         }

@@ -18,9 +18,85 @@
 use super::power::{real_power, real_slopes};
 use crate::number::Number;
 
+/// A parameter of a contact law: a plain `f64` when the expression gives a
+/// constant (the usual case, and the cheap one), or a number with derivative
+/// parts when the parameter itself is a derivative direction. The law is
+/// written once over this trait.
+trait Parameter<T: Number> {
+    /// The real value.
+    fn value(&self) -> f64;
+    /// Whether it carries no derivative part.
+    fn is_constant(&self) -> bool;
+    /// `self * t`.
+    fn times(&self, t: T) -> T;
+    /// `t / self`.
+    fn divides(&self, t: T) -> T;
+    /// `base^self` for `base > 0`.
+    fn power_of(&self, base: &T) -> T;
+    /// `self - t`.
+    fn minus(&self, t: &T) -> T;
+    /// `t - self`.
+    fn from(&self, t: &T) -> T;
+}
+
+impl<T: Number> Parameter<T> for f64 {
+    fn value(&self) -> f64 {
+        *self
+    }
+    fn is_constant(&self) -> bool {
+        true
+    }
+    fn times(&self, t: T) -> T {
+        t * *self
+    }
+    fn divides(&self, t: T) -> T {
+        t / *self
+    }
+    fn power_of(&self, base: &T) -> T {
+        let (p0, e0) = (base.value(), *self);
+        base.chain(real_power(p0, e0), || real_slopes(p0, e0))
+    }
+    fn minus(&self, t: &T) -> T {
+        -(t.clone() - *self)
+    }
+    fn from(&self, t: &T) -> T {
+        t.clone() - *self
+    }
+}
+
+/// A parameter that may carry derivative parts.
+struct Varying<'a, T>(&'a T);
+
+impl<T: Number> Parameter<T> for Varying<'_, T> {
+    fn value(&self) -> f64 {
+        self.0.value()
+    }
+    fn is_constant(&self) -> bool {
+        self.0.is_constant()
+    }
+    fn times(&self, t: T) -> T {
+        self.0.clone() * t
+    }
+    fn divides(&self, t: T) -> T {
+        t / self.0.clone()
+    }
+    fn power_of(&self, base: &T) -> T {
+        if self.0.is_constant() {
+            return self.0.value().power_of(base);
+        }
+        (base.ln() * self.0.clone()).exp()
+    }
+    fn minus(&self, t: &T) -> T {
+        self.0.clone() - t.clone()
+    }
+    fn from(&self, t: &T) -> T {
+        t.clone() - self.0.clone()
+    }
+}
+
 /// The damping ramp `s(w) = w^2 (3 - 2w)` of `w = p/d`, 1 for `p >= d`.
 #[inline]
-fn ramp<T: Number>(p: &T, d: &T) -> T {
+fn ramp<T: Number, P: Parameter<T>>(p: &T, d: &P) -> T {
     let (p0, d0) = (p.value(), d.value());
     if p0 >= d0 {
         return T::one();
@@ -29,48 +105,70 @@ fn ramp<T: Number>(p: &T, d: &T) -> T {
     let per_d = d0.recip();
     let w0 = p0 * per_d;
     let r0 = (d0 - p0) * per_d;
-    let w = p.clone() / d.clone();
+    let w = d.divides(p.clone());
     w.chain(w0 * w0 * (1.0 + 2.0 * r0), || {
         (6.0 * w0 * r0, 6.0 * (d0 - 2.0 * p0) * per_d)
     })
 }
 
-/// `k * p^e` for `p > 0`; exactly 0 when `k` is a constant 0.
-#[inline]
-fn stiffness<T: Number>(p: &T, k: &T, e: &T) -> T {
-    if k.value() == 0.0 && k.is_constant() {
-        return T::zero();
-    }
-    let power = if e.is_constant() {
-        let (p0, e0) = (p.value(), e.value());
-        p.chain(real_power(p0, e0), || real_slopes(p0, e0))
-    } else {
-        (p.ln() * e.clone()).exp()
-    };
-    k.clone() * power
-}
-
 /// One stop: `max(k p^e + c(p) * rate, 0)` for penetration `p > 0` growing
-/// at `rate`; `None` on the clamped branch.
+/// at `rate`; `None` on the clamped branch. A constant zero `k` or `cmax`
+/// leaves its term out (no `0 * inf` from a steep power).
 #[inline]
-fn stop<T: Number>(p: &T, rate: &T, k: &T, e: &T, cmax: &T, d: &T) -> Option<T> {
-    let damping = if cmax.value() == 0.0 && cmax.is_constant() {
+fn stop<T: Number, P: Parameter<T>>(p: &T, rate: T, [k, e, cmax, d]: [&P; 4]) -> Option<T> {
+    let stiffness = if k.value() == 0.0 && k.is_constant() {
         T::zero()
     } else {
-        cmax.clone() * ramp(p, d) * rate.clone()
+        k.times(e.power_of(p))
     };
-    let raw = stiffness(p, k, e) + damping;
+    let raw = if cmax.value() == 0.0 && cmax.is_constant() {
+        stiffness
+    } else {
+        stiffness + cmax.times(ramp(p, d) * rate)
+    };
     (raw.value() > 0.0).then_some(raw)
+}
+
+/// The lower stop (`x < x1`, penetration `x1 - x`) or the upper one
+/// (`x > x2`, penetration `x - x2`), with the parameters as `P`.
+#[inline]
+fn stops<T: Number, P: Parameter<T>>(
+    x: &T,
+    v: &T,
+    x1: &P,
+    x2: Option<&P>,
+    parameters: [&P; 4],
+) -> T {
+    if x.value() < x1.value() {
+        return stop(&x1.minus(x), -v.clone(), parameters).unwrap_or_else(T::zero);
+    }
+    if let Some(x2) = x2
+        && x.value() > x2.value()
+    {
+        return stop(&x2.from(x), v.clone(), parameters).map_or_else(T::zero, |force| -force);
+    }
+    T::zero()
+}
+
+/// The law with constant parameters as plain `f64`s, else as numbers.
+#[inline]
+fn contact<T: Number>(x: &T, v: &T, x1: &T, x2: Option<&T>, [k, e, cmax, d]: [&T; 4]) -> T {
+    let all = [Some(x1), x2, Some(k), Some(e), Some(cmax), Some(d)];
+    if all.into_iter().flatten().all(Number::is_constant) {
+        let value = |t: &T| t.value();
+        let x2 = x2.map(value);
+        let parameters = [&value(k), &value(e), &value(cmax), &value(d)];
+        return stops(x, v, &value(x1), x2.as_ref(), parameters);
+    }
+    let x2 = x2.map(Varying);
+    let parameters = [&Varying(k), &Varying(e), &Varying(cmax), &Varying(d)];
+    stops(x, v, &Varying(x1), x2.as_ref(), parameters)
 }
 
 /// `IMPACT(x, x', x1, k, e, cmax, d)`: pushes `x` back up when it is below `x1`.
 #[inline]
 pub fn impact<T: Number>(x: &T, v: &T, x1: &T, k: &T, e: &T, cmax: &T, d: &T) -> T {
-    if x.value() < x1.value() {
-        let p = x1.clone() - x.clone();
-        return stop(&p, &-v.clone(), k, e, cmax, d).unwrap_or_else(T::zero);
-    }
-    T::zero()
+    contact(x, v, x1, None, [k, e, cmax, d])
 }
 
 /// `BISTOP(x, x', x1, x2, k, e, cmax, d)`: free in `[x1, x2]`, pushed back
@@ -78,13 +176,5 @@ pub fn impact<T: Number>(x: &T, v: &T, x1: &T, k: &T, e: &T, cmax: &T, d: &T) ->
 #[expect(clippy::too_many_arguments, reason = "the solver's calling sequence")]
 #[inline]
 pub fn bistop<T: Number>(x: &T, v: &T, x1: &T, x2: &T, k: &T, e: &T, cmax: &T, d: &T) -> T {
-    if x.value() < x1.value() {
-        let p = x1.clone() - x.clone();
-        return stop(&p, &-v.clone(), k, e, cmax, d).unwrap_or_else(T::zero);
-    }
-    if x.value() > x2.value() {
-        let p = x.clone() - x2.clone();
-        return stop(&p, v, k, e, cmax, d).map_or_else(T::zero, |force| -force);
-    }
-    T::zero()
+    contact(x, v, x1, Some(x2), [k, e, cmax, d])
 }

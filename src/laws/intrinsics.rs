@@ -5,9 +5,9 @@ use crate::catalog::Function;
 use crate::number::Number;
 
 /// Applies an intrinsic to its evaluated arguments.
-pub(super) fn apply<T: Number>(function: Function, args: &[T]) -> Result<T, LawError> {
+pub(super) fn apply<T: Number>(function: Function, args: &[&T]) -> Result<T, LawError> {
     use Function as F;
-    let a = &args[0];
+    let a = args[0];
     let x = a.value();
     Ok(match function {
         F::Abs => abs(a),
@@ -26,7 +26,7 @@ pub(super) fn apply<T: Number>(function: Function, args: &[T]) -> Result<T, LawE
             }
         }
         F::Atan => a.atan(),
-        F::Atan2 => atan2(a, &args[1]),
+        F::Atan2 => atan2(a, args[1]),
         F::Sinh => a.sinh(),
         F::Cosh => a.cosh(),
         F::Tanh => a.tanh(),
@@ -60,7 +60,7 @@ pub(super) fn apply<T: Number>(function: Function, args: &[T]) -> Result<T, LawE
         F::Max => extreme(args, |candidate, best| candidate > best),
         F::Min => extreme(args, |candidate, best| candidate < best),
         F::Mod => {
-            let b = &args[1];
+            let b = args[1];
             if b.value() == 0.0 {
                 return domain("MOD", format!("the divisor is 0 (MOD({x}, 0))"));
             }
@@ -108,9 +108,9 @@ pub fn atan2<T: Number>(y: &T, x: &T) -> T {
 }
 
 /// The argument that `better` prefers to all others; the first on a tie.
-fn extreme<T: Number>(args: &[T], better: impl Fn(f64, f64) -> bool) -> T {
-    let mut best = &args[0];
-    for candidate in &args[1..] {
+fn extreme<T: Number>(args: &[&T], better: impl Fn(f64, f64) -> bool) -> T {
+    let mut best = args[0];
+    for &candidate in &args[1..] {
         if better(candidate.value(), best.value()) {
             best = candidate;
         }

@@ -43,9 +43,9 @@ pub(crate) fn domain<T>(operation: &'static str, reason: String) -> Result<T, La
 /// When `function` belongs to another family (measures, model data, solver
 /// results): the compiler never emits those as calls.
 #[inline]
-pub fn apply<T: Number>(function: Function, args: &[T]) -> Result<T, LawError> {
+pub fn apply<T: Number>(function: Function, args: &[&T]) -> Result<T, LawError> {
     use Function as F;
-    let arg = |position: usize| &args[position];
+    let arg = |position: usize| args[position];
     Ok(match function {
         F::Step | F::Step5 | F::Havsin => steps::step(
             steps::Shape::of(function),

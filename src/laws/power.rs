@@ -48,7 +48,12 @@ pub fn real_power(x: f64, e: f64) -> f64 {
 pub fn real_slopes(x: f64, e: f64) -> (f64, f64) {
     match as_integer(e) {
         Some(n) => integer_slopes(x, n),
-        None => (e * x.powf(e - 1.0), e * (e - 1.0) * x.powf(e - 2.0)),
+        None if x == 0.0 => (e * x.powf(e - 1.0), e * (e - 1.0) * x.powf(e - 2.0)),
+        None => {
+            // One power: x^(e-2) = x^(e-1) / x (one more rounding).
+            let slope = e * x.powf(e - 1.0);
+            (slope, (e - 1.0) * slope / x)
+        }
     }
 }
 

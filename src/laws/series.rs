@@ -12,22 +12,22 @@ pub fn shf<T: Number>(x: &T, x0: &T, a: &T, w: &T, phi: &T, b: &T) -> T {
 }
 
 /// `POLY(x, x0, a0, ..., an) = sum a_j (x - x0)^j`, by Horner's rule.
-pub fn poly<T: Number>(x: &T, x0: &T, coefficients: &[T]) -> T {
+pub fn poly<T: Number>(x: &T, x0: &T, coefficients: &[&T]) -> T {
     let u = x.clone() - x0.clone();
     let mut sum = T::zero();
     for coefficient in coefficients.iter().rev() {
-        sum = sum * u.clone() + coefficient.clone();
+        sum = sum * u.clone() + (*coefficient).clone();
     }
     sum
 }
 
 /// `CHEBY(x, x0, a0, ..., an) = sum a_j T_j(x - x0)`.
-pub fn cheby<T: Number>(x: &T, x0: &T, coefficients: &[T]) -> T {
+pub fn cheby<T: Number>(x: &T, x0: &T, coefficients: &[&T]) -> T {
     let u = x.clone() - x0.clone();
     let (mut previous, mut current) = (T::one(), u.clone());
     let mut sum = coefficients[0].clone();
     for coefficient in &coefficients[1..] {
-        sum += coefficient.clone() * current.clone();
+        sum += (*coefficient).clone() * current.clone();
         let next = u.clone() * current.clone() * 2.0 - previous;
         previous = current;
         current = next;
@@ -45,7 +45,7 @@ pub enum Wave {
 }
 
 /// `FORCOS`/`FORSIN(x, x0, w, a0, a1, ...) = a0 + sum_(j>=1) a_j cos|sin(j w (x - x0))`.
-pub fn fourier<T: Number>(wave: Wave, x: &T, x0: &T, w: &T, coefficients: &[T]) -> T {
+pub fn fourier<T: Number>(wave: Wave, x: &T, x0: &T, w: &T, coefficients: &[&T]) -> T {
     let angle = w.clone() * (x.clone() - x0.clone());
     let mut sum = coefficients[0].clone();
     for (j, coefficient) in coefficients.iter().enumerate().skip(1) {
@@ -54,7 +54,7 @@ pub fn fourier<T: Number>(wave: Wave, x: &T, x0: &T, w: &T, coefficients: &[T]) 
             Wave::Cosine => harmonic.cos(),
             Wave::Sine => harmonic.sin(),
         };
-        sum += coefficient.clone() * term;
+        sum += (*coefficient).clone() * term;
     }
     sum
 }
