@@ -41,6 +41,7 @@ pub mod check;
 pub mod compile;
 mod errors;
 pub mod eval;
+pub mod ffi;
 pub mod kinks;
 pub mod laws;
 pub mod model;
@@ -48,6 +49,7 @@ pub mod number;
 pub mod scene;
 pub mod span;
 pub mod syntax;
+pub mod utility;
 
 pub use check::{CheckError, Checked, check};
 pub use compile::{CompileError, Program, compile, compile_in_scene};

@@ -52,6 +52,24 @@ impl Number for f64 {
     }
 }
 
+/// `derivative * factor`, where a zero entry stays zero even if `factor` is
+/// infinite: a direction in which the argument does not move contributes
+/// nothing, however steep the function (no `0 * inf = NaN`).
+fn times<R: Dim, C: Dim>(derivative: &Derivative<f64, R, C>, factor: f64) -> Derivative<f64, R, C>
+where
+    DefaultAllocator: Allocator<R, C>,
+{
+    if factor.is_finite() {
+        return derivative * factor;
+    }
+    Derivative::new(
+        derivative
+            .0
+            .as_ref()
+            .map(|matrix| matrix.map(|entry| if entry == 0.0 { 0.0 } else { entry * factor })),
+    )
+}
+
 fn all_finite<R: Dim, C: Dim>(derivative: &Derivative<f64, R, C>) -> bool
 where
     DefaultAllocator: Allocator<R, C>,
@@ -72,7 +90,7 @@ where
             return DualVec::from_re(f0);
         }
         let (f1, _) = derivatives();
-        DualVec::new(f0, &self.eps * f1)
+        DualVec::new(f0, times(&self.eps, f1))
     }
 
     fn chain2(&self, other: &Self, f0: f64, derivatives: impl FnOnce() -> [f64; 5]) -> Self {
@@ -80,7 +98,7 @@ where
             return DualVec::from_re(f0);
         }
         let [fa, fb, ..] = derivatives();
-        DualVec::new(f0, &self.eps * fa + &other.eps * fb)
+        DualVec::new(f0, times(&self.eps, fa) + times(&other.eps, fb))
     }
 
     fn is_constant(&self) -> bool {
@@ -103,8 +121,8 @@ where
             return Dual2Vec::from_re(f0);
         }
         let (f1, f2) = derivatives();
-        let gradient = &self.v1 * f1;
-        let hessian = &self.v2 * f1 + self.v1.tr_mul(&self.v1) * f2;
+        let gradient = times(&self.v1, f1);
+        let hessian = times(&self.v2, f1) + times(&self.v1.tr_mul(&self.v1), f2);
         Dual2Vec::new(f0, gradient, hessian)
     }
 
@@ -114,12 +132,12 @@ where
         }
         let [fa, fb, faa, fab, fbb] = derivatives();
         let (a, b) = (&self.v1, &other.v1);
-        let gradient = a * fa + b * fb;
-        let hessian = &self.v2 * fa
-            + &other.v2 * fb
-            + a.tr_mul(a) * faa
-            + (a.tr_mul(b) + b.tr_mul(a)) * fab
-            + b.tr_mul(b) * fbb;
+        let gradient = times(a, fa) + times(b, fb);
+        let hessian = times(&self.v2, fa)
+            + times(&other.v2, fb)
+            + times(&a.tr_mul(a), faa)
+            + times(&(a.tr_mul(b) + b.tr_mul(a)), fab)
+            + times(&b.tr_mul(b), fbb);
         Dual2Vec::new(f0, gradient, hessian)
     }
 

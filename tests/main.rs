@@ -7,6 +7,7 @@ mod checker;
 mod cli;
 mod corpus;
 mod eval;
+mod ffi;
 mod model;
 mod numerics;
 mod parse;
