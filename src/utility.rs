@@ -23,7 +23,7 @@
 use num_dual::{Dual2SVec64, DualSVec64};
 use thiserror::Error;
 
-use crate::catalog::{Function, RuleViolation, check_rules};
+use crate::catalog::{Function, RuleViolation, check_rules_with};
 use crate::laws::{contact, steps};
 use crate::number::{Directional, Number};
 
@@ -64,8 +64,8 @@ fn validate(
             });
         }
     }
-    let known: Vec<Option<f64>> = values.iter().copied().map(Some).collect();
-    check_rules(function, &known).map_err(UtilityError::Rule)?;
+    check_rules_with(function, |position| values.get(position).copied())
+        .map_err(UtilityError::Rule)?;
     if !(0..=2).contains(&iord) {
         return Err(UtilityError::Order(iord));
     }

@@ -14,6 +14,7 @@ mod parse;
 mod properties;
 mod reference;
 mod scene;
+mod spline;
 
 /// `case\n  => check(case)\n` for every non-blank line of `cases`: the
 /// snapshot form of a data-driven test.

@@ -42,6 +42,18 @@ pub enum CompileError {
         /// The call.
         span: Span,
     },
+    /// A model-data function whose statement the scene (or model) lacks.
+    #[error("{function}({id}) needs {statement}, which this model does not define")]
+    MissingStatement {
+        /// The function's name.
+        function: &'static str,
+        /// The statement id or name, as written.
+        id: String,
+        /// The statement that would provide the data, e.g. `SPLINE/3`.
+        statement: String,
+        /// The call.
+        span: Span,
+    },
     /// A state or signal that a running solver computes (`DIF`, `SENVAL`, ...).
     #[error(
         "{function}({id}) is a value of {statement} that a running solver computes: it has no value outside a simulation"
@@ -112,6 +124,16 @@ pub enum CompileError {
         /// The call.
         span: Span,
     },
+    /// A spline's derivative order other than 0, 1 or 2.
+    #[error("{function}: iord ({order}) must be 0, 1 or 2")]
+    SplineOrder {
+        /// `AKISPL` or `CUBSPL`.
+        function: &'static str,
+        /// The order written.
+        order: i64,
+        /// The order argument.
+        span: Span,
+    },
     /// `USER(...)`, which only passes constants to a user subroutine.
     #[error(
         "USER(...) passes its constants to a user subroutine, which is not part of mbexpr: there is no value to compute"
@@ -142,11 +164,13 @@ impl CompileError {
             CompileError::UnboundVariable { span, .. }
             | CompileError::NeedsScene { span, .. }
             | CompileError::NeedsModel { span, .. }
+            | CompileError::MissingStatement { span, .. }
             | CompileError::NeedsSolver { span, .. }
             | CompileError::NeedsSolverState { span, .. }
             | CompileError::Scene { span, .. }
             | CompileError::VariableLoop { span, .. }
             | CompileError::ArrayEntry { span, .. }
+            | CompileError::SplineOrder { span, .. }
             | CompileError::NoAcceleration { span, .. }
             | CompileError::NotInScene { span, .. }
             | CompileError::UserSubroutine { span } => *span,

@@ -8,6 +8,7 @@ mod program;
 use std::collections::HashMap;
 
 pub use error::CompileError;
+pub(crate) use program::Tables;
 pub use program::{FrameArg, InputSlot, Instruction, Op, Program, Slot};
 
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
@@ -15,6 +16,7 @@ use crate::check::{Argument, Checked, Node, NodeKind, Reference};
 use crate::errors::Errors;
 use crate::eval::execute;
 use crate::laws::power::as_integer;
+use crate::laws::spline::{Method, Spline};
 use crate::scene::kinematics::FrameData;
 use crate::scene::{Scene, StateComponent, Target};
 use crate::span::Span;
@@ -54,8 +56,9 @@ fn compile_with<S: AsRef<str>>(
     let mut compiler = Compiler {
         scene,
         inlining: Vec::new(),
-        frames: Vec::new(),
+        tables: Tables::default(),
         frame_of: HashMap::new(),
+        spline_of: HashMap::new(),
         inputs: inputs
             .iter()
             .map(|name| name.as_ref().to_string())
@@ -80,7 +83,7 @@ fn compile_with<S: AsRef<str>>(
         code: compiler.code,
         spans: compiler.spans,
         result,
-        frames: compiler.frames,
+        tables: compiler.tables,
         loads: compiler.loads,
     })
 }
@@ -89,9 +92,10 @@ struct Compiler<'s> {
     scene: Option<&'s Scene>,
     /// The VARIABLEs being compiled in place, outermost first.
     inlining: Vec<u64>,
-    /// The constants of the marker frames used, and where each marker's went.
-    frames: Vec<FrameData>,
+    /// The marker frames and fitted splines used, and where each went.
+    tables: Tables,
     frame_of: HashMap<Target, u32>,
+    spline_of: HashMap<(u64, Method), u32>,
     inputs: Vec<String>,
     /// The value of each slot when it is a compile-time constant.
     constant_values: Vec<Option<f64>>,
@@ -168,6 +172,7 @@ impl Compiler<'_> {
                 vec![*a, *b]
             }
             Op::Call { args, .. } => args.to_vec(),
+            Op::Spline { x, z, .. } => vec![*x, *z],
             Op::Measure { frames, .. } => frames
                 .iter()
                 .flat_map(|frame| frame.state.into_iter().flatten())
@@ -184,7 +189,7 @@ impl Compiler<'_> {
             .iter()
             .map(|value| value.unwrap_or(0.0))
             .collect();
-        execute(op, &values, &self.frames)
+        execute(op, &values, &self.tables)
             .ok()
             .filter(|value| value.is_finite())
     }
@@ -271,7 +276,7 @@ impl Compiler<'_> {
                     Ok(slot) => return slot,
                     Err(error) => Some(error),
                 },
-                None => Some(model_data_error(function, args, span)),
+                None => Some(model_data_error(function, args, span, false)),
             },
             Family::Solver => Some(CompileError::NeedsSolver {
                 function: function.name(),
@@ -322,10 +327,10 @@ impl Compiler<'_> {
         args: &[Argument],
         span: Span,
     ) -> Result<Slot, CompileError> {
-        let id = match args.first() {
-            Some(Argument::Object(Reference::Id(id), _)) => Some(*id),
+        let id = args.iter().find_map(|arg| match arg {
+            Argument::Object(Reference::Id(id), _) => Some(*id),
             _ => None,
-        };
+        });
         match (function, id) {
             (Function::Varval, Some(id)) if scene.statements.variables.contains_key(&id) => {
                 if self.inlining.contains(&id) {
@@ -371,8 +376,67 @@ impl Compiler<'_> {
                     }),
                 }
             }
-            _ => Err(model_data_error(function, args, span)),
+            (Function::Akispl | Function::Cubspl, Some(id))
+                if scene.statements.splines.contains_key(&id) =>
+            {
+                self.spline(scene, function, id, args, span)
+            }
+            _ => Err(model_data_error(function, args, span, true)),
         }
+    }
+
+    /// `AKISPL(x, z, id [, iord])` or `CUBSPL(...)` over SPLINE `id`, fitted
+    /// once per program and method.
+    fn spline(
+        &mut self,
+        scene: &Scene,
+        function: Function,
+        id: u64,
+        args: &[Argument],
+        span: Span,
+    ) -> Result<Slot, CompileError> {
+        let order = match args.get(3) {
+            Some(Argument::Flag(order @ 0..=2, _)) => *order as u8,
+            Some(Argument::Flag(order, order_span)) => {
+                return Err(CompileError::SplineOrder {
+                    function: function.name(),
+                    order: *order,
+                    span: *order_span,
+                });
+            }
+            _ => 0,
+        };
+        let method = if function == Function::Akispl {
+            Method::Akima
+        } else {
+            Method::Cubic
+        };
+        let table = match self.spline_of.get(&(id, method)) {
+            Some(&table) => table,
+            None => {
+                let fitted = Spline::fit(&scene.statements.splines[&id], method);
+                self.tables.splines.push(fitted);
+                let table =
+                    u32::try_from(self.tables.splines.len() - 1).expect("fewer than 2^32 splines");
+                self.spline_of.insert((id, method), table);
+                table
+            }
+        };
+        let mut value = |position: usize| match args.get(position) {
+            Some(Argument::Value(node)) => self.node(node),
+            _ => unreachable!("the checker gives {function} a value at {position}"),
+        };
+        let (x, z) = (value(0), value(1));
+        Ok(self.compute(
+            Op::Spline {
+                function,
+                table,
+                x,
+                z,
+                order,
+            },
+            span,
+        ))
     }
 
     /// A measure between the scene's markers; omitted markers are ground.
@@ -469,8 +533,9 @@ impl Compiler<'_> {
                         }
                     }
                 };
-                self.frames.push(data);
-                let index = u32::try_from(self.frames.len() - 1).expect("fewer than 2^32 frames");
+                self.tables.frames.push(data);
+                let index =
+                    u32::try_from(self.tables.frames.len() - 1).expect("fewer than 2^32 frames");
                 self.frame_of.insert(target, index);
                 index
             }
@@ -545,9 +610,15 @@ impl Compiler<'_> {
     }
 }
 
-/// The error for a model-data function: which statement would provide it,
-/// or that only a running solver has its value.
-fn model_data_error(function: Function, args: &[Argument], span: Span) -> CompileError {
+/// The error for a model-data function: which statement would provide it
+/// (missing from the scene when `in_scene`), that only a running solver has
+/// its value, or that scenes do not evaluate it.
+fn model_data_error(
+    function: Function,
+    args: &[Argument],
+    span: Span,
+    in_scene: bool,
+) -> CompileError {
     let object = args.iter().find_map(|arg| match arg {
         Argument::Object(reference, _) => Some(reference),
         _ => None,
@@ -575,6 +646,20 @@ fn model_data_error(function: Function, args: &[Argument], span: Span) -> Compil
         Function::Interp => "a data table".to_string(),
         _ => format!("SPLINE/{id}"),
     };
+    if in_scene && matches!(function, Function::Curve | Function::Interp) {
+        return CompileError::NotInScene {
+            function: function.name(),
+            span,
+        };
+    }
+    if in_scene {
+        return CompileError::MissingStatement {
+            function: function.name(),
+            id,
+            statement,
+            span,
+        };
+    }
     CompileError::NeedsModel {
         function: function.name(),
         id,

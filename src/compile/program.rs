@@ -3,6 +3,7 @@
 use std::fmt;
 
 use crate::catalog::Function;
+use crate::laws::spline::Spline;
 use crate::scene::kinematics::FrameData;
 use crate::span::Span;
 
@@ -34,6 +35,20 @@ pub enum Op {
         function: Function,
         /// One frame per marker of the signature, omitted ones as ground.
         frames: Box<[FrameArg]>,
+    },
+    /// `AKISPL` or `CUBSPL`: the derivative of order `order` in `x` of a
+    /// fitted spline of the program's table at `(x, z)`.
+    Spline {
+        /// The function, for messages.
+        function: Function,
+        /// Index into the program's spline table.
+        table: u32,
+        /// The slot of `x`.
+        x: Slot,
+        /// The slot of `z`.
+        z: Slot,
+        /// 0, 1 or 2.
+        order: u8,
     },
     /// A function of the intrinsic, step, contact or series family.
     Call {
@@ -67,6 +82,16 @@ pub struct InputSlot {
     pub slot: Slot,
     /// Where the expression first uses it.
     pub span: Span,
+}
+
+/// The data instructions refer to by index: the constants of the marker
+/// frames the measures use, and the splines fitted for `AKISPL`/`CUBSPL`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct Tables {
+    /// Marker frames, for [`Op::Measure`].
+    pub(crate) frames: Vec<FrameData>,
+    /// Fitted splines, for [`Op::Spline`].
+    pub(crate) splines: Vec<Spline>,
 }
 
 /// One step of a program.
@@ -114,8 +139,8 @@ pub struct Program {
     /// The span of the expression text each instruction comes from.
     pub(crate) spans: Vec<Span>,
     pub(crate) result: Slot,
-    /// The constants of the marker frames the measures use.
-    pub(crate) frames: Vec<FrameData>,
+    /// The marker frames and splines the instructions refer to.
+    pub(crate) tables: Tables,
     /// The inputs used, and their slots.
     pub(crate) loads: Vec<InputSlot>,
 }
@@ -189,6 +214,13 @@ impl fmt::Display for Op {
                 let args: Vec<String> = args.iter().map(|slot| format!("s{slot}")).collect();
                 write!(f, "{function}({})", args.join(", "))
             }
+            Op::Spline {
+                function,
+                table,
+                x,
+                z,
+                order,
+            } => write!(f, "{function}(s{x}, s{z}, spline{table}, {order})"),
             Op::Measure { function, frames } => {
                 let frames: Vec<String> = frames
                     .iter()
@@ -215,7 +247,9 @@ impl Op {
             Op::Mul(..) => "`*`".to_string(),
             Op::Div(..) => "`/`".to_string(),
             Op::PowInt(..) | Op::PowReal(..) | Op::Pow(..) => "`**`".to_string(),
-            Op::Call { function, .. } | Op::Measure { function, .. } => function.name().to_string(),
+            Op::Call { function, .. }
+            | Op::Measure { function, .. }
+            | Op::Spline { function, .. } => function.name().to_string(),
         }
     }
 }

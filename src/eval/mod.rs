@@ -13,10 +13,10 @@ use nalgebra::{DMatrix, DVector};
 use num_dual::{Dual2DVec64, Dual2SVec64, DualDVec64, DualSVec64};
 
 use crate::catalog::check_rules_with;
-use crate::compile::{Instruction, Op, Program, Slot};
+use crate::compile::{Instruction, Op, Program, Slot, Tables};
 use crate::laws::{self, LawError, power};
 use crate::number::{Directional, Number};
-use crate::scene::kinematics::{self, Frame, FrameData};
+use crate::scene::kinematics::{self, Frame};
 
 /// How many orders of derivatives to compute.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -70,11 +70,7 @@ fn arithmetic<T: Number>(op: &Op, slots: &[T]) -> Option<T> {
 /// Computes `op` from the slots. The compiler folds constants with it, the
 /// evaluator runs every instruction through it.
 #[inline]
-pub(crate) fn execute<T: Number>(
-    op: &Op,
-    slots: &[T],
-    frames: &[FrameData],
-) -> Result<T, LawError> {
+pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Result<T, LawError> {
     if let Some(value) = arithmetic(op, slots) {
         return Ok(value);
     }
@@ -94,7 +90,7 @@ pub(crate) fn execute<T: Number>(
             let frames: Vec<Frame<T>> = args
                 .iter()
                 .map(|arg| {
-                    let data = &frames[arg.data as usize];
+                    let data = &tables.frames[arg.data as usize];
                     match &arg.state {
                         Some(state) => Frame::on_body(data, state.map(&slot)),
                         None => Frame::fixed(data),
@@ -103,6 +99,9 @@ pub(crate) fn execute<T: Number>(
                 .collect();
             kinematics::measure(*function, &frames)?
         }
+        Op::Spline {
+            table, x, z, order, ..
+        } => tables.splines[*table as usize].at(slot(*x), slot(*z), usize::from(*order)),
         Op::Call {
             function,
             args,
@@ -220,7 +219,7 @@ impl<T: Number> Evaluator<'_, T> {
                 Instruction::Compute { dst, op } => {
                     let result = match arithmetic(op, &self.slots) {
                         Some(result) => result,
-                        None => match execute(op, &self.slots, &program.frames) {
+                        None => match execute(op, &self.slots, &program.tables) {
                             Ok(result) => result,
                             Err(error) => {
                                 let span = program.spans[pc - 1];

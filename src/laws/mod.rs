@@ -8,6 +8,7 @@ pub mod contact;
 pub mod intrinsics;
 pub mod power;
 pub mod series;
+pub mod spline;
 pub mod steps;
 
 use thiserror::Error;

@@ -1,12 +1,14 @@
 //! The initial configuration of a solver dataset as a [`Scene`]: PART and
 //! MARKER statements give bodies and markers (REULER is body-fixed 3-1-3,
 //! radians unless written with `D`), VARIABLE functions give `VARVAL`, ARRAY
-//! NUMBERS give `ARYVAL`; the time is 0.
+//! NUMBERS give `ARYVAL`, SPLINE points give `AKISPL` and `CUBSPL`; the
+//! time is 0.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use thiserror::Error;
 
-use super::{ModelCheck, Statement, Value, is_statement};
+use super::{Argument, ModelCheck, Statement, Value, is_statement};
+use crate::laws::spline::{SplineData, SplineDataError};
 use crate::scene::{Body, Marker, Scene, euler_313};
 use crate::span::Span;
 
@@ -35,6 +37,16 @@ pub enum ConfigurationError {
         /// The statement.
         span: Span,
     },
+    /// SPLINE points that cannot be interpolated.
+    #[error("{statement}: {error}")]
+    Spline {
+        /// `SPLINE/5`.
+        statement: String,
+        /// What is wrong.
+        error: SplineDataError,
+        /// The statement.
+        span: Span,
+    },
 }
 
 impl ConfigurationError {
@@ -42,7 +54,8 @@ impl ConfigurationError {
     pub fn span(&self) -> Span {
         match self {
             ConfigurationError::Numbers { span, .. }
-            | ConfigurationError::UnknownPart { span, .. } => *span,
+            | ConfigurationError::UnknownPart { span, .. }
+            | ConfigurationError::Spline { span, .. } => *span,
         }
     }
 }
@@ -67,6 +80,56 @@ fn numbers<const N: usize>(
     };
     let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
     values.try_into().map_err(|_| error())
+}
+
+/// All the numbers of `argument`, a value list.
+fn number_list(statement: &Statement, argument: &Argument) -> Result<Vec<f64>, ConfigurationError> {
+    let items = match &argument.value {
+        Value::List(items) => items.as_slice(),
+        _ => &[],
+    };
+    let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
+    if values.is_empty() || values.len() != items.len() {
+        return Err(ConfigurationError::Numbers {
+            statement: statement.label(),
+            keyword: argument.keyword.clone(),
+            count: items.len().max(1),
+            span: argument.span,
+        });
+    }
+    Ok(values)
+}
+
+/// The points of a SPLINE statement: `X=` and one `Y=` (a curve), or several
+/// `Y = z, y1, ...` (a family); `None` when it has no `X=` (its points are
+/// in a file).
+fn spline_data(statement: &Statement) -> Result<Option<SplineData>, ConfigurationError> {
+    let Some(x_argument) = statement.argument("X", 1) else {
+        return Ok(None);
+    };
+    let x = number_list(statement, x_argument)?;
+    let y_arguments: Vec<&Argument> = statement
+        .arguments
+        .iter()
+        .filter(|argument| argument.keyword == "Y")
+        .collect();
+    let mut curves = Vec::new();
+    for argument in &y_arguments {
+        let values = number_list(statement, argument)?;
+        if y_arguments.len() == 1 {
+            curves.push((0.0, values));
+        } else {
+            curves.push((values[0], values[1..].to_vec()));
+        }
+    }
+    let linear = statement.argument("LINEAR_EXTRAPOLATE", 3).is_some();
+    SplineData::new(x, curves, linear)
+        .map(Some)
+        .map_err(|error| ConfigurationError::Spline {
+            statement: statement.label(),
+            error,
+            span: statement.span,
+        })
 }
 
 /// One number, `keyword = value`, or `default`.
@@ -194,6 +257,20 @@ pub fn initial_scene(
         {
             let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
             scene.statements.arrays.insert(id, values);
+        }
+    }
+    for statement in dataset
+        .statements
+        .iter()
+        .filter(|s| is_statement(s, "SPLINE"))
+    {
+        let Some(id) = statement.id else { continue };
+        match spline_data(statement) {
+            Ok(Some(data)) => {
+                scene.statements.splines.insert(id, data);
+            }
+            Ok(None) => {}
+            Err(error) => errors.push(error),
         }
     }
     if errors.is_empty() {

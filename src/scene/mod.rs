@@ -20,6 +20,7 @@ use thiserror::Error;
 
 use crate::catalog::{SystemVariable, closest, did_you_mean};
 use crate::check::{Checked, Reference};
+use crate::laws::spline::SplineData;
 
 /// A rigid body and its state at the scene's time.
 #[derive(Clone, Debug, PartialEq)]
@@ -181,7 +182,8 @@ pub struct Scene {
     /// The markers.
     pub markers: Vec<Marker>,
     /// The data of a model's statements that expressions read: VARIABLE
-    /// functions (for `VARVAL`) and ARRAY values (for `ARYVAL`).
+    /// functions (for `VARVAL`), ARRAY values (for `ARYVAL`) and SPLINE
+    /// points (for `AKISPL` and `CUBSPL`).
     pub statements: StatementData,
 }
 
@@ -193,6 +195,9 @@ pub struct StatementData {
     pub variables: HashMap<u64, Checked>,
     /// ARRAY id to its NUMBERS: `ARYVAL(id, i)` is entry `i` (from 1).
     pub arrays: HashMap<u64, Vec<f64>>,
+    /// SPLINE id to its points: `AKISPL(x, z, id)` and `CUBSPL(x, z, id)`
+    /// interpolate them.
+    pub splines: HashMap<u64, SplineData>,
 }
 
 /// Where a marker reference leads.
