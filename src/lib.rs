@@ -54,7 +54,7 @@ pub mod utility;
 pub use check::{CheckError, Checked, check};
 pub use compile::{CompileError, Program, compile, compile_in_scene};
 pub use errors::Errors;
-pub use eval::{EvalError, Evaluation, Evaluator, Order};
+pub use eval::{EvalError, Evaluation, Evaluator, Order, Run};
 pub use scene::Scene;
 pub use span::{Location, Span};
 pub use syntax::{ParseError, parse};

@@ -443,3 +443,41 @@ fn scene_files_read_and_refuse_with_reasons() {
     .collect();
     insta::assert_snapshot!(refusals);
 }
+
+#[test]
+fn angles_stay_continuous_over_a_run() {
+    let mut marker = Marker::new(Some(0));
+    marker.id = Some(1);
+    let scene = Scene {
+        bodies: vec![Body::new("spin")],
+        markers: vec![marker],
+        ..Scene::default()
+    };
+    let checked = check_tree(&parse("AZ(1)").unwrap()).unwrap();
+    let program = compile_in_scene(&checked, &scene.input_names(), &scene).unwrap();
+    let mut values = scene.values(program.inputs()).unwrap();
+    let turn = program.input_index("spin.rz").unwrap();
+    let mut run = program.run();
+    // Three turns and a half forwards, then back past the start.
+    let angles = (0..=120)
+        .map(|step| f64::from(step) * 0.1)
+        .chain((0..=150).map(|step| 12.0 - f64::from(step) * 0.1));
+    for angle in angles {
+        values[turn] = angle;
+        let continued = run.evaluate(&values, &[turn], Order::Gradient).unwrap();
+        let principal = program.evaluate(&values, &[turn], Order::Gradient).unwrap();
+        assert!(
+            (continued.value - angle).abs() < 1e-9,
+            "{angle}: {}",
+            continued.value
+        );
+        assert!(principal.value.abs() <= std::f64::consts::PI + 1e-12);
+        let turns = (angle - principal.value) / std::f64::consts::TAU;
+        assert!(
+            (turns - turns.round()).abs() < 1e-9,
+            "{angle}: {}",
+            principal.value
+        );
+        assert_eq!(continued.gradient, principal.gradient);
+    }
+}

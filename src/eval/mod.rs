@@ -128,10 +128,37 @@ pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Resul
 }
 
 /// Evaluates one program over one number type, reusing its buffers from
-/// call to call: the way to evaluate in a loop.
+/// call to call: the way to evaluate in a loop. Its calls are a run: AX, AY
+/// and AZ stay continuous through ±π from one call to the next (see [`Run`]).
 pub struct Evaluator<'p, T> {
     program: &'p Program,
     slots: Vec<T>,
+    /// The last value of each AX, AY, AZ instruction (empty until one runs).
+    angles: Vec<Option<f64>>,
+}
+
+/// Evaluations of one program at a sequence of points, in order (the steps
+/// of a simulation, the samples of a plot). SPEC 4 keeps AX, AY and AZ
+/// continuous through ±π over a run: each of them takes the whole turns that
+/// bring it nearest to its value at the previous point (the derivatives are
+/// those of the principal value). [`Program::evaluate`] alone gives the
+/// principal value, in (-π, π].
+pub struct Run<'p> {
+    program: &'p Program,
+    angles: Vec<Option<f64>>,
+}
+
+impl Run<'_> {
+    /// Like [`Program::evaluate`], continuing the angles of the run.
+    pub fn evaluate(
+        &mut self,
+        inputs: &[f64],
+        wrt: &[usize],
+        order: Order,
+    ) -> Result<Evaluation, EvalError> {
+        self.program
+            .evaluate_continuing(inputs, wrt, order, &mut self.angles)
+    }
 }
 
 impl Program {
@@ -145,6 +172,15 @@ impl Program {
         Evaluator {
             program: self,
             slots,
+            angles: Vec::new(),
+        }
+    }
+
+    /// A [`Run`]: evaluations at a sequence of points, in order.
+    pub fn run(&self) -> Run<'_> {
+        Run {
+            program: self,
+            angles: Vec::new(),
         }
     }
 
@@ -161,14 +197,33 @@ impl Program {
         wrt: &[usize],
         order: Order,
     ) -> Result<Evaluation, EvalError> {
+        self.evaluate_continuing(inputs, wrt, order, &mut Vec::new())
+    }
+
+    /// [`Program::evaluate`] with the angle history of a run.
+    fn evaluate_continuing(
+        &self,
+        inputs: &[f64],
+        wrt: &[usize],
+        order: Order,
+        angles: &mut Vec<Option<f64>>,
+    ) -> Result<Evaluation, EvalError> {
         macro_rules! with {
-            ($number:ty) => {
-                self.evaluator::<$number>().derivatives(inputs, wrt)
-            };
+            ($number:ty) => {{
+                let mut evaluator = self.evaluator::<$number>();
+                evaluator.angles = std::mem::take(angles);
+                let result = evaluator.derivatives(inputs, wrt);
+                *angles = evaluator.angles;
+                result
+            }};
         }
         match (order, wrt.len()) {
             (Order::Value, _) | (_, 0) => {
-                let value = self.value(inputs)?;
+                let mut evaluator = self.evaluator::<f64>();
+                evaluator.angles = std::mem::take(angles);
+                let value = evaluator.value(inputs);
+                *angles = evaluator.angles;
+                let value = value?;
                 Ok(Evaluation {
                     value,
                     gradient: (order >= Order::Gradient).then(|| DVector::zeros(0)),
@@ -220,7 +275,7 @@ impl<T: Number> Evaluator<'_, T> {
                     let result = match arithmetic(op, &self.slots) {
                         Some(result) => result,
                         None => match execute(op, &self.slots, &program.tables) {
-                            Ok(result) => result,
+                            Ok(result) => self.continue_angle(op, pc - 1, result),
                             Err(error) => {
                                 let span = program.spans[pc - 1];
                                 return Err(EvalError::Law { error, span });
@@ -251,6 +306,41 @@ impl<T: Number> Evaluator<'_, T> {
             }
         }
         Ok(self.slots[program.result as usize].clone())
+    }
+}
+
+impl<T: Number> Evaluator<'_, T> {
+    /// `result` of instruction `index`, moved by whole turns to the value
+    /// nearest its last one when `op` is AX, AY or AZ.
+    fn continue_angle(&mut self, op: &Op, index: usize, result: T) -> T {
+        use crate::catalog::Function as F;
+        if !matches!(
+            op,
+            Op::Measure {
+                function: F::Ax | F::Ay | F::Az,
+                ..
+            }
+        ) || !result.value().is_finite()
+        {
+            return result;
+        }
+        if self.angles.is_empty() {
+            self.angles = vec![None; self.program.code.len()];
+        }
+        let turn = std::f64::consts::TAU;
+        let result = match self.angles[index] {
+            Some(previous) => {
+                let turns = ((previous - result.value()) / turn).round();
+                if turns == 0.0 {
+                    result
+                } else {
+                    result + turns * turn
+                }
+            }
+            None => result,
+        };
+        self.angles[index] = Some(result.value());
+        result
     }
 }
 

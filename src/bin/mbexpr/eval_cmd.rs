@@ -333,9 +333,8 @@ fn evaluate_expression(
         writeln!(out, "== {label}")?;
     }
 
-    let evaluate = |values: &[f64]| program.evaluate(values, &wrt, order);
     let Some(points) = &context.points else {
-        return match evaluate(&values) {
+        return match program.evaluate(&values, &wrt, order) {
             Ok(evaluation) => {
                 match args.format {
                     Format::Text => write!(out, "{}", to_text(&evaluation, &wrt_names))?,
@@ -350,6 +349,8 @@ fn evaluate_expression(
 
     let mut failures = 0;
     let mut results = Vec::new();
+    // The rows are the points of one run: AX, AY, AZ stay continuous.
+    let mut run = program.run();
     for (row_number, row) in points.rows.iter().enumerate() {
         let result = row.clone().and_then(|row| {
             let mut point = values.clone();
@@ -358,7 +359,8 @@ fn evaluate_expression(
                     point[*index] = value;
                 }
             }
-            evaluate(&point).map_err(|error| error.to_string())
+            run.evaluate(&point, &wrt, order)
+                .map_err(|error| error.to_string())
         });
         if result.is_err() {
             failures += 1;

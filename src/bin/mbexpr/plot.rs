@@ -78,9 +78,11 @@ pub fn curves(request: &PlotRequest<'_>) -> Result<Plot, String> {
             points: Vec::new(),
         })
         .collect();
+    // The samples are one run: AX, AY, AZ stay continuous along the curve.
+    let mut run = program.run();
     for x in xs {
         values[over] = x;
-        let Ok(evaluation) = program.evaluate(&values, &[over], order) else {
+        let Ok(evaluation) = run.evaluate(&values, &[over], order) else {
             continue;
         };
         curves[0].points.push((x, evaluation.value));
