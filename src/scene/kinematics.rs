@@ -53,8 +53,11 @@ pub struct Frame<T: Number> {
     pub velocity: Vector3<T>,
     /// Angular velocity.
     pub omega: Vector3<T>,
-    /// Acceleration of the origin (zero where the scene gives none).
-    pub acceleration: Vector3<T>,
+    /// Acceleration of the body's reference point (zero where the scene
+    /// gives none); [`Frame::acceleration`] is that of the origin.
+    pub body_acceleration: Vector3<T>,
+    /// From the body's reference point to the origin, in ground.
+    pub arm: Vector3<T>,
     /// Angular acceleration (zero where the scene gives none).
     pub alpha: Vector3<T>,
 }
@@ -82,6 +85,26 @@ fn skew<T: Number>(v: &Vector3<T>) -> Matrix3<T> {
     )
 }
 
+/// `a * b` for a constant `b`: each entry a sum of numbers times `f64`s.
+fn times_constant<T: Number>(a: &Matrix3<T>, b: &Matrix3<f64>) -> Matrix3<T> {
+    Matrix3::from_fn(|row, column| {
+        (0..3)
+            .map(|k| a[(row, k)].clone() * b[(k, column)])
+            .reduce(|sum, term| sum + term)
+            .expect("three terms")
+    })
+}
+
+/// `a * v` for a constant `v`.
+fn turned_vector<T: Number>(a: &Matrix3<T>, v: &Vector3<f64>) -> Vector3<T> {
+    Vector3::from_fn(|row, _| {
+        (0..3)
+            .map(|k| a[(row, k)].clone() * v[k])
+            .reduce(|sum, term| sum + term)
+            .expect("three terms")
+    })
+}
+
 /// The rotation by the rotation vector `r` (Rodrigues); at `r = 0`,
 /// `I + S + S²/2`, exact to second order in the derivative parts.
 fn rotation<T: Number>(r: &Vector3<T>) -> Matrix3<T> {
@@ -105,7 +128,8 @@ impl<T: Number> Frame<T> {
             axes: lift_matrix(&data.axes),
             velocity: Vector3::zeros(),
             omega: Vector3::zeros(),
-            acceleration: Vector3::zeros(),
+            body_acceleration: Vector3::zeros(),
+            arm: Vector3::zeros(),
             alpha: Vector3::zeros(),
         }
     }
@@ -122,9 +146,27 @@ impl<T: Number> Frame<T> {
         };
         let (position, small_rotation, velocity, omega) =
             (vector(0), vector(3), vector(6), vector(9));
-        let body_axes = rotation(&small_rotation) * lift_matrix::<T>(&data.body_orientation);
-        let arm = &body_axes * lift_vector::<T>(&data.offset);
-        let acceleration = data
+        // A rotation that is no derivative direction (the usual case) turns
+        // the body in plain f64: no dual products of constants.
+        let (arm, axes) = if small_rotation.iter().all(Number::is_constant) {
+            let turn = small_rotation.map(|component| component.value());
+            let turned = if turn == Vector3::zeros() {
+                data.body_orientation
+            } else {
+                rotation(&turn) * data.body_orientation
+            };
+            (
+                lift_vector(&(turned * data.offset)),
+                lift_matrix(&(turned * data.axes)),
+            )
+        } else {
+            let turned = times_constant(&rotation(&small_rotation), &data.body_orientation);
+            (
+                turned_vector(&turned, &data.offset),
+                times_constant(&turned, &data.axes),
+            )
+        };
+        let body_acceleration = data
             .acceleration
             .map_or_else(Vector3::zeros, |a| lift_vector(&a));
         let alpha = data
@@ -132,12 +174,21 @@ impl<T: Number> Frame<T> {
             .map_or_else(Vector3::zeros, |a| lift_vector(&a));
         Frame {
             origin: position + &arm,
-            axes: &body_axes * lift_matrix::<T>(&data.axes),
+            axes,
             velocity: velocity + omega.cross(&arm),
-            acceleration: acceleration + alpha.cross(&arm) + omega.cross(&omega.cross(&arm)),
+            body_acceleration,
+            arm,
             omega,
             alpha,
         }
+    }
+
+    /// The acceleration of the origin (computed only for the measures
+    /// that need it).
+    pub fn acceleration(&self) -> Vector3<T> {
+        &self.body_acceleration
+            + self.alpha.cross(&self.arm)
+            + self.omega.cross(&self.omega.cross(&self.arm))
     }
 
     fn axis(&self, index: usize) -> Vector3<T> {
@@ -161,7 +212,7 @@ pub fn measure<T: Number>(function: Function, frames: &[Frame<T>]) -> Result<T, 
     let rate_in = |l: &Frame<T>| (&i.velocity - &j.velocity) - l.omega.cross(&d);
     let acceleration_in = |l: &Frame<T>| {
         let rate = rate_in(l);
-        (&i.acceleration - &j.acceleration)
+        (i.acceleration() - j.acceleration())
             - l.alpha.cross(&d)
             - l.omega.cross(&rate) * T::from(2.0)
             - l.omega.cross(&l.omega.cross(&d))
