@@ -246,3 +246,36 @@ fn spline_statements_give_akispl_and_cubspl() {
     let bad = SPLINE_MODEL.replace("X = 0, 1, 2, 3\n", "X = 0, 2, 1, 3\n");
     insta::assert_snapshot!(model_table(SPLINE_MODEL) + "\n" + &model_table(&bad));
 }
+
+proptest::proptest! {
+    #[test]
+    fn random_splines_have_the_derivatives_of_their_values(
+        steps in proptest::collection::vec(0.1f64..2.0, 4..12),
+        heights in proptest::collection::vec(-5.0f64..5.0, 12),
+        fraction in 0.05f64..0.95,
+        piece in 0usize..12,
+        akima in proptest::bool::ANY,
+        linear in proptest::bool::ANY,
+    ) {
+        let x: Vec<f64> = steps.iter().scan(0.0, |at, step| { *at += step; Some(*at) }).collect();
+        let y = heights[..x.len()].to_vec();
+        let method = if akima { Method::Akima } else { Method::Cubic };
+        let spline = Spline::fit(&curve(&x, &y, linear), method);
+        // A point inside a piece, or beyond either end.
+        let at = match piece % (x.len() + 1) {
+            0 => x[0] - 3.0 * fraction,
+            p if p == x.len() => x[x.len() - 1] + 3.0 * fraction,
+            p => x[p - 1] + fraction * (x[p] - x[p - 1]),
+        };
+        let h = 1e-6 * (1.0 + at.abs());
+        let value = |x: f64| spline.at(&x, &0.0, 0);
+        let [exact, slope, curvature] = jet(&spline, at);
+        proptest::prop_assert!(exact.is_finite() && slope.is_finite() && curvature.is_finite());
+        let central = (value(at + h) - value(at - h)) / (2.0 * h);
+        let scale = 1.0 + slope.abs() + exact.abs();
+        proptest::prop_assert!((slope - central).abs() < 1e-6 * scale, "{slope} vs {central}");
+        let slope_at = |x: f64| spline.at(&x, &0.0, 1);
+        let second = (slope_at(at + h) - slope_at(at - h)) / (2.0 * h);
+        proptest::prop_assert!((curvature - second).abs() < 1e-5 * (1.0 + curvature.abs() + scale), "{curvature} vs {second}");
+    }
+}
