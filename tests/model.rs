@@ -262,3 +262,54 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn brackets_nested_past_the_limit_are_refused_and_at_it_read() {
+    let limit = mbexpr::syntax::MAX_NESTING;
+    let nested = |depth: usize| format!("{}1{}", "(".repeat(depth), ")".repeat(depth));
+    // Run where the stack is smallest: a test thread has 2 MiB.
+    for (text, kind) in [
+        (
+            format!(
+                "deep\nPART/1, GROUND\nVARIABLE/1, FUNCTION = {}\n",
+                nested(limit - 1)
+            ),
+            FileKind::Adm,
+        ),
+        (
+            format!(
+                "variable create variable_name = .m.v &\n  function = \"1\" &\n  comments = {}\n",
+                nested(limit - 1)
+            ),
+            FileKind::Cmd,
+        ),
+    ] {
+        let dataset = model::read(&text, kind);
+        assert!(
+            dataset.problems.is_empty(),
+            "{kind:?}: {:?}",
+            dataset.problems
+        );
+        assert_eq!(
+            model::check_model(&text, &dataset).problems.len(),
+            0,
+            "{kind:?}"
+        );
+    }
+    let deep = format!(
+        "deep\nPART/1, GROUND\n! (((\nVARIABLE/1, FUNCTION = 2*{}\n",
+        nested(100_000)
+    );
+    let report = check(&deep, FileKind::Adm);
+    assert!(report.starts_with("4:"), "{}", &report[..80]);
+    assert!(report.contains("brackets nest deeper than 500 levels here"));
+    let cmd = format!(
+        "part create part_name = .m.p location = {}\n",
+        nested(100_000)
+    );
+    assert!(
+        model::read(&cmd, FileKind::Cmd).problems[0]
+            .to_string()
+            .contains("nest deeper")
+    );
+}

@@ -16,6 +16,7 @@ pub use references::{FoundExpression, ModelCheck, ModelError, Problem, check_mod
 pub use text::Embedded;
 
 use crate::span::Span;
+use crate::syntax::MAX_NESTING;
 
 /// Which reader a file takes, by its extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -162,23 +163,78 @@ pub enum ReadError {
         /// The line.
         span: Span,
     },
+    /// Brackets nested too deep for the recursive readers.
+    #[error(
+        "brackets nest deeper than {limit} levels here, so the file is not read (real models stay below 40)"
+    )]
+    TooDeep {
+        /// The limit.
+        limit: usize,
+        /// The bracket past the limit.
+        span: Span,
+    },
 }
 
 impl ReadError {
     /// Where the problem is.
     pub fn span(&self) -> Span {
         match self {
-            ReadError::Unreadable { span } => *span,
+            ReadError::Unreadable { span } | ReadError::TooDeep { span, .. } => *span,
         }
     }
 }
 
 /// Reads a model file of the given kind.
 pub fn read(text: &str, kind: FileKind) -> Dataset {
+    if let Some(span) = too_deep(text) {
+        return Dataset {
+            kind,
+            title: None,
+            statements: Vec::new(),
+            problems: vec![ReadError::TooDeep {
+                limit: MAX_NESTING,
+                span,
+            }],
+        };
+    }
     match kind {
         FileKind::Adm | FileKind::Acf => adm::read(text, kind),
         FileKind::Cmd => cmd::read(text),
     }
+}
+
+/// The first bracket nested deeper than [`MAX_NESTING`] within one
+/// statement, which the recursive grammars must not see. The count starts
+/// again at every line that begins a statement (a letter first, the line
+/// before not ending in `&`).
+fn too_deep(text: &str) -> Option<Span> {
+    let mut depth = 0usize;
+    let mut continued = false;
+    for (start, line) in text.split_inclusive('\n').scan(0, |offset, line| {
+        let start = *offset;
+        *offset += line.len();
+        Some((start, line))
+    }) {
+        if !continued
+            && line
+                .trim_start()
+                .starts_with(|c: char| c.is_ascii_alphabetic())
+        {
+            depth = 0;
+        }
+        for (index, byte) in line.bytes().enumerate() {
+            match byte {
+                b'(' | b'{' => depth += 1,
+                b')' | b'}' => depth = depth.saturating_sub(1),
+                _ => continue,
+            }
+            if depth > MAX_NESTING {
+                return Some(Span::at(start + index));
+            }
+        }
+        continued = line.trim_end().ends_with('&');
+    }
+    None
 }
 
 /// Whether a statement named `name` is of `kind` (statement names may be
