@@ -138,6 +138,20 @@ unsafe fn read<T: Copy + Default>(pointer: *const T) -> T {
     }
 }
 
+/// IORD passed by reference: a null pointer is no valid order (-1), so the
+/// call sets ERRFLG rather than taking order 0.
+///
+/// # Safety
+/// `pointer` is null or valid for reading.
+unsafe fn read_order(pointer: *const c_int) -> c_int {
+    if pointer.is_null() {
+        -1
+    } else {
+        // SAFETY: from this function's contract.
+        unsafe { read(pointer) }
+    }
+}
+
 /// `CALL BISTOP(X, XD, X1, X2, K, E, CMAX, D, IORD, VECTOR, ERRFLG)` from
 /// FORTRAN: DOUBLE PRECISION arguments, INTEGER IORD, DOUBLE PRECISION
 /// VECTOR(3), LOGICAL ERRFLG.
@@ -169,7 +183,7 @@ pub unsafe extern "C" fn bistop_(
             read(e),
             read(cmax),
             read(d),
-            if iord.is_null() { -1 } else { read(iord) },
+            read_order(iord),
             vector,
             errflg,
         );
@@ -203,7 +217,7 @@ pub unsafe extern "C" fn impact_(
             read(e),
             read(cmax),
             read(d),
-            if iord.is_null() { -1 } else { read(iord) },
+            read_order(iord),
             vector,
             errflg,
         );
@@ -233,7 +247,7 @@ pub unsafe extern "C" fn step_(
             read(h0),
             read(x1),
             read(h1),
-            if iord.is_null() { -1 } else { read(iord) },
+            read_order(iord),
             value,
             errflg,
         );

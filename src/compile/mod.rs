@@ -646,18 +646,18 @@ fn model_data_error(
         Function::Interp => "a data table".to_string(),
         _ => format!("SPLINE/{id}"),
     };
-    if in_scene && matches!(function, Function::Curve | Function::Interp) {
-        return CompileError::NotInScene {
-            function: function.name(),
-            span,
-        };
-    }
     if in_scene {
-        return CompileError::MissingStatement {
-            function: function.name(),
-            id,
-            statement,
-            span,
+        return match function {
+            Function::Curve | Function::Interp => CompileError::NotInScene {
+                function: function.name(),
+                span,
+            },
+            _ => CompileError::MissingStatement {
+                function: function.name(),
+                id,
+                statement,
+                span,
+            },
         };
     }
     CompileError::NeedsModel {

@@ -200,6 +200,20 @@ impl Program {
         self.evaluate_continuing(inputs, wrt, order, &mut Vec::new())
     }
 
+    /// Runs `body` on an evaluator that carries on the angle history `angles`
+    /// and hands the history back.
+    fn continuing<T: Number, R>(
+        &self,
+        angles: &mut Vec<Option<f64>>,
+        body: impl FnOnce(&mut Evaluator<'_, T>) -> R,
+    ) -> R {
+        let mut evaluator = self.evaluator::<T>();
+        evaluator.angles = std::mem::take(angles);
+        let result = body(&mut evaluator);
+        *angles = evaluator.angles;
+        result
+    }
+
     /// [`Program::evaluate`] with the angle history of a run.
     fn evaluate_continuing(
         &self,
@@ -209,21 +223,16 @@ impl Program {
         angles: &mut Vec<Option<f64>>,
     ) -> Result<Evaluation, EvalError> {
         macro_rules! with {
-            ($number:ty) => {{
-                let mut evaluator = self.evaluator::<$number>();
-                evaluator.angles = std::mem::take(angles);
-                let result = evaluator.derivatives(inputs, wrt);
-                *angles = evaluator.angles;
-                result
-            }};
+            ($number:ty) => {
+                self.continuing::<$number, _>(angles, |evaluator| {
+                    evaluator.derivatives(inputs, wrt)
+                })
+            };
         }
         match (order, wrt.len()) {
             (Order::Value, _) | (_, 0) => {
-                let mut evaluator = self.evaluator::<f64>();
-                evaluator.angles = std::mem::take(angles);
-                let value = evaluator.value(inputs);
-                *angles = evaluator.angles;
-                let value = value?;
+                let value =
+                    self.continuing::<f64, _>(angles, |evaluator| evaluator.value(inputs))?;
                 Ok(Evaluation {
                     value,
                     gradient: (order >= Order::Gradient).then(|| DVector::zeros(0)),
@@ -307,9 +316,7 @@ impl<T: Number> Evaluator<'_, T> {
         }
         Ok(self.slots[program.result as usize].clone())
     }
-}
 
-impl<T: Number> Evaluator<'_, T> {
     /// `result` of instruction `index`, moved by whole turns to the value
     /// nearest its last one when `op` is AX, AY or AZ.
     fn continue_angle(&mut self, op: &Op, index: usize, result: T) -> T {

@@ -75,10 +75,7 @@ fn numbers<const N: usize>(
         count: N,
         span: argument.span,
     };
-    let Value::List(items) = &argument.value else {
-        return Err(error());
-    };
-    let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
+    let values = number_list(statement, argument).map_err(|_| error())?;
     values.try_into().map_err(|_| error())
 }
 

@@ -2,7 +2,7 @@
 //! [`Number`] so that derivatives flow from the body states through the
 //! frames (nalgebra over num-dual scalars).
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, SMatrix, Vector3};
 use num_dual::DualNum;
 
 use crate::catalog::Function;
@@ -85,21 +85,15 @@ fn skew<T: Number>(v: &Vector3<T>) -> Matrix3<T> {
     )
 }
 
-/// `a * b` for a constant `b`: each entry a sum of numbers times `f64`s.
-fn times_constant<T: Number>(a: &Matrix3<T>, b: &Matrix3<f64>) -> Matrix3<T> {
-    Matrix3::from_fn(|row, column| {
+/// `a * b` for a constant `b` (a matrix or a vector): each entry a sum of
+/// numbers times `f64`s, with no dual products of constants.
+fn times_constant<T: Number, const C: usize>(
+    a: &Matrix3<T>,
+    b: &SMatrix<f64, 3, C>,
+) -> SMatrix<T, 3, C> {
+    SMatrix::from_fn(|row, column| {
         (0..3)
             .map(|k| a[(row, k)].clone() * b[(k, column)])
-            .reduce(|sum, term| sum + term)
-            .expect("three terms")
-    })
-}
-
-/// `a * v` for a constant `v`.
-fn turned_vector<T: Number>(a: &Matrix3<T>, v: &Vector3<f64>) -> Vector3<T> {
-    Vector3::from_fn(|row, _| {
-        (0..3)
-            .map(|k| a[(row, k)].clone() * v[k])
             .reduce(|sum, term| sum + term)
             .expect("three terms")
     })
@@ -162,7 +156,7 @@ impl<T: Number> Frame<T> {
         } else {
             let turned = times_constant(&rotation(&small_rotation), &data.body_orientation);
             (
-                turned_vector(&turned, &data.offset),
+                times_constant(&turned, &data.offset),
                 times_constant(&turned, &data.axes),
             )
         };
