@@ -227,3 +227,31 @@ fn only_the_chosen_branch_is_run() {
     assert_eq!(program.value(&[0.0]).unwrap(), 0.0);
     assert!(program.value(&[-1.0]).is_err());
 }
+
+#[test]
+fn contact_laws_with_constant_parameters_share_their_stops() {
+    let text = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1) + BISTOP(v, x, -10, 10, 1e5, 2.2, 100, 0.1) + IMPACT(x, v, 1, 1e3, 1.5, 10, k)";
+    let checked = check_expr(&parse(text).unwrap()).unwrap();
+    let program = compile(&checked, &["x", "v", "k"]).unwrap();
+    insta::assert_snapshot!(program.to_string());
+}
+
+#[test]
+fn constant_and_varying_contact_parameters_give_the_same_numbers() {
+    // `k` as an input takes the general path; as a literal, the table of stops.
+    let varying = "BISTOP(x, v, -10, 10, k, 2.2, 100, 0.1)";
+    let constant = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
+    let compiled = |text: &str| {
+        let checked = check_expr(&parse(text).unwrap()).unwrap();
+        compile(&checked, &["x", "v", "k"]).unwrap()
+    };
+    let (varying, constant) = (compiled(varying), compiled(constant));
+    for x in [-10.2, -10.05, -10.0, 0.0, 10.0, 10.01, 10.05, 10.2] {
+        for v in [-3.0, -0.7, 0.0, 0.7, 3.0] {
+            let point = [x, v, 1e5];
+            let a = varying.evaluate(&point, &[0, 1], Order::Hessian).unwrap();
+            let b = constant.evaluate(&point, &[0, 1], Order::Hessian).unwrap();
+            assert_eq!(a, b, "at x = {x}, v = {v}");
+        }
+    }
+}

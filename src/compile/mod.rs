@@ -15,6 +15,7 @@ use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
 use crate::errors::Errors;
 use crate::eval::execute;
+use crate::laws::contact::Stops;
 use crate::laws::power::as_integer;
 use crate::laws::spline::{Method, Spline};
 use crate::scene::kinematics::FrameData;
@@ -172,7 +173,7 @@ impl Compiler<'_> {
                 vec![*a, *b]
             }
             Op::Call { args, .. } => args.to_vec(),
-            Op::Spline { x, z, .. } => vec![*x, *z],
+            Op::Spline { x, z, .. } | Op::Contact { x, v: z, .. } => vec![*x, *z],
             Op::Measure { frames, .. } => frames
                 .iter()
                 .flat_map(|frame| frame.state.into_iter().flatten())
@@ -307,6 +308,23 @@ impl Compiler<'_> {
                 .all(|position| constants[position].is_some())
         });
         let check_rules = !(all_known && check_rules(function, &constants).is_ok());
+        if function.family() == Family::Contact
+            && !check_rules
+            && let [_, _, Some(lower), rest @ ..] = constants.as_slice()
+            && let Some(stops) = constant_stops(*lower, rest)
+        {
+            let table = self.stops(stops);
+            let (x, v) = (slots[0], slots[1]);
+            return self.compute(
+                Op::Contact {
+                    function,
+                    table,
+                    x,
+                    v,
+                },
+                span,
+            );
+        }
         self.compute(
             Op::Call {
                 function,
@@ -315,6 +333,19 @@ impl Compiler<'_> {
             },
             span,
         )
+    }
+
+    /// The index of `stops` in the program's table, added when new.
+    fn stops(&mut self, stops: Stops) -> u32 {
+        let contacts = &mut self.tables.contacts;
+        let index = match contacts.iter().position(|known| *known == stops) {
+            Some(index) => index,
+            None => {
+                contacts.push(stops);
+                contacts.len() - 1
+            }
+        };
+        u32::try_from(index).expect("fewer than 2^32 contact laws")
     }
 
     /// `VARVAL(id)` as the VARIABLE's own expression, compiled in place (so
@@ -613,6 +644,22 @@ impl Compiler<'_> {
 /// The error for a model-data function: which statement would provide it
 /// (missing from the scene when `in_scene`), that only a running solver has
 /// its value, or that scenes do not evaluate it.
+/// The stops of a contact law from its constant arguments after `x`, `x'`
+/// and `x1`: `k e cmax d` for IMPACT, `x2 k e cmax d` for BISTOP.
+fn constant_stops(lower: f64, rest: &[Option<f64>]) -> Option<Stops> {
+    let rest: Vec<f64> = rest.iter().copied().collect::<Option<_>>()?;
+    let (upper, parameters) = match rest.as_slice() {
+        [k, e, cmax, d] => (None, [*k, *e, *cmax, *d]),
+        [x2, k, e, cmax, d] => (Some(*x2), [*k, *e, *cmax, *d]),
+        _ => return None,
+    };
+    Some(Stops {
+        lower,
+        upper,
+        parameters,
+    })
+}
+
 fn model_data_error(
     function: Function,
     args: &[Argument],

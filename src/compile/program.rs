@@ -3,6 +3,7 @@
 use std::fmt;
 
 use crate::catalog::Function;
+use crate::laws::contact::Stops;
 use crate::laws::spline::Spline;
 use crate::scene::kinematics::FrameData;
 use crate::span::Span;
@@ -50,6 +51,18 @@ pub enum Op {
         /// 0, 1 or 2.
         order: u8,
     },
+    /// `IMPACT` or `BISTOP` with constant stops and parameters, which
+    /// passed the law's rules when the program was compiled.
+    Contact {
+        /// The function, for messages.
+        function: Function,
+        /// Index into the program's table of stops.
+        table: u32,
+        /// The slot of `x`.
+        x: Slot,
+        /// The slot of `x'`.
+        v: Slot,
+    },
     /// A function of the intrinsic, step, contact or series family.
     Call {
         /// The function.
@@ -85,13 +98,16 @@ pub struct InputSlot {
 }
 
 /// The data instructions refer to by index: the constants of the marker
-/// frames the measures use, and the splines fitted for `AKISPL`/`CUBSPL`.
+/// frames the measures use, the splines fitted for `AKISPL`/`CUBSPL`, and
+/// the constant stops of contact laws.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct Tables {
     /// Marker frames, for [`Op::Measure`].
     pub(crate) frames: Vec<FrameData>,
     /// Fitted splines, for [`Op::Spline`].
     pub(crate) splines: Vec<Spline>,
+    /// Stops and parameters, for [`Op::Contact`].
+    pub(crate) contacts: Vec<Stops>,
 }
 
 /// One step of a program.
@@ -175,6 +191,9 @@ impl fmt::Display for Program {
         for (slot, value) in &self.constants {
             writeln!(f, "s{slot} = {value}")?;
         }
+        for (index, stops) in self.tables.contacts.iter().enumerate() {
+            writeln!(f, "stops{index} = {stops}")?;
+        }
         for load in &self.loads {
             writeln!(
                 f,
@@ -221,6 +240,12 @@ impl fmt::Display for Op {
                 z,
                 order,
             } => write!(f, "{function}(s{x}, s{z}, spline{table}, {order})"),
+            Op::Contact {
+                function,
+                table,
+                x,
+                v,
+            } => write!(f, "{function}(s{x}, s{v}, stops{table})"),
             Op::Measure { function, frames } => {
                 let frames: Vec<String> = frames
                     .iter()
@@ -249,7 +274,8 @@ impl Op {
             Op::PowInt(..) | Op::PowReal(..) | Op::Pow(..) => "`**`".to_string(),
             Op::Call { function, .. }
             | Op::Measure { function, .. }
-            | Op::Spline { function, .. } => function.name().to_string(),
+            | Op::Spline { function, .. }
+            | Op::Contact { function, .. } => function.name().to_string(),
         }
     }
 }

@@ -54,7 +54,7 @@ pub struct Evaluation {
 }
 
 /// `-a`, `a + b`, `a - b`, `a * b`: the operations that cannot fail, which
-/// the evaluator's loop runs without a detour.
+/// the evaluator's loop runs without a detour (`None` for any other op).
 #[inline(always)]
 fn arithmetic<T: Number>(op: &Op, slots: &[T]) -> Option<T> {
     let slot = |index: &Slot| slots[*index as usize].clone();
@@ -102,6 +102,9 @@ pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Resul
         Op::Spline {
             table, x, z, order, ..
         } => tables.splines[*table as usize].at(slot(*x), slot(*z), usize::from(*order)),
+        Op::Contact { table, x, v, .. } => {
+            tables.contacts[*table as usize].force(slot(*x), slot(*v))
+        }
         Op::Call {
             function,
             args,
@@ -115,7 +118,9 @@ pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Resul
             }
             // Up to eight arguments (all but the longest series) stay on the stack.
             const INLINE: usize = 8;
-            if args.len() <= INLINE {
+            if let [arg] = **args {
+                laws::apply(*function, &[slot(arg)])?
+            } else if args.len() <= INLINE {
                 let values: [&T; INLINE] =
                     std::array::from_fn(|position| slot(args[position.min(args.len() - 1)]));
                 laws::apply(*function, &values[..args.len()])?
@@ -280,16 +285,23 @@ impl<T: Number> Evaluator<'_, T> {
         while let Some(instruction) = code.get(pc) {
             pc += 1;
             match instruction {
+                Instruction::Compute {
+                    dst,
+                    op: op @ (Op::Neg(..) | Op::Add(..) | Op::Sub(..) | Op::Mul(..)),
+                } => {
+                    let result = arithmetic(op, &self.slots).expect("an arithmetic op");
+                    if !result.is_all_finite() {
+                        return Err(not_finite(op, &result, program.spans[pc - 1]));
+                    }
+                    self.slots[*dst as usize] = result;
+                }
                 Instruction::Compute { dst, op } => {
-                    let result = match arithmetic(op, &self.slots) {
-                        Some(result) => result,
-                        None => match execute(op, &self.slots, &program.tables) {
-                            Ok(result) => self.continue_angle(op, pc - 1, result),
-                            Err(error) => {
-                                let span = program.spans[pc - 1];
-                                return Err(EvalError::Law { error, span });
-                            }
-                        },
+                    let result = match execute(op, &self.slots, &program.tables) {
+                        Ok(result) => self.continue_angle(op, pc - 1, result),
+                        Err(error) => {
+                            let span = program.spans[pc - 1];
+                            return Err(EvalError::Law { error, span });
+                        }
                     };
                     if !result.is_all_finite() {
                         return Err(not_finite(op, &result, program.spans[pc - 1]));

@@ -54,7 +54,8 @@ impl<T: Number> Parameter<T> for f64 {
     }
     fn power_of(&self, base: &T) -> T {
         let (p0, e0) = (base.value(), *self);
-        base.chain(real_power(p0, e0), || real_slopes(p0, e0))
+        let power = real_power(p0, e0);
+        base.chain(power, || real_slopes(p0, e0, power))
     }
     fn minus(&self, t: &T) -> T {
         -(t.clone() - *self)
@@ -150,15 +151,53 @@ fn stops<T: Number, P: Parameter<T>>(
     T::zero()
 }
 
+/// The stops and parameters of a contact law given as constants (the usual
+/// case, and the cheap one): the law then runs on them as plain `f64`s. The
+/// compiler checks them against the law's rules once and keeps them with
+/// the program.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stops {
+    /// The lower stop `x1`.
+    pub lower: f64,
+    /// The upper stop `x2` of BISTOP; none for IMPACT.
+    pub upper: Option<f64>,
+    /// `k`, `e`, `cmax` and `d`.
+    pub parameters: [f64; 4],
+}
+
+impl Stops {
+    /// The force at `x` moving at `v`.
+    #[inline]
+    pub fn force<T: Number>(&self, x: &T, v: &T) -> T {
+        let [k, e, cmax, d] = &self.parameters;
+        stops(x, v, &self.lower, self.upper.as_ref(), [k, e, cmax, d])
+    }
+}
+
+/// `x1 -10, x2 10, k 100000, e 2.2, cmax 100, d 0.1`
+impl std::fmt::Display for Stops {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let [k, e, cmax, d] = self.parameters;
+        write!(f, "x1 {}", self.lower)?;
+        if let Some(upper) = self.upper {
+            write!(f, ", x2 {upper}")?;
+        }
+        write!(f, ", k {k}, e {e}, cmax {cmax}, d {d}")
+    }
+}
+
 /// The law with constant parameters as plain `f64`s, else as numbers.
 #[inline]
 fn contact<T: Number>(x: &T, v: &T, x1: &T, x2: Option<&T>, [k, e, cmax, d]: [&T; 4]) -> T {
-    let all = [Some(x1), x2, Some(k), Some(e), Some(cmax), Some(d)];
-    if all.into_iter().flatten().all(Number::is_constant) {
-        let value = |t: &T| t.value();
-        let x2 = x2.map(value);
-        let parameters = [&value(k), &value(e), &value(cmax), &value(d)];
-        return stops(x, v, &value(x1), x2.as_ref(), parameters);
+    let constant =
+        [x1, k, e, cmax, d].iter().all(|t| t.is_constant()) && x2.is_none_or(Number::is_constant);
+    if constant {
+        let stops = Stops {
+            lower: x1.value(),
+            upper: x2.map(Number::value),
+            parameters: [k.value(), e.value(), cmax.value(), d.value()],
+        };
+        return stops.force(x, v);
     }
     let x2 = x2.map(Varying);
     let parameters = [&Varying(k), &Varying(e), &Varying(cmax), &Varying(d)];

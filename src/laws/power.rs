@@ -44,14 +44,24 @@ pub fn real_power(x: f64, e: f64) -> f64 {
     }
 }
 
-/// First and second derivative of `x^e` at `x >= 0` for a real `e`.
-pub fn real_slopes(x: f64, e: f64) -> (f64, f64) {
+/// First and second derivative of `x^e` at `x >= 0` for a real `e`, given
+/// `power = x^e` (as [`real_power`] computed it).
+///
+/// A normal `power` gives both without another call of `powf`:
+/// `e x^(e-1) = e (x^e / x)`, one division more and the same digits. A
+/// `power` that underflowed to a subnormal or to 0 has lost digits, so the
+/// slopes then take their own powers.
+pub fn real_slopes(x: f64, e: f64, power: f64) -> (f64, f64) {
     match as_integer(e) {
         Some(n) => integer_slopes(x, n),
         None if x == 0.0 => (e * x.powf(e - 1.0), e * (e - 1.0) * x.powf(e - 2.0)),
         None => {
-            // One power: x^(e-2) = x^(e-1) / x (one more rounding).
-            let slope = e * x.powf(e - 1.0);
+            let slope = if power.is_normal() {
+                e * (power / x)
+            } else {
+                e * x.powf(e - 1.0)
+            };
+            // x^(e-2) = x^(e-1) / x (one more rounding).
             (slope, (e - 1.0) * slope / x)
         }
     }
@@ -92,7 +102,8 @@ pub fn powf<T: Number>(x: &T, e: f64) -> Result<T, LawError> {
     if x0 == 0.0 && e < 0.0 {
         return domain("`**`", format!("0 to the negative power {e} is infinite"));
     }
-    Ok(x.chain(real_power(x0, e), || real_slopes(x0, e)))
+    let power = real_power(x0, e);
+    Ok(x.chain(power, || real_slopes(x0, e, power)))
 }
 
 /// `x ** y` for any `y`: a constant exponent takes [`powf`]; a varying one
