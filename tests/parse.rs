@@ -186,3 +186,26 @@ fn a_ten_megabyte_input_is_parsed_or_refused() {
     assert_eq!(tree.span.len(), arguments.len());
     assert!(mbexpr::check(&tree).is_ok());
 }
+
+#[test]
+fn blanks_are_spaces_tabs_and_line_breaks() {
+    for text in [
+        "a\t+\tb",
+        "a\n+\r\nb",
+        "a\u{b}+\u{c}b",
+        " a + b ",
+        "F (a ,\tb )",
+    ] {
+        let expected = if text.starts_with('F') {
+            "(F a b)"
+        } else {
+            "(+ a b)"
+        };
+        assert_eq!(check(text), expected, "{text:?}");
+    }
+    // A no-break space (as pasted from a document) is refused where it stands.
+    assert_eq!(
+        check("a\u{a0}+ b"),
+        "error 1:2: unexpected character `\u{a0}`"
+    );
+}

@@ -55,7 +55,11 @@ fn span_of(pair: &Pair<'_, Rule>) -> Span {
 }
 
 /// Folds an `expr`'s flat run of operands and operators by precedence.
-fn build_expr(pairs: Pairs<'_, Rule>) -> Result<Expr, ParseError> {
+fn build_expr(mut pairs: Pairs<'_, Rule>) -> Result<Expr, ParseError> {
+    // Most arguments are a single operand: nothing to fold.
+    if pairs.len() == 1 {
+        return build_primary(pairs.next().expect("one pair"));
+    }
     PRATT
         .map_primary(build_primary)
         .map_prefix(|op, operand| {
@@ -134,9 +138,10 @@ fn build_named(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
             span,
         });
     };
-    let mut args = Vec::new();
+    let parts = arguments.into_inner();
+    let mut args = Vec::with_capacity(parts.len());
     let mut colons = Vec::new();
-    for part in arguments.into_inner() {
+    for part in parts {
         match part.as_rule() {
             Rule::expr => args.push(build_expr(part.into_inner())?),
             _ => colons.push((args.len(), span_of(&part))),

@@ -43,6 +43,11 @@ impl<'a> Tokens<'a> {
     }
 }
 
+/// The grammar's blanks: space, tab, and `\n`, `\v`, `\f`, `\r`.
+fn is_blank(byte: &u8) -> bool {
+    matches!(byte, b' ' | b'\t'..=b'\r')
+}
+
 fn is_name_char(byte: u8) -> bool {
     byte.is_ascii_alphanumeric() || byte == b'_'
 }
@@ -102,7 +107,7 @@ impl Iterator for Tokens<'_> {
 
     fn next(&mut self) -> Option<Token> {
         let bytes = self.text.as_bytes();
-        while bytes.get(self.offset).is_some_and(u8::is_ascii_whitespace) {
+        while bytes.get(self.offset).is_some_and(is_blank) {
             self.offset += 1;
         }
         let rest = &bytes[self.offset..];
