@@ -36,11 +36,6 @@
 //! Errors carry the [`Span`] of the text they speak of; the library never
 //! prints. [`Location::of`] turns a span's offset into a line and column.
 
-// The pest parsers are generated without pest's `std` feature (which probes the
-// stack on every rule call; `syntax::scan` bounds nesting instead), and that
-// generated code names `alloc`.
-extern crate alloc;
-
 pub mod catalog;
 pub mod check;
 pub mod compile;
