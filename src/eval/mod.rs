@@ -284,29 +284,36 @@ impl<T: Number> Evaluator<'_, T> {
         let mut pc = 0;
         while let Some(instruction) = code.get(pc) {
             pc += 1;
-            match instruction {
+            // One arm per arithmetic op (each with its own copy of
+            // `arithmetic`), so that the loop dispatches once per instruction.
+            let (dst, op, result) = match instruction {
                 Instruction::Compute {
                     dst,
-                    op: op @ (Op::Neg(..) | Op::Add(..) | Op::Sub(..) | Op::Mul(..)),
+                    op: op @ Op::Neg(_),
+                }
+                | Instruction::Compute {
+                    dst,
+                    op: op @ Op::Add(..),
+                }
+                | Instruction::Compute {
+                    dst,
+                    op: op @ Op::Sub(..),
+                }
+                | Instruction::Compute {
+                    dst,
+                    op: op @ Op::Mul(..),
                 } => {
                     let result = arithmetic(op, &self.slots).expect("an arithmetic op");
-                    if !result.is_all_finite() {
-                        return Err(not_finite(op, &result, program.spans[pc - 1]));
-                    }
-                    self.slots[*dst as usize] = result;
+                    (dst, op, result)
                 }
                 Instruction::Compute { dst, op } => {
-                    let result = match execute(op, &self.slots, &program.tables) {
-                        Ok(result) => self.continue_angle(op, pc - 1, result),
+                    match execute(op, &self.slots, &program.tables) {
+                        Ok(result) => (dst, op, self.continue_angle(op, pc - 1, result)),
                         Err(error) => {
                             let span = program.spans[pc - 1];
                             return Err(EvalError::Law { error, span });
                         }
-                    };
-                    if !result.is_all_finite() {
-                        return Err(not_finite(op, &result, program.spans[pc - 1]));
                     }
-                    self.slots[*dst as usize] = result;
                 }
                 Instruction::Branch {
                     condition,
@@ -319,12 +326,21 @@ impl<T: Number> Evaluator<'_, T> {
                     } else if value > 0.0 {
                         pc = *positive as usize;
                     }
+                    continue;
                 }
                 Instruction::Copy { dst, src } => {
                     self.slots[*dst as usize] = self.slots[*src as usize].clone();
+                    continue;
                 }
-                Instruction::Jump { target } => pc = *target as usize,
+                Instruction::Jump { target } => {
+                    pc = *target as usize;
+                    continue;
+                }
+            };
+            if !result.is_all_finite() {
+                return Err(not_finite(op, &result, program.spans[pc - 1]));
             }
+            self.slots[*dst as usize] = result;
         }
         Ok(self.slots[program.result as usize].clone())
     }
