@@ -7,40 +7,15 @@ use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use mbexpr::Order;
-use num_dual::{Dual2SVec64, DualNum, DualSVec64};
+use num_dual::{Dual2SVec64, DualSVec64};
+
+#[path = "native.rs"]
+mod native;
+use native::{native_bistop, native_linear};
 
 const BISTOP: &str = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
 const LINEAR: &str = "-1E4*(x-50)-10*v + 3*sin(2*pi*t)";
 const POINT: [f64; 2] = [10.05, 0.7];
-
-/// BISTOP written out by hand for these parameters (SPEC 3.3), generic so
-/// that num-dual gives its derivatives: what a hand-coded force would be.
-fn native_bistop<D: DualNum<Primitive = f64> + Copy>(x: D, v: D) -> D {
-    let (x1, x2, k, e, cmax, d) = (-10.0, 10.0, 1e5, 2.2, 100.0, 0.1);
-    let damping = |p: D| {
-        if p.re() >= d {
-            D::from(cmax)
-        } else {
-            let w = p / d;
-            w * w * (w * -2.0 + 3.0) * cmax
-        }
-    };
-    if x.re() < x1 {
-        let p = -x + x1;
-        let raw = p.powf(e) * k - damping(p) * v;
-        if raw.re() > 0.0 { raw } else { D::zero() }
-    } else if x.re() > x2 {
-        let p = x - x2;
-        let raw = -(p.powf(e) * k) - damping(p) * v;
-        if raw.re() < 0.0 { raw } else { D::zero() }
-    } else {
-        D::zero()
-    }
-}
-
-fn native_linear(x: f64, v: f64, t: f64) -> f64 {
-    -1e4 * (x - 50.0) - 10.0 * v + 3.0 * (2.0 * std::f64::consts::PI * t).sin()
-}
 
 fn program(text: &str, inputs: &[&str]) -> mbexpr::Program {
     mbexpr::compile(
