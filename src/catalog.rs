@@ -186,6 +186,19 @@ macro_rules! functions {
             /// All functions, in catalog order.
             pub const ALL: &'static [Function] = &[$(Function::$variant),*];
 
+            /// The function named `name`, in any case.
+            pub fn lookup(name: &str) -> Option<Function> {
+                // The name in capitals, on the stack (no name is longer).
+                let mut buffer = [0u8; 32];
+                let upper = buffer.get_mut(..name.len())?;
+                upper.copy_from_slice(name.as_bytes());
+                upper.make_ascii_uppercase();
+                match std::str::from_utf8(upper).ok()? {
+                    $($name => Some(Function::$variant),)*
+                    _ => None,
+                }
+            }
+
             /// The function's signature.
             pub fn signature(self) -> &'static Signature {
                 match self {
@@ -317,14 +330,6 @@ impl Function {
     /// How the function gets its value.
     pub fn family(self) -> Family {
         self.signature().family
-    }
-
-    /// The function named `name`, in any case.
-    pub fn lookup(name: &str) -> Option<Function> {
-        Function::ALL
-            .iter()
-            .copied()
-            .find(|function| function.name().eq_ignore_ascii_case(name))
     }
 
     /// The name of parameter `position` (`a3` for positions in a repeated tail).

@@ -83,3 +83,21 @@ fn refusals() {
         "
     ));
 }
+
+#[test]
+fn every_function_is_found_by_its_name_in_any_case() {
+    use mbexpr::catalog::Function;
+    for &function in Function::ALL {
+        let name = function.name();
+        assert_eq!(Function::lookup(name), Some(function), "{name}");
+        assert_eq!(
+            Function::lookup(&name.to_lowercase()),
+            Some(function),
+            "{name}"
+        );
+    }
+    for unknown in ["", "NOSUCH", "SIN ", "ſin", "ΣIN"] {
+        assert_eq!(Function::lookup(unknown), None, "{unknown:?}");
+    }
+    assert_eq!(Function::lookup(&"STEP".repeat(20)), None);
+}

@@ -155,6 +155,9 @@ fn nesting_at_the_limit_parses_and_past_it_is_refused() {
     assert!(check(&signs).contains("nests deeper than"));
     let powers = format!("x{}", "**x".repeat(100_000));
     assert!(check(&powers).contains("nests deeper than"));
+    // Many operators in many short groups: over the quick bound, within the limit.
+    let groups = format!("MAX({}x)", "x-1, ".repeat(2 * limit));
+    assert!(parse(&groups).is_ok());
 }
 
 #[test]

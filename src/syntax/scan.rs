@@ -146,6 +146,9 @@ fn ends_operand(kind: Option<Kind>) -> bool {
 /// each operator in a run of operators within one group (between `(`, `,`
 /// and `:`), since `a+b+c` nests `(a+b)+c` and `-x**y` nests too.
 pub fn check_nesting(text: &str) -> Result<(), ParseError> {
+    if nesting_bound(text) <= MAX_NESTING {
+        return Ok(());
+    }
     // `run` counts the operators of the current group; `saved` keeps the run
     // of each enclosing group; `depth` is their total with the parentheses.
     let mut depth = 0usize;
@@ -176,6 +179,27 @@ pub fn check_nesting(text: &str) -> Result<(), ParseError> {
         }
     }
     Ok(())
+}
+
+/// A bound on the nesting [`check_nesting`] measures, from the bytes alone:
+/// the deepest run of open parentheses plus every byte that could be an
+/// operator (`**` and the sign of an exponent count too, so this is never
+/// less). Nearly every real expression is far below the limit by this count,
+/// and then the token scan is not needed.
+fn nesting_bound(text: &str) -> usize {
+    let (mut open, mut deepest, mut operators) = (0usize, 0usize, 0usize);
+    for byte in text.bytes() {
+        match byte {
+            b'(' => {
+                open += 1;
+                deepest = deepest.max(open);
+            }
+            b')' => open = open.saturating_sub(1),
+            b'+' | b'-' | b'*' | b'/' => operators += 1,
+            _ => {}
+        }
+    }
+    deepest + operators
 }
 
 /// An open parenthesis on the scanner's stack.
