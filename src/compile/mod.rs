@@ -310,8 +310,7 @@ impl Compiler<'_> {
         let check_rules = !(all_known && check_rules(function, &constants).is_ok());
         if function.family() == Family::Contact
             && !check_rules
-            && let [_, _, Some(lower), rest @ ..] = constants.as_slice()
-            && let Some(stops) = constant_stops(*lower, rest)
+            && let Some(stops) = constants.get(2..).and_then(constant_stops)
         {
             let table = self.stops(stops);
             let (x, v) = (slots[0], slots[1]);
@@ -641,16 +640,13 @@ impl Compiler<'_> {
     }
 }
 
-/// The error for a model-data function: which statement would provide it
-/// (missing from the scene when `in_scene`), that only a running solver has
-/// its value, or that scenes do not evaluate it.
-/// The stops of a contact law from its constant arguments after `x`, `x'`
-/// and `x1`: `k e cmax d` for IMPACT, `x2 k e cmax d` for BISTOP.
-fn constant_stops(lower: f64, rest: &[Option<f64>]) -> Option<Stops> {
-    let rest: Vec<f64> = rest.iter().copied().collect::<Option<_>>()?;
-    let (upper, parameters) = match rest.as_slice() {
-        [k, e, cmax, d] => (None, [*k, *e, *cmax, *d]),
-        [x2, k, e, cmax, d] => (Some(*x2), [*k, *e, *cmax, *d]),
+/// The stops of a contact law from its arguments after `x` and `x'`, when
+/// all are constants: `x1 k e cmax d` for IMPACT, `x1 x2 k e cmax d` for BISTOP.
+fn constant_stops(arguments: &[Option<f64>]) -> Option<Stops> {
+    let values: Vec<f64> = arguments.iter().copied().collect::<Option<_>>()?;
+    let (lower, upper, parameters) = match values[..] {
+        [x1, k, e, cmax, d] => (x1, None, [k, e, cmax, d]),
+        [x1, x2, k, e, cmax, d] => (x1, Some(x2), [k, e, cmax, d]),
         _ => return None,
     };
     Some(Stops {
@@ -660,6 +656,9 @@ fn constant_stops(lower: f64, rest: &[Option<f64>]) -> Option<Stops> {
     })
 }
 
+/// The error for a model-data function: which statement would provide it
+/// (missing from the scene when `in_scene`), that only a running solver has
+/// its value, or that scenes do not evaluate it.
 fn model_data_error(
     function: Function,
     args: &[Argument],

@@ -284,8 +284,8 @@ impl<T: Number> Evaluator<'_, T> {
         let mut pc = 0;
         while let Some(instruction) = code.get(pc) {
             pc += 1;
-            // One arm per arithmetic op (each with its own copy of
-            // `arithmetic`), so that the loop dispatches once per instruction.
+            // The ops that cannot fail are patterns of this one match, so an
+            // instruction is dispatched here and not again in `execute`.
             let (dst, op, result) = match instruction {
                 Instruction::Compute {
                     dst,
