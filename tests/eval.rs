@@ -255,3 +255,30 @@ fn constant_and_varying_contact_parameters_give_the_same_numbers() {
         }
     }
 }
+
+#[test]
+fn a_reused_evaluator_follows_its_directions_from_call_to_call() {
+    use num_dual::DualDVec64;
+    let checked = check_expr(&parse("x*x*v + 3*t").unwrap()).unwrap();
+    // `unused` is an input the expression does not read.
+    let program = compile(&checked, &["x", "v", "t", "unused"]).unwrap();
+    let point = [2.0, 5.0, 7.0, 1.0];
+    let mut evaluator = program.evaluator::<DualDVec64>();
+    let mut gradient = |wrt: &[usize]| match evaluator.derivatives(&point, wrt) {
+        Ok(result) => format!("{} {:?}", result.value, result.gradient.unwrap().as_slice()),
+        Err(error) => error.to_string(),
+    };
+    // Each call against a fresh evaluator, which caches nothing.
+    let fresh = |wrt: &[usize]| {
+        let result = program.evaluate(&point, wrt, Order::Gradient).unwrap();
+        format!("{} {:?}", result.value, result.gradient.unwrap().as_slice())
+    };
+    for wrt in [&[0, 1][..], &[1, 0], &[2], &[], &[3, 0], &[0, 1]] {
+        assert_eq!(gradient(wrt), fresh(wrt), "wrt {wrt:?}");
+    }
+    // A refused list leaves the last good one in force for the next call.
+    assert!(gradient(&[0, 0]).contains("named twice"));
+    assert!(gradient(&[4]).contains("only 4 inputs"));
+    assert_eq!(gradient(&[2, 1]), fresh(&[2, 1]));
+    assert_eq!(gradient(&[2, 1]), "41 [3.0, 4.0]");
+}

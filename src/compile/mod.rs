@@ -154,13 +154,7 @@ impl Compiler<'_> {
             return self.constant(value);
         }
         let dst = self.new_slot(None);
-        self.emit(
-            Instruction::Compute {
-                dst,
-                op: op.clone(),
-            },
-            span,
-        );
+        self.emit(Instruction::compute(dst, op.clone()), span);
         self.memo.last_mut().expect("a scope").insert(op, dst);
         dst
     }
@@ -649,11 +643,7 @@ fn constant_stops(arguments: &[Option<f64>]) -> Option<Stops> {
         [x1, x2, k, e, cmax, d] => (x1, Some(x2), [k, e, cmax, d]),
         _ => return None,
     };
-    Some(Stops {
-        lower,
-        upper,
-        parameters,
-    })
+    Some(Stops::new(lower, upper, parameters))
 }
 
 /// The error for a model-data function: which statement would provide it

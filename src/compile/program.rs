@@ -110,9 +110,45 @@ pub(crate) struct Tables {
     pub(crate) contacts: Vec<Stops>,
 }
 
-/// One step of a program.
+/// One step of a program. The four operations that cannot fail are
+/// instructions of their own, so that the evaluator dispatches them with a
+/// single `match`; [`Instruction::Compute`] holds every other op.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Instruction {
+    /// `slots[dst] = -slots[a]`
+    Neg {
+        /// Destination slot.
+        dst: Slot,
+        /// The operand.
+        a: Slot,
+    },
+    /// `slots[dst] = slots[a] + slots[b]`
+    Add {
+        /// Destination slot.
+        dst: Slot,
+        /// The left operand.
+        a: Slot,
+        /// The right operand.
+        b: Slot,
+    },
+    /// `slots[dst] = slots[a] - slots[b]`
+    Sub {
+        /// Destination slot.
+        dst: Slot,
+        /// The left operand.
+        a: Slot,
+        /// The right operand.
+        b: Slot,
+    },
+    /// `slots[dst] = slots[a] * slots[b]`
+    Mul {
+        /// Destination slot.
+        dst: Slot,
+        /// The left operand.
+        a: Slot,
+        /// The right operand.
+        b: Slot,
+    },
     /// `slots[dst] = op(slots)`
     Compute {
         /// Destination slot.
@@ -142,6 +178,33 @@ pub enum Instruction {
         /// The next instruction to run.
         target: u32,
     },
+}
+
+impl Instruction {
+    /// The instruction that computes `op` into `dst`.
+    pub fn compute(dst: Slot, op: Op) -> Instruction {
+        match op {
+            Op::Neg(a) => Instruction::Neg { dst, a },
+            Op::Add(a, b) => Instruction::Add { dst, a, b },
+            Op::Sub(a, b) => Instruction::Sub { dst, a, b },
+            Op::Mul(a, b) => Instruction::Mul { dst, a, b },
+            op => Instruction::Compute { dst, op },
+        }
+    }
+
+    /// The name of the operation in messages: `STEP`, `` `*` ``, and `IF`
+    /// for the branches, copies and jumps of the arithmetic IF.
+    pub fn name(&self) -> String {
+        match self {
+            Instruction::Neg { .. } | Instruction::Sub { .. } => "`-`".to_string(),
+            Instruction::Add { .. } => "`+`".to_string(),
+            Instruction::Mul { .. } => "`*`".to_string(),
+            Instruction::Compute { op, .. } => op.name(),
+            Instruction::Branch { .. } | Instruction::Copy { .. } | Instruction::Jump { .. } => {
+                "IF".to_string()
+            }
+        }
+    }
 }
 
 /// A checked expression compiled for a given list of inputs: ready to be
@@ -204,6 +267,10 @@ impl fmt::Display for Program {
         for (index, instruction) in self.code.iter().enumerate() {
             write!(f, "{index:>3}: ")?;
             match instruction {
+                Instruction::Neg { dst, a } => writeln!(f, "s{dst} = {}", Op::Neg(*a))?,
+                Instruction::Add { dst, a, b } => writeln!(f, "s{dst} = {}", Op::Add(*a, *b))?,
+                Instruction::Sub { dst, a, b } => writeln!(f, "s{dst} = {}", Op::Sub(*a, *b))?,
+                Instruction::Mul { dst, a, b } => writeln!(f, "s{dst} = {}", Op::Mul(*a, *b))?,
                 Instruction::Compute { dst, op } => writeln!(f, "s{dst} = {op}")?,
                 Instruction::Branch {
                     condition,

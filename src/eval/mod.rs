@@ -53,32 +53,16 @@ pub struct Evaluation {
     pub hessian: Option<DMatrix<f64>>,
 }
 
-/// `-a`, `a + b`, `a - b`, `a * b`: the operations that cannot fail, which
-/// the evaluator's loop runs without a detour (`None` for any other op).
-#[inline(always)]
-fn arithmetic<T: Number>(op: &Op, slots: &[T]) -> Option<T> {
-    let slot = |index: &Slot| slots[*index as usize].clone();
-    Some(match op {
-        Op::Neg(a) => -slot(a),
-        Op::Add(a, b) => slot(a) + slot(b),
-        Op::Sub(a, b) => slot(a) - slot(b),
-        Op::Mul(a, b) => slot(a) * slot(b),
-        _ => return None,
-    })
-}
-
 /// Computes `op` from the slots. The compiler folds constants with it, the
 /// evaluator runs every instruction through it.
 #[inline]
 pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Result<T, LawError> {
-    if let Some(value) = arithmetic(op, slots) {
-        return Ok(value);
-    }
     let slot = |index: Slot| &slots[index as usize];
     Ok(match op {
-        Op::Neg(_) | Op::Add(..) | Op::Sub(..) | Op::Mul(..) => {
-            unreachable!("`arithmetic` computes {op}")
-        }
+        Op::Neg(a) => -slot(*a).clone(),
+        Op::Add(a, b) => slot(*a).clone() + slot(*b).clone(),
+        Op::Sub(a, b) => slot(*a).clone() - slot(*b).clone(),
+        Op::Mul(a, b) => slot(*a).clone() * slot(*b).clone(),
         Op::Div(a, b) => power::divide(slot(*a), slot(*b))?,
         Op::PowInt(a, n) => power::powi(slot(*a), *n)?,
         Op::PowReal(a, bits) => power::powf(slot(*a), f64::from_bits(*bits))?,
@@ -138,6 +122,11 @@ pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Resul
 pub struct Evaluator<'p, T> {
     program: &'p Program,
     slots: Vec<T>,
+    /// The derivative directions of the last call of [`Evaluator::dual`],
+    /// checked, and for each of the program's loads the position of its
+    /// input among them: worked out again only when the directions change.
+    directions: Vec<usize>,
+    seeds: Vec<Option<usize>>,
     /// The last value of each AX, AY, AZ instruction (empty until one runs).
     angles: Vec<Option<f64>>,
 }
@@ -177,6 +166,8 @@ impl Program {
         Evaluator {
             program: self,
             slots,
+            directions: Vec::new(),
+            seeds: vec![None; self.loads.len()],
             angles: Vec::new(),
         }
     }
@@ -259,8 +250,9 @@ impl Program {
 }
 
 impl<T: Number> Evaluator<'_, T> {
-    /// Runs the program with the inputs already placed by `seed(input index)`.
-    fn run(&mut self, inputs: &[f64], seed: impl Fn(usize, f64) -> T) -> Result<T, EvalError> {
+    /// Places each input the program uses in its slot, the one of load `i`
+    /// as `seed(i, value)`.
+    fn load(&mut self, inputs: &[f64], seed: impl Fn(usize, f64) -> T) -> Result<(), EvalError> {
         let program = self.program;
         if inputs.len() != program.inputs.len() {
             return Err(EvalError::InputCount {
@@ -268,7 +260,7 @@ impl<T: Number> Evaluator<'_, T> {
                 found: inputs.len(),
             });
         }
-        for load in &program.loads {
+        for (position, load) in program.loads.iter().enumerate() {
             let index = load.input as usize;
             let value = inputs[index];
             if !value.is_finite() {
@@ -278,43 +270,35 @@ impl<T: Number> Evaluator<'_, T> {
                     span: load.span,
                 });
             }
-            self.slots[load.slot as usize] = seed(index, value);
+            self.slots[load.slot as usize] = seed(position, value);
         }
+        Ok(())
+    }
+
+    /// Runs the program over the loaded slots.
+    fn run(&mut self) -> Result<T, EvalError> {
+        let program = self.program;
         let code = &program.code;
         let mut pc = 0;
         while let Some(instruction) = code.get(pc) {
             pc += 1;
-            // The ops that cannot fail are patterns of this one match, so an
-            // instruction is dispatched here and not again in `execute`.
-            let (dst, op, result) = match instruction {
-                Instruction::Compute {
-                    dst,
-                    op: op @ Op::Neg(_),
-                }
-                | Instruction::Compute {
-                    dst,
-                    op: op @ Op::Add(..),
-                }
-                | Instruction::Compute {
-                    dst,
-                    op: op @ Op::Sub(..),
-                }
-                | Instruction::Compute {
-                    dst,
-                    op: op @ Op::Mul(..),
-                } => {
-                    let result = arithmetic(op, &self.slots).expect("an arithmetic op");
-                    (dst, op, result)
-                }
-                Instruction::Compute { dst, op } => {
-                    match execute(op, &self.slots, &program.tables) {
-                        Ok(result) => (dst, op, self.continue_angle(op, pc - 1, result)),
-                        Err(error) => {
-                            let span = program.spans[pc - 1];
-                            return Err(EvalError::Law { error, span });
-                        }
+            let slots = &self.slots;
+            let slot = |index: &Slot| slots[*index as usize].clone();
+            let (dst, result) = match instruction {
+                Instruction::Neg { dst, a } => (dst, -slot(a)),
+                Instruction::Add { dst, a, b } => (dst, slot(a) + slot(b)),
+                Instruction::Sub { dst, a, b } => (dst, slot(a) - slot(b)),
+                Instruction::Mul { dst, a, b } => (dst, slot(a) * slot(b)),
+                Instruction::Compute { dst, op } => match execute(op, slots, &program.tables) {
+                    Ok(result) if matches!(op, Op::Measure { .. }) => {
+                        (dst, self.continue_angle(op, pc - 1, result))
                     }
-                }
+                    Ok(result) => (dst, result),
+                    Err(error) => {
+                        let span = program.spans[pc - 1];
+                        return Err(EvalError::Law { error, span });
+                    }
+                },
                 Instruction::Branch {
                     condition,
                     zero,
@@ -338,7 +322,7 @@ impl<T: Number> Evaluator<'_, T> {
                 }
             };
             if !result.is_all_finite() {
-                return Err(not_finite(op, &result, program.spans[pc - 1]));
+                return Err(not_finite(instruction, &result, program.spans[pc - 1]));
             }
             self.slots[*dst as usize] = result;
         }
@@ -381,8 +365,12 @@ impl<T: Number> Evaluator<'_, T> {
 
 /// The error for a result that is not a finite number.
 #[cold]
-fn not_finite<T: Number>(op: &Op, result: &T, span: crate::span::Span) -> EvalError {
-    let operation = op.name();
+fn not_finite<T: Number>(
+    instruction: &Instruction,
+    result: &T,
+    span: crate::span::Span,
+) -> EvalError {
+    let operation = instruction.name();
     if result.value().is_finite() {
         EvalError::DerivativeNotFinite { operation, span }
     } else {
@@ -397,17 +385,34 @@ fn not_finite<T: Number>(op: &Op, result: &T, span: crate::span::Span) -> EvalEr
 impl Evaluator<'_, f64> {
     /// The value at `inputs`.
     pub fn value(&mut self, inputs: &[f64]) -> Result<f64, EvalError> {
-        self.run(inputs, |_, value| value)
+        self.load(inputs, |_, value| value)?;
+        self.run()
     }
 }
 
 impl<T: Directional> Evaluator<'_, T> {
     /// The result as a dual number, with input `wrt[j]` seeded as direction `j`.
     pub fn dual(&mut self, inputs: &[f64], wrt: &[usize]) -> Result<T, EvalError> {
+        if wrt != self.directions {
+            self.direct(wrt)?;
+        }
+        let seeds = std::mem::take(&mut self.seeds);
         let count = wrt.len();
+        let loaded = self.load(inputs, |load, value| match seeds[load] {
+            Some(direction) => T::variable(value, direction, count),
+            None => T::from(value),
+        });
+        self.seeds = seeds;
+        loaded?;
+        self.run()
+    }
+
+    /// Checks the directions `wrt` and works out which loads they seed.
+    fn direct(&mut self, wrt: &[usize]) -> Result<(), EvalError> {
+        let input_count = self.program.inputs.len();
         for (position, &direction) in wrt.iter().enumerate() {
-            let reason = if direction >= inputs.len() {
-                format!("there are only {} inputs", inputs.len())
+            let reason = if direction >= input_count {
+                format!("there are only {input_count} inputs")
             } else if wrt[..position].contains(&direction) {
                 "named twice".to_string()
             } else {
@@ -415,12 +420,12 @@ impl<T: Directional> Evaluator<'_, T> {
             };
             return Err(EvalError::BadDirection { direction, reason });
         }
-        self.run(inputs, |index, value| {
-            match wrt.iter().position(|&direction| direction == index) {
-                Some(position) => T::variable(value, position, count),
-                None => T::from(value),
-            }
-        })
+        // An input the program does not use has no load: its derivatives are 0.
+        for (seed, load) in self.seeds.iter_mut().zip(&self.program.loads) {
+            *seed = wrt.iter().position(|&input| input == load.input as usize);
+        }
+        self.directions = wrt.to_vec();
+        Ok(())
     }
 
     /// The value and its derivatives in the directions `wrt`.

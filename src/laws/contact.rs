@@ -15,16 +15,18 @@
 //!   second derivative does. Where a derivative passes the largest double it
 //!   is an infinity, which the evaluator reports as an error.
 
-use super::power::{real_power, real_slopes};
+use super::power::{as_integer, constant_power};
 use crate::number::Number;
 
-/// A parameter of a contact law: a plain `f64` when the expression gives a
+/// A parameter of a contact law: a [`Constant`] when the expression gives a
 /// constant (the usual case, and the cheap one), or a number with derivative
 /// parts when the parameter itself is a derivative direction. The law is
 /// written once over this trait.
 trait Parameter<T: Number> {
     /// The real value.
     fn value(&self) -> f64;
+    /// `1 / value`.
+    fn reciprocal(&self) -> f64;
     /// Whether it carries no derivative part.
     fn is_constant(&self) -> bool;
     /// `self * t`.
@@ -39,29 +41,51 @@ trait Parameter<T: Number> {
     fn from(&self, t: &T) -> T;
 }
 
-impl<T: Number> Parameter<T> for f64 {
+/// A constant parameter, with what the law would otherwise work out from it
+/// at every call: whether it is a whole number (an exponent then takes
+/// integer powers) and its reciprocal (the ramp's `1/d`).
+#[derive(Clone, Copy, Debug)]
+struct Constant {
+    value: f64,
+    whole: Option<i32>,
+    reciprocal: f64,
+}
+
+impl Constant {
+    fn new(value: f64) -> Constant {
+        Constant {
+            value,
+            whole: as_integer(value),
+            reciprocal: value.recip(),
+        }
+    }
+}
+
+impl<T: Number> Parameter<T> for Constant {
     fn value(&self) -> f64 {
-        *self
+        self.value
+    }
+    fn reciprocal(&self) -> f64 {
+        self.reciprocal
     }
     fn is_constant(&self) -> bool {
         true
     }
     fn times(&self, t: T) -> T {
-        t * *self
+        t * self.value
     }
     fn divides(&self, t: T) -> T {
-        t / *self
+        t / self.value
     }
+    #[inline]
     fn power_of(&self, base: &T) -> T {
-        let (p0, e0) = (base.value(), *self);
-        let power = real_power(p0, e0);
-        base.chain(power, || real_slopes(p0, e0, power))
+        constant_power(base, self.value, self.whole)
     }
     fn minus(&self, t: &T) -> T {
-        -(t.clone() - *self)
+        -(t.clone() - self.value)
     }
     fn from(&self, t: &T) -> T {
-        t.clone() - *self
+        t.clone() - self.value
     }
 }
 
@@ -71,6 +95,9 @@ struct Varying<'a, T>(&'a T);
 impl<T: Number> Parameter<T> for Varying<'_, T> {
     fn value(&self) -> f64 {
         self.0.value()
+    }
+    fn reciprocal(&self) -> f64 {
+        self.0.value().recip()
     }
     fn is_constant(&self) -> bool {
         self.0.is_constant()
@@ -83,7 +110,7 @@ impl<T: Number> Parameter<T> for Varying<'_, T> {
     }
     fn power_of(&self, base: &T) -> T {
         if self.0.is_constant() {
-            return self.0.value().power_of(base);
+            return constant_power(base, self.0.value(), as_integer(self.0.value()));
         }
         (base.ln() * self.0.clone()).exp()
     }
@@ -103,7 +130,7 @@ fn ramp<T: Number, P: Parameter<T>>(p: &T, d: &P) -> T {
         return T::one();
     }
     // One division: p/d and (d - p)/d each round once more, harmlessly.
-    let per_d = d0.recip();
+    let per_d = d.reciprocal();
     let w0 = p0 * per_d;
     let r0 = (d0 - p0) * per_d;
     let w = d.divides(p.clone());
@@ -152,34 +179,55 @@ fn stops<T: Number, P: Parameter<T>>(
 }
 
 /// The stops and parameters of a contact law given as constants (the usual
-/// case, and the cheap one): the law then runs on them as plain `f64`s. The
-/// compiler checks them against the law's rules once and keeps them with
-/// the program.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// case, and the cheap one): the law then runs on them as plain `f64`s,
+/// with the exponent's kind and `1/d` worked out once. The compiler checks
+/// them against the law's rules once and keeps them with the program.
+#[derive(Clone, Copy, Debug)]
 pub struct Stops {
-    /// The lower stop `x1`.
-    pub lower: f64,
-    /// The upper stop `x2` of BISTOP; none for IMPACT.
-    pub upper: Option<f64>,
+    lower: Constant,
+    upper: Option<Constant>,
     /// `k`, `e`, `cmax` and `d`.
-    pub parameters: [f64; 4],
+    parameters: [Constant; 4],
 }
 
 impl Stops {
+    /// The stops `x1` and (for BISTOP) `x2`, and `[k, e, cmax, d]`.
+    pub fn new(lower: f64, upper: Option<f64>, [k, e, cmax, d]: [f64; 4]) -> Stops {
+        Stops {
+            lower: Constant::new(lower),
+            upper: upper.map(Constant::new),
+            parameters: [k, e, cmax, d].map(Constant::new),
+        }
+    }
+
     /// The force at `x` moving at `v`.
     #[inline]
     pub fn force<T: Number>(&self, x: &T, v: &T) -> T {
         let [k, e, cmax, d] = &self.parameters;
         stops(x, v, &self.lower, self.upper.as_ref(), [k, e, cmax, d])
     }
+
+    /// `x1`, `x2` and `[k, e, cmax, d]`, as given.
+    fn values(&self) -> (f64, Option<f64>, [f64; 4]) {
+        let upper = self.upper.map(|upper| upper.value);
+        (self.lower.value, upper, self.parameters.map(|p| p.value))
+    }
+}
+
+/// Stops are equal when they were given equal numbers (what a program's
+/// table of stops shares entries by).
+impl PartialEq for Stops {
+    fn eq(&self, other: &Stops) -> bool {
+        self.values() == other.values()
+    }
 }
 
 /// `x1 -10, x2 10, k 100000, e 2.2, cmax 100, d 0.1`
 impl std::fmt::Display for Stops {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let [k, e, cmax, d] = self.parameters;
-        write!(f, "x1 {}", self.lower)?;
-        if let Some(upper) = self.upper {
+        let (lower, upper, [k, e, cmax, d]) = self.values();
+        write!(f, "x1 {lower}")?;
+        if let Some(upper) = upper {
             write!(f, ", x2 {upper}")?;
         }
         write!(f, ", k {k}, e {e}, cmax {cmax}, d {d}")
@@ -192,12 +240,8 @@ fn contact<T: Number>(x: &T, v: &T, x1: &T, x2: Option<&T>, [k, e, cmax, d]: [&T
     let constant =
         [x1, k, e, cmax, d].iter().all(|t| t.is_constant()) && x2.is_none_or(Number::is_constant);
     if constant {
-        let stops = Stops {
-            lower: x1.value(),
-            upper: x2.map(Number::value),
-            parameters: [k.value(), e.value(), cmax.value(), d.value()],
-        };
-        return stops.force(x, v);
+        let parameters = [k.value(), e.value(), cmax.value(), d.value()];
+        return Stops::new(x1.value(), x2.map(Number::value), parameters).force(x, v);
     }
     let x2 = x2.map(Varying);
     let parameters = [&Varying(k), &Varying(e), &Varying(cmax), &Varying(d)];

@@ -35,36 +35,39 @@ fn integer_slopes(x: f64, n: i32) -> (f64, f64) {
     }
 }
 
-/// `x^e` at `x >= 0` for a real `e` (integer powers for a whole `e`).
+/// `x^e` for a constant `e`, with `whole` = [`as_integer`]`(e)` worked out
+/// by the caller (once, when `e` is a constant of the program): integer
+/// powers for a whole `e` (any sign of `x`), else the real power (`x >= 0`).
 #[inline]
-pub fn real_power(x: f64, e: f64) -> f64 {
-    match as_integer(e) {
-        Some(n) => integer_power(x, n),
-        None => x.powf(e),
+pub fn constant_power<T: Number>(x: &T, e: f64, whole: Option<i32>) -> T {
+    let x0 = x.value();
+    match whole {
+        Some(n) => x.chain(integer_power(x0, n), || integer_slopes(x0, n)),
+        None => {
+            let power = x0.powf(e);
+            x.chain(power, || real_slopes(x0, e, power))
+        }
     }
 }
 
-/// First and second derivative of `x^e` at `x >= 0` for a real `e`, given
-/// `power = x^e` (as [`real_power`] computed it).
+/// First and second derivative of `x^e` at `x >= 0` for a real `e` that is
+/// not whole, given `power = x^e`.
 ///
 /// A normal `power` gives both without another call of `powf`:
 /// `e x^(e-1) = e (x^e / x)`, one division more and the same digits. A
 /// `power` that underflowed to a subnormal or to 0 has lost digits, so the
 /// slopes then take their own powers.
-pub fn real_slopes(x: f64, e: f64, power: f64) -> (f64, f64) {
-    match as_integer(e) {
-        Some(n) => integer_slopes(x, n),
-        None if x == 0.0 => (e * x.powf(e - 1.0), e * (e - 1.0) * x.powf(e - 2.0)),
-        None => {
-            let slope = if power.is_normal() {
-                e * (power / x)
-            } else {
-                e * x.powf(e - 1.0)
-            };
-            // x^(e-2) = x^(e-1) / x (one more rounding).
-            (slope, (e - 1.0) * slope / x)
-        }
+fn real_slopes(x: f64, e: f64, power: f64) -> (f64, f64) {
+    if x == 0.0 {
+        return (e * x.powf(e - 1.0), e * (e - 1.0) * x.powf(e - 2.0));
     }
+    let slope = if power.is_normal() {
+        e * (power / x)
+    } else {
+        e * x.powf(e - 1.0)
+    };
+    // x^(e-2) = x^(e-1) / x (one more rounding).
+    (slope, (e - 1.0) * slope / x)
 }
 
 /// `e` as an `i32` when it is a whole number in range.
@@ -84,7 +87,7 @@ pub fn powi<T: Number>(x: &T, n: i32) -> Result<T, LawError> {
     if n == 2 {
         return Ok(x.clone() * x.clone());
     }
-    Ok(x.chain(integer_power(x0, n), || integer_slopes(x0, n)))
+    Ok(constant_power(x, f64::from(n), Some(n)))
 }
 
 /// `x ** e` for a constant real `e` (a whole `e` goes to [`powi`]).
@@ -102,8 +105,7 @@ pub fn powf<T: Number>(x: &T, e: f64) -> Result<T, LawError> {
     if x0 == 0.0 && e < 0.0 {
         return domain("`**`", format!("0 to the negative power {e} is infinite"));
     }
-    let power = real_power(x0, e);
-    Ok(x.chain(power, || real_slopes(x0, e, power)))
+    Ok(constant_power(x, e, None))
 }
 
 /// `x ** y` for any `y`: a constant exponent takes [`powf`]; a varying one
