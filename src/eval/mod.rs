@@ -122,11 +122,6 @@ pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Resul
 pub struct Evaluator<'p, T> {
     program: &'p Program,
     slots: Vec<T>,
-    /// The derivative directions of the last call of [`Evaluator::dual`],
-    /// checked, and for each of the program's loads the position of its
-    /// input among them: worked out again only when the directions change.
-    directions: Vec<usize>,
-    seeds: Vec<Option<usize>>,
     /// The last value of each AX, AY, AZ instruction (empty until one runs).
     angles: Vec<Option<f64>>,
 }
@@ -166,8 +161,6 @@ impl Program {
         Evaluator {
             program: self,
             slots,
-            directions: Vec::new(),
-            seeds: vec![None; self.loads.len()],
             angles: Vec::new(),
         }
     }
@@ -250,8 +243,8 @@ impl Program {
 }
 
 impl<T: Number> Evaluator<'_, T> {
-    /// Places each input the program uses in its slot, the one of load `i`
-    /// as `seed(i, value)`.
+    /// Places each input the program uses in its slot, input `i` as
+    /// `seed(i, value)`.
     fn load(&mut self, inputs: &[f64], seed: impl Fn(usize, f64) -> T) -> Result<(), EvalError> {
         let program = self.program;
         if inputs.len() != program.inputs.len() {
@@ -260,7 +253,7 @@ impl<T: Number> Evaluator<'_, T> {
                 found: inputs.len(),
             });
         }
-        for (position, load) in program.loads.iter().enumerate() {
+        for load in &program.loads {
             let index = load.input as usize;
             let value = inputs[index];
             if !value.is_finite() {
@@ -270,7 +263,7 @@ impl<T: Number> Evaluator<'_, T> {
                     span: load.span,
                 });
             }
-            self.slots[load.slot as usize] = seed(position, value);
+            self.slots[load.slot as usize] = seed(index, value);
         }
         Ok(())
     }
@@ -323,6 +316,12 @@ impl<T: Number> Evaluator<'_, T> {
             };
             if !result.is_all_finite() {
                 return Err(not_finite(instruction, &result, program.spans[pc - 1]));
+            }
+            if pc == code.len() && *dst == program.result {
+                // The program's last step: its result is returned as it is,
+                // not stored and read back at once (which stalls the
+                // processor on a wide dual number).
+                return Ok(result);
             }
             self.slots[*dst as usize] = result;
         }
@@ -393,26 +392,10 @@ impl Evaluator<'_, f64> {
 impl<T: Directional> Evaluator<'_, T> {
     /// The result as a dual number, with input `wrt[j]` seeded as direction `j`.
     pub fn dual(&mut self, inputs: &[f64], wrt: &[usize]) -> Result<T, EvalError> {
-        if wrt != self.directions {
-            self.direct(wrt)?;
-        }
-        let seeds = std::mem::take(&mut self.seeds);
         let count = wrt.len();
-        let loaded = self.load(inputs, |load, value| match seeds[load] {
-            Some(direction) => T::variable(value, direction, count),
-            None => T::from(value),
-        });
-        self.seeds = seeds;
-        loaded?;
-        self.run()
-    }
-
-    /// Checks the directions `wrt` and works out which loads they seed.
-    fn direct(&mut self, wrt: &[usize]) -> Result<(), EvalError> {
-        let input_count = self.program.inputs.len();
         for (position, &direction) in wrt.iter().enumerate() {
-            let reason = if direction >= input_count {
-                format!("there are only {input_count} inputs")
+            let reason = if direction >= inputs.len() {
+                format!("there are only {} inputs", inputs.len())
             } else if wrt[..position].contains(&direction) {
                 "named twice".to_string()
             } else {
@@ -420,12 +403,13 @@ impl<T: Directional> Evaluator<'_, T> {
             };
             return Err(EvalError::BadDirection { direction, reason });
         }
-        // An input the program does not use has no load: its derivatives are 0.
-        for (seed, load) in self.seeds.iter_mut().zip(&self.program.loads) {
-            *seed = wrt.iter().position(|&input| input == load.input as usize);
-        }
-        self.directions = wrt.to_vec();
-        Ok(())
+        self.load(inputs, |index, value| {
+            match wrt.iter().position(|&direction| direction == index) {
+                Some(position) => T::variable(value, position, count),
+                None => T::from(value),
+            }
+        })?;
+        self.run()
     }
 
     /// The value and its derivatives in the directions `wrt`.

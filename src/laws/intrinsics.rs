@@ -5,6 +5,7 @@ use crate::catalog::Function;
 use crate::number::Number;
 
 /// Applies an intrinsic to its evaluated arguments.
+#[inline]
 pub(super) fn apply<T: Number>(function: Function, args: &[&T]) -> Result<T, LawError> {
     use Function as F;
     let a = args[0];
