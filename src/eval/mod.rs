@@ -54,7 +54,7 @@ pub struct Evaluation {
 }
 
 /// Computes `op` from the slots. The compiler folds constants with it, the
-/// evaluator runs every instruction through it.
+/// evaluator runs every [`Instruction::Compute`] through it.
 #[inline]
 pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Result<T, LawError> {
     let slot = |index: Slot| &slots[index as usize];

@@ -18,32 +18,53 @@
 use super::power::{as_integer, constant_power};
 use crate::number::Number;
 
-/// A parameter of a contact law: a [`Constant`] when the expression gives a
-/// constant (the usual case, and the cheap one), or a number with derivative
-/// parts when the parameter itself is a derivative direction. The law is
-/// written once over this trait.
+/// A parameter of a contact law: a plain `f64` when the expression gives a
+/// constant (the usual case, and the cheap one), a [`Constant`] when it is
+/// a constant of a program, or a number with derivative parts when the
+/// parameter itself is a derivative direction. The law is written once over
+/// this trait; the provided methods are those of a constant.
 trait Parameter<T: Number> {
     /// The real value.
     fn value(&self) -> f64;
     /// `1 / value`.
-    fn reciprocal(&self) -> f64;
+    fn reciprocal(&self) -> f64 {
+        self.value().recip()
+    }
     /// Whether it carries no derivative part.
-    fn is_constant(&self) -> bool;
+    fn is_constant(&self) -> bool {
+        true
+    }
     /// `self * t`.
-    fn times(&self, t: T) -> T;
+    fn times(&self, t: T) -> T {
+        t * self.value()
+    }
     /// `t / self`.
-    fn divides(&self, t: T) -> T;
+    fn divides(&self, t: T) -> T {
+        t / self.value()
+    }
     /// `base^self` for `base > 0`.
-    fn power_of(&self, base: &T) -> T;
+    fn power_of(&self, base: &T) -> T {
+        constant_power(base, self.value(), as_integer(self.value()))
+    }
     /// `self - t`.
-    fn minus(&self, t: &T) -> T;
+    fn minus(&self, t: &T) -> T {
+        -(t.clone() - self.value())
+    }
     /// `t - self`.
-    fn from(&self, t: &T) -> T;
+    fn from(&self, t: &T) -> T {
+        t.clone() - self.value()
+    }
 }
 
-/// A constant parameter, with what the law would otherwise work out from it
-/// at every call: whether it is a whole number (an exponent then takes
-/// integer powers) and its reciprocal (the ramp's `1/d`).
+impl<T: Number> Parameter<T> for f64 {
+    fn value(&self) -> f64 {
+        *self
+    }
+}
+
+/// A constant parameter of a program, with what the law would otherwise
+/// work out from it at every call: whether it is a whole number (an
+/// exponent then takes integer powers) and its reciprocal (the ramp's `1/d`).
 #[derive(Clone, Copy, Debug)]
 struct Constant {
     value: f64,
@@ -68,24 +89,9 @@ impl<T: Number> Parameter<T> for Constant {
     fn reciprocal(&self) -> f64 {
         self.reciprocal
     }
-    fn is_constant(&self) -> bool {
-        true
-    }
-    fn times(&self, t: T) -> T {
-        t * self.value
-    }
-    fn divides(&self, t: T) -> T {
-        t / self.value
-    }
     #[inline]
     fn power_of(&self, base: &T) -> T {
         constant_power(base, self.value, self.whole)
-    }
-    fn minus(&self, t: &T) -> T {
-        -(t.clone() - self.value)
-    }
-    fn from(&self, t: &T) -> T {
-        t.clone() - self.value
     }
 }
 
@@ -110,7 +116,7 @@ impl<T: Number> Parameter<T> for Varying<'_, T> {
     }
     fn power_of(&self, base: &T) -> T {
         if self.0.is_constant() {
-            return constant_power(base, self.0.value(), as_integer(self.0.value()));
+            return self.0.value().power_of(base);
         }
         (base.ln() * self.0.clone()).exp()
     }
@@ -240,8 +246,9 @@ fn contact<T: Number>(x: &T, v: &T, x1: &T, x2: Option<&T>, [k, e, cmax, d]: [&T
     let constant =
         [x1, k, e, cmax, d].iter().all(|t| t.is_constant()) && x2.is_none_or(Number::is_constant);
     if constant {
-        let parameters = [k.value(), e.value(), cmax.value(), d.value()];
-        return Stops::new(x1.value(), x2.map(Number::value), parameters).force(x, v);
+        let x2 = x2.map(Number::value);
+        let [k, e, cmax, d] = [k, e, cmax, d].map(Number::value);
+        return stops(x, v, &x1.value(), x2.as_ref(), [&k, &e, &cmax, &d]);
     }
     let x2 = x2.map(Varying);
     let parameters = [&Varying(k), &Varying(e), &Varying(cmax), &Varying(d)];
