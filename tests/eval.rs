@@ -276,7 +276,7 @@ fn a_reused_evaluator_follows_its_directions_from_call_to_call() {
     for wrt in [&[0, 1][..], &[1, 0], &[2], &[], &[3, 0], &[0, 1]] {
         assert_eq!(gradient(wrt), fresh(wrt), "wrt {wrt:?}");
     }
-    // A refused list leaves the last good one in force for the next call.
+    // A refused list of directions does not disturb the next call.
     assert!(gradient(&[0, 0]).contains("named twice"));
     assert!(gradient(&[4]).contains("only 4 inputs"));
     assert_eq!(gradient(&[2, 1]), fresh(&[2, 1]));
