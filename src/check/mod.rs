@@ -9,7 +9,8 @@ pub use error::CheckError;
 pub use tree::{Argument, Node, NodeKind, Reference};
 
 use crate::catalog::{
-    self, ArgKind, Constant, Family, Function, SystemVariable, check_rules, closest, did_you_mean,
+    self, ArgKind, Constant, Family, Function, SystemVariable, check_rules_with, closest,
+    did_you_mean,
 };
 use crate::errors::Errors;
 use crate::span::Span;
@@ -272,14 +273,12 @@ fn reference(arg: &Expr) -> Option<Reference> {
 
 /// Reports the first broken rule among the arguments that are constants.
 fn check_constant_rules(function: Function, args: &[Argument], errors: &mut Vec<CheckError>) {
-    let values: Vec<Option<f64>> = args
-        .iter()
-        .map(|arg| match arg {
-            Argument::Value(node) => constant_value(node),
-            _ => None,
-        })
-        .collect();
-    if let Err(violation) = check_rules(function, &values) {
+    // Only the arguments a rule names are looked at (most functions have none).
+    let value = |position: usize| match args.get(position) {
+        Some(Argument::Value(node)) => constant_value(node),
+        _ => None,
+    };
+    if let Err(violation) = check_rules_with(function, value) {
         let span = violation
             .rule
             .positions()
