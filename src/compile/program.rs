@@ -1,5 +1,6 @@
 //! The compiled form: a flat program of instructions over numbered slots.
 
+use std::borrow::Cow;
 use std::fmt;
 
 use crate::catalog::Function;
@@ -192,18 +193,28 @@ impl Instruction {
         }
     }
 
+    /// The destination and the op of an instruction that computes a value
+    /// (the inverse of [`Instruction::compute`]); `None` for the branches,
+    /// copies and jumps of the arithmetic IF.
+    pub fn computed(&self) -> Option<(Slot, Cow<'_, Op>)> {
+        let (dst, op) = match *self {
+            Instruction::Neg { dst, a } => (dst, Op::Neg(a)),
+            Instruction::Add { dst, a, b } => (dst, Op::Add(a, b)),
+            Instruction::Sub { dst, a, b } => (dst, Op::Sub(a, b)),
+            Instruction::Mul { dst, a, b } => (dst, Op::Mul(a, b)),
+            Instruction::Compute { dst, ref op } => return Some((dst, Cow::Borrowed(op))),
+            Instruction::Branch { .. } | Instruction::Copy { .. } | Instruction::Jump { .. } => {
+                return None;
+            }
+        };
+        Some((dst, Cow::Owned(op)))
+    }
+
     /// The name of the operation in messages: `STEP`, `` `*` ``, and `IF`
     /// for the branches, copies and jumps of the arithmetic IF.
     pub fn name(&self) -> String {
-        match self {
-            Instruction::Neg { .. } | Instruction::Sub { .. } => "`-`".to_string(),
-            Instruction::Add { .. } => "`+`".to_string(),
-            Instruction::Mul { .. } => "`*`".to_string(),
-            Instruction::Compute { op, .. } => op.name(),
-            Instruction::Branch { .. } | Instruction::Copy { .. } | Instruction::Jump { .. } => {
-                "IF".to_string()
-            }
-        }
+        self.computed()
+            .map_or_else(|| "IF".to_string(), |(_, op)| op.name())
     }
 }
 
@@ -266,20 +277,21 @@ impl fmt::Display for Program {
         }
         for (index, instruction) in self.code.iter().enumerate() {
             write!(f, "{index:>3}: ")?;
-            match instruction {
-                Instruction::Neg { dst, a } => writeln!(f, "s{dst} = {}", Op::Neg(*a))?,
-                Instruction::Add { dst, a, b } => writeln!(f, "s{dst} = {}", Op::Add(*a, *b))?,
-                Instruction::Sub { dst, a, b } => writeln!(f, "s{dst} = {}", Op::Sub(*a, *b))?,
-                Instruction::Mul { dst, a, b } => writeln!(f, "s{dst} = {}", Op::Mul(*a, *b))?,
-                Instruction::Compute { dst, op } => writeln!(f, "s{dst} = {op}")?,
-                Instruction::Branch {
-                    condition,
-                    zero,
-                    positive,
-                } => writeln!(f, "if s{condition} = 0 goto {zero}; if > 0 goto {positive}")?,
-                Instruction::Copy { dst, src } => writeln!(f, "s{dst} = s{src}")?,
-                Instruction::Jump { target } => writeln!(f, "goto {target}")?,
-            }
+            let Some((dst, op)) = instruction.computed() else {
+                match instruction {
+                    Instruction::Branch {
+                        condition,
+                        zero,
+                        positive,
+                    } => writeln!(f, "if s{condition} = 0 goto {zero}; if > 0 goto {positive}")?,
+                    Instruction::Copy { dst, src } => writeln!(f, "s{dst} = s{src}")?,
+                    Instruction::Jump { target } => writeln!(f, "goto {target}")?,
+                    // The others compute a value, written below.
+                    _ => {}
+                }
+                continue;
+            };
+            writeln!(f, "s{dst} = {op}")?;
         }
         write!(f, "result s{}", self.result)
     }

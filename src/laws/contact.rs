@@ -102,9 +102,6 @@ impl<T: Number> Parameter<T> for Varying<'_, T> {
     fn value(&self) -> f64 {
         self.0.value()
     }
-    fn reciprocal(&self) -> f64 {
-        self.0.value().recip()
-    }
     fn is_constant(&self) -> bool {
         self.0.is_constant()
     }
