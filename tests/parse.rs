@@ -86,6 +86,10 @@ fn names_and_calls() {
         IF (TIME-2 : 0, 0, 1)
         IF(IF(x: -1, 0, 1): a, b, IF(y: 1, 2, 3))
         BISTOP(DX(2,1,1), VX(2,1,1,1), -5, 5, 1e5, 2.2, 100, 0.1)
+        F(-x, +y, - -2, -.5D, 3D)
+        F(1 + 2, x*y, -x**2, 2 ** -x, (a), -(b), -G(1))
+        F( x , 1 )
+        IF(-x: +1, -2, 3)
         "
     ));
 }
@@ -140,6 +144,21 @@ fn spans_cover_the_text_of_each_node() {
     };
     assert_eq!(&text[call.span.range()], "STEP(TIME, 0, 0, 1, 10)");
     assert_eq!(&text[product.span.range()], "2*x");
+}
+
+#[test]
+fn an_argument_spans_its_signs_and_no_blank_after_it() {
+    let text = "F(- 10 , x\t,-G( 2 ) )";
+    let tree = parse(text).unwrap();
+    let mbexpr::syntax::ast::ExprKind::Call(call) = &tree.kind else {
+        panic!("a call")
+    };
+    let args: Vec<&str> = call
+        .args
+        .iter()
+        .map(|arg| &text[arg.span.range()])
+        .collect();
+    assert_eq!(args, ["- 10", "x", "-G( 2 )"]);
 }
 
 #[test]

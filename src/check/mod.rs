@@ -153,14 +153,14 @@ fn check_call(call: &Call, span: Span, errors: &mut Vec<CheckError>) -> NodeKind
         };
         errors.push(match what {
             Some(what) => CheckError::NotAFunction {
-                name: call.name.to_uppercase(),
+                name: call.name.as_str().to_uppercase(),
                 what,
                 span,
             },
             None => {
                 let known = Function::ALL.iter().map(|function| function.name());
                 CheckError::UnknownFunction {
-                    name: call.name.clone(),
+                    name: call.name.to_string(),
                     suggestions: did_you_mean(&closest(&call.name, known)),
                     span: call.name_span,
                 }
@@ -265,7 +265,7 @@ fn reference(arg: &Expr) -> Option<Reference> {
             number.text.parse().ok().map(Reference::Id)
         }
         ExprKind::Name(name) if Constant::lookup(name).is_none() => {
-            Some(Reference::Name(name.clone()))
+            Some(Reference::Name(name.to_string()))
         }
         _ => None,
     }

@@ -5,6 +5,8 @@
 
 use std::fmt;
 
+use compact_str::CompactString;
+
 use crate::span::Span;
 
 /// An expression node with the byte span of its text.
@@ -22,7 +24,7 @@ pub enum ExprKind {
     /// A number literal.
     Number(Number),
     /// A name: constant, variable, marker or object path, as written.
-    Name(String),
+    Name(CompactString),
     /// A unary sign applied to an operand.
     Unary(UnaryOp, Box<Expr>),
     /// A binary operator applied to two operands.
@@ -39,7 +41,7 @@ pub struct Number {
     /// The value, already multiplied by pi/180 when written with the degree suffix.
     pub value: f64,
     /// The literal exactly as written (`1E+07`, `90D`, `.5`).
-    pub text: String,
+    pub text: CompactString,
 }
 
 impl Number {
@@ -53,7 +55,7 @@ impl Number {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Call {
     /// The function name as written.
-    pub name: String,
+    pub name: CompactString,
     /// Where the name was written.
     pub name_span: Span,
     /// The arguments in order.

@@ -3,6 +3,7 @@
 
 use std::sync::LazyLock;
 
+use compact_str::CompactString;
 use pest::Parser;
 use pest::iterators::{Pair, Pairs};
 use pest::pratt_parser::{Assoc, Op, PrattParser};
@@ -62,17 +63,7 @@ fn build_expr(mut pairs: Pairs<'_, Rule>) -> Result<Expr, ParseError> {
     }
     PRATT
         .map_primary(build_primary)
-        .map_prefix(|op, operand| {
-            let operand = operand?;
-            let unary = match op.as_rule() {
-                Rule::neg => UnaryOp::Neg,
-                _ => UnaryOp::Plus,
-            };
-            Ok(Expr {
-                span: span_of(&op).to(operand.span),
-                kind: ExprKind::Unary(unary, Box::new(operand)),
-            })
-        })
+        .map_prefix(|sign, operand| Ok(signed(&sign, operand?)))
         .map_infix(|lhs, op, rhs| {
             let (lhs, rhs) = (lhs?, rhs?);
             let binary = match op.as_rule() {
@@ -88,6 +79,36 @@ fn build_expr(mut pairs: Pairs<'_, Rule>) -> Result<Expr, ParseError> {
             })
         })
         .parse(pairs)
+}
+
+/// `operand` with the sign `sign` (a `neg` or `plus` pair) before it.
+fn signed(sign: &Pair<'_, Rule>, operand: Expr) -> Expr {
+    let unary = match sign.as_rule() {
+        Rule::neg => UnaryOp::Neg,
+        _ => UnaryOp::Plus,
+    };
+    Expr {
+        span: span_of(sign).to(operand.span),
+        kind: ExprKind::Unary(unary, Box::new(operand)),
+    }
+}
+
+/// A call's argument that starts with `first`: an `expr`, or a lone number
+/// or name after any signs, whose pairs follow in `rest`.
+fn build_argument(first: Pair<'_, Rule>, rest: &mut Pairs<'_, Rule>) -> Result<Expr, ParseError> {
+    match first.as_rule() {
+        Rule::neg | Rule::plus => {
+            let operand = rest
+                .next()
+                .expect("the grammar puts an operand after a sign");
+            Ok(signed(&first, build_argument(operand, rest)?))
+        }
+        Rule::name => Ok(Expr {
+            span: span_of(&first),
+            kind: ExprKind::Name(CompactString::new(first.as_str())),
+        }),
+        _ => build_primary(first),
+    }
 }
 
 fn build_primary(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
@@ -110,8 +131,13 @@ fn build_number(pair: Pair<'_, Rule>) -> Result<Number, ParseError> {
     } else {
         text
     };
-    // The grammar admits only what Rust's float syntax reads (`1.`, `.5`, `1E+07`).
-    let value: f64 = digits.parse().unwrap_or(f64::INFINITY);
+    // Whole numbers up to 2^53 are exact as integers, and most literals are
+    // such ids and counts: they skip the float parser. Otherwise the grammar
+    // admits only what Rust's float syntax reads (`1.`, `.5`, `1E+07`).
+    let value = match digits.parse::<u64>() {
+        Ok(whole) if whole <= 1 << f64::MANTISSA_DIGITS => whole as f64,
+        _ => digits.parse().unwrap_or(f64::INFINITY),
+    };
     if !value.is_finite() {
         return Err(ParseError::NumberTooLarge {
             text: text.to_string(),
@@ -120,7 +146,7 @@ fn build_number(pair: Pair<'_, Rule>) -> Result<Number, ParseError> {
     }
     Ok(Number {
         value: if degrees { value.to_radians() } else { value },
-        text: text.to_string(),
+        text: CompactString::new(text),
     })
 }
 
@@ -130,7 +156,7 @@ fn build_named(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
     let input = pair.get_input();
     let mut inner = pair.into_inner();
     let name_pair = inner.next().expect("`named` starts with a name");
-    let name = name_pair.as_str().to_string();
+    let name = CompactString::new(name_pair.as_str());
     let name_span = span_of(&name_pair);
     let Some(arguments) = inner.next() else {
         return Ok(Expr {
@@ -138,19 +164,19 @@ fn build_named(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
             span,
         });
     };
-    let parts = arguments.into_inner();
+    let mut parts = arguments.into_inner();
     let mut args = Vec::with_capacity(parts.len());
     let mut colons = Vec::new();
-    for part in parts {
+    while let Some(part) = parts.next() {
         match part.as_rule() {
-            Rule::expr => args.push(build_expr(part.into_inner())?),
-            _ => colons.push((args.len(), span_of(&part))),
+            Rule::colon => colons.push((args.len(), span_of(&part))),
+            _ => args.push(build_argument(part, &mut parts)?),
         }
     }
     if !name.eq_ignore_ascii_case("IF") {
         if let Some(&(_, colon)) = colons.first() {
             return Err(ParseError::MisplacedColon {
-                function: name.to_uppercase(),
+                function: name.as_str().to_uppercase(),
                 span: colon,
             });
         }
