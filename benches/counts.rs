@@ -21,14 +21,17 @@ mod native;
 use native::{native_bistop, native_linear};
 
 const PARSE_TEXT: &str = "BISTOP(DX(2,1,1), VX(2,1,1,1), -10, 10, 1e5, 2.2, 100, 0.1)";
+/// The same shape for fasteval, as in `benches/parse.rs`.
+const FASTEVAL_TEXT: &str = "bistop(dx(2,1,1), vx(2,1,1,1), -10, 10, 1e5, 2.2, 100, 0.1)";
 const LARGEST_MODEL: &str =
     "../shared/corpus/models/bthornton191__adamspy__FRS5_doe_8_LAUL_analysis.adm";
 const POINT: [f64; 2] = [10.05, 0.7];
 const LINEAR_POINT: [f64; 3] = [10.05, 0.7, 0.3];
 
 /// Each case and how many times it runs.
-const CASES: [(&str, u32); 12] = [
+const CASES: [(&str, u32); 13] = [
     ("parse+check", 20_000),
+    ("fasteval-parse", 20_000),
     ("native-value", 100_000),
     ("value", 100_000),
     ("native-gradient", 100_000),
@@ -65,11 +68,20 @@ fn run(case: &str, repetitions: u32) {
     let mut hessian = bistop.evaluator::<Dual2SVec64<2>>();
     let mut linear = linear.evaluator::<f64>();
     let (x, v) = (POINT[0], POINT[1]);
+    let fasteval_parser = fasteval::Parser::new();
+    let mut slab = fasteval::Slab::new();
     for _ in 0..repetitions {
         match case {
             "parse+check" => {
                 let tree = mbexpr::parse(black_box(PARSE_TEXT)).unwrap();
                 black_box(mbexpr::check(&tree).unwrap());
+            }
+            "fasteval-parse" => {
+                black_box(
+                    fasteval_parser
+                        .parse(black_box(FASTEVAL_TEXT), &mut slab.ps)
+                        .unwrap(),
+                );
             }
             "native-value" => {
                 black_box(native_bistop(black_box(x), black_box(v)));
