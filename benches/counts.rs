@@ -11,6 +11,10 @@
 //! and divide by the case's repetitions (printed). `CASE` is one of the
 //! names in `CASES`; with none, every case runs once (the smoke test
 //! `cargo bench` makes of it).
+//!
+//! A second argument sets the repetitions. On a shared machine, the least
+//! wall-clock time of many runs of `CASE 1000000`, less that of `none`, is
+//! a steadier time per call than a criterion run (BENCHMARKS.md uses both).
 
 use std::hint::black_box;
 
@@ -125,11 +129,22 @@ fn run(case: &str, repetitions: u32) {
 }
 
 fn main() {
-    // `cargo bench` passes `--bench`; a case is the first other argument.
-    let case = std::env::args().skip(1).find(|arg| !arg.starts_with("--"));
+    // `cargo bench` passes `--bench`; a case is the first other argument,
+    // and the repetitions the second.
+    let mut args = std::env::args()
+        .skip(1)
+        .filter(|arg| !arg.starts_with("--"));
+    let case = args.next();
+    let repetitions: Option<u32> = args.next().map(|count| {
+        count.parse().unwrap_or_else(|_| {
+            eprintln!("repetitions must be a whole number, not `{count}`");
+            std::process::exit(2);
+        })
+    });
     match case {
         Some(case) => match CASES.iter().find(|(name, _)| *name == case) {
-            Some(&(name, repetitions)) => {
+            Some(&(name, default)) => {
+                let repetitions = repetitions.unwrap_or(default);
                 run(name, repetitions);
                 println!("{name}: {repetitions} repetitions");
             }
