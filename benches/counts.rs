@@ -74,57 +74,64 @@ fn run(case: &str, repetitions: u32) {
     let (x, v) = (POINT[0], POINT[1]);
     let fasteval_parser = fasteval::Parser::new();
     let mut slab = fasteval::Slab::new();
+    // The case is chosen once, outside the loop, so that each loop holds
+    // nothing but the call.
+    match case {
+        "parse+check" => repeat(repetitions, || {
+            let tree = mbexpr::parse(black_box(PARSE_TEXT)).unwrap();
+            black_box(mbexpr::check(&tree).unwrap());
+        }),
+        "fasteval-parse" => repeat(repetitions, || {
+            black_box(
+                fasteval_parser
+                    .parse(black_box(FASTEVAL_TEXT), &mut slab.ps)
+                    .unwrap(),
+            );
+        }),
+        "native-value" => repeat(repetitions, || {
+            black_box(native_bistop(black_box(x), black_box(v)));
+        }),
+        "value" => repeat(repetitions, || {
+            black_box(value.value(black_box(&POINT)).unwrap());
+        }),
+        "native-gradient" => repeat(repetitions, || {
+            let x = DualSVec64::<2>::from_re(black_box(x)).derivative(0);
+            let v = DualSVec64::<2>::from_re(black_box(v)).derivative(1);
+            black_box(native_bistop(x, v));
+        }),
+        "gradient" => repeat(repetitions, || {
+            black_box(gradient.dual(black_box(&POINT), &[0, 1]).unwrap());
+        }),
+        "native-hessian" => repeat(repetitions, || {
+            let x = Dual2SVec64::<2>::from_re(black_box(x)).derivative(0);
+            let v = Dual2SVec64::<2>::from_re(black_box(v)).derivative(1);
+            black_box(native_bistop(x, v));
+        }),
+        "hessian" => repeat(repetitions, || {
+            black_box(hessian.dual(black_box(&POINT), &[0, 1]).unwrap());
+        }),
+        "native-linear" => repeat(repetitions, || {
+            let [x, v, t] = black_box(LINEAR_POINT);
+            black_box(native_linear(x, v, t));
+        }),
+        "linear" => repeat(repetitions, || {
+            black_box(linear.value(black_box(&LINEAR_POINT)).unwrap());
+        }),
+        "model-read" => repeat(repetitions, || {
+            black_box(model::read(&model_text, FileKind::Adm));
+        }),
+        "model-read+check" => repeat(repetitions, || {
+            let dataset = model::read(&model_text, FileKind::Adm);
+            black_box(model::check_model(&model_text, &dataset));
+        }),
+        _ => {}
+    }
+}
+
+/// Calls `call` `repetitions` times.
+fn repeat(repetitions: u32, mut call: impl FnMut()) {
     for _ in 0..repetitions {
-        match case {
-            "parse+check" => {
-                let tree = mbexpr::parse(black_box(PARSE_TEXT)).unwrap();
-                black_box(mbexpr::check(&tree).unwrap());
-            }
-            "fasteval-parse" => {
-                black_box(
-                    fasteval_parser
-                        .parse(black_box(FASTEVAL_TEXT), &mut slab.ps)
-                        .unwrap(),
-                );
-            }
-            "native-value" => {
-                black_box(native_bistop(black_box(x), black_box(v)));
-            }
-            "value" => {
-                black_box(value.value(black_box(&POINT)).unwrap());
-            }
-            "native-gradient" => {
-                let x = DualSVec64::<2>::from_re(black_box(x)).derivative(0);
-                let v = DualSVec64::<2>::from_re(black_box(v)).derivative(1);
-                black_box(native_bistop(x, v));
-            }
-            "gradient" => {
-                black_box(gradient.dual(black_box(&POINT), &[0, 1]).unwrap());
-            }
-            "native-hessian" => {
-                let x = Dual2SVec64::<2>::from_re(black_box(x)).derivative(0);
-                let v = Dual2SVec64::<2>::from_re(black_box(v)).derivative(1);
-                black_box(native_bistop(x, v));
-            }
-            "hessian" => {
-                black_box(hessian.dual(black_box(&POINT), &[0, 1]).unwrap());
-            }
-            "native-linear" => {
-                let [x, v, t] = black_box(LINEAR_POINT);
-                black_box(native_linear(x, v, t));
-            }
-            "linear" => {
-                black_box(linear.value(black_box(&LINEAR_POINT)).unwrap());
-            }
-            "model-read" => {
-                black_box(model::read(&model_text, FileKind::Adm));
-            }
-            "model-read+check" => {
-                let dataset = model::read(&model_text, FileKind::Adm);
-                black_box(model::check_model(&model_text, &dataset));
-            }
-            _ => {}
-        }
+        call();
     }
 }
 
