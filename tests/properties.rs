@@ -139,6 +139,21 @@ proptest! {
         run_everything(&tokens.concat());
     }
 
+    /// A call's argument takes one of two paths through the grammar (a lone
+    /// number or name, or a whole `expr`); either way it must build the tree
+    /// the same text builds alone.
+    #[test]
+    fn an_argument_parses_as_the_same_text_alone(
+        body in prop_oneof![expression(), prop::collection::vec(token(), 1..10).prop_map(|tokens| tokens.concat())],
+        sign in prop::sample::select(vec!["", "-", "+ ", "- -"]),
+    ) {
+        let text = format!("{sign}{body}");
+        if let Ok(alone) = mbexpr::parse(&text) {
+            let call = mbexpr::parse(&format!("F({text}, {text})")).unwrap();
+            prop_assert_eq!(call.to_string(), format!("(F {alone} {alone})"));
+        }
+    }
+
     #[test]
     fn evaluation_never_returns_nan_or_infinity(text in expression(), x in -3.0f64..3.0, v in -3.0f64..3.0) {
         let checked = mbexpr::check(&mbexpr::parse(&text).unwrap()).unwrap();
