@@ -230,4 +230,22 @@ fn blanks_are_spaces_tabs_and_line_breaks() {
         check("a\u{a0}+ b"),
         "error 1:2: unexpected character `\u{a0}`"
     );
+    // So are the control characters between the line breaks and the space,
+    // which the grammar's one range of blanks holds (the pre-check refuses
+    // them), wherever they stand; the characters around them are blanks.
+    for control in ['\u{e}', '\u{1b}', '\u{1f}'] {
+        for (text, column) in [
+            (format!("{control}a + b"), 1),
+            (format!("a +{control}b"), 4),
+            (format!("F(a,\t{control})"), 6),
+        ] {
+            assert_eq!(
+                check(&text),
+                format!("error 1:{column}: unexpected character `{control}`"),
+                "{text:?}"
+            );
+        }
+    }
+    assert_eq!(check("\u{8}a"), "error 1:1: unexpected character `\u{8}`");
+    assert!(check("a\u{21}").starts_with("error 1:2: `!` is not an operator"));
 }

@@ -11,7 +11,7 @@ use pest_derive::Parser;
 
 use super::ast::{BinaryOp, Call, Expr, ExprKind, If, Number, UnaryOp};
 use super::error::ParseError;
-use super::scan::{check_nesting, diagnose};
+use super::scan::{diagnose, precheck};
 use crate::span::Span;
 
 #[derive(Parser)]
@@ -35,7 +35,7 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
 /// assert_eq!(tree.to_string(), "(+ (neg (** 2 2)) (STEP TIME 0 0 1 90D))");
 /// ```
 pub fn parse(text: &str) -> Result<Expr, ParseError> {
-    check_nesting(text)?;
+    precheck(text)?;
     let pairs = ExpressionParser::parse(Rule::expression, text).map_err(|error| {
         let offset = match error.location {
             pest::error::InputLocation::Pos(offset) => offset,

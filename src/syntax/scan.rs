@@ -141,12 +141,27 @@ fn ends_operand(kind: Option<Kind>) -> bool {
     matches!(kind, Some(Kind::Number | Kind::Name | Kind::Close))
 }
 
-/// Refuses text whose tree would be deeper than [`MAX_NESTING`], before any
-/// recursive parser sees it. Each open parenthesis adds a level, and so does
-/// each operator in a run of operators within one group (between `(`, `,`
-/// and `:`), since `a+b+c` nests `(a+b)+c` and `-x**y` nests too.
-pub fn check_nesting(text: &str) -> Result<(), ParseError> {
-    if nesting_bound(text) <= MAX_NESTING {
+/// Refuses what the grammar must not see, before any recursive parser runs:
+/// a tree deeper than [`MAX_NESTING`], and the control characters `\x0E` to
+/// `\x1F`, which the grammar's `blank` (one range from tab to space) would
+/// otherwise take for blanks; they are explained as unexpected characters.
+///
+/// Each open parenthesis adds a level of nesting, and so does each operator
+/// in a run of operators within one group (between `(`, `,` and `:`), since
+/// `a+b+c` nests `(a+b)+c` and `-x**y` nests too.
+pub fn precheck(text: &str) -> Result<(), ParseError> {
+    let is_stray = |byte: u8| (0x0E..=0x1F).contains(&byte);
+    // A pass with no early exit, which the compiler makes wide; the offset
+    // is looked for only when there is one.
+    if text
+        .bytes()
+        .fold(false, |found, byte| found | is_stray(byte))
+    {
+        let offset = text.bytes().position(is_stray).unwrap_or_default();
+        return Err(diagnose(text, offset));
+    }
+    // Each level takes a byte at least (a parenthesis or an operator).
+    if text.len() <= MAX_NESTING || nesting_bound(text) <= MAX_NESTING {
         return Ok(());
     }
     // `run` counts the operators of the current group; `saved` keeps the run
@@ -181,7 +196,7 @@ pub fn check_nesting(text: &str) -> Result<(), ParseError> {
     Ok(())
 }
 
-/// A bound on the nesting [`check_nesting`] measures, from the bytes alone:
+/// A bound on the nesting [`precheck`] measures, from the bytes alone:
 /// the deepest run of open parentheses plus every byte that could be an
 /// operator (`**` and the sign of an exponent count too, so this is never
 /// less). Nearly every real expression is far below the limit by this count,
