@@ -22,7 +22,7 @@ use num_dual::{Dual2SVec64, DualSVec64};
 
 #[path = "native.rs"]
 mod native;
-use native::{native_bistop, native_linear};
+use native::{BareTape, fasteval_linear, fasteval_linear_value, native_bistop, native_linear};
 
 const PARSE_TEXT: &str = "BISTOP(DX(2,1,1), VX(2,1,1,1), -10, 10, 1e5, 2.2, 100, 0.1)";
 /// The same shape for fasteval, as in `benches/parse.rs`.
@@ -33,7 +33,7 @@ const POINT: [f64; 2] = [10.05, 0.7];
 const LINEAR_POINT: [f64; 3] = [10.05, 0.7, 0.3];
 
 /// Each case and how many times it runs.
-const CASES: [(&str, u32); 13] = [
+const CASES: [(&str, u32); 15] = [
     ("parse+check", 20_000),
     ("fasteval-parse", 20_000),
     ("native-value", 100_000),
@@ -44,6 +44,8 @@ const CASES: [(&str, u32); 13] = [
     ("hessian", 100_000),
     ("native-linear", 100_000),
     ("linear", 100_000),
+    ("fasteval-linear", 100_000),
+    ("bare-tape-linear", 100_000),
     ("model-read", 3),
     ("model-read+check", 3),
     ("none", 1),
@@ -74,6 +76,9 @@ fn run(case: &str, repetitions: u32) {
     let (x, v) = (POINT[0], POINT[1]);
     let fasteval_parser = fasteval::Parser::new();
     let mut slab = fasteval::Slab::new();
+    let mut linear_slab = fasteval::Slab::new();
+    let fasteval_linear = fasteval_linear(&mut linear_slab);
+    let mut bare_tape = black_box(BareTape::linear());
     // The case is chosen once, outside the loop, so that each loop holds
     // nothing but the call.
     match case {
@@ -116,6 +121,16 @@ fn run(case: &str, repetitions: u32) {
         }),
         "linear" => repeat(repetitions, || {
             black_box(linear.value(black_box(&LINEAR_POINT)).unwrap());
+        }),
+        "fasteval-linear" => repeat(repetitions, || {
+            black_box(fasteval_linear_value(
+                &fasteval_linear,
+                &linear_slab,
+                black_box(LINEAR_POINT),
+            ));
+        }),
+        "bare-tape-linear" => repeat(repetitions, || {
+            black_box(bare_tape.value(black_box(LINEAR_POINT)));
         }),
         "model-read" => repeat(repetitions, || {
             black_box(model::read(&model_text, FileKind::Adm));

@@ -1,6 +1,7 @@
 //! Evaluation, side by side in one run so that the report is ratios:
 //! a hand-written native BISTOP (the limit), the same over num-dual,
-//! fasteval with BISTOP as a native function, and mbexpr.
+//! fasteval with BISTOP as a native function, and mbexpr; for the linear
+//! expression, native code, mbexpr, fasteval and a bare tape interpreter.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -11,7 +12,7 @@ use num_dual::{Dual2SVec64, DualSVec64};
 
 #[path = "native.rs"]
 mod native;
-use native::{native_bistop, native_linear};
+use native::{BareTape, fasteval_linear, fasteval_linear_value, native_bistop, native_linear};
 
 const BISTOP: &str = "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
 const LINEAR: &str = "-1E4*(x-50)-10*v + 3*sin(2*pi*t)";
@@ -101,6 +102,13 @@ fn linear(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(2));
     let program = program(LINEAR, &["x", "v", "t"]);
     let point = [10.05, 0.7, 0.3];
+    // Every contender computes the same number.
+    let expected = native_linear(point[0], point[1], point[2]);
+    assert_eq!(program.value(&point).unwrap(), expected);
+    assert_eq!(BareTape::linear().value(point), expected);
+    let mut slab = fasteval::Slab::new();
+    let fasteval_value = fasteval_linear_value(&fasteval_linear(&mut slab), &slab, point);
+    assert!((fasteval_value - expected).abs() <= 1e-12 * expected.abs());
     group.bench_function("value: native f64", |b| {
         b.iter(|| {
             native_linear(
@@ -113,6 +121,15 @@ fn linear(c: &mut Criterion) {
     group.bench_function("value: mbexpr", |b| {
         let mut evaluator = program.evaluator::<f64>();
         b.iter(|| evaluator.value(black_box(&point)).unwrap())
+    });
+    group.bench_function("value: fasteval", |b| {
+        let mut slab = fasteval::Slab::new();
+        let compiled = fasteval_linear(&mut slab);
+        b.iter(|| fasteval_linear_value(&compiled, &slab, black_box(point)))
+    });
+    group.bench_function("value: bare tape, no checks (the floor of a tape)", |b| {
+        let mut tape = black_box(BareTape::linear());
+        b.iter(|| tape.value(black_box(point)))
     });
     group.finish();
 }
