@@ -25,7 +25,7 @@ mod native;
 use native::{BareTape, fasteval_linear, fasteval_linear_value, native_bistop, native_linear};
 
 const PARSE_TEXT: &str = "BISTOP(DX(2,1,1), VX(2,1,1,1), -10, 10, 1e5, 2.2, 100, 0.1)";
-/// The same shape for fasteval, as in `benches/parse.rs`.
+/// The same shape for fasteval and evalexpr, as in `benches/parse.rs`.
 const FASTEVAL_TEXT: &str = "bistop(dx(2,1,1), vx(2,1,1,1), -10, 10, 1e5, 2.2, 100, 0.1)";
 const LARGEST_MODEL: &str =
     "../shared/corpus/models/bthornton191__adamspy__FRS5_doe_8_LAUL_analysis.adm";
@@ -33,9 +33,10 @@ const POINT: [f64; 2] = [10.05, 0.7];
 const LINEAR_POINT: [f64; 3] = [10.05, 0.7, 0.3];
 
 /// Each case and how many times it runs.
-const CASES: [(&str, u32); 15] = [
+const CASES: [(&str, u32); 16] = [
     ("parse+check", 20_000),
     ("fasteval-parse", 20_000),
+    ("evalexpr-parse", 20_000),
     ("native-value", 100_000),
     ("value", 100_000),
     ("native-gradient", 100_000),
@@ -91,6 +92,14 @@ fn run(case: &str, repetitions: u32) {
                 fasteval_parser
                     .parse(black_box(FASTEVAL_TEXT), &mut slab.ps)
                     .unwrap(),
+            );
+        }),
+        "evalexpr-parse" => repeat(repetitions, || {
+            black_box(
+                evalexpr::build_operator_tree::<evalexpr::DefaultNumericTypes>(black_box(
+                    FASTEVAL_TEXT,
+                ))
+                .unwrap(),
             );
         }),
         "native-value" => repeat(repetitions, || {
