@@ -1,6 +1,7 @@
-//! A token scanner that mirrors the grammar's tokens, for the two jobs the
-//! grammar cannot do well: bounding the nesting depth before pest recurses,
-//! and explaining in words why a parse failed.
+//! A token scanner that mirrors the grammar's tokens, for the jobs the
+//! grammar cannot do well: refusing, before pest recurses, input nested too
+//! deep and the control characters the grammar's range of blanks would
+//! take in, and explaining in words why a parse failed.
 
 use super::error::ParseError;
 use crate::span::{Location, Span};
