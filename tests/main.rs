@@ -8,6 +8,8 @@ mod cli;
 mod corpus;
 mod eval;
 mod ffi;
+mod integrate;
+mod integrate_problems;
 mod model;
 mod numerics;
 mod parse;

@@ -1,0 +1,263 @@
+//! What both methods share: the current state, the step size and its
+//! bounds, counted evaluations of the right-hand side, and the first step
+//! size (Hairer's `hinit`).
+
+use super::{AbsoluteTolerance, IntegrateError, Options, Rejection, Stats, System};
+
+/// A step may overshoot the end time by this factor before it is stretched
+/// to land on it (rather than leave a sliver of a step).
+const LANDING_STRETCH: f64 = 1.01;
+
+/// A landing step may exceed the maximum step by this relative amount: the
+/// rounding of a time reached by many steps of the maximum size.
+const CAP_SLACK: f64 = 1e-9;
+
+/// Smallest step size relative to `max(|t|, 1)`.
+const SMALLEST_RELATIVE_STEP: f64 = 1e-14;
+
+/// The smallest step size tried at time `t`: `1e-14 max(|t|, 1)`. A run
+/// whose steps keep being rejected below it stops with
+/// [`IntegrateError::StepSizeTooSmall`].
+pub fn smallest_step(t: f64) -> f64 {
+    SMALLEST_RELATIVE_STEP * t.abs().max(1.0)
+}
+
+/// Greater than zero (NaN is not).
+fn positive(value: f64) -> bool {
+    value > 0.0
+}
+
+/// The state of a run that does not depend on the method.
+pub(super) struct Core {
+    pub t: f64,
+    pub t_previous: f64,
+    pub y: Vec<f64>,
+    /// `f(t, y)`, valid unless `fresh`.
+    pub dy: Vec<f64>,
+    /// `f(t, y)` has still to be evaluated (at the start, after a restart).
+    pub fresh: bool,
+    /// The step size to try next.
+    pub h: f64,
+    pub h_max: f64,
+    pub rtol: f64,
+    pub atol: Vec<f64>,
+    pub max_steps: usize,
+    pub stats: Stats,
+}
+
+impl Core {
+    /// Checks the options against the system's dimension.
+    pub fn new<E>(
+        options: &Options,
+        t0: f64,
+        y0: &[f64],
+        dimension: usize,
+    ) -> Result<Self, IntegrateError<E>> {
+        let invalid = |reason: String| Err(IntegrateError::Settings(reason));
+        if dimension == 0 {
+            return invalid("the system has no state to integrate".to_owned());
+        }
+        if y0.len() != dimension {
+            return invalid(format!(
+                "the initial state has {} components, the system {dimension}",
+                y0.len()
+            ));
+        }
+        let atol = match &options.atol {
+            AbsoluteTolerance::All(atol) => vec![*atol; dimension],
+            AbsoluteTolerance::Each(atol) if atol.len() == dimension => atol.clone(),
+            AbsoluteTolerance::Each(atol) => {
+                return invalid(format!(
+                    "{} absolute tolerances for {dimension} components",
+                    atol.len()
+                ));
+            }
+        };
+        if !(options.rtol > 0.0 && options.rtol.is_finite()) {
+            return invalid(format!("rtol must be positive, not {}", options.rtol));
+        }
+        if let Some(atol) = atol.iter().find(|atol| !(**atol > 0.0 && atol.is_finite())) {
+            return invalid(format!("atol must be positive, not {atol}"));
+        }
+        if !positive(options.h_max) {
+            return invalid(format!("h_max must be positive, not {}", options.h_max));
+        }
+        if let Some(h) = options.h_init.filter(|h| !(*h > 0.0 && h.is_finite())) {
+            return invalid(format!("h_init must be positive, not {h}"));
+        }
+        if !t0.is_finite() {
+            return invalid(format!("the initial time must be finite, not {t0}"));
+        }
+        Ok(Core {
+            t: t0,
+            t_previous: t0,
+            y: y0.to_vec(),
+            dy: vec![0.0; dimension],
+            fresh: true,
+            h: 0.0,
+            h_max: options.h_max,
+            rtol: options.rtol,
+            atol,
+            max_steps: options.max_steps,
+            stats: Stats::default(),
+        })
+    }
+
+    /// Evaluates `f(t, y)` at the current state, which must succeed.
+    pub fn start<S: System + ?Sized>(
+        &mut self,
+        system: &mut S,
+    ) -> Result<(), IntegrateError<S::Error>> {
+        let (t, y, dy) = (self.t, &self.y, &mut self.dy);
+        evaluate(system, &mut self.stats, t, y, dy)
+            .map_err(|cause| IntegrateError::Start { t, cause })?;
+        self.fresh = false;
+        Ok(())
+    }
+
+    /// Continues from `(t, y)` with no past, the step size kept.
+    pub fn restart(&mut self, t: f64, y: &[f64]) {
+        self.t = t;
+        self.t_previous = t;
+        self.y.copy_from_slice(y);
+        self.fresh = true;
+    }
+
+    /// The next trial step `(h, lands)`: the proposal within the maximum
+    /// step, stretched or shortened to land exactly on `t_end` when that is
+    /// within reach. Errors when the budget of steps is spent or the step
+    /// is too small (with `cause`, the last rejection).
+    pub fn trial<E>(
+        &self,
+        t_end: f64,
+        cause: &mut Option<Rejection<E>>,
+    ) -> Result<(f64, bool), IntegrateError<E>> {
+        if self.stats.steps + self.stats.rejected >= self.max_steps {
+            return Err(IntegrateError::TooManySteps {
+                t: self.t,
+                max_steps: self.max_steps,
+            });
+        }
+        if !positive(self.h_max) {
+            return Err(IntegrateError::Settings(format!(
+                "h_max must be positive, not {}",
+                self.h_max
+            )));
+        }
+        let h = self.h.min(self.h_max);
+        let remaining = t_end - self.t;
+        let within_cap = remaining <= self.h_max * (1.0 + CAP_SLACK);
+        if remaining <= h || (remaining <= LANDING_STRETCH * h && within_cap) {
+            return Ok((remaining, true));
+        }
+        if h < smallest_step(self.t) {
+            return Err(IntegrateError::StepSizeTooSmall {
+                t: self.t,
+                h,
+                cause: cause.take().unwrap_or(Rejection::Tolerance),
+            });
+        }
+        Ok((h, false))
+    }
+
+    /// Makes the step `(h, lands)` from `t`, that is accepted, the current
+    /// state (its `y` and `dy` already swapped in by the method), and counts
+    /// it.
+    pub fn advance(&mut self, h: f64, lands: bool, t_end: f64) {
+        self.t_previous = self.t;
+        self.t = if lands { t_end } else { self.t + h };
+        self.stats.steps += 1;
+    }
+
+    /// Counts a rejected trial step and sets the step size to try next.
+    pub fn reject<E>(&mut self, h_next: f64, why: Rejection<E>, cause: &mut Option<Rejection<E>>) {
+        self.stats.rejected += 1;
+        self.h = h_next;
+        *cause = Some(why);
+    }
+}
+
+/// `f(t, y)` into `dy`, counted. A non-finite component of `y` or `dy`, or
+/// the system's error, rejects the trial state.
+pub(super) fn evaluate<S: System + ?Sized>(
+    system: &mut S,
+    stats: &mut Stats,
+    t: f64,
+    y: &[f64],
+    dy: &mut [f64],
+) -> Result<(), Rejection<S::Error>> {
+    if !y.iter().all(|value| value.is_finite()) {
+        return Err(Rejection::NonFinite);
+    }
+    stats.rhs_evaluations += 1;
+    let outcome = match system.rhs(t, y, dy) {
+        Err(error) => Err(Rejection::System(error)),
+        Ok(()) if dy.iter().all(|rate| rate.is_finite()) => return Ok(()),
+        Ok(()) => Err(Rejection::NonFinite),
+    };
+    stats.rhs_failures += 1;
+    outcome
+}
+
+/// The root mean square of `values` (an empty list gives 0).
+pub(super) fn rms(values: impl Iterator<Item = f64>, n: usize) -> f64 {
+    (values.map(|value| value * value).sum::<f64>() / n.max(1) as f64).sqrt()
+}
+
+/// A first step size for a method of local error `O(h^order)` (Hairer's
+/// `hinit`): one explicit Euler step of size `0.01 |y| / |f|` estimates the
+/// second derivative, and the step is the one whose error it predicts to be
+/// `0.01`, bounded by 100 times the first guess and by `h_max`.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn initial_step<S: System + ?Sized>(
+    system: &mut S,
+    stats: &mut Stats,
+    t: f64,
+    y: &[f64],
+    f0: &[f64],
+    h_max: f64,
+    rtol: f64,
+    atol: &[f64],
+    order: i32,
+) -> f64 {
+    let n = y.len();
+    let scale = |i: usize, value: f64| atol[i] + rtol * value.abs();
+    let size_of = |values: &[f64]| {
+        (values
+            .iter()
+            .enumerate()
+            .map(|(i, value)| (value / scale(i, y[i])).powi(2))
+            .sum::<f64>())
+        .sqrt()
+    };
+    let (norm_f, norm_y) = (size_of(f0), size_of(y));
+    let mut h = if norm_f <= 1e-5 || norm_y <= 1e-5 {
+        1e-6
+    } else {
+        0.01 * norm_y / norm_f
+    };
+    let first_guess = h.min(h_max);
+    h = first_guess;
+    let mut euler = vec![0.0; n];
+    let mut f1 = vec![0.0; n];
+    // A trial the system refuses is retried closer to the start; if none
+    // succeeds, the first step finds out why.
+    for _ in 0..10 {
+        for i in 0..n {
+            euler[i] = y[i] + h * f0[i];
+        }
+        if evaluate(system, stats, t + h, &euler, &mut f1).is_ok() {
+            let change: Vec<f64> = f1.iter().zip(f0).map(|(f1, f0)| f1 - f0).collect();
+            let second = size_of(&change) / h;
+            let largest = second.max(norm_f);
+            let h_order = if largest <= 1e-15 {
+                (h * 1e-3).max(1e-6)
+            } else {
+                (0.01 / largest).powf(1.0 / f64::from(order))
+            };
+            return (100.0 * h).min(h_order).min(h_max);
+        }
+        h *= 0.1;
+    }
+    first_guess
+}

@@ -1,0 +1,457 @@
+//! The project's own integrators of ordinary differential equations
+//! `dy/dt = f(t, y)`: Radau IIA of order 5 for stiff systems, with the
+//! caller's exact Jacobian, and the explicit Dormand–Prince pair DOP853,
+//! both with continuous (dense) output over each step.
+//!
+//! A [`Stepper`] makes one accepted step at a time, so that a caller can look
+//! inside each step (on the dense output) for events, cut the step short
+//! there and [`restart`](Stepper::restart). A trial state at which the
+//! [`System`] fails (a domain error, an overflow, a NaN) rejects the trial
+//! step, which is retried smaller; a run ends only when the step size falls
+//! below [`smallest_step`] or the step budget is spent.
+//!
+//! # Formulation
+//!
+//! Both methods follow Hairer and Wanner's codes (`dop853.f`, `radau5.f`):
+//!
+//! - **DOP853** (Hairer, Nørsett, Wanner I, II.5 and II.6): 12 stages of
+//!   order 8, the first stage of the next step being the last evaluation of
+//!   this one (FSAL). The error of the step is estimated from a 5th-order and
+//!   a 3rd-order embedded solution combined as `err5² / sqrt(err5² + 0.01
+//!   err3²)`, and the step size follows `h_new = h / clamp(err^(1/8) / 0.9,
+//!   1/6, 1/0.333)`. Three more stages give the 7th-order dense output.
+//! - **Radau IIA of order 5** (Hairer, Wanner II, IV.8): the three-stage
+//!   collocation method at the Radau points `(4 ∓ √6)/10, 1`. The stage
+//!   equations are solved by simplified Newton iterations on the system
+//!   transformed by the eigenvectors of the method's matrix, which splits it
+//!   into one real `n×n` system `(γ/h − J)` and one complex `(α + iβ)/h − J`,
+//!   each factorised once per step size. The Jacobian is kept while the
+//!   Newton contraction `θ` stays below 0.001; the error estimate is
+//!   filtered through `(I − h γ₀ J)⁻¹` (and refined once more at a first or
+//!   rejected step); the step size is chosen by Gustafsson's predictive
+//!   controller. The Newton iterations start from the last step's
+//!   collocation polynomial, which is also the dense output (order 3 inside
+//!   the step, 5 at its end). Tolerances are changed as Hairer's code does:
+//!   `rtol' = 0.1 rtol^(2/3)`, `atol' = rtol' atol / rtol`.
+//!
+//! **Architecture Invariant:** this module knows only `f64` slices, nalgebra
+//! matrices and its [`System`] trait; nothing of expressions, models or
+//! scenes.
+//!
+//! # References
+//!
+//! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential
+//!   Equations I: Nonstiff Problems*, 2nd ed., Springer 1993.
+//! - E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II:
+//!   Stiff and Differential-Algebraic Problems*, 2nd ed., Springer 1996.
+//! - K. Gustafsson, Control-theoretic techniques for stepsize selection in
+//!   implicit Runge–Kutta methods, *ACM TOMS* 20 (1994) 496–517.
+//!
+//! ```
+//! use mbexpr::integrate::{Method, Options, Stepper, System};
+//! use nalgebra::DMatrix;
+//!
+//! /// y'' = -y as a first-order system.
+//! struct Oscillator;
+//!
+//! impl System for Oscillator {
+//!     type Error = std::convert::Infallible;
+//!     fn dimension(&self) -> usize {
+//!         2
+//!     }
+//!     fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Self::Error> {
+//!         dy[0] = y[1];
+//!         dy[1] = -y[0];
+//!         Ok(())
+//!     }
+//!     fn jacobian(&mut self, _t: f64, _y: &[f64], _dy: &[f64], jac: &mut DMatrix<f64>) -> Result<(), Self::Error> {
+//!         jac.copy_from_slice(&[0.0, -1.0, 1.0, 0.0]); // column-major
+//!         Ok(())
+//!     }
+//! }
+//!
+//! let options = Options { rtol: 1e-10, atol: 1e-10.into(), ..Options::default() };
+//! let mut stepper = Stepper::new(Method::Radau5, options, 0.0, &[1.0, 0.0], &mut Oscillator)?;
+//! while stepper.t() < 3.0 {
+//!     stepper.step_to(&mut Oscillator, 3.0)?;
+//! }
+//! assert_eq!(stepper.t(), 3.0);
+//! assert!((stepper.y()[0] - 3.0f64.cos()).abs() < 1e-9);
+//! // The collocation polynomial of the last step, between its ends:
+//! let mut y = [0.0; 2];
+//! let between = 0.5 * (stepper.t_previous() + stepper.t());
+//! stepper.dense(between, &mut y);
+//! assert!((y[0] - between.cos()).abs() < 1e-7);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod core;
+mod dop853;
+mod error;
+mod radau5;
+
+use std::fmt;
+use std::str::FromStr;
+
+use nalgebra::DMatrix;
+
+use self::core::Core;
+pub use self::core::smallest_step;
+use self::dop853::Dop853;
+pub use self::error::{IntegrateError, Rejection, UnknownMethod};
+use self::radau5::Radau5;
+
+/// A system of ordinary differential equations `dy/dt = f(t, y)`.
+pub trait System {
+    /// The caller's error, for a state at which `f` cannot be evaluated.
+    type Error;
+
+    /// The number of components of `y`.
+    fn dimension(&self) -> usize;
+
+    /// `dy/dt` at `(t, y)`, written into `dy`. An error means that the state
+    /// is not admissible (an overflow, a domain error, a NaN): the
+    /// integrator rejects the trial step and retries a smaller one, it does
+    /// not stop. So does a non-finite component of `dy`.
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Self::Error>;
+
+    /// `d(dy/dt)/dy` at `(t, y)` as a dense `n×n` matrix (row `i`, column
+    /// `j`: `∂f_i/∂y_j`), where `dy` is `f(t, y)`; `jac` arrives zeroed.
+    /// Only the implicit method asks for it, always at an accepted state.
+    /// The default is [`finite_difference_jacobian`], as `radau5.f` does
+    /// without a Jacobian; give the exact one where it is known.
+    fn jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &[f64],
+        jac: &mut DMatrix<f64>,
+    ) -> Result<(), Self::Error> {
+        finite_difference_jacobian(self, t, y, dy, jac)
+    }
+}
+
+/// The Jacobian of `system` at `(t, y)` by forward differences of its
+/// right-hand side (`dy` is `f(t, y)`), each component shifted by
+/// `sqrt(ε max(|y_j|, 1e-5))` as in `radau5.f`: about half the digits of
+/// the exact one.
+pub fn finite_difference_jacobian<S: System + ?Sized>(
+    system: &mut S,
+    t: f64,
+    y: &[f64],
+    dy: &[f64],
+    jac: &mut DMatrix<f64>,
+) -> Result<(), S::Error> {
+    let mut shifted = y.to_vec();
+    let mut column = vec![0.0; y.len()];
+    for j in 0..y.len() {
+        let delta = (f64::EPSILON * y[j].abs().max(1e-5)).sqrt();
+        shifted[j] = y[j] + delta;
+        system.rhs(t, &shifted, &mut column)?;
+        shifted[j] = y[j];
+        for (i, (shifted_rate, rate)) in column.iter().zip(dy).enumerate() {
+            jac[(i, j)] = (shifted_rate - rate) / delta;
+        }
+    }
+    Ok(())
+}
+
+/// The integration method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Radau IIA of order 5 (`radau5.f`): implicit, for stiff systems; uses
+    /// [`System::jacobian`].
+    Radau5,
+    /// Dormand and Prince's explicit pair of order 8 (`dop853.f`) with its
+    /// 7th-order dense output.
+    Dop853,
+}
+
+impl Method {
+    /// Whether the method asks the system for its Jacobian.
+    pub fn uses_jacobian(self) -> bool {
+        self == Method::Radau5
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Method::Radau5 => "radau",
+            Method::Dop853 => "dop853",
+        })
+    }
+}
+
+impl FromStr for Method {
+    type Err = UnknownMethod;
+
+    /// `radau` (or `radau5`) and `dop853`, as the command line spells them.
+    fn from_str(name: &str) -> Result<Self, UnknownMethod> {
+        match name {
+            "radau" | "radau5" => Ok(Method::Radau5),
+            "dop853" => Ok(Method::Dop853),
+            _ => Err(UnknownMethod(name.to_owned())),
+        }
+    }
+}
+
+/// The absolute tolerance: one for every component, or one each.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AbsoluteTolerance {
+    /// The same for every component.
+    All(f64),
+    /// One per component of the state.
+    Each(Vec<f64>),
+}
+
+impl From<f64> for AbsoluteTolerance {
+    fn from(atol: f64) -> Self {
+        AbsoluteTolerance::All(atol)
+    }
+}
+
+/// The settings of a run. The error of a step is measured component by
+/// component against `atol_i + rtol |y_i|`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// Relative tolerance (positive).
+    pub rtol: f64,
+    /// Absolute tolerance (positive).
+    pub atol: AbsoluteTolerance,
+    /// Largest step size (positive; infinity for none). See also
+    /// [`Stepper::set_h_max`].
+    pub h_max: f64,
+    /// The first step size; chosen from the problem (Hairer's `hinit`) when
+    /// `None`.
+    pub h_init: Option<f64>,
+    /// Largest number of steps tried, accepted and rejected, over the
+    /// stepper's life.
+    pub max_steps: usize,
+    /// Radau5 only: the Newton iteration stops when its estimated error,
+    /// in units of the tolerance, is below this (Hairer's `fnewt`; by
+    /// default `max(10 ε / rtol', min(0.03, rtol'^(1/2)))`).
+    pub newton_tolerance: Option<f64>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            rtol: 1e-6,
+            atol: AbsoluteTolerance::All(1e-6),
+            h_max: f64::INFINITY,
+            h_init: None,
+            max_steps: 100_000,
+            newton_tolerance: None,
+        }
+    }
+}
+
+/// What a run has cost so far.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Accepted steps.
+    pub steps: usize,
+    /// Rejected trial steps, for any reason.
+    pub rejected: usize,
+    /// Calls of [`System::rhs`] (not counting those of the default
+    /// finite-difference Jacobian).
+    pub rhs_evaluations: usize,
+    /// Calls of [`System::rhs`] that failed or gave a non-finite value.
+    pub rhs_failures: usize,
+    /// Calls of [`System::jacobian`].
+    pub jacobian_evaluations: usize,
+    /// LU decompositions of the iteration matrices (a real and a complex
+    /// one counted together as one).
+    pub lu_decompositions: usize,
+}
+
+impl fmt::Display for Stats {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} steps ({} rejected), {} right-hand sides ({} failed), {} jacobians, {} lu decompositions",
+            self.steps,
+            self.rejected,
+            self.rhs_evaluations,
+            self.rhs_failures,
+            self.jacobian_evaluations,
+            self.lu_decompositions
+        )
+    }
+}
+
+/// The method's own state.
+enum Scheme {
+    Radau5(Box<Radau5>),
+    Dop853(Box<Dop853>),
+}
+
+/// An integration in progress: one accepted step per call of
+/// [`step`](Stepper::step) or [`step_to`](Stepper::step_to), after which
+/// [`t_previous`](Stepper::t_previous), [`t`](Stepper::t),
+/// [`y`](Stepper::y) and [`dense`](Stepper::dense) describe the step.
+///
+/// The system is passed to each call rather than held, so that the caller
+/// may change it between steps (a branch switch at an event, then
+/// [`restart`](Stepper::restart)). Time runs forwards.
+pub struct Stepper {
+    core: Core,
+    scheme: Scheme,
+}
+
+impl Stepper {
+    /// Starts at `(t0, y0)`: checks the options, evaluates `f(t0, y0)` and
+    /// chooses the first step size unless `options.h_init` gives it.
+    pub fn new<S: System + ?Sized>(
+        method: Method,
+        options: Options,
+        t0: f64,
+        y0: &[f64],
+        system: &mut S,
+    ) -> Result<Self, IntegrateError<S::Error>> {
+        let mut core = Core::new(&options, t0, y0, system.dimension())?;
+        let scheme = match method {
+            Method::Radau5 => Scheme::Radau5(Box::new(Radau5::new(&options, &core.atol)?)),
+            Method::Dop853 => Scheme::Dop853(Box::new(Dop853::new(y0.len()))),
+        };
+        core.start(system)?;
+        core.h = match options.h_init {
+            Some(h) => h,
+            None => {
+                let (rtol, atol, order) = match &scheme {
+                    Scheme::Radau5(radau) => (radau.rtol, radau.atol.as_slice(), radau5::ORDER),
+                    Scheme::Dop853(_) => (core.rtol, core.atol.as_slice(), dop853::ORDER),
+                };
+                core::initial_step(
+                    system,
+                    &mut core.stats,
+                    core.t,
+                    &core.y,
+                    &core.dy,
+                    core.h_max,
+                    rtol,
+                    atol,
+                    order,
+                )
+            }
+        };
+        Ok(Stepper { core, scheme })
+    }
+
+    /// One accepted step, as long as the method chooses.
+    pub fn step<S: System + ?Sized>(
+        &mut self,
+        system: &mut S,
+    ) -> Result<(), IntegrateError<S::Error>> {
+        self.step_to(system, f64::INFINITY)
+    }
+
+    /// One accepted step that does not pass `t_end`: when `t_end` is within
+    /// reach the step ends exactly on it (`t() == t_end`).
+    pub fn step_to<S: System + ?Sized>(
+        &mut self,
+        system: &mut S,
+        t_end: f64,
+    ) -> Result<(), IntegrateError<S::Error>> {
+        if t_end <= self.core.t || t_end.is_nan() {
+            return Err(IntegrateError::EndNotAhead {
+                t: self.core.t,
+                t_end,
+            });
+        }
+        if self.core.fresh {
+            self.core.start(system)?;
+        }
+        match &mut self.scheme {
+            Scheme::Radau5(radau) => radau.step(&mut self.core, system, t_end),
+            Scheme::Dop853(dop) => dop.step(&mut self.core, system, t_end),
+        }
+    }
+
+    /// Continues from `(t, y)` afresh, as at a start: the caller has cut the
+    /// last step short at an event and perhaps changed the system. The
+    /// method forgets its history (Radau5 recomputes its Jacobian); the step
+    /// size is the last proposal, within the maximum step. `f(t, y)` is
+    /// evaluated by the next step.
+    ///
+    /// # Panics
+    ///
+    /// When `y` has not the system's dimension.
+    pub fn restart(&mut self, t: f64, y: &[f64]) {
+        assert_eq!(
+            y.len(),
+            self.core.y.len(),
+            "restart with a state of another dimension"
+        );
+        self.core.restart(t, y);
+        match &mut self.scheme {
+            Scheme::Radau5(radau) => radau.restart(),
+            Scheme::Dop853(dop) => dop.restart(),
+        }
+    }
+
+    /// Caps the step size from the next step on (positive; infinity lifts
+    /// the cap).
+    pub fn set_h_max(&mut self, h_max: f64) {
+        self.core.h_max = h_max;
+    }
+
+    /// The solution at `t` from the method's continuous output over the last
+    /// step, `[t_previous(), t()]` (extrapolated outside it), written into
+    /// `out`. Before the first step and after a restart it is `y()`.
+    ///
+    /// # Panics
+    ///
+    /// When `out` has not the system's dimension.
+    pub fn dense(&self, t: f64, out: &mut [f64]) {
+        assert_eq!(
+            out.len(),
+            self.core.y.len(),
+            "dense output of another dimension"
+        );
+        if self.core.t_previous == self.core.t {
+            out.copy_from_slice(&self.core.y);
+            return;
+        }
+        match &self.scheme {
+            Scheme::Radau5(radau) => radau.dense(&self.core, t, out),
+            Scheme::Dop853(dop) => dop.dense(&self.core, t, out),
+        }
+    }
+
+    /// The time at the end of the last step.
+    pub fn t(&self) -> f64 {
+        self.core.t
+    }
+
+    /// The time at the start of the last step (`t()` before the first step
+    /// and after a restart).
+    pub fn t_previous(&self) -> f64 {
+        self.core.t_previous
+    }
+
+    /// The state at [`t`](Stepper::t).
+    pub fn y(&self) -> &[f64] {
+        &self.core.y
+    }
+
+    /// The step size the next step will try (before the maximum step and
+    /// the end time bound it).
+    pub fn h(&self) -> f64 {
+        self.core.h
+    }
+
+    /// What the run has cost so far.
+    pub fn stats(&self) -> Stats {
+        self.core.stats
+    }
+
+    /// The method.
+    pub fn method(&self) -> Method {
+        match self.scheme {
+            Scheme::Radau5(_) => Method::Radau5,
+            Scheme::Dop853(_) => Method::Dop853,
+        }
+    }
+}

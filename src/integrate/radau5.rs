@@ -1,0 +1,514 @@
+//! Radau IIA of order 5 (Hairer, Wanner II, IV.8; `radau5.f`).
+//!
+//! The stage increments `z_i = Y_i − y` solve `z = h (A ⊗ I) F(z)`. With
+//! `A⁻¹ = T Λ T⁻¹` (one real eigenvalue `γ`, a complex pair `α ± iβ`) and
+//! `w = (T⁻¹ ⊗ I) z`, a simplified Newton step is one real solve with
+//! `γ/h − J` and one complex solve with `(α + iβ)/h − J`.
+
+use nalgebra::{Complex, DMatrix, DVector, Dyn, LU};
+
+use super::core::{Core, evaluate, rms};
+use super::{IntegrateError, Options, Rejection, System};
+
+/// The order the first step size is chosen for (the error estimate's).
+pub(super) const ORDER: i32 = 4;
+
+/// The nodes `(4 ∓ √6)/10` (the third is 1) and their distances to 1.
+#[allow(clippy::excessive_precision)]
+const C1: f64 = 0.155051025721682190180271592529;
+#[allow(clippy::excessive_precision)]
+const C2: f64 = 0.644948974278317809819728407471;
+const C1M1: f64 = C1 - 1.0;
+const C2M1: f64 = C2 - 1.0;
+const C1MC2: f64 = C1 - C2;
+/// The eigenvalues of `A⁻¹`: `γ` and `α ± iβ`.
+#[allow(clippy::excessive_precision)]
+const GAMMA: f64 = 3.63783425274449573220841851358;
+#[allow(clippy::excessive_precision)]
+const ALPHA: f64 = 2.68108287362775213389579074321;
+#[allow(clippy::excessive_precision)]
+const BETA: f64 = 3.05043019924741056942637762479;
+/// The error estimate's weights on `z`: `−(13 + 7√6)/3`, `(−13 + 7√6)/3`,
+/// `−1/3`.
+#[allow(clippy::excessive_precision)]
+const ERROR_WEIGHTS: [f64; 3] = [
+    -10.0488093998274155624603295076,
+    1.38214273316074889579366284098,
+    -1.0 / 3.0,
+];
+/// `T` (its last row is `(T31, 1, 0)`) and `T⁻¹`, from `radau5.f`.
+#[allow(clippy::excessive_precision)]
+const T: [[f64; 3]; 3] = [
+    [
+        9.1232394870892942792e-02,
+        -0.14125529502095420843,
+        -3.0029194105147424492e-02,
+    ],
+    [
+        0.24171793270710701896,
+        0.20412935229379993199,
+        0.38294211275726193779,
+    ],
+    [0.96604818261509293619, 1.0, 0.0],
+];
+#[allow(clippy::excessive_precision)]
+const T_INVERSE: [[f64; 3]; 3] = [
+    [
+        4.3255798900631553510,
+        0.33919925181580986954,
+        0.54177053993587487119,
+    ],
+    [
+        -4.1787185915519047273,
+        -0.32768282076106238708,
+        0.47662355450055045196,
+    ],
+    [
+        -0.50287263494578687595,
+        2.5719269498556054292,
+        -0.59603920482822492497,
+    ],
+];
+
+/// Newton iterations allowed per step.
+const MAX_NEWTON: usize = 7;
+/// The Jacobian is kept while the Newton contraction stays below this.
+const JACOBIAN_REUSE: f64 = 0.001;
+/// Safety factor of the step size control.
+const SAFETY: f64 = 0.9;
+/// Bounds of `h / h_new`: a step changes by a factor between 1/5 and 8.
+const SHRINK_MOST: f64 = 5.0;
+const GROW_MOST: f64 = 1.0 / 8.0;
+/// A proposal between 1 and 1.2 times the step keeps the step (and its
+/// factorisations).
+const KEEP_STEP: std::ops::RangeInclusive<f64> = 1.0..=1.2;
+/// Step factor after a refused trial state, a singular matrix or a
+/// diverging Newton iteration; and after a first step fails its error test.
+const FAILURE_SHRINK: f64 = 0.5;
+const FIRST_STEP_SHRINK: f64 = 0.1;
+
+/// How a Newton iteration ended well.
+struct Converged {
+    iterations: usize,
+    theta: f64,
+}
+
+/// Radau5's working storage, its Jacobian and factorisations, and the last
+/// step's collocation polynomial.
+pub(super) struct Radau5 {
+    n: usize,
+    /// The tolerances the method works with (`rtol' = 0.1 rtol^(2/3)`).
+    pub rtol: f64,
+    pub atol: Vec<f64>,
+    newton_tolerance: f64,
+    /// `atol' + rtol' |y|` at the start of the step.
+    scale: Vec<f64>,
+    jacobian: DMatrix<f64>,
+    /// The Jacobian may be used at the current state.
+    jacobian_valid: bool,
+    /// The Jacobian was evaluated at the current state.
+    jacobian_current: bool,
+    real: Option<LU<f64, Dyn, Dyn>>,
+    complex: Option<LU<Complex<f64>, Dyn, Dyn>>,
+    /// The step size the factorisations are for (NaN: none).
+    factorised_for: f64,
+    /// Stage increments `z`, transformed increments `w`, stage rates.
+    z: [Vec<f64>; 3],
+    w: [Vec<f64>; 3],
+    rates: [Vec<f64>; 3],
+    stage_y: Vec<f64>,
+    real_rhs: DVector<f64>,
+    complex_rhs: DVector<Complex<f64>>,
+    /// The last step's collocation polynomial about its end (divided
+    /// differences), and that step's size.
+    polynomial: [Vec<f64>; 3],
+    h_last: f64,
+    /// No step accepted since the start: no polynomial to start Newton from.
+    first: bool,
+    after_rejection: bool,
+    /// Hairer's `faccon`: the contraction estimate carried between steps.
+    contraction: f64,
+    /// The last accepted step's size and error, for Gustafsson's controller.
+    last_accepted: Option<(f64, f64)>,
+}
+
+impl Radau5 {
+    /// Working storage for the options' tolerances.
+    pub fn new<E>(options: &Options, atol: &[f64]) -> Result<Self, IntegrateError<E>> {
+        let n = atol.len();
+        let rtol = 0.1 * options.rtol.powf(2.0 / 3.0);
+        let atol: Vec<f64> = atol.iter().map(|atol| rtol * atol / options.rtol).collect();
+        let newton_tolerance = match options.newton_tolerance {
+            None => (10.0 * f64::EPSILON / rtol).max(rtol.sqrt().min(0.03)),
+            Some(tolerance) if tolerance > 0.0 && tolerance.is_finite() => tolerance,
+            Some(tolerance) => {
+                return Err(IntegrateError::Settings(format!(
+                    "newton_tolerance must be positive, not {tolerance}"
+                )));
+            }
+        };
+        let zeros = || vec![0.0; n];
+        Ok(Radau5 {
+            n,
+            rtol,
+            atol,
+            newton_tolerance,
+            scale: zeros(),
+            jacobian: DMatrix::zeros(n, n),
+            jacobian_valid: false,
+            jacobian_current: false,
+            real: None,
+            complex: None,
+            factorised_for: f64::NAN,
+            z: [zeros(), zeros(), zeros()],
+            w: [zeros(), zeros(), zeros()],
+            rates: [zeros(), zeros(), zeros()],
+            stage_y: zeros(),
+            real_rhs: DVector::zeros(n),
+            complex_rhs: DVector::zeros(n),
+            polynomial: [zeros(), zeros(), zeros()],
+            h_last: 0.0,
+            first: true,
+            after_rejection: false,
+            contraction: 1.0,
+            last_accepted: None,
+        })
+    }
+
+    /// Forgets the past: no polynomial, a new Jacobian.
+    pub fn restart(&mut self) {
+        self.first = true;
+        self.after_rejection = false;
+        self.jacobian_valid = false;
+        self.contraction = 1.0;
+        self.last_accepted = None;
+    }
+
+    /// One accepted step that does not pass `t_end`.
+    pub fn step<S: System + ?Sized>(
+        &mut self,
+        core: &mut Core,
+        system: &mut S,
+        t_end: f64,
+    ) -> Result<(), IntegrateError<S::Error>> {
+        for (scale, (y, atol)) in self.scale.iter_mut().zip(core.y.iter().zip(&self.atol)) {
+            *scale = atol + self.rtol * y.abs();
+        }
+        let mut cause = None;
+        loop {
+            let (h, lands) = core.trial(t_end, &mut cause)?;
+            if !self.jacobian_valid {
+                self.update_jacobian(core, system)?;
+            }
+            if self.factorised_for != h && !self.factorise(h, core) {
+                self.reject(core, h * FAILURE_SHRINK, Rejection::Singular, &mut cause);
+                continue;
+            }
+            let newton = match self.newton(core, system, h) {
+                Ok(newton) => newton,
+                Err((factor, why)) => {
+                    self.reject(core, h * factor, why, &mut cause);
+                    continue;
+                }
+            };
+            let err = self.error_estimate(core, system, h);
+            let safety = SAFETY.min(
+                SAFETY * (1 + 2 * MAX_NEWTON) as f64 / (newton.iterations + 2 * MAX_NEWTON) as f64,
+            );
+            let mut quotient = (err.powf(0.25) / safety).clamp(GROW_MOST, SHRINK_MOST);
+            if err >= 1.0 {
+                let h_next = if self.first {
+                    FIRST_STEP_SHRINK * h
+                } else {
+                    h / quotient
+                };
+                self.reject(core, h_next, Rejection::Tolerance, &mut cause);
+                continue;
+            }
+            // The new state, which the system must accept.
+            for (value, (y, z)) in self.stage_y.iter_mut().zip(core.y.iter().zip(&self.z[2])) {
+                *value = y + z;
+            }
+            let t_new = if lands { t_end } else { core.t + h };
+            if let Err(why) = evaluate(
+                system,
+                &mut core.stats,
+                t_new,
+                &self.stage_y,
+                &mut self.rates[0],
+            ) {
+                self.reject(core, h * FAILURE_SHRINK, why, &mut cause);
+                continue;
+            }
+            if let Some((h_accepted, err_accepted)) = self.last_accepted {
+                let predicted = h_accepted / h * (err * err / err_accepted).powf(0.25) / SAFETY;
+                quotient = quotient.max(predicted.clamp(GROW_MOST, SHRINK_MOST));
+            }
+            self.last_accepted = Some((h, err.max(1e-2)));
+            let mut h_new = h / quotient;
+            if self.after_rejection {
+                h_new = h_new.min(h);
+            }
+            self.accept(core, h);
+            // A small change keeps the step and its factorisations.
+            let h_next = if newton.theta <= JACOBIAN_REUSE && KEEP_STEP.contains(&(h_new / h)) {
+                h
+            } else {
+                h_new
+            };
+            core.h = if lands { h_next.max(core.h) } else { h_next };
+            self.jacobian_valid = newton.theta <= JACOBIAN_REUSE;
+            core.advance(h, lands, t_end);
+            return Ok(());
+        }
+    }
+
+    /// Makes the trial step the current state: `y + z3`, its rate (in
+    /// `rates[0]`), and the collocation polynomial.
+    fn accept(&mut self, core: &mut Core, h: f64) {
+        let [z1, z2, z3] = &self.z;
+        let [p1, p2, p3] = &mut self.polynomial;
+        for i in 0..self.n {
+            p1[i] = (z2[i] - z3[i]) / C2M1;
+            let slope = (z1[i] - z2[i]) / C1MC2;
+            let curvature = (slope - z1[i] / C1) / C2;
+            p2[i] = (slope - p1[i]) / C1M1;
+            p3[i] = p2[i] - curvature;
+        }
+        std::mem::swap(&mut core.y, &mut self.stage_y);
+        std::mem::swap(&mut core.dy, &mut self.rates[0]);
+        self.h_last = h;
+        self.first = false;
+        self.after_rejection = false;
+        self.jacobian_current = false;
+    }
+
+    /// Counts a rejected trial; a Jacobian from an earlier state is renewed.
+    fn reject<E>(
+        &mut self,
+        core: &mut Core,
+        h_next: f64,
+        why: Rejection<E>,
+        cause: &mut Option<Rejection<E>>,
+    ) {
+        core.reject(h_next, why, cause);
+        self.after_rejection = true;
+        if !self.jacobian_current {
+            self.jacobian_valid = false;
+        }
+    }
+
+    fn update_jacobian<S: System + ?Sized>(
+        &mut self,
+        core: &mut Core,
+        system: &mut S,
+    ) -> Result<(), IntegrateError<S::Error>> {
+        core.stats.jacobian_evaluations += 1;
+        self.jacobian.fill(0.0);
+        system
+            .jacobian(core.t, &core.y, &core.dy, &mut self.jacobian)
+            .map_err(|error| IntegrateError::Jacobian { t: core.t, error })?;
+        if !self.jacobian.iter().all(|entry| entry.is_finite()) {
+            return Err(IntegrateError::JacobianNotFinite { t: core.t });
+        }
+        self.jacobian_valid = true;
+        self.jacobian_current = true;
+        self.factorised_for = f64::NAN;
+        Ok(())
+    }
+
+    /// LU factorisations of `γ/h − J` and `(α + iβ)/h − J`; false when one
+    /// is singular.
+    fn factorise(&mut self, h: f64, core: &mut Core) -> bool {
+        core.stats.lu_decompositions += 1;
+        let n = self.n;
+        let jacobian = &self.jacobian;
+        let diagonal = |i: usize, j: usize, value: f64| if i == j { value } else { 0.0 };
+        let real = DMatrix::from_fn(n, n, |i, j| diagonal(i, j, GAMMA / h) - jacobian[(i, j)]);
+        let complex = DMatrix::from_fn(n, n, |i, j| {
+            Complex::new(
+                diagonal(i, j, ALPHA / h) - jacobian[(i, j)],
+                diagonal(i, j, BETA / h),
+            )
+        });
+        let (real, complex) = (real.lu(), complex.lu());
+        let invertible = real.is_invertible() && complex.is_invertible();
+        self.real = Some(real);
+        self.complex = Some(complex);
+        self.factorised_for = if invertible { h } else { f64::NAN };
+        invertible
+    }
+
+    /// Newton's starting values: the last step's collocation polynomial
+    /// extrapolated, or zero after a start.
+    fn starting_values(&mut self, h: f64) {
+        let [z1, z2, z3] = &mut self.z;
+        if self.first {
+            for values in [z1, z2, z3].into_iter().chain(&mut self.w) {
+                values.fill(0.0);
+            }
+            return;
+        }
+        let c3q = h / self.h_last;
+        let (c1q, c2q) = (C1 * c3q, C2 * c3q);
+        let [p1, p2, p3] = &self.polynomial;
+        let at = |s: f64, i: usize| s * (p1[i] + (s - C2M1) * (p2[i] + (s - C1M1) * p3[i]));
+        for i in 0..self.n {
+            let z = [at(c1q, i), at(c2q, i), at(c3q, i)];
+            (z1[i], z2[i], z3[i]) = (z[0], z[1], z[2]);
+            for (row, w) in T_INVERSE.iter().zip(&mut self.w) {
+                w[i] = row[0] * z[0] + row[1] * z[1] + row[2] * z[2];
+            }
+        }
+    }
+
+    /// The simplified Newton iteration for the stages of a step of size
+    /// `h`. A failure gives the factor to shrink the step by and why.
+    fn newton<S: System + ?Sized>(
+        &mut self,
+        core: &mut Core,
+        system: &mut S,
+        h: f64,
+    ) -> Result<Converged, (f64, Rejection<S::Error>)> {
+        self.starting_values(h);
+        let (real, complex) = match (&self.real, &self.complex) {
+            (Some(real), Some(complex)) => (real, complex),
+            _ => return Err((FAILURE_SHRINK, Rejection::Singular)),
+        };
+        let n = self.n;
+        let (gamma, alpha, beta) = (GAMMA / h, ALPHA / h, BETA / h);
+        self.contraction = self.contraction.max(f64::EPSILON).powf(0.8);
+        let mut theta = JACOBIAN_REUSE;
+        let (mut previous_norm, mut previous_ratio) = (0.0, 0.0);
+        for iteration in 1..=MAX_NEWTON {
+            for ((c, z), rate) in [C1, C2, 1.0].iter().zip(&self.z).zip(&mut self.rates) {
+                for (value, (y, z)) in self.stage_y.iter_mut().zip(core.y.iter().zip(z)) {
+                    *value = y + z;
+                }
+                evaluate(system, &mut core.stats, core.t + c * h, &self.stage_y, rate)
+                    .map_err(|why| (FAILURE_SHRINK, why))?;
+            }
+            let [w1, w2, w3] = &self.w;
+            for i in 0..n {
+                let rates = [self.rates[0][i], self.rates[1][i], self.rates[2][i]];
+                let [r1, r2, r3] =
+                    T_INVERSE.map(|row| row[0] * rates[0] + row[1] * rates[1] + row[2] * rates[2]);
+                self.real_rhs[i] = r1 - gamma * w1[i];
+                self.complex_rhs[i] = Complex::new(
+                    r2 - alpha * w2[i] + beta * w3[i],
+                    r3 - alpha * w3[i] - beta * w2[i],
+                );
+            }
+            real.solve_mut(&mut self.real_rhs);
+            complex.solve_mut(&mut self.complex_rhs);
+            let scaled = (0..n).flat_map(|i| {
+                let (dw1, dw2) = (self.real_rhs[i], self.complex_rhs[i]);
+                [dw1, dw2.re, dw2.im].map(|dw| dw / self.scale[i])
+            });
+            let norm = rms(scaled, 3 * n);
+            if !norm.is_finite() {
+                return Err((FAILURE_SHRINK, Rejection::NonFinite));
+            }
+            if iteration > 1 && iteration < MAX_NEWTON {
+                let ratio = norm / previous_norm;
+                theta = if iteration == 2 {
+                    ratio
+                } else {
+                    (ratio * previous_ratio).sqrt()
+                };
+                previous_ratio = ratio;
+                if theta >= 0.99 {
+                    return Err((FAILURE_SHRINK, Rejection::Newton));
+                }
+                self.contraction = theta / (1.0 - theta);
+                let remaining = (MAX_NEWTON - 1 - iteration) as i32;
+                let predicted =
+                    self.contraction * norm * theta.powi(remaining) / self.newton_tolerance;
+                if predicted >= 1.0 {
+                    let factor = 0.8
+                        * predicted
+                            .clamp(1e-4, 20.0)
+                            .powf(-1.0 / (4.0 + f64::from(remaining)));
+                    return Err((factor, Rejection::Newton));
+                }
+            }
+            previous_norm = norm.max(f64::EPSILON);
+            let [w1, w2, w3] = &mut self.w;
+            let [z1, z2, z3] = &mut self.z;
+            for i in 0..n {
+                w1[i] += self.real_rhs[i];
+                w2[i] += self.complex_rhs[i].re;
+                w3[i] += self.complex_rhs[i].im;
+                let w = [w1[i], w2[i], w3[i]];
+                [z1[i], z2[i], z3[i]] = T.map(|row| row[0] * w[0] + row[1] * w[1] + row[2] * w[2]);
+            }
+            if self.contraction * norm <= self.newton_tolerance {
+                return Ok(Converged {
+                    iterations: iteration,
+                    theta,
+                });
+            }
+        }
+        Err((FAILURE_SHRINK, Rejection::Newton))
+    }
+
+    /// The error of the step in units of the tolerance:
+    /// `(γ/h − J)⁻¹ (f(y) + Σ d_i z_i / h)`, refined once through `f` at a
+    /// first or rejected step when it fails the test.
+    fn error_estimate<S: System + ?Sized>(
+        &mut self,
+        core: &mut Core,
+        system: &mut S,
+        h: f64,
+    ) -> f64 {
+        let Some(real) = &self.real else {
+            return f64::INFINITY;
+        };
+        let [z1, z2, z3] = &self.z;
+        let [d1, d2, d3] = ERROR_WEIGHTS.map(|d| d / h);
+        let (combination, rest) = self.rates.split_at_mut(1);
+        let combination = &mut combination[0];
+        for i in 0..self.n {
+            combination[i] = d1 * z1[i] + d2 * z2[i] + d3 * z3[i];
+            self.real_rhs[i] = combination[i] + core.dy[i];
+        }
+        real.solve_mut(&mut self.real_rhs);
+        let size = |estimate: &DVector<f64>, scale: &[f64]| {
+            let err = rms(estimate.iter().zip(scale).map(|(e, s)| e / s), scale.len());
+            if err.is_nan() {
+                f64::INFINITY
+            } else {
+                err.max(1e-10)
+            }
+        };
+        let err = size(&self.real_rhs, &self.scale);
+        if err < 1.0 || !(self.first || self.after_rejection) {
+            return err;
+        }
+        for (value, (y, e)) in self
+            .stage_y
+            .iter_mut()
+            .zip(core.y.iter().zip(self.real_rhs.iter()))
+        {
+            *value = y + e;
+        }
+        let refined = &mut rest[0];
+        if evaluate(system, &mut core.stats, core.t, &self.stage_y, refined).is_err() {
+            return err;
+        }
+        for i in 0..self.n {
+            self.real_rhs[i] = refined[i] + combination[i];
+        }
+        real.solve_mut(&mut self.real_rhs);
+        size(&self.real_rhs, &self.scale)
+    }
+
+    /// The last step's collocation polynomial at `t`.
+    pub fn dense(&self, core: &Core, t: f64, out: &mut [f64]) {
+        let s = (t - core.t) / self.h_last;
+        let [p1, p2, p3] = &self.polynomial;
+        for (i, value) in out.iter_mut().enumerate() {
+            *value = core.y[i] + s * (p1[i] + (s - C2M1) * (p2[i] + (s - C1M1) * p3[i]));
+        }
+    }
+}

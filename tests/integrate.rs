@@ -1,0 +1,297 @@
+//! The integrators against published answers, their orders of convergence,
+//! hostile right-hand sides, and the stepper's contract (landing on an end
+//! time, restarts, a maximum step).
+
+use mbexpr::integrate::{AbsoluteTolerance, IntegrateError, Method, Options, Stepper};
+
+use crate::integrate_problems::{Equations, Problem, Refused, problem};
+
+/// Runs one case: `solve PROBLEM METHOD [key=value ...]` integrates to the
+/// problem's end and reports the error and the cost; `order PROBLEM METHOD
+/// h=H [key=value ...]` integrates with the fixed steps H, H/2, H/4 and
+/// reports the observed orders at the step ends and inside the steps.
+/// Keys: `rtol`, `atol` (one value, or values split by `/`), `h_init`,
+/// `h_max`, `max_steps`, `newton`, `y0` (split by `/`), `t_end`.
+fn check(case: &str) -> String {
+    let words: Vec<&str> = case.split_whitespace().collect();
+    let [action, name, method, settings @ ..] = words.as_slice() else {
+        panic!("a case is `action problem method settings...`");
+    };
+    let method: Method = method.parse().unwrap();
+    let mut problem = problem(name);
+    let mut options = Options::default();
+    for setting in settings {
+        let (key, value) = setting.split_once('=').unwrap();
+        let numbers = || -> Vec<f64> { value.split('/').map(|v| v.parse().unwrap()).collect() };
+        let number = || numbers()[0];
+        match key {
+            "rtol" => options.rtol = number(),
+            "atol" => options.atol = AbsoluteTolerance::Each(numbers()),
+            "h_init" => options.h_init = Some(number()),
+            "h_max" | "h" => options.h_max = number(),
+            "max_steps" => options.max_steps = number() as usize,
+            "newton" => options.newton_tolerance = Some(number()),
+            "y0" => problem.y0 = numbers(),
+            "t_end" => problem.t_end = number(),
+            _ => panic!("unknown setting {key}"),
+        }
+    }
+    if let Some(exact) = problem.exact {
+        problem.reference = exact(problem.t_end);
+    }
+    if let AbsoluteTolerance::Each(atol) = &options.atol
+        && atol.len() == 1
+    {
+        options.atol = AbsoluteTolerance::All(atol[0]);
+    }
+    match *action {
+        "solve" => solve(&mut problem, method, options),
+        "order" => order(&mut problem, method, options),
+        _ => panic!("unknown action {action}"),
+    }
+}
+
+/// Error and cost of a run to the problem's end, or why it stopped.
+fn solve(problem: &mut Problem, method: Method, options: Options) -> String {
+    match run(problem, method, options, &mut |_| {}) {
+        Ok(stepper) => format!(
+            "error {:.1e}, {}",
+            error(&problem.reference, stepper.y(), &problem.scale),
+            stepper.stats()
+        ),
+        Err(error) => format!("error: {error}"),
+    }
+}
+
+/// Integrates to the problem's end, calling `each` after every step.
+fn run(
+    problem: &mut Problem,
+    method: Method,
+    options: Options,
+    each: &mut dyn FnMut(&Stepper),
+) -> Result<Stepper, IntegrateError<Refused>> {
+    let system = &mut problem.system;
+    let mut stepper = Stepper::new(method, options, 0.0, &problem.y0, system)?;
+    while stepper.t() < problem.t_end {
+        stepper.step_to(system, problem.t_end)?;
+        each(&stepper);
+    }
+    Ok(stepper)
+}
+
+/// The largest scaled difference.
+fn error(reference: &[f64], y: &[f64], scale: &[f64]) -> f64 {
+    reference
+        .iter()
+        .zip(y)
+        .zip(scale)
+        .map(|((r, y), s)| (r - y).abs() / s)
+        .fold(0.0, f64::max)
+}
+
+/// Observed orders with steps of H, H/2 and H/4 (set as the first and the
+/// largest step, the tolerance loose enough never to reject them): at the
+/// end, and on the dense output at 0.37 of every step.
+fn order(problem: &mut Problem, method: Method, options: Options) -> String {
+    let exact = problem.exact.expect("a closed-form solution");
+    let scale = problem.scale.clone();
+    let mut errors = Vec::new();
+    let mut counts = Vec::new();
+    for halvings in 0..3 {
+        let h = options.h_max / f64::from(1 << halvings);
+        let options = Options {
+            h_init: Some(h),
+            h_max: h,
+            ..options.clone()
+        };
+        let mut inside = 0.0_f64;
+        let mut point = vec![0.0; problem.y0.len()];
+        let stepper = run(problem, method, options, &mut |stepper| {
+            let t = stepper.t_previous() + 0.37 * (stepper.t() - stepper.t_previous());
+            stepper.dense(t, &mut point);
+            inside = inside.max(error(&exact(t), &point, &scale));
+        });
+        let stepper = match stepper {
+            Ok(stepper) => stepper,
+            Err(error) => return format!("error: {error}"),
+        };
+        let stats = stepper.stats();
+        counts.push(format!("{}+{}", stats.steps, stats.rejected));
+        errors.push((
+            error(&problem.reference, stepper.y(), &problem.scale),
+            inside,
+        ));
+    }
+    let orders = |pick: fn(&(f64, f64)) -> f64| {
+        errors
+            .windows(2)
+            .map(|pair| format!("{:.1}", (pick(&pair[0]) / pick(&pair[1])).log2()))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    format!(
+        "ends {}, inside {} (steps {}; errors {:.1e} and {:.1e} at H/4)",
+        orders(|e| e.0),
+        orders(|e| e.1),
+        counts.join(" "),
+        errors[2].0,
+        errors[2].1,
+    )
+}
+
+#[test]
+fn published_problems() {
+    insta::assert_snapshot!(crate::table(
+        "
+        solve arenstorf dop853 rtol=1e-10 atol=1e-10
+        solve arenstorf dop853 rtol=1e-13 atol=1e-13
+        solve arenstorf radau rtol=1e-10 atol=1e-10
+        solve van-der-pol radau rtol=1e-6 atol=1e-6 h_init=1e-6
+        solve van-der-pol radau rtol=1e-10 atol=1e-10 h_init=1e-6
+        solve robertson radau rtol=1e-8 atol=1e-20 h_init=1e-6
+        solve van-der-pol radau rtol=1e-6 atol=1e-6
+        solve robertson radau rtol=1e-10 atol=1e-22
+        ",
+        check
+    ));
+}
+
+#[test]
+fn orders_of_convergence() {
+    insta::assert_snapshot!(crate::table(
+        "
+        order limit-cycle dop853 h=0.5 rtol=1e-3 atol=1e-3
+        order limit-cycle radau h=0.1 rtol=1e-3 atol=1e-3 newton=1e-10
+        ",
+        check
+    ));
+}
+
+#[test]
+fn hostile_right_hand_sides() {
+    insta::assert_snapshot!(crate::table(
+        "
+        solve decay dop853 rtol=1e-3 atol=1e-3 t_end=1000
+        solve decay radau rtol=1e-3 atol=1e-3
+        solve draining-tank radau rtol=1e-8 atol=1e-8 h_init=4
+        solve refused-after-1 dop853
+        solve refused-after-1 radau
+        solve nan-beyond dop853
+        solve nan-beyond radau
+        solve draining-tank dop853 y0=-1
+        solve no-jacobian radau
+        solve no-jacobian dop853
+        solve arenstorf dop853 max_steps=50
+        solve arenstorf dop853 rtol=0
+        solve arenstorf radau atol=1e-6/1e-6
+        solve arenstorf dop853 h_max=-1
+        solve arenstorf radau newton=0
+        solve empty dop853
+        ",
+        check
+    ));
+}
+
+/// A stepper at the problem's start with `rtol = atol = tolerance`, and the
+/// problem's system.
+fn start(problem: &mut Problem, method: Method, tolerance: f64) -> (Stepper, &mut Equations) {
+    let options = Options {
+        rtol: tolerance,
+        atol: tolerance.into(),
+        ..Options::default()
+    };
+    let system = &mut problem.system;
+    let stepper = Stepper::new(method, options, 0.0, &problem.y0, system).unwrap();
+    (stepper, system)
+}
+
+#[test]
+fn steps_land_on_end_times_and_respect_the_maximum_step() {
+    for method in [Method::Dop853, Method::Radau5] {
+        let mut arenstorf = problem("arenstorf");
+        let (mut stepper, system) = start(&mut arenstorf, method, 1e-8);
+        for end in [0.5, 1.0, 1.25] {
+            while stepper.t() < end {
+                stepper.step_to(system, end).unwrap();
+            }
+            assert_eq!(stepper.t(), end, "{method}");
+        }
+        stepper.set_h_max(0.01);
+        while stepper.t() < 2.0 {
+            stepper.step_to(system, 2.0).unwrap();
+            assert!(
+                stepper.t() - stepper.t_previous() <= 0.01 * (1.0 + 1e-9),
+                "{method}"
+            );
+        }
+        assert_eq!(stepper.t(), 2.0);
+        let refused = stepper.step_to(system, 2.0).unwrap_err().to_string();
+        assert_eq!(refused, "the end time 2 is not after t = 2");
+    }
+}
+
+#[test]
+fn a_restart_at_an_event_continues_on_the_solution() {
+    for method in [Method::Dop853, Method::Radau5] {
+        let mut cycle = problem("limit-cycle");
+        let exact = cycle.exact.unwrap();
+        let (mut stepper, system) = start(&mut cycle, method, 1e-10);
+        // The event: the first component falls through 0.25 (near t = 1.2).
+        let mut y = [0.0; 2];
+        while stepper.y()[0] > 0.25 {
+            stepper.step(system).unwrap();
+        }
+        let (mut low, mut high) = (stepper.t_previous(), stepper.t());
+        for _ in 0..60 {
+            let middle = 0.5 * (low + high);
+            stepper.dense(middle, &mut y);
+            if y[0] > 0.25 {
+                low = middle
+            } else {
+                high = middle
+            }
+        }
+        stepper.dense(high, &mut y);
+        let before = stepper.stats();
+        stepper.restart(high, &y);
+        assert_eq!((stepper.t(), stepper.t_previous()), (high, high));
+        let mut same = [0.0; 2];
+        stepper.dense(0.0, &mut same);
+        assert_eq!(same, y, "dense output after a restart is the state");
+        while stepper.t() < 3.0 {
+            stepper.step_to(system, 3.0).unwrap();
+        }
+        let after = stepper.stats();
+        assert!(
+            (error(&exact(3.0), stepper.y(), &[1.0, 1.0])) < 1e-8,
+            "{method}"
+        );
+        assert!(
+            (exact(high)[0] - 0.25).abs() < 1e-9,
+            "{method} event at {high}"
+        );
+        if method.uses_jacobian() {
+            assert!(after.jacobian_evaluations > before.jacobian_evaluations);
+        }
+    }
+}
+
+#[test]
+fn methods_by_name() {
+    let parsed: Vec<String> = ["radau", "radau5", "dop853", "rk4"]
+        .iter()
+        .map(|name| match name.parse::<Method>() {
+            Ok(method) => format!("{method} ({method:?})"),
+            Err(error) => error.to_string(),
+        })
+        .collect();
+    assert_eq!(
+        parsed,
+        [
+            "radau (Radau5)",
+            "radau (Radau5)",
+            "dop853 (Dop853)",
+            "unknown integration method `rk4`: expected radau or dop853"
+        ]
+    );
+}
