@@ -1,6 +1,6 @@
 //! DOP853: Dormand and Prince's explicit Runge–Kutta pair of order 8 with
 //! error estimators of orders 5 and 3 and a dense output of order 7
-//! (Hairer, Nørsett, Wanner I, II.5 and II.6; coefficients as in `dop853.f`).
+//! (Hairer, Nørsett, Wanner I; coefficients as in `dop853.f`).
 //!
 //! Stages are numbered from 0: `k[0] = f(t, y)`, `k[1..12]` the method's
 //! other eleven stages, `k[12] = f(t + h, y_new)` (the next step's first),

@@ -14,7 +14,7 @@
 //!
 //! Both methods follow Hairer and Wanner's codes (`dop853.f`, `radau5.f`):
 //!
-//! - **DOP853** (Hairer, Nørsett, Wanner I, II.5 and II.6): 12 stages of
+//! - **DOP853** (Hairer, Nørsett, Wanner I; `dop853.f`): 12 stages of
 //!   order 8, the first stage of the next step being the last evaluation of
 //!   this one (FSAL). The error of the step is estimated from a 5th-order and
 //!   a 3rd-order embedded solution combined as `err5² / sqrt(err5² + 0.01
