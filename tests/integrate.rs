@@ -2,7 +2,10 @@
 //! hostile right-hand sides, and the stepper's contract (landing on an end
 //! time, restarts, a maximum step).
 
-use mbexpr::integrate::{AbsoluteTolerance, IntegrateError, Method, Options, Stepper};
+use mbexpr::integrate::{
+    AbsoluteTolerance, IntegrateError, Method, Options, Stepper, System, finite_difference_jacobian,
+};
+use nalgebra::DMatrix;
 
 use crate::integrate_problems::{Equations, Problem, Refused, problem};
 
@@ -217,8 +220,15 @@ fn steps_land_on_end_times_and_respect_the_maximum_step() {
             assert_eq!(stepper.t(), end, "{method}");
         }
         stepper.set_h_max(0.01);
+        let mut ends = [[0.0; 4]; 2];
         while stepper.t() < 2.0 {
+            let before = stepper.y().to_vec();
             stepper.step_to(system, 2.0).unwrap();
+            // The dense output meets the states at both ends of the step.
+            stepper.dense(stepper.t_previous(), &mut ends[0]);
+            stepper.dense(stepper.t(), &mut ends[1]);
+            assert!(error(&before, &ends[0], &[1.0; 4]) < 1e-13, "{method}");
+            assert!(error(stepper.y(), &ends[1], &[1.0; 4]) < 1e-13, "{method}");
             assert!(
                 stepper.t() - stepper.t_previous() <= 0.01 * (1.0 + 1e-9),
                 "{method}"
@@ -294,4 +304,17 @@ fn methods_by_name() {
             "unknown integration method `rk4`: expected radau or dop853"
         ]
     );
+}
+
+#[test]
+fn the_finite_difference_jacobian_holds_half_the_digits() {
+    let mut cycle = problem("limit-cycle");
+    let (y, mut dy) = ([0.3, -0.8], [0.0; 2]);
+    let system = &mut cycle.system;
+    system.rhs(0.0, &y, &mut dy).unwrap();
+    let mut exact = DMatrix::zeros(2, 2);
+    let mut approximate = DMatrix::zeros(2, 2);
+    system.jacobian(0.0, &y, &dy, &mut exact).unwrap();
+    finite_difference_jacobian(system, 0.0, &y, &dy, &mut approximate).unwrap();
+    assert!((exact - approximate).amax() < 1e-7);
 }
