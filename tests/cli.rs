@@ -362,3 +362,265 @@ fn plot_writes_a_well_formed_svg_holding_the_curve() {
             + &check(&["plot", "x", "--over", "y", "-o", "/dev/null"], "")
     );
 }
+
+/// `args` split at ` | `, run; the exit code and the first line it printed.
+fn run_line(case: &str) -> String {
+    let args: Vec<&str> = case.split(" | ").collect();
+    let (stdout, stderr, code) = mbexpr(&args, "");
+    let first = stdout
+        .lines()
+        .chain(stderr.lines())
+        .next()
+        .unwrap_or_default();
+    format!("[exit {code}] {first}")
+}
+
+#[test]
+fn an_expression_may_start_with_a_minus() {
+    insta::assert_snapshot!(crate::table(
+        "
+        eval | -2**2
+        eval | - -8.3E-03*RTOD
+        eval | -1E4*(x-50)-10*v | --set | x=51 | --set | v=-1
+        eval | --set | x=3 | -x | --wrt | x
+        eval | -x | --set | x=3 | --wrt | x | --format | jsonl
+        eval | --scene | examples/scenes/ball_between_walls.toml | --format | jsonl | -DX(ball, wall)
+        eval | -x | --bogus
+        eval | -h*2 | --set | h=1
+        eval | -V | --set | V=1
+        eval | --set | x=1 | -- | -x
+        eval | -h
+        parse | -1E4*(DM(3,4)-50)-10*VR(3,4)
+        parse | -x
+        plot | -x | --over | x=0..1 | -o | /dev/null
+        plot | -o | /dev/null | --over | x=0..1 | -x**2
+        plot | -o | /dev/null | -x**2 | --over | x=0..1
+        plot | -omega | --over | omega=0..1 | -o | /dev/null
+        ",
+        run_line
+    ));
+}
+
+/// A points file and an `eval` on it: `CSV || ARGS`, the CSV with `\n`,
+/// `\r`, `\t` and `\u{feff}` written out, the arguments split at ` | `,
+/// `points.csv` standing for the file (`-`: the CSV is standard input). JSON output is parsed and said to be valid or not.
+fn points_case(case: &str) -> String {
+    let (csv, args) = case.split_once(" || ").expect("CSV || ARGS");
+    let csv = csv
+        .replace("\\n", "\n")
+        .replace("\\r", "\r")
+        .replace("\\t", "\t")
+        .replace("\\u{feff}", "\u{feff}");
+    let dir = std::env::temp_dir().join(format!(
+        "mbexpr-points-case-{}-{}",
+        std::process::id(),
+        case.len()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("points.csv");
+    std::fs::write(&file, &csv).unwrap();
+    let path = file.to_str().unwrap();
+    let args: Vec<&str> = std::iter::once("eval")
+        .chain(
+            args.split(" | ")
+                .map(|arg| if arg == "points.csv" { path } else { arg }),
+        )
+        .collect();
+    let stdin = if args.contains(&"-") {
+        csv.as_str()
+    } else {
+        ""
+    };
+    let (stdout, stderr, code) = mbexpr(&args, stdin);
+    std::fs::remove_dir_all(&dir).unwrap();
+    let validity = json_validity(&args, &stdout);
+    format!("{stdout}{stderr}[exit {code}]{validity}")
+        .replace(path, "points.csv")
+        .replace('\n', "\n     ")
+}
+
+/// ` [one JSON document]`, ` [N JSON lines]` or what is wrong with them,
+/// when `args` ask for JSON.
+fn json_validity(args: &[&str], stdout: &str) -> String {
+    let format = args
+        .iter()
+        .position(|arg| *arg == "--format")
+        .map(|index| args[index + 1]);
+    let parses = |text: &str| serde_json::from_str::<serde_json::Value>(text).is_ok();
+    match format {
+        Some("json") if parses(stdout) => " [one JSON document]".to_string(),
+        Some("json") => " [NOT ONE JSON DOCUMENT]".to_string(),
+        Some("jsonl") if stdout.lines().all(parses) => {
+            format!(" [{} JSON lines]", stdout.lines().count())
+        }
+        Some("jsonl") => " [A LINE IS NOT JSON]".to_string(),
+        _ => String::new(),
+    }
+}
+
+#[test]
+fn points_rows_are_known_by_their_line() {
+    insta::assert_snapshot!(crate::table(
+        r"
+        x\n1\n\n2\n   \n3\n || LOG(x) | --points | points.csv
+        x\n1\n\n2\n,\n-1\n || LOG(x) | --points | points.csv | --format | jsonl
+        x\n1\n\n0\n || LOG(x) | --points | points.csv | --format | json
+        \u{feff}x,v\n1,2\n || x+v | --points | points.csv
+        x,v,\n1,2,\n3,4\n || x+v | --points | points.csv
+        x,v\r1,2\r\r3,4\r || x+v | --points | points.csv | --format | jsonl
+        x,v\r\n1,2\r\n\r\n3,4\r\n || x+v | --points | points.csv | --format | jsonl
+        x,v\n1,2\r3,4\r\n5,6\n || x*v | --points | points.csv | --format | jsonl
+        # a comment\nx,v\n# another\n1,2\n || x+v | --points | points.csv | --format | jsonl
+        x\tv\n1\t2\n || x+v | --points | points.csv
+        x\nnan\ninf\n1e999\n-0\n0x10\n\n || x | --points | points.csv
+        x,v\n1\n1,2,3\n1,2,,\n || x+v | --points | points.csv
+        x\n2\n || x | --points | - | --wrt | x | --format | jsonl
+        x\n || x | --points | points.csv | --format | json
+        x\n || x | --points | points.csv
+        ",
+        points_case
+    ));
+}
+
+#[test]
+fn points_headers_are_read_as_csv_readers_do() {
+    insta::assert_snapshot!(crate::table(
+        r#"
+        "x","v"\n1,2\n || x+v | --points | points.csv
+        x;v\n1;2\n1,5;2\n || x+v | --points | points.csv
+        # x,v\n1,2\n || x+v | --points | points.csv
+        1,2\n3,4\n || x+v | --points | points.csv
+        X1,V1\n1,2\n || x+v | --points | points.csv
+        X1,V1\n1,2\n || x+v | --points | points.csv | --format | json
+        x,v,X\n1,2,3\n || x+v | --points | points.csv
+        x,,v\n1,2,3\n || x+v | --points | points.csv
+        x\n2\n || x | --set | x=1 | --set | y=3 | --points | points.csv
+        x,y,z,w\n1,2,3,4\n || x+w | --points | points.csv
+        # only a comment\n\n || x | --points | points.csv
+        x\n1\n || x | --points | no-such.csv
+        x\n1\n || x | --points | no-such.csv | --format | jsonl
+        "#,
+        points_case
+    ));
+}
+
+#[test]
+fn json_output_is_one_document_and_errors_are_json_too() {
+    insta::assert_snapshot!(crate::table(
+        r"
+        x\n1\n || x**2 | --set | x=3 | --wrt | x | --order | 2 | --format | json
+        x\n1\n || STPE(x) + FOOO(x) | --format | json
+        x\n1\n || STPE(x) + FOOO(x) | --format | jsonl
+        x\n1\n || LOG(x) | --set | x=0 | --format | json
+        x\n1\n || x | --set | x=1 | --wrt | y | --format | json
+        x\n1\n || x | --set | x=one | --format | jsonl
+        x\n1\n || x | --scene | no-such.toml | --format | json
+        x\n1\n || STPE(x) | --points | points.csv | --format | json
+        x\n1\n2\n || x*y | --set | y=2 | --wrt | x,y | --points | points.csv | --format | json
+        slider.x\n1\n2\n || --scene | examples/scenes/slider_in_slot.toml | --format | json
+        slider.x\n1\n2\n || --scene | examples/scenes/slider_in_slot.toml | --points | points.csv | --format | json
+        slider.x\n1\n2\n || --scene | examples/scenes/slider_in_slot.toml | --points | points.csv | --format | jsonl
+        slider.x\n1\n2\n || --scene | examples/scenes/slider_in_slot.toml | --points | - | --format | jsonl
+        ",
+        points_case
+    ));
+}
+
+/// Runs `eval EXPR --format jsonl --points -` on `csv` and returns, per
+/// output line, its row and its value or first error message.
+fn stream(expression: &str, extra: &[&str], csv: &str) -> Vec<(u64, Result<f64, String>)> {
+    let mut args = vec!["eval", expression, "--format", "jsonl", "--points", "-"];
+    args.extend(extra);
+    let (stdout, stderr, _) = mbexpr(&args, csv);
+    assert!(!stdout.is_empty(), "{stderr}");
+    stdout
+        .lines()
+        .map(|line| {
+            let record: serde_json::Value = serde_json::from_str(line).unwrap();
+            let result = match record["value"].as_f64() {
+                Some(value) => Ok(value),
+                None => Err(record["errors"][0]["message"].to_string()),
+            };
+            (record["row"].as_u64().unwrap(), result)
+        })
+        .collect()
+}
+
+#[test]
+fn many_points_stream_out_in_order_and_a_bad_row_does_not_stop_them() {
+    // More rows than a batch, every 997th bad: each row's result comes out
+    // in the order of the file, with its line.
+    let rows = 20_000;
+    let mut csv = String::from("x\n");
+    for row in 0..rows {
+        if row % 997 == 0 {
+            csv += "oops\n";
+        } else {
+            csv += &format!("{row}\n");
+        }
+    }
+    let results = stream("x*2", &[], &csv);
+    assert_eq!(results.len(), rows);
+    for (row, (line, result)) in results.into_iter().enumerate() {
+        assert_eq!(line, row as u64 + 2);
+        match result {
+            Ok(value) => assert_eq!(value, row as f64 * 2.0, "row {row}"),
+            Err(message) => assert!(row % 997 == 0 && message.contains("oops"), "{message}"),
+        }
+    }
+}
+
+#[test]
+fn angles_continue_from_row_to_row_across_batches() {
+    // The slot turns four times over 10 000 rows: AZ goes on past ±π in
+    // the order of the rows, as a run does, however the rows are batched.
+    let scene = format!(
+        "{}/examples/scenes/slider_in_slot.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let rows = 10_000;
+    let turn = 8.0 * std::f64::consts::PI / rows as f64;
+    let mut csv = String::from("slot.rz\n");
+    for row in 0..rows {
+        csv += &format!("{}\n", row as f64 * turn);
+    }
+    let results = stream("AZ(slot) - slot.rz", &["--scene", &scene], &csv);
+    let offset = results[0].1.clone().unwrap();
+    for (line, result) in results {
+        let value = result.unwrap();
+        assert!((value - offset).abs() < 1e-9, "row {line}: {value}");
+    }
+}
+
+#[test]
+fn completions_and_manual_pages() {
+    // `ARGS ? TEXT`: the exit code, and whether the output holds TEXT.
+    insta::assert_snapshot!(crate::table(
+        r"
+        completions | bash ? --points
+        completions | zsh ? --points
+        completions | fish ? points
+        completions | powershell ? --points
+        completions | tcsh ? points
+        man ? .TH mbexpr 1
+        man | eval ? .TH mbexpr-eval 1
+        man | eval ? points
+        man | plot ? over
+        man | bogus ? points
+        ",
+        |case| {
+            let (args, text) = case.split_once(" ? ").unwrap();
+            let args: Vec<&str> = args.split(" | ").collect();
+            let (stdout, stderr, code) = mbexpr(&args, "");
+            let holds = if stdout.contains(text) {
+                "holds"
+            } else {
+                "lacks"
+            };
+            let error = stderr.lines().next().unwrap_or_default();
+            format!("[exit {code}] {holds} {text} {error}")
+                .trim_end()
+                .to_string()
+        }
+    ));
+}

@@ -137,6 +137,9 @@ pub struct Run<'p> {
     angles: Vec<Option<f64>>,
 }
 
+/// A function that evaluates a program at a point (its inputs).
+pub type EvaluateAt<'e> = dyn FnMut(&[f64]) -> Result<Evaluation, EvalError> + 'e;
+
 impl Run<'_> {
     /// Like [`Program::evaluate`], continuing the angles of the run.
     pub fn evaluate(
@@ -145,8 +148,48 @@ impl Run<'_> {
         wrt: &[usize],
         order: Order,
     ) -> Result<Evaluation, EvalError> {
-        self.program
-            .evaluate_continuing(inputs, wrt, order, &mut self.angles)
+        self.with_evaluator(wrt, order, |evaluate| evaluate(inputs))
+    }
+
+    /// Runs `body` with a function that evaluates at the next point of the
+    /// run as [`Run::evaluate`] does, on one evaluator of the number type
+    /// for `wrt` and `order`, its buffers reused from point to point: the
+    /// way to evaluate at many points.
+    pub fn with_evaluator<R>(
+        &mut self,
+        wrt: &[usize],
+        order: Order,
+        body: impl FnOnce(&mut EvaluateAt<'_>) -> R,
+    ) -> R {
+        let (program, angles) = (self.program, &mut self.angles);
+        macro_rules! with {
+            ($number:ty) => {
+                program.continuing::<$number, _>(angles, |evaluator| {
+                    body(&mut |inputs| evaluator.derivatives(inputs, wrt))
+                })
+            };
+        }
+        match (order, wrt.len()) {
+            (Order::Value, _) | (_, 0) => program.continuing::<f64, _>(angles, |evaluator| {
+                body(&mut |inputs| {
+                    Ok(Evaluation {
+                        value: evaluator.value(inputs)?,
+                        gradient: (order >= Order::Gradient).then(|| DVector::zeros(0)),
+                        hessian: (order >= Order::Hessian).then(|| DMatrix::zeros(0, 0)),
+                    })
+                })
+            }),
+            (Order::Gradient, 1) => with!(DualSVec64<1>),
+            (Order::Gradient, 2) => with!(DualSVec64<2>),
+            (Order::Gradient, 3) => with!(DualSVec64<3>),
+            (Order::Gradient, 4) => with!(DualSVec64<4>),
+            (Order::Gradient, _) => with!(DualDVec64),
+            (Order::Hessian, 1) => with!(Dual2SVec64<1>),
+            (Order::Hessian, 2) => with!(Dual2SVec64<2>),
+            (Order::Hessian, 3) => with!(Dual2SVec64<3>),
+            (Order::Hessian, 4) => with!(Dual2SVec64<4>),
+            (Order::Hessian, _) => with!(Dual2DVec64),
+        }
     }
 }
 
@@ -163,6 +206,15 @@ impl Program {
             slots,
             angles: Vec::new(),
         }
+    }
+
+    /// Whether a result of a [`Run`] can depend on the points before it (an
+    /// AX, AY or AZ, continuous through ±π): if not, the points of a run may
+    /// be evaluated in any order, or in parallel, each on its own.
+    pub fn continues_from_point_to_point(&self) -> bool {
+        self.code.iter().any(|instruction| {
+            matches!(instruction, Instruction::Compute { op, .. } if continues_through_turns(op))
+        })
     }
 
     /// A [`Run`]: evaluations at a sequence of points, in order.
@@ -186,7 +238,7 @@ impl Program {
         wrt: &[usize],
         order: Order,
     ) -> Result<Evaluation, EvalError> {
-        self.evaluate_continuing(inputs, wrt, order, &mut Vec::new())
+        self.run().evaluate(inputs, wrt, order)
     }
 
     /// Runs `body` on an evaluator that carries on the angle history `angles`
@@ -201,44 +253,6 @@ impl Program {
         let result = body(&mut evaluator);
         *angles = evaluator.angles;
         result
-    }
-
-    /// [`Program::evaluate`] with the angle history of a run.
-    fn evaluate_continuing(
-        &self,
-        inputs: &[f64],
-        wrt: &[usize],
-        order: Order,
-        angles: &mut Vec<Option<f64>>,
-    ) -> Result<Evaluation, EvalError> {
-        macro_rules! with {
-            ($number:ty) => {
-                self.continuing::<$number, _>(angles, |evaluator| {
-                    evaluator.derivatives(inputs, wrt)
-                })
-            };
-        }
-        match (order, wrt.len()) {
-            (Order::Value, _) | (_, 0) => {
-                let value =
-                    self.continuing::<f64, _>(angles, |evaluator| evaluator.value(inputs))?;
-                Ok(Evaluation {
-                    value,
-                    gradient: (order >= Order::Gradient).then(|| DVector::zeros(0)),
-                    hessian: (order >= Order::Hessian).then(|| DMatrix::zeros(0, 0)),
-                })
-            }
-            (Order::Gradient, 1) => with!(DualSVec64<1>),
-            (Order::Gradient, 2) => with!(DualSVec64<2>),
-            (Order::Gradient, 3) => with!(DualSVec64<3>),
-            (Order::Gradient, 4) => with!(DualSVec64<4>),
-            (Order::Gradient, _) => with!(DualDVec64),
-            (Order::Hessian, 1) => with!(Dual2SVec64<1>),
-            (Order::Hessian, 2) => with!(Dual2SVec64<2>),
-            (Order::Hessian, 3) => with!(Dual2SVec64<3>),
-            (Order::Hessian, 4) => with!(Dual2SVec64<4>),
-            (Order::Hessian, _) => with!(Dual2DVec64),
-        }
     }
 }
 
@@ -331,15 +345,7 @@ impl<T: Number> Evaluator<'_, T> {
     /// `result` of instruction `index`, moved by whole turns to the value
     /// nearest its last one when `op` is AX, AY or AZ.
     fn continue_angle(&mut self, op: &Op, index: usize, result: T) -> T {
-        use crate::catalog::Function as F;
-        if !matches!(
-            op,
-            Op::Measure {
-                function: F::Ax | F::Ay | F::Az,
-                ..
-            }
-        ) || !result.value().is_finite()
-        {
+        if !continues_through_turns(op) || !result.value().is_finite() {
             return result;
         }
         if self.angles.is_empty() {
@@ -360,6 +366,18 @@ impl<T: Number> Evaluator<'_, T> {
         self.angles[index] = Some(result.value());
         result
     }
+}
+
+/// Whether `op` is AX, AY or AZ, which a [`Run`] keeps continuous through ±π.
+fn continues_through_turns(op: &Op) -> bool {
+    use crate::catalog::Function as F;
+    matches!(
+        op,
+        Op::Measure {
+            function: F::Ax | F::Ay | F::Az,
+            ..
+        }
+    )
 }
 
 /// The error for a result that is not a finite number.

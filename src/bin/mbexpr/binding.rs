@@ -65,13 +65,18 @@ pub fn render(
     errors
         .iter()
         .map(|error| {
-            let message = match error {
-                CompileError::UnboundVariable { name, .. } => {
-                    format!("{error}: set it with {}", how_to_set(name))
-                }
-                _ => error.to_string(),
-            };
-            crate::render::diagnostic(origin, source, error.span(), &message)
+            crate::render::diagnostic(origin, source, error.span(), &message(error, &how_to_set))
         })
         .collect()
+}
+
+/// The message of a compile error, an unbound variable with the hint
+/// `how_to_set` gives.
+pub fn message(error: &CompileError, how_to_set: impl Fn(&str) -> String) -> String {
+    match error {
+        CompileError::UnboundVariable { name, .. } => {
+            format!("{error}: set it with {}", how_to_set(name))
+        }
+        _ => error.to_string(),
+    }
 }

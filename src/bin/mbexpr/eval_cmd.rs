@@ -4,20 +4,27 @@
 use std::io::Write;
 
 use clap::ValueEnum;
-use mbexpr::{Evaluation, Order, Program, Scene};
-use serde_json::{Value, json};
+use std::collections::HashSet;
 
+use mbexpr::{Evaluation, Order, Program, Scene};
+use serde_json::Value;
+
+use crate::points::{PointsFile, count};
+use crate::record::{Problem, Record, tidy};
 use crate::render::diagnostic;
+use crate::sweep::Sweep;
 use crate::{Fatal, Outcome};
 
 /// Output formats of `eval`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Format {
-    /// The value, then labelled gradient and Hessian tables.
+    /// The value, then labelled gradient and Hessian tables; with
+    /// --points, a table of one line per row.
     Text,
-    /// One JSON document (an array of results with `--points`).
+    /// One JSON document: the result, an object keyed by name for a
+    /// scene's named expressions, an array of rows with --points.
     Json,
-    /// One JSON object per line.
+    /// One JSON object per result (per row with --points), one per line.
     Jsonl,
 }
 
@@ -25,6 +32,7 @@ pub enum Format {
 pub struct Args {
     /// The expression, e.g. "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
     /// with --scene and no expression, every named expression of the scene.
+    #[arg(allow_hyphen_values = true)]
     pub expression: Option<String>,
     /// A scene (TOML): bodies, markers, time, variables and named expressions.
     #[arg(long, value_name = "FILE.toml", conflicts_with = "model")]
@@ -45,7 +53,8 @@ pub struct Args {
     /// Output format.
     #[arg(long, value_enum, default_value = "text")]
     pub format: Format,
-    /// A CSV file: a header row of variable names, then one point per row.
+    /// A CSV file (`-`: standard input): a header row of variable names,
+    /// then one point per row; results carry the row's line in the file.
     #[arg(long, value_name = "FILE.csv")]
     pub points: Option<String>,
 }
@@ -69,77 +78,47 @@ pub fn parse_assignment(assignment: &str) -> Result<(String, f64), Fatal> {
     Ok((name.trim().to_string(), value))
 }
 
-/// The points to evaluate at: names, then one row of values per point (a
-/// row that cannot be read is an error message instead).
-struct Points {
-    names: Vec<String>,
-    rows: Vec<Result<Vec<f64>, String>>,
-}
-
-fn read_points(path: &str) -> Result<Points, Fatal> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
-    let mut lines = text.lines().filter(|line| !line.trim().is_empty());
-    let header = lines.next().ok_or_else(|| {
-        Fatal::usage(format!(
-            "error: {path} is empty: it needs a header row of variable names"
-        ))
-    })?;
-    let names: Vec<String> = header
-        .split(',')
-        .map(|name| name.trim().to_string())
-        .collect();
-    let rows = lines
-        .map(|line| {
-            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-            if cells.len() != names.len() {
-                return Err(format!(
-                    "the row has {} values for {} columns",
-                    cells.len(),
-                    names.len()
-                ));
-            }
-            cells
-                .iter()
-                .zip(&names)
-                .map(|(cell, name)| match cell.parse::<f64>() {
-                    Ok(value) if value.is_finite() => Ok(value),
-                    _ => Err(format!("{name}: `{cell}` is not a finite number")),
-                })
-                .collect()
-        })
-        .collect();
-    Ok(Points { names, rows })
-}
-
-/// `-0` prints as `0`.
-pub fn tidy(value: f64) -> f64 {
-    value + 0.0
-}
-
-/// A number for the text tables: shortest round-trip digits, in exponent
-/// form when very small or very large.
+/// A number as text: the shortest digits that read back to the same
+/// double (zmij), `-0` as `0`, no `.0` on a whole number, in exponent form
+/// (`1e16`, `1.5e-7`) when very large or very small.
 pub fn show(value: f64) -> String {
-    let value = tidy(value);
-    if value != 0.0 && !(1e-4..1e15).contains(&value.abs()) {
-        format!("{value:e}")
-    } else {
-        value.to_string()
+    let mut text = String::new();
+    push_shown(&mut text, value);
+    text
+}
+
+/// Appends [`show`]'s text of `value` to `text`.
+pub fn push_shown(text: &mut String, value: f64) {
+    for piece in shown(&mut zmij::Buffer::new(), value) {
+        text.push_str(piece);
     }
 }
 
-pub fn to_json(evaluation: &Evaluation) -> Value {
-    let mut object = json!({"value": tidy(evaluation.value)});
-    if let Some(gradient) = &evaluation.gradient {
-        object["gradient"] = gradient.iter().map(|&entry| tidy(entry)).collect();
+/// Appends [`show`]'s text of `value`, right-aligned in `width` bytes.
+pub fn push_aligned(out: &mut Vec<u8>, value: f64, width: usize) {
+    const BLANKS: [u8; 32] = [b' '; 32];
+    let mut buffer = zmij::Buffer::new();
+    let pieces = shown(&mut buffer, value);
+    let length: usize = pieces.iter().map(|piece| piece.len()).sum();
+    out.extend_from_slice(&BLANKS[..width.saturating_sub(length).min(BLANKS.len())]);
+    for piece in pieces {
+        out.extend_from_slice(piece.as_bytes());
     }
-    if let Some(hessian) = &evaluation.hessian {
-        object["hessian"] = hessian
-            .row_iter()
-            .map(|row| row.iter().map(|&entry| tidy(entry)).collect::<Value>())
-            .collect();
+}
+
+/// [`show`]'s text in pieces: the digits, then `e` and the exponent or
+/// nothing (zmij writes `1e+16` and `100.0`; show writes `1e16` and `100`).
+fn shown(buffer: &mut zmij::Buffer, value: f64) -> [&str; 3] {
+    let printed = buffer.format(tidy(value));
+    let printed = printed.strip_suffix(".0").unwrap_or(printed);
+    match printed.bytes().position(|byte| byte == b'e') {
+        Some(at) => [
+            &printed[..at],
+            "e",
+            printed[at + 1..].trim_start_matches('+'),
+        ],
+        None => [printed, "", ""],
     }
-    object
 }
 
 fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
@@ -195,18 +174,64 @@ pub fn read_scene(path: &str) -> Result<Scene, Fatal> {
     Scene::from_toml(&text).map_err(|error| Fatal::usage(format!("error: {path}: {error}")))
 }
 
+/// The result of one evaluation as a JSON object, its derivatives named.
+pub fn to_json(evaluation: &Evaluation, wrt: &[String]) -> Value {
+    let record = Record {
+        name: None,
+        row: None,
+        wrt,
+        result: Ok(evaluation),
+    };
+    serde_json::to_value(record).expect("a record serializes")
+}
+
+/// Why an expression has no result.
+enum Failure {
+    /// Problems in the expression (exit status 1).
+    Expression(Vec<Problem>),
+    /// A problem with how mbexpr was called, or with writing (exit status 2).
+    Usage(Fatal),
+}
+
+impl From<Fatal> for Failure {
+    fn from(fatal: Fatal) -> Failure {
+        Failure::Usage(fatal)
+    }
+}
+
+impl From<std::io::Error> for Failure {
+    fn from(error: std::io::Error) -> Failure {
+        Failure::Usage(error.into())
+    }
+}
+
 /// What every expression of one run shares.
 struct Context<'a> {
     args: &'a Args,
     scene: Option<&'a Scene>,
     assignments: Vec<(String, f64)>,
-    points: Option<Points>,
 }
 
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
-    if let Some(path) = &args.model {
-        return crate::model_eval::run(args, path, out);
+    let result = match &args.model {
+        Some(path) => crate::model_eval::run(args, path, out),
+        None => run_expressions(args, out),
+    };
+    match result {
+        // Under JSON formats an error is JSON too, on standard output.
+        Err(fatal) if args.format != Format::Text && fatal.is_reportable() => {
+            let message = fatal.message().trim_end();
+            let problems = [Problem::plain(
+                message.strip_prefix("error: ").unwrap_or(message),
+            )];
+            write_record(out, args.format, None, &[], Err(&problems), "")?;
+            Err(fatal.reported())
+        }
+        result => result,
     }
+}
+
+fn run_expressions(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let scene = args.scene.as_deref().map(read_scene).transpose()?;
     let expressions: Vec<(Option<String>, String)> = match (&args.expression, &scene) {
         (Some(text), _) => vec![(None, text.clone())],
@@ -234,52 +259,173 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
             .iter()
             .map(|assignment| parse_assignment(assignment))
             .collect::<Result<_, _>>()?,
-        points: args.points.as_deref().map(read_points).transpose()?,
     };
-    let mut outcome = Outcome::Success;
-    let several = expressions.len() > 1;
-    for (label, text) in &expressions {
-        match evaluate_expression(&context, label.as_deref(), text, out) {
-            Ok(Outcome::Success) => {}
-            Ok(Outcome::Failure) => outcome = Outcome::Failure,
-            // With several expressions, one that fails does not stop the others.
-            Err(fatal) if several && fatal.is_input() => {
+    if args.points.as_deref() == Some("-") && expressions.len() > 1 {
+        return Err(Fatal::usage(
+            "error: --points - reads standard input once: give one expression to evaluate at its rows",
+        ));
+    }
+    let mut first_points = args.points.as_deref().map(PointsFile::open).transpose()?;
+    if let Some(points) = &first_points {
+        warn_of_overridden_sets(points, &args.set);
+    }
+    // Named expressions under --format json: one object keyed by name.
+    let keyed = args.format == Format::Json && expressions[0].0.is_some();
+    if keyed {
+        write!(out, "{{")?;
+    }
+    let (mut failed, mut misused) = (false, None);
+    for (index, (label, text)) in expressions.iter().enumerate() {
+        if keyed {
+            let separator = if index == 0 { "" } else { "," };
+            write!(out, "{separator}\n  {}: ", Value::from(label.as_deref()))?;
+        } else if let Some(label) = label
+            && args.format == Format::Text
+        {
+            writeln!(out, "== {label}")?;
+        }
+        let points = match (first_points.take(), &args.points) {
+            (Some(points), _) => Some(points),
+            (None, Some(path)) => Some(PointsFile::open(path)?),
+            (None, None) => None,
+        };
+        let indent = if keyed { "  " } else { "" };
+        let problems =
+            match evaluate_expression(&context, label.as_deref(), text, points, indent, out) {
+                Ok(Outcome::Success) => continue,
+                Ok(Outcome::Failure) => {
+                    failed = true;
+                    continue;
+                }
+                Err(Failure::Expression(problems)) => {
+                    failed = true;
+                    problems
+                }
+                Err(Failure::Usage(fatal))
+                    if args.format == Format::Text || !fatal.is_reportable() =>
+                {
+                    return Err(fatal);
+                }
+                Err(Failure::Usage(fatal)) => {
+                    let message = fatal.message().trim_end();
+                    let problems = vec![Problem::plain(
+                        message.strip_prefix("error: ").unwrap_or(message),
+                    )];
+                    misused = Some(fatal.reported());
+                    problems
+                }
+            };
+        match args.format {
+            Format::Text => {
                 out.flush()?;
-                eprint!("{}", fatal.message());
-                outcome = Outcome::Failure;
+                let origin = label.as_deref().unwrap_or_default();
+                let rendered: String = problems
+                    .iter()
+                    .map(|problem| match problem.span {
+                        Some(span) => diagnostic(origin, text, span, &problem.message),
+                        None => format!("error: {}\n", problem.message),
+                    })
+                    .collect();
+                eprint!("{rendered}");
             }
-            Err(fatal) => return Err(fatal),
+            Format::Json | Format::Jsonl => {
+                let name = if keyed { None } else { label.as_deref() };
+                write_record(out, args.format, name, &[], Err(&problems), indent)?;
+            }
         }
     }
-    Ok(outcome)
+    if keyed {
+        writeln!(out, "\n}}")?;
+    }
+    match misused {
+        Some(fatal) => Err(fatal),
+        None if failed => Ok(Outcome::Failure),
+        None => Ok(Outcome::Success),
+    }
+}
+
+/// Says on standard error which `--set` a column of the points file
+/// takes the place of.
+fn warn_of_overridden_sets(points: &PointsFile, assignments: &[String]) {
+    for assignment in assignments {
+        let name = assignment
+            .split_once('=')
+            .map_or("", |(name, _)| name.trim());
+        if let Some(column) = points
+            .names
+            .iter()
+            .find(|column| column.eq_ignore_ascii_case(name))
+        {
+            eprintln!(
+                "warning: column {column} of {} takes the place of --set {assignment}",
+                points.path
+            );
+        }
+    }
+}
+
+/// One result or one failure, as the JSON formats write it: a pretty
+/// document (indented by `indent` inside a keyed one) or one line.
+fn write_record(
+    out: &mut impl Write,
+    format: Format,
+    name: Option<&str>,
+    wrt: &[String],
+    result: Result<&Evaluation, &[Problem]>,
+    indent: &str,
+) -> std::io::Result<()> {
+    let record = Record {
+        name,
+        row: None,
+        wrt,
+        result,
+    };
+    if format == Format::Jsonl {
+        return writeln!(out, "{}", serde_json::to_string(&record)?);
+    }
+    let pretty = serde_json::to_string_pretty(&record)?.replace('\n', &format!("\n{indent}"));
+    if indent.is_empty() {
+        writeln!(out, "{pretty}")
+    } else {
+        write!(out, "{pretty}")
+    }
 }
 
 fn evaluate_expression(
     context: &Context<'_>,
     label: Option<&str>,
     source: &str,
+    points: Option<PointsFile>,
+    indent: &str,
     out: &mut impl Write,
-) -> Result<Outcome, Fatal> {
+) -> Result<Outcome, Failure> {
     let args = context.args;
-    let origin = label.unwrap_or_default();
-    let fail = |span, message: String| Fatal::input(diagnostic(origin, source, span, &message));
-    let tree = mbexpr::parse(source).map_err(|error| fail(error.span(), error.to_string()))?;
+    let in_expression = |span, message: &dyn std::fmt::Display| Problem::at(source, span, message);
+    let tree = mbexpr::parse(source)
+        .map_err(|error| Failure::Expression(vec![in_expression(error.span(), &error)]))?;
     let checked = mbexpr::check(&tree).map_err(|errors| {
-        let texts: Vec<String> = errors
-            .iter()
-            .map(|error| diagnostic(origin, source, error.span(), &error.to_string()))
-            .collect();
-        Fatal::input(texts.concat())
+        Failure::Expression(
+            errors
+                .iter()
+                .map(|error| in_expression(error.span(), error))
+                .collect(),
+        )
     })?;
 
-    // The inputs beyond --set and the scene: --points columns, and the state
-    // components named as derivative directions.
-    let columns: Vec<String> = context
-        .points
-        .iter()
-        .flat_map(|points| points.names.iter().cloned())
-        .collect();
-    let mut extra = columns.clone();
+    // The inputs beyond --set and the scene: the columns of --points that
+    // the expression can read, and the state components named as
+    // derivative directions.
+    let columns = points
+        .as_ref()
+        .map(|points| readable_columns(&points.names, &checked, context))
+        .unwrap_or_default();
+    if let Some(points) = &points
+        && label.is_none()
+        && columns.len() < points.names.len()
+    {
+        warn_of_unread_columns(points, &columns);
+    }
+    let mut extra: Vec<String> = columns.iter().map(|(_, name)| name.clone()).collect();
     if let Some(scene) = context.scene {
         extra.extend(
             args.wrt
@@ -290,16 +436,20 @@ fn evaluate_expression(
     }
     let bound = crate::binding::bind(&checked, context.scene, &context.assignments, &extra)
         .map_err(|errors| {
-            Fatal::input(crate::binding::render(&errors, origin, source, |name| {
-                format!("--set {name}=VALUE")
-            }))
+            Failure::Expression(
+                errors
+                    .iter()
+                    .map(|error| {
+                        let message = crate::binding::message(error, |name| {
+                            how_to_set(name, points.as_ref())
+                        });
+                        in_expression(error.span(), &message)
+                    })
+                    .collect(),
+            )
         })?;
     let (program, values): (Program, Vec<f64>) = (bound.program, bound.values);
     let inputs = program.inputs();
-    let columns: Vec<Option<usize>> = columns
-        .iter()
-        .map(|name| program.input_index(name))
-        .collect();
 
     let mut wrt = Vec::new();
     for name in &args.wrt {
@@ -308,10 +458,10 @@ fn evaluate_expression(
             let suggestion = mbexpr::catalog::did_you_mean(&mbexpr::catalog::closest(name, known));
             return Err(Fatal::usage(format!(
                 "error: --wrt {name}: {name} has no value, so it cannot be a derivative direction; set it with --set {name}=VALUE{suggestion}"
-            )));
+            )).into());
         };
         if wrt.contains(&index) {
-            return Err(Fatal::usage(format!("error: --wrt names {name} twice")));
+            return Err(Fatal::usage(format!("error: --wrt names {name} twice")).into());
         }
         wrt.push(index);
     }
@@ -321,74 +471,119 @@ fn evaluate_expression(
         None => Order::Gradient,
     };
     let wrt_names: Vec<String> = wrt.iter().map(|&index| inputs[index].clone()).collect();
-    let labelled = |mut object: Value| {
-        if let (Some(label), Value::Object(map)) = (label, &mut object) {
-            map.shift_insert(0, "name".to_string(), Value::String(label.to_string()));
-        }
-        object
-    };
-    if let Some(label) = label
-        && args.format == Format::Text
-    {
-        writeln!(out, "== {label}")?;
-    }
+    let name = if indent.is_empty() { label } else { None };
 
-    let Some(points) = &context.points else {
-        return match program.evaluate(&values, &wrt, order) {
-            Ok(evaluation) => {
-                match args.format {
-                    Format::Text => write!(out, "{}", to_text(&evaluation, &wrt_names))?,
-                    Format::Json => writeln!(out, "{:#}", labelled(to_json(&evaluation)))?,
-                    Format::Jsonl => writeln!(out, "{}", labelled(to_json(&evaluation)))?,
-                }
-                Ok(Outcome::Success)
-            }
-            Err(error) => Err(fail(error.span(), error.to_string())),
-        };
-    };
-
-    let mut failures = 0;
-    let mut results = Vec::new();
-    // The rows are the points of one run: AX, AY, AZ stay continuous.
-    let mut run = program.run();
-    for (row_number, row) in points.rows.iter().enumerate() {
-        let result = row.clone().and_then(|row| {
-            let mut point = values.clone();
-            for (column, value) in columns.iter().zip(row) {
-                if let Some(index) = column {
-                    point[*index] = value;
-                }
-            }
-            run.evaluate(&point, &wrt, order)
-                .map_err(|error| error.to_string())
-        });
-        if result.is_err() {
-            failures += 1;
-        }
+    let Some(mut points) = points else {
+        let evaluation = program
+            .evaluate(&values, &wrt, order)
+            .map_err(|error| Failure::Expression(vec![in_expression(error.span(), &error)]))?;
         match args.format {
-            Format::Text => match &result {
-                Ok(evaluation) => write!(out, "{}", to_text(evaluation, &wrt_names))?,
-                Err(message) => writeln!(out, "error: row {}: {message}", row_number + 2)?,
-            },
+            Format::Text => write!(out, "{}", to_text(&evaluation, &wrt_names))?,
             Format::Json | Format::Jsonl => {
-                let object = match &result {
-                    Ok(evaluation) => labelled(to_json(evaluation)),
-                    Err(message) => labelled(json!({"error": message})),
-                };
-                if args.format == Format::Jsonl {
-                    writeln!(out, "{object}")?;
-                } else {
-                    results.push(object);
-                }
+                write_record(out, args.format, name, &wrt_names, Ok(&evaluation), indent)?;
             }
         }
+        return Ok(Outcome::Success);
+    };
+
+    let columns: Vec<(usize, usize)> = columns
+        .iter()
+        .filter_map(|(column, name)| Some((*column, program.input_index(name)?)))
+        .collect();
+    let sweep = Sweep {
+        program: &program,
+        source,
+        base: &values,
+        names: &points.names.clone(),
+        columns: &columns,
+        wrt: &wrt,
+        wrt_names: &wrt_names,
+        order,
+        format: args.format,
+        name,
+        indent,
+    };
+    let failures = sweep.run(&mut points, out)?;
+    if args.format == Format::Json && indent.is_empty() {
+        writeln!(out)?;
     }
-    if args.format == Format::Json {
-        writeln!(out, "{:#}", Value::Array(results))?;
+    if failures == 0 {
+        return Ok(Outcome::Success);
     }
-    Ok(if failures == 0 {
-        Outcome::Success
-    } else {
-        Outcome::Failure
-    })
+    if args.format == Format::Text {
+        out.flush()?;
+        eprintln!("{}: {} failed", points.path, count(failures, "row"));
+    }
+    Ok(Outcome::Failure)
+}
+
+/// The columns of a points file that the expression can read, with their
+/// index: its variables, the derivative directions, the scene's inputs and
+/// the states of its bodies (a header of many columns costs nothing for
+/// those it does not read).
+fn readable_columns(
+    names: &[String],
+    checked: &mbexpr::Checked,
+    context: &Context<'_>,
+) -> Vec<(usize, String)> {
+    let mut readable: HashSet<String> = checked
+        .variables()
+        .iter()
+        .map(|name| name.to_ascii_lowercase())
+        .collect();
+    readable.extend(
+        context
+            .args
+            .wrt
+            .iter()
+            .map(|name| name.to_ascii_lowercase()),
+    );
+    if let Some(scene) = context.scene {
+        readable.extend(
+            scene
+                .input_names()
+                .iter()
+                .map(|name| name.to_ascii_lowercase()),
+        );
+    }
+    names
+        .iter()
+        .enumerate()
+        .filter(|(_, name)| {
+            readable.contains(&name.to_ascii_lowercase())
+                || context
+                    .scene
+                    .is_some_and(|scene| scene.parse_state_name(name).is_some())
+        })
+        .map(|(column, name)| (column, name.clone()))
+        .collect()
+}
+
+/// Says on standard error which columns of the points file the
+/// expression does not read (a misspelt name would be one).
+fn warn_of_unread_columns(points: &PointsFile, read: &[(usize, String)]) {
+    let mut read = read.iter().map(|(column, _)| *column).peekable();
+    let unread: Vec<&str> = (0..points.names.len())
+        .filter(|&column| read.next_if_eq(&column).is_none())
+        .map(|column| points.names[column].as_str())
+        .collect();
+    eprintln!(
+        "warning: the expression reads no column {} of {}",
+        crate::points::some_names(&unread),
+        points.path
+    );
+}
+
+/// How to give `name` a value: `--set`, or a column of the points file,
+/// whose header the message shows.
+fn how_to_set(name: &str, points: Option<&PointsFile>) -> String {
+    match points {
+        None => format!("--set {name}=VALUE"),
+        Some(points) => format!(
+            "--set {name}=VALUE or a column {name} in {}, whose header (line {}) names {}",
+            points.path,
+            points.header_line,
+            crate::points::some_names(&points.names)
+        ),
+    }
 }

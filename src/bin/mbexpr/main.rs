@@ -5,13 +5,16 @@ mod check_cmd;
 mod eval_cmd;
 mod model_eval;
 mod plot;
+mod points;
+mod record;
 mod render;
 mod repl;
+mod sweep;
 
 use std::io::{self, Write};
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 
 /// Read, check and evaluate the function expressions of multibody models.
 #[derive(Parser)]
@@ -26,6 +29,7 @@ enum Command {
     /// Print the syntax tree of an expression as an S-expression.
     Parse {
         /// The expression, e.g. "STEP(TIME, 0, 0, 1, 10)".
+        #[arg(allow_hyphen_values = true)]
         expression: String,
     },
     /// Check files of expressions, one per line (`!` starts a comment line; `-` is standard input).
@@ -36,6 +40,16 @@ enum Command {
     Plot(plot::Args),
     /// Evaluate expressions interactively (or line by line from a pipe).
     Repl(repl::Args),
+    /// Print the completion script of a shell (`mbexpr completions bash > /etc/bash_completion.d/mbexpr`).
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Print the manual page of mbexpr or of one of its commands (`mbexpr man eval | man -l -`).
+    Man {
+        /// The command: parse, check, eval, plot, repl or completions; none for mbexpr itself.
+        command: Option<String>,
+    },
 }
 
 /// How a run ended, as the process's exit status.
@@ -80,6 +94,20 @@ impl Fatal {
     pub fn message(&self) -> &str {
         &self.message
     }
+
+    /// Whether there is something to tell (not a closed pipe, nor an
+    /// error already reported).
+    pub fn is_reportable(&self) -> bool {
+        self.code != 0 && !self.message.is_empty()
+    }
+
+    /// The same exit status, the message already reported.
+    pub fn reported(self) -> Fatal {
+        Fatal {
+            message: String::new(),
+            code: self.code,
+        }
+    }
 }
 
 impl From<io::Error> for Fatal {
@@ -113,9 +141,35 @@ fn run(cli: Cli) -> Result<Outcome, Fatal> {
         Command::Eval(args) => eval_cmd::run(&args, &mut out)?,
         Command::Plot(args) => plot::run(&args, &mut out)?,
         Command::Repl(args) => repl::run(&args, &mut out)?,
+        Command::Completions { shell } => {
+            clap_complete::generate(shell, &mut Cli::command(), "mbexpr", &mut out);
+            Outcome::Success
+        }
+        Command::Man { command } => {
+            manual_page(command.as_deref())?.render(&mut out)?;
+            Outcome::Success
+        }
     };
     out.flush()?;
     Ok(outcome)
+}
+
+/// The manual page of mbexpr, or of its command `command` (`mbexpr-eval(1)`).
+fn manual_page(command: Option<&str>) -> Result<clap_mangen::Man, Fatal> {
+    let mut cli = Cli::command();
+    // Building names each command `mbexpr-NAME` for its page's title.
+    cli.build();
+    let page = match command {
+        None => cli,
+        Some(name) => cli.find_subcommand(name).cloned().ok_or_else(|| {
+            let names: Vec<&str> = cli.get_subcommands().map(clap::Command::get_name).collect();
+            Fatal::usage(format!(
+                "error: mbexpr has no command {name}: name one of {}",
+                names.join(", ")
+            ))
+        })?,
+    };
+    Ok(clap_mangen::Man::new(page))
 }
 
 fn main() -> ExitCode {
@@ -131,6 +185,7 @@ fn main() -> ExitCode {
         Ok(Outcome::Failure) => ExitCode::from(1),
         // A closed pipe (`mbexpr ... | head`) ends the run quietly.
         Err(fatal) if fatal.code == 0 => ExitCode::SUCCESS,
+        Err(fatal) if fatal.message.is_empty() => ExitCode::from(fatal.code),
         Err(fatal) => {
             let _ = write!(io::stderr(), "{}", fatal.message);
             if !fatal.message.ends_with('\n') {

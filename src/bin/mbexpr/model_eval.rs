@@ -112,7 +112,7 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
             "line": mbexpr::Location::of(&text, found.span.start).line,
         });
         let fields = match &result {
-            Ok(evaluation) => to_json(evaluation),
+            Ok(evaluation) => to_json(evaluation, &args.wrt),
             Err(no_value) if no_value.needs_solver => json!({"needs_solver": no_value.message}),
             Err(no_value) => json!({"error": no_value.message}),
         };

@@ -203,6 +203,7 @@ pub fn parse_range(text: &str) -> Result<(String, f64, f64), String> {
 #[derive(clap::Args)]
 pub struct Args {
     /// The expression, e.g. "BISTOP(x, v, -1, 1, 1e4, 1.5, 50, 0.1)".
+    #[arg(allow_hyphen_values = true)]
     expression: String,
     /// The variable along the x axis and its range, NAME=A..B.
     #[arg(long, value_name = "NAME=A..B")]
