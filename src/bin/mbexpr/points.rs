@@ -17,7 +17,11 @@ use csv::{ByteRecord, ReaderBuilder};
 use crate::Fatal;
 
 /// Rows read at a time: enough to keep every core busy, little memory.
-pub const BATCH: usize = 4096;
+const BATCH: usize = 4096;
+
+/// The bytes of a batch beyond which it takes no more rows (rows of
+/// thousands of columns).
+const BATCH_BYTES: usize = 1 << 20;
 
 /// The names a header may show in a message before it says how many more.
 const NAMES_SHOWN: usize = 8;
@@ -87,12 +91,13 @@ impl PointsFile {
         })
     }
 
-    /// Reads up to [`BATCH`] rows into `batch`, skipping blank ones; an
-    /// empty batch is the end of the file.
+    /// Reads up to [`BATCH`] rows (or a megabyte) into `batch`, skipping
+    /// blank ones; an empty batch is the end of the file.
     pub fn read_batch(&mut self, batch: &mut Batch) -> Result<(), Fatal> {
         batch.records.resize_with(BATCH, ByteRecord::new);
         batch.len = 0;
-        while batch.len < BATCH {
+        let mut bytes = 0;
+        while batch.len < BATCH && bytes < BATCH_BYTES {
             let record = &mut batch.records[batch.len];
             let more = read_row(&mut self.reader, record).map_err(|error| {
                 Fatal::usage(format!("error: cannot read {}: {error}", self.path))
@@ -101,6 +106,7 @@ impl PointsFile {
                 break;
             }
             if !is_blank(record) {
+                bytes += record.as_slice().len();
                 batch.len += 1;
             }
         }
