@@ -32,6 +32,7 @@ pub enum Format {
 pub struct Args {
     /// The expression, e.g. "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
     /// with --scene and no expression, every named expression of the scene.
+    /// It may start with a minus: `mbexpr eval "-2**2"`.
     #[arg(allow_hyphen_values = true)]
     pub expression: Option<String>,
     /// A scene (TOML): bodies, markers, time, variables and named expressions.
