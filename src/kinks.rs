@@ -63,13 +63,16 @@ fn offset_of(node: &Node, variable: &str) -> Option<f64> {
     use crate::syntax::ast::BinaryOp;
     match &node.kind {
         NodeKind::Variable(name) if name.eq_ignore_ascii_case(variable) => Some(0.0),
-        NodeKind::Binary(BinaryOp::Add, lhs, rhs) => offset_of(lhs, variable)
-            .zip(constant_value(rhs))
-            .or_else(|| offset_of(rhs, variable).zip(constant_value(lhs)))
-            .map(|(shift, constant)| shift + constant),
-        NodeKind::Binary(BinaryOp::Sub, lhs, rhs) => offset_of(lhs, variable)
-            .zip(constant_value(rhs))
-            .map(|(shift, constant)| shift - constant),
+        NodeKind::Chain(first, rest) => match rest.as_slice() {
+            [(BinaryOp::Add, rhs)] => offset_of(first, variable)
+                .zip(constant_value(rhs))
+                .or_else(|| offset_of(rhs, variable).zip(constant_value(first)))
+                .map(|(shift, constant)| shift + constant),
+            [(BinaryOp::Sub, rhs)] => offset_of(first, variable)
+                .zip(constant_value(rhs))
+                .map(|(shift, constant)| shift - constant),
+            _ => None,
+        },
         _ => None,
     }
 }

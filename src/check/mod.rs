@@ -57,9 +57,13 @@ pub fn visit<'a>(node: &'a Node, f: &mut impl FnMut(&'a Node)) {
     f(node);
     match &node.kind {
         NodeKind::Neg(operand) => visit(operand, f),
-        NodeKind::Binary(_, lhs, rhs) => {
-            visit(lhs, f);
-            visit(rhs, f);
+        NodeKind::Chain(first, rest) => {
+            visit(first, f);
+            rest.iter().for_each(|(_, operand)| visit(operand, f));
+        }
+        NodeKind::Power(base, exponent) => {
+            visit(base, f);
+            visit(exponent, f);
         }
         NodeKind::Call(_, args) => {
             for arg in args {
@@ -105,10 +109,15 @@ fn check_expr(expr: &Expr, errors: &mut Vec<CheckError>) -> Node {
         ExprKind::Unary(UnaryOp::Neg, operand) => {
             NodeKind::Neg(Box::new(check_expr(operand, errors)))
         }
-        ExprKind::Binary(op, lhs, rhs) => NodeKind::Binary(
-            *op,
-            Box::new(check_expr(lhs, errors)),
-            Box::new(check_expr(rhs, errors)),
+        ExprKind::Chain(first, rest) => NodeKind::Chain(
+            Box::new(check_expr(first, errors)),
+            rest.iter()
+                .map(|(op, operand)| (*op, check_expr(operand, errors)))
+                .collect(),
+        ),
+        ExprKind::Power(base, exponent) => NodeKind::Power(
+            Box::new(check_expr(base, errors)),
+            Box::new(check_expr(exponent, errors)),
         ),
         ExprKind::Call(call) => check_call(call, span, errors),
         ExprKind::If(branches) => {
@@ -296,16 +305,19 @@ pub fn constant_value(node: &Node) -> Option<f64> {
         NodeKind::Number(value) => *value,
         NodeKind::Constant(constant) => constant.value(),
         NodeKind::Neg(operand) => -constant_value(operand)?,
-        NodeKind::Binary(op, lhs, rhs) => {
-            let (a, b) = (constant_value(lhs)?, constant_value(rhs)?);
-            match op {
-                BinaryOp::Add => a + b,
-                BinaryOp::Sub => a - b,
-                BinaryOp::Mul => a * b,
-                BinaryOp::Div => a / b,
-                BinaryOp::Pow => a.powf(b),
-            }
+        NodeKind::Chain(first, rest) => {
+            rest.iter()
+                .try_fold(constant_value(first)?, |a, (op, operand)| {
+                    let b = constant_value(operand)?;
+                    Some(match op {
+                        BinaryOp::Add => a + b,
+                        BinaryOp::Sub => a - b,
+                        BinaryOp::Mul => a * b,
+                        BinaryOp::Div => a / b,
+                    })
+                })?
         }
+        NodeKind::Power(base, exponent) => constant_value(base)?.powf(constant_value(exponent)?),
         _ => return None,
     };
     value.is_finite().then_some(value)

@@ -5,7 +5,7 @@ use std::fmt;
 
 use crate::catalog::{Constant, Function, SystemVariable};
 use crate::span::Span;
-use crate::syntax::ast::BinaryOp;
+use crate::syntax::ast::{BinaryOp, write_chain};
 
 /// A checked expression node.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,8 +29,11 @@ pub enum NodeKind {
     Variable(String),
     /// `-a` (a unary `+` leaves no node).
     Neg(Box<Node>),
-    /// `a op b`.
-    Binary(BinaryOp, Box<Node>, Box<Node>),
+    /// A left-associative run of `+ -` or of `* /` (see
+    /// [`ExprKind::Chain`](crate::syntax::ast::ExprKind::Chain)).
+    Chain(Box<Node>, Vec<(BinaryOp, Node)>),
+    /// `base ** exponent`.
+    Power(Box<Node>, Box<Node>),
     /// A call of a known function.
     Call(Function, Vec<Argument>),
     /// `IF(condition: negative, zero, positive)`, in that order.
@@ -92,7 +95,8 @@ impl fmt::Display for Node {
             NodeKind::System(variable) => f.write_str(variable.name()),
             NodeKind::Variable(name) => write!(f, "${name}"),
             NodeKind::Neg(operand) => write!(f, "(neg {operand})"),
-            NodeKind::Binary(op, lhs, rhs) => write!(f, "({} {lhs} {rhs})", op.symbol()),
+            NodeKind::Chain(first, rest) => write_chain(f, first, rest),
+            NodeKind::Power(base, exponent) => write!(f, "(** {base} {exponent})"),
             NodeKind::Call(function, args) => {
                 write!(f, "({function}")?;
                 for arg in args {

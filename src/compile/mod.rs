@@ -200,7 +200,8 @@ impl Compiler<'_> {
                 let a = self.node(operand);
                 self.compute(Op::Neg(a), span)
             }
-            NodeKind::Binary(op, lhs, rhs) => self.binary(*op, lhs, rhs, span),
+            NodeKind::Chain(first, rest) => self.chain(first, rest),
+            NodeKind::Power(base, exponent) => self.power(base, exponent, span),
             NodeKind::Call(function, args) => self.call(*function, args, span),
             NodeKind::If(branches) => self.arithmetic_if(branches, span),
         }
@@ -237,21 +238,32 @@ impl Compiler<'_> {
         self.constant(0.0)
     }
 
-    fn binary(&mut self, op: BinaryOp, lhs: &Node, rhs: &Node, span: Span) -> Slot {
-        let a = self.node(lhs);
-        let b = self.node(rhs);
-        let op = match op {
-            BinaryOp::Add => Op::Add(a, b),
-            BinaryOp::Sub => Op::Sub(a, b),
-            BinaryOp::Mul => Op::Mul(a, b),
-            BinaryOp::Div => Op::Div(a, b),
-            BinaryOp::Pow => match self.constant_values[b as usize] {
-                Some(exponent) => match as_integer(exponent) {
-                    Some(n) => Op::PowInt(a, n),
-                    None => Op::PowReal(a, exponent.to_bits()),
-                },
-                None => Op::Pow(a, b),
+    /// A run of `+ -` or `* /`, folded from the left; each step takes the
+    /// span from the chain's first operand to its right operand.
+    fn chain(&mut self, first: &Node, rest: &[(BinaryOp, Node)]) -> Slot {
+        let mut a = self.node(first);
+        for (op, operand) in rest {
+            let b = self.node(operand);
+            let op = match op {
+                BinaryOp::Add => Op::Add(a, b),
+                BinaryOp::Sub => Op::Sub(a, b),
+                BinaryOp::Mul => Op::Mul(a, b),
+                BinaryOp::Div => Op::Div(a, b),
+            };
+            a = self.compute(op, first.span.to(operand.span));
+        }
+        a
+    }
+
+    fn power(&mut self, base: &Node, exponent: &Node, span: Span) -> Slot {
+        let a = self.node(base);
+        let b = self.node(exponent);
+        let op = match self.constant_values[b as usize] {
+            Some(exponent) => match as_integer(exponent) {
+                Some(n) => Op::PowInt(a, n),
+                None => Op::PowReal(a, exponent.to_bits()),
             },
+            None => Op::Pow(a, b),
         };
         self.compute(op, span)
     }

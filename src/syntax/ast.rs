@@ -27,8 +27,13 @@ pub enum ExprKind {
     Name(CompactString),
     /// A unary sign applied to an operand.
     Unary(UnaryOp, Box<Expr>),
-    /// A binary operator applied to two operands.
-    Binary(BinaryOp, Box<Expr>, Box<Expr>),
+    /// A left-associative run of operators of one precedence level, `+ -`
+    /// or `* /`: `a - b + c` is `a` followed by `[(-, b), (+, c)]` and means
+    /// `(a - b) + c`. A run of any length is one node, so a flat sum of
+    /// thousands of terms nests no deeper than `a + b`.
+    Chain(Box<Expr>, Vec<(BinaryOp, Expr)>),
+    /// `base ** exponent`; right-associative, so `a**b**c` nests.
+    Power(Box<Expr>, Box<Expr>),
     /// A function call `NAME(arg, ...)` (never `IF`).
     Call(Call),
     /// The arithmetic `IF(condition: negative, zero, positive)`.
@@ -85,7 +90,7 @@ pub enum UnaryOp {
     Plus,
 }
 
-/// Binary operators.
+/// The left-associative binary operators (a power is [`ExprKind::Power`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum BinaryOp {
     /// `a + b`
@@ -96,8 +101,6 @@ pub enum BinaryOp {
     Mul,
     /// `a / b`
     Div,
-    /// `a ** b`
-    Pow,
 }
 
 impl BinaryOp {
@@ -108,7 +111,6 @@ impl BinaryOp {
             BinaryOp::Sub => "-",
             BinaryOp::Mul => "*",
             BinaryOp::Div => "/",
-            BinaryOp::Pow => "**",
         }
     }
 }
@@ -122,7 +124,8 @@ impl fmt::Display for Expr {
             ExprKind::Name(name) => f.write_str(name),
             ExprKind::Unary(UnaryOp::Neg, operand) => write!(f, "(neg {operand})"),
             ExprKind::Unary(UnaryOp::Plus, operand) => write!(f, "(plus {operand})"),
-            ExprKind::Binary(op, lhs, rhs) => write!(f, "({} {lhs} {rhs})", op.symbol()),
+            ExprKind::Chain(first, rest) => write_chain(f, first, rest),
+            ExprKind::Power(base, exponent) => write!(f, "(** {base} {exponent})"),
             ExprKind::Call(call) => {
                 write!(f, "({}", call.name)?;
                 for arg in &call.args {
@@ -141,4 +144,21 @@ impl fmt::Display for Expr {
             }
         }
     }
+}
+
+/// A chain as the binary operations it folds to, `(+ (- a b) c)`, written
+/// without recursion along the chain.
+pub(crate) fn write_chain<T: fmt::Display>(
+    f: &mut fmt::Formatter<'_>,
+    first: &impl fmt::Display,
+    rest: &[(BinaryOp, T)],
+) -> fmt::Result {
+    for (op, _) in rest.iter().rev() {
+        write!(f, "({} ", op.symbol())?;
+    }
+    write!(f, "{first}")?;
+    for (_, operand) in rest {
+        write!(f, " {operand})")?;
+    }
+    Ok(())
 }

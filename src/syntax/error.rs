@@ -148,7 +148,7 @@ pub enum ParseError {
     },
     /// Parentheses, signs or powers nested deeper than the evaluator allows.
     #[error(
-        "the expression nests deeper than {limit} levels (each parenthesis, call, and operator of one group adds a level); split it into smaller expressions"
+        "the expression nests deeper than {limit} levels (each parenthesis, call, sign before an operand and `**` adds a level; a long run of `+` or `*` does not); split it into smaller expressions"
     )]
     TooDeep {
         /// The limit.

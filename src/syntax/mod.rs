@@ -11,4 +11,4 @@ mod scan;
 
 pub use error::ParseError;
 pub use parse::parse;
-pub use scan::MAX_NESTING;
+pub use scan::{MAX_NESTING, without_comment};

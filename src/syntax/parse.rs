@@ -71,14 +71,43 @@ fn build_expr(mut pairs: Pairs<'_, Rule>) -> Result<Expr, ParseError> {
                 Rule::sub => BinaryOp::Sub,
                 Rule::mul => BinaryOp::Mul,
                 Rule::div => BinaryOp::Div,
-                _ => BinaryOp::Pow,
+                _ => {
+                    return Ok(Expr {
+                        span: lhs.span.to(rhs.span),
+                        kind: ExprKind::Power(Box::new(lhs), Box::new(rhs)),
+                    });
+                }
             };
-            Ok(Expr {
-                span: lhs.span.to(rhs.span),
-                kind: ExprKind::Binary(binary, Box::new(lhs), Box::new(rhs)),
-            })
+            Ok(chained(lhs, binary, rhs))
         })
         .parse(pairs)
+}
+
+/// `lhs op rhs`, added to the end of `lhs` when it is a chain of the same
+/// precedence level (the Pratt parser folds from the left, so a flat run
+/// arrives one operator at a time).
+fn chained(lhs: Expr, op: BinaryOp, rhs: Expr) -> Expr {
+    let span = lhs.span.to(rhs.span);
+    let additive = |op: BinaryOp| matches!(op, BinaryOp::Add | BinaryOp::Sub);
+    match lhs.kind {
+        ExprKind::Chain(first, mut rest) if additive(rest[0].0) == additive(op) => {
+            rest.push((op, rhs));
+            Expr {
+                kind: ExprKind::Chain(first, rest),
+                span,
+            }
+        }
+        kind => Expr {
+            kind: ExprKind::Chain(
+                Box::new(Expr {
+                    kind,
+                    span: lhs.span,
+                }),
+                vec![(op, rhs)],
+            ),
+            span,
+        },
+    }
 }
 
 /// `operand` with the sign `sign` (a `neg` or `plus` pair) before it.

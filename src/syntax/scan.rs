@@ -142,14 +142,30 @@ fn ends_operand(kind: Option<Kind>) -> bool {
     matches!(kind, Some(Kind::Number | Kind::Name | Kind::Close))
 }
 
+/// `line` without its trailing comment: a `!` and all after it, as in model
+/// files (`STEP(TIME, 0, 0, 1, 1) ! ramp`). A `!` directly before `=` is
+/// not a comment but the comparison `!=`, which the parser refuses with its
+/// own explanation.
+pub fn without_comment(line: &str) -> &str {
+    let bytes = line.as_bytes();
+    let comment =
+        (0..bytes.len()).find(|&at| bytes[at] == b'!' && bytes.get(at + 1) != Some(&b'='));
+    match comment {
+        Some(at) => &line[..at],
+        None => line,
+    }
+}
+
 /// Refuses what the grammar must not see, before any recursive parser runs:
 /// a tree deeper than [`MAX_NESTING`], and the control characters `\x0E` to
 /// `\x1F`, which the grammar's `blank` (one range from tab to space) would
 /// otherwise take for blanks; they are explained as unexpected characters.
 ///
-/// Each open parenthesis adds a level of nesting, and so does each operator
-/// in a run of operators within one group (between `(`, `,` and `:`), since
-/// `a+b+c` nests `(a+b)+c` and `-x**y` nests too.
+/// Depth is what the parser and every later stage recurse on: each open
+/// parenthesis adds a level, and so does each sign before an operand and
+/// each `**` (`- -x` and `a**b**c` nest). A run of `+ -` or `* /` is one
+/// node of the tree whatever its length ([`crate::syntax::ast::ExprKind::Chain`]),
+/// so a binary operator adds nothing.
 pub fn precheck(text: &str) -> Result<(), ParseError> {
     let is_stray = |byte: u8| (0x0E..=0x1F).contains(&byte);
     // A pass with no early exit, which the compiler makes wide; the offset
@@ -165,11 +181,13 @@ pub fn precheck(text: &str) -> Result<(), ParseError> {
     if text.len() <= MAX_NESTING || nesting_bound(text) <= MAX_NESTING {
         return Ok(());
     }
-    // `run` counts the operators of the current group; `saved` keeps the run
-    // of each enclosing group; `depth` is their total with the parentheses.
+    // `run` counts the signs and powers the current operand nests in;
+    // `saved` keeps the run of each enclosing group; `depth` is their total
+    // with the parentheses.
     let mut depth = 0usize;
     let mut run = 0usize;
     let mut saved = Vec::new();
+    let mut previous = None;
     for token in Tokens::new(text) {
         match token.kind {
             Kind::Open => {
@@ -183,8 +201,8 @@ pub fn precheck(text: &str) -> Result<(), ParseError> {
                     run = outer;
                 }
             }
-            Kind::Operator => run += 1,
-            Kind::Comma | Kind::Colon => run = 0,
+            Kind::Operator if !ends_operand(previous) || token.span.len() == 2 => run += 1,
+            Kind::Operator | Kind::Comma | Kind::Colon => run = 0,
             _ => {}
         }
         if depth + run > MAX_NESTING {
@@ -193,6 +211,7 @@ pub fn precheck(text: &str) -> Result<(), ParseError> {
                 span: token.span,
             });
         }
+        previous = Some(token.kind);
     }
     Ok(())
 }
