@@ -427,6 +427,16 @@ impl SystemVariable {
     /// The value of MODE when the host does not set it (dynamics).
     pub const DEFAULT_MODE: f64 = 4.0;
 
+    /// Why `value` cannot be the analysis mode (SPEC 2), or `None` when it can.
+    pub fn mode_error(value: f64) -> Option<String> {
+        const MODES: [f64; 6] = [1.0, 3.0, 4.0, 5.0, 6.0, 7.0];
+        (!MODES.contains(&value)).then(|| {
+            format!(
+                "MODE is 1 (kinematics), 3 (initial conditions), 4 (dynamics), 5 (statics), 6 (quasi-statics) or 7 (linear), not {value}"
+            )
+        })
+    }
+
     /// The canonical name.
     pub fn name(self) -> &'static str {
         match self {

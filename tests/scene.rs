@@ -431,6 +431,16 @@ fn scene_files_read_and_refuse_with_reasons() {
         "[[marker]]\nid = 0",
         "speed = 3",
         "[variables]\nk = \"stiff\"",
+        "time = 1\n[variables]\nc = 2\nk = nan",
+        "[variables]\nk = -inf",
+        "time = +inf",
+        "[[body]]\nname = \"a\"\nvelocity = [0, nan, 0]",
+        "[[marker]]\nname = \"m\"\neuler = [0, 0, inf]",
+        "mode = 99",
+        "mode = -1",
+        "mode = 1.5",
+        "mode = 2",
+        "mode = 7\n[variables]\nk = 1_000.5",
     ]
     .iter()
     .map(|text| match Scene::from_toml(text) {

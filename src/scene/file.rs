@@ -7,13 +7,14 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use serde::Deserialize;
 
 use super::{Body, Marker, Scene, SceneError};
+use crate::catalog::SystemVariable;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
     #[serde(default)]
     time: f64,
-    mode: Option<f64>,
+    mode: Option<toml::Spanned<f64>>,
     #[serde(default)]
     variables: toml::Table,
     #[serde(default)]
@@ -117,11 +118,77 @@ fn number_table(table: &toml::Table, what: &str) -> Result<Vec<(String, f64)>, S
         .collect()
 }
 
+/// The first number of the file that is not finite (TOML writes `nan` and
+/// `inf`), as an error at its line: no scene value may be one.
+fn refuse_non_finite(text: &str) -> Result<(), SceneError> {
+    use toml::de::{DeTable, DeValue};
+    type Entry<'a, 'i> = (String, &'a toml::Spanned<DeValue<'i>>);
+    let Ok(root) = DeTable::parse(text) else {
+        // The reader proper explains a file that does not parse.
+        return Ok(());
+    };
+    // Depth first, in file order: the first bad number is reported.
+    fn entries<'a, 'i>(prefix: &str, table: &'a DeTable<'i>) -> Vec<Entry<'a, 'i>> {
+        let mut entries: Vec<_> = table
+            .iter()
+            .map(|(key, value)| (join(prefix, key.get_ref()), value))
+            .collect();
+        entries.reverse();
+        entries
+    }
+    let mut pending: Vec<Entry<'_, '_>> = entries("", root.get_ref());
+    while let Some((path, value)) = pending.pop() {
+        match value.get_ref() {
+            DeValue::Float(float) => {
+                let written = float.as_str();
+                let number: f64 = written.replace('_', "").parse().unwrap_or(f64::NAN);
+                if !number.is_finite() {
+                    return Err(at_line(
+                        text,
+                        value.span().start,
+                        &format!("{path} = {written}: every number of a scene must be finite"),
+                    ));
+                }
+            }
+            DeValue::Table(table) => pending.extend(entries(&path, table)),
+            DeValue::Array(array) => pending.extend(
+                array
+                    .iter()
+                    .enumerate()
+                    .rev()
+                    .map(|(index, item)| (format!("{path}[{index}]"), item)),
+            ),
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+fn join(prefix: &str, key: &str) -> String {
+    if prefix.is_empty() {
+        key.to_string()
+    } else {
+        format!("{prefix}.{key}")
+    }
+}
+
+/// `message` as a scene error at the line of byte `offset` of `text`.
+fn at_line(text: &str, offset: usize, message: &str) -> SceneError {
+    let line = crate::span::Location::of(text, offset).line;
+    SceneError::File(format!("line {line}: {message}"))
+}
+
 impl Scene {
     /// Reads a scene from the text of a TOML file.
     pub fn from_toml(text: &str) -> Result<Scene, SceneError> {
         let file: SceneFile =
             toml::from_str(text).map_err(|error| SceneError::File(error.to_string()))?;
+        refuse_non_finite(text)?;
+        if let Some(mode) = &file.mode
+            && let Some(message) = SystemVariable::mode_error(*mode.get_ref())
+        {
+            return Err(at_line(text, mode.span().start, &message));
+        }
         let variables = number_table(&file.variables, "variables")?;
         let expressions = file
             .expressions
@@ -135,7 +202,7 @@ impl Scene {
             .collect::<Result<Vec<_>, _>>()?;
         let mut scene = Scene {
             time: file.time,
-            mode: file.mode,
+            mode: file.mode.map(toml::Spanned::into_inner),
             variables,
             expressions,
             bodies: Vec::new(),
