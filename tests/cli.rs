@@ -4,7 +4,7 @@ use std::io::Write;
 use std::process::{Command, Stdio};
 
 /// Runs `mbexpr args...` with `stdin`, returning stdout, stderr and the exit code.
-fn mbexpr(args: &[&str], stdin: &str) -> (String, String, i32) {
+pub(crate) fn mbexpr(args: &[&str], stdin: &str) -> (String, String, i32) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_mbexpr"))
         .args(args)
         .stdin(Stdio::piped())
@@ -27,7 +27,7 @@ fn mbexpr(args: &[&str], stdin: &str) -> (String, String, i32) {
 }
 
 /// `$ mbexpr args` then what it printed and its exit code.
-fn check(args: &[&str], stdin: &str) -> String {
+pub(crate) fn check(args: &[&str], stdin: &str) -> String {
     let (stdout, stderr, code) = mbexpr(args, stdin);
     format!(
         "$ mbexpr {}\n{stdout}{stderr}[exit {code}]\n",

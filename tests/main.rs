@@ -6,6 +6,7 @@
 mod checker;
 mod cli;
 mod corpus;
+mod diagnostics;
 mod eval;
 mod ffi;
 mod integrate;
@@ -15,6 +16,7 @@ mod numerics;
 mod parse;
 mod properties;
 mod reference;
+mod repl;
 mod scene;
 mod spline;
 

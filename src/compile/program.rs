@@ -248,6 +248,12 @@ impl Program {
             .position(|input| input.eq_ignore_ascii_case(name))
     }
 
+    /// The inputs the program reads (indices into [`Program::inputs`]), in
+    /// the order of their first use: none for a constant expression.
+    pub fn used_inputs(&self) -> impl Iterator<Item = usize> + '_ {
+        self.loads.iter().map(|load| load.input as usize)
+    }
+
     /// The number of instructions (a constant expression has none).
     pub fn len(&self) -> usize {
         self.code.len()

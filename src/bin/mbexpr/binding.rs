@@ -12,9 +12,10 @@ pub struct Bound {
 }
 
 /// Compiles `checked` with the names of `bindings`, `extra` names (derivative
-/// directions, a plotted variable) and what `scene` provides as inputs. An
-/// input takes its value from the last binding of its name, else from the
-/// scene, else 0.
+/// directions, a plotted variable), `TIME` and what `scene` provides as
+/// inputs. An input takes its value from the last binding of its name, else
+/// from the scene, else 0: `TIME` is 0 unless given, as at the start of a
+/// model's simulation.
 pub fn bind(
     checked: &Checked,
     scene: Option<&Scene>,
@@ -29,6 +30,7 @@ pub fn bind(
     };
     bindings.iter().for_each(|(name, _)| add(name));
     extra.iter().for_each(|name| add(name));
+    add("TIME");
     if let Some(scene) = scene {
         scene.input_names().iter().for_each(|name| add(name));
     }
@@ -62,12 +64,27 @@ pub fn render(
     source: &str,
     how_to_set: impl Fn(&str) -> String,
 ) -> String {
-    errors
+    let problems = errors
         .iter()
-        .map(|error| {
-            crate::render::diagnostic(origin, source, error.span(), &message(error, &how_to_set))
-        })
-        .collect()
+        .map(|error| (error.span(), message(error, &how_to_set)));
+    crate::render::diagnostics(origin, source, problems)
+}
+
+/// Why a requested gradient is empty: the expression reads no input at
+/// all, or no derivative direction was named (`how_to_name` says how).
+pub fn no_directions(program: &Program, how_to_name: &str) -> String {
+    let used: Vec<&str> = program
+        .used_inputs()
+        .map(|index| program.inputs()[index].as_str())
+        .collect();
+    if used.is_empty() {
+        "  (no derivatives: the expression has no inputs, so every derivative is 0)".to_string()
+    } else {
+        format!(
+            "  (no derivatives: name the directions with {how_to_name}; the inputs are {})",
+            used.join(", ")
+        )
+    }
 }
 
 /// The message of a compile error, an unbound variable with the hint

@@ -6,7 +6,7 @@ use clap::ValueEnum;
 
 use mbexpr::model::{self, FileKind};
 
-use crate::render::diagnostic;
+use crate::render::{diagnostic, line_diagnostics};
 use crate::{Fatal, Outcome};
 
 /// Output formats of `check`.
@@ -175,24 +175,22 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
             models += 1;
             continue;
         }
-        let mut offset = 0;
         for (index, raw_line) in text.split_inclusive('\n').enumerate() {
-            let line_start = offset;
-            offset += raw_line.len();
             let line = raw_line.trim_end_matches(['\n', '\r']);
             let trimmed = line.trim_start();
             if trimmed.is_empty() || trimmed.starts_with('!') {
                 continue;
             }
             expressions += 1;
-            let found = problems(line);
+            let found = problems(mbexpr::syntax::without_comment(line));
             errors += found.len();
             match args.format {
                 Format::Text => {
-                    for problem in &found {
-                        let span = problem.span.shifted(line_start);
-                        write!(out, "{}", diagnostic(origin, &text, span, &problem.message))?;
-                    }
+                    let problems = found
+                        .into_iter()
+                        .map(|problem| (problem.span, problem.message));
+                    let rendered = line_diagnostics(origin, index + 1, line, problems);
+                    write!(out, "{rendered}")?;
                 }
                 Format::Jsonl => {
                     let record = match found.first() {

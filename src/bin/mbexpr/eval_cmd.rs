@@ -11,7 +11,7 @@ use serde_json::Value;
 
 use crate::points::{PointsFile, count};
 use crate::record::{Problem, Record, tidy};
-use crate::render::diagnostic;
+
 use crate::sweep::Sweep;
 use crate::{Fatal, Outcome};
 
@@ -45,8 +45,8 @@ pub struct Args {
     /// A variable's value, NAME=VALUE (repeatable; names are case-insensitive; TIME too).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
-    /// Derivative directions, comma-separated.
-    #[arg(long, value_name = "NAME,NAME", value_delimiter = ',')]
+    /// Derivative directions, comma-separated (blanks around a name are dropped).
+    #[arg(long, value_name = "NAME,NAME", value_delimiter = ',', value_parser = direction_name)]
     pub wrt: Vec<String>,
     /// 0 (value), 1 (gradient) or 2 (Hessian); default 0, or 1 when --wrt is given.
     #[arg(long, value_parser = clap::value_parser!(u8).range(0..=2))]
@@ -58,6 +58,14 @@ pub struct Args {
     /// then one point per row; results carry the row's line in the file.
     #[arg(long, value_name = "FILE.csv")]
     pub points: Option<String>,
+}
+
+/// A name of `--wrt`, without the blanks around it (`--wrt "x, v"`).
+fn direction_name(text: &str) -> Result<String, String> {
+    match text.trim() {
+        "" => Err("a name is empty: write --wrt NAME,NAME".to_string()),
+        name => Ok(name.to_string()),
+    }
 }
 
 /// `NAME=VALUE` to its parts.
@@ -130,7 +138,7 @@ fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
         .max()
         .unwrap_or(0)
         .max(5);
-    if let Some(gradient) = &evaluation.gradient {
+    if let Some(gradient) = evaluation.gradient.as_ref().filter(|_| !wrt.is_empty()) {
         text.push_str("gradient\n");
         for (name, entry) in wrt.iter().zip(gradient.iter()) {
             text.push_str(&format!(
@@ -140,7 +148,7 @@ fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
             ));
         }
     }
-    if let Some(hessian) = &evaluation.hessian {
+    if let Some(hessian) = evaluation.hessian.as_ref().filter(|_| !wrt.is_empty()) {
         text.push_str("hessian\n");
         let cells: Vec<Vec<String>> = hessian
             .row_iter()
@@ -320,13 +328,15 @@ fn run_expressions(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> 
             Format::Text => {
                 out.flush()?;
                 let origin = label.as_deref().unwrap_or_default();
-                let rendered: String = problems
+                // Those with a place once each, with their count (linear in
+                // the number of problems); those without after them.
+                let placed = problems
                     .iter()
-                    .map(|problem| match problem.span {
-                        Some(span) => diagnostic(origin, text, span, &problem.message),
-                        None => format!("error: {}\n", problem.message),
-                    })
-                    .collect();
+                    .filter_map(|problem| problem.span.map(|span| (span, problem.message.clone())));
+                let mut rendered = crate::render::diagnostics(origin, text, placed);
+                for problem in problems.iter().filter(|problem| problem.span.is_none()) {
+                    rendered += &format!("error: {}\n", problem.message);
+                }
                 eprint!("{rendered}");
             }
             Format::Json | Format::Jsonl => {
@@ -479,7 +489,13 @@ fn evaluate_expression(
             .evaluate(&values, &wrt, order)
             .map_err(|error| Failure::Expression(vec![in_expression(error.span(), &error)]))?;
         match args.format {
-            Format::Text => write!(out, "{}", to_text(&evaluation, &wrt_names))?,
+            Format::Text => {
+                write!(out, "{}", to_text(&evaluation, &wrt_names))?;
+                if order > Order::Value && wrt.is_empty() {
+                    let note = crate::binding::no_directions(&program, "--wrt NAME,NAME");
+                    writeln!(out, "{}", note.trim_start())?;
+                }
+            }
             Format::Json | Format::Jsonl => {
                 write_record(out, args.format, name, &wrt_names, Ok(&evaluation), indent)?;
             }

@@ -74,7 +74,8 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
     for name in &args.wrt {
         if scene.parse_state_name(name).is_none() {
             return Err(Fatal::usage(format!(
-                "error: --wrt {name}: name a part's state component, such as PART/3.x (x y z rx ry rz vx vy vz wx wy wz)"
+                "error: --wrt {name}: {}",
+                not_a_state(&scene, name)
             )));
         }
     }
@@ -151,4 +152,22 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
     } else {
         Outcome::Failure
     })
+}
+
+/// Why `name` is not a state component of a part of `scene`: no part of
+/// that name (with the close ones), or no such component.
+fn not_a_state(scene: &mbexpr::Scene, name: &str) -> String {
+    const COMPONENTS: &str = "x y z rx ry rz vx vy vz wx wy wz";
+    let Some((part, component)) = name.rsplit_once('.') else {
+        return format!("name a part's state component, such as PART/3.x ({COMPONENTS})");
+    };
+    if scene.find_body(part).is_none() {
+        let parts = scene.bodies.iter().map(|body| body.name.as_str());
+        let close = mbexpr::catalog::closest(part, parts);
+        return format!(
+            "{part} does not exist in this model{}",
+            mbexpr::catalog::did_you_mean(&close)
+        );
+    }
+    format!("`{component}` is not a state component of {part}: write one of {COMPONENTS}")
 }

@@ -12,7 +12,7 @@ use rustyline::validate::{ValidationContext, ValidationResult, Validator};
 use rustyline::{Context, Helper, Highlighter, Hinter};
 
 use crate::eval_cmd::{read_scene, show};
-use crate::render::diagnostic;
+use crate::render::{diagnostic, diagnostics};
 use crate::{Fatal, Outcome};
 
 #[derive(clap::Args)]
@@ -54,13 +54,48 @@ pub enum Reply {
     Quit,
 }
 
-/// Parentheses still open in `text` (never below zero).
-fn open_parentheses(text: &str) -> usize {
-    text.chars().fold(0usize, |depth, c| match c {
-        '(' => depth + 1,
-        ')' => depth.saturating_sub(1),
-        _ => depth,
-    })
+/// Whether `text` visibly goes on in the next line: it ends (before a
+/// trailing `! comment`) with `(`, `,`, `:` or an operator, where an
+/// expression cannot end. Any other line is a whole input, so one unclosed
+/// parenthesis is an error on its own line, not a hold on the lines after it.
+fn continues(text: &str) -> bool {
+    let line = text.lines().last().unwrap_or_default();
+    if line.trim_start().starts_with(':') {
+        return false;
+    }
+    mbexpr::syntax::without_comment(line)
+        .trim_end()
+        .ends_with(['(', ',', ':', '+', '-', '*', '/'])
+}
+
+/// Gathers lines into inputs: a line is an input of its own unless it
+/// visibly continues ([`continues`]), when the next line joins it.
+#[derive(Default)]
+struct Inputs {
+    pending: String,
+    first_line: usize,
+}
+
+impl Inputs {
+    /// Takes line `number`; returns the input it completes, with the
+    /// number of its first line.
+    fn push(&mut self, number: usize, line: &str) -> Option<(usize, String)> {
+        if self.pending.is_empty() {
+            self.first_line = number;
+        } else {
+            self.pending.push(' ');
+        }
+        self.pending.push_str(line);
+        if continues(&self.pending) {
+            return None;
+        }
+        Some((self.first_line, std::mem::take(&mut self.pending)))
+    }
+
+    /// What is left when the input ends (a line that said it went on).
+    fn finish(self) -> Option<(usize, String)> {
+        (!self.pending.trim().is_empty()).then_some((self.first_line, self.pending))
+    }
 }
 
 impl Session {
@@ -77,10 +112,8 @@ impl Session {
         let tree = mbexpr::parse(text)
             .map_err(|error| diagnostic("", text, error.span(), &error.to_string()))?;
         let checked = mbexpr::check(&tree).map_err(|errors| {
-            errors
-                .iter()
-                .map(|error| diagnostic("", text, error.span(), &error.to_string()))
-                .collect::<String>()
+            let problems = errors.iter().map(|error| (error.span(), error.to_string()));
+            diagnostics("", text, problems)
         })?;
         let bound = crate::binding::bind(&checked, self.scene.as_ref(), &self.bindings, &self.wrt)
             .map_err(|errors| {
@@ -95,12 +128,21 @@ impl Session {
             .program
             .evaluate(&bound.values, &directions, self.order())
             .map_err(|error| diagnostic("", text, error.span(), &error.to_string()))?;
-        Ok(format_result(&evaluation, &self.wrt, compact))
+        let mut result = format_result(&evaluation, &self.wrt, compact);
+        if self.order() > Order::Value && self.wrt.is_empty() {
+            let program = &bound.program;
+            result += &crate::binding::no_directions(program, ":wrt NAME, NAME");
+        }
+        Ok(result)
     }
 
     /// Handles one complete input.
     pub fn handle(&mut self, input: &str, compact: bool) -> Result<Reply, String> {
-        let input = input.trim();
+        let input = if input.trim_start().starts_with(':') {
+            input.trim()
+        } else {
+            mbexpr::syntax::without_comment(input).trim()
+        };
         let Some(command) = input.strip_prefix(':') else {
             if input.is_empty() {
                 return Ok(Reply::Text(String::new()));
@@ -125,7 +167,15 @@ impl Session {
                 {
                     return Err(format!("error: `{name}` is not a variable name"));
                 }
+                if let Some(reason) = reserved(name) {
+                    return Err(format!("error: {reason}"));
+                }
                 let value = self.constant(value.trim())?;
+                if SystemVariable::lookup(name) == Some(SystemVariable::Mode)
+                    && let Some(message) = SystemVariable::mode_error(value)
+                {
+                    return Err(format!("error: {message}"));
+                }
                 self.bindings
                     .retain(|(known, _)| !known.eq_ignore_ascii_case(name));
                 self.bindings.push((name.to_string(), value));
@@ -193,6 +243,13 @@ impl Session {
             .iter()
             .map(|(name, value)| format!("{name} = {}", show(*value)))
             .collect();
+        let time_bound = self
+            .bindings
+            .iter()
+            .any(|(name, _)| name.eq_ignore_ascii_case("TIME"));
+        if !time_bound && self.scene.is_none() {
+            lines.push("TIME = 0 (until set)".to_string());
+        }
         if let Some(scene) = &self.scene {
             lines.push(format!("TIME = {} (scene)", show(scene.time)));
             for (name, value) in &scene.variables {
@@ -303,6 +360,25 @@ impl Session {
     }
 }
 
+/// Why `name` cannot be given a value with `:set`: it is a constant or a
+/// function of the language (which an expression never reads as a variable).
+fn reserved(name: &str) -> Option<String> {
+    if let Some(constant) = Constant::lookup(name) {
+        return Some(format!(
+            "{} is a constant ({}): it cannot be set; choose another name",
+            constant.name(),
+            show(constant.value())
+        ));
+    }
+    Function::lookup(name).map(|function| {
+        format!(
+            "{} is a function, {}: it cannot be set; choose another name",
+            function.name(),
+            function.usage()
+        )
+    })
+}
+
 /// `:help NAME`: signature and meaning; `:help` alone: the commands.
 fn help(name: &str) -> String {
     if name.is_empty() {
@@ -330,7 +406,7 @@ fn help(name: &str) -> String {
 /// The value and labelled derivatives: on one line (`compact`) or as a table.
 fn format_result(evaluation: &mbexpr::Evaluation, wrt: &[String], compact: bool) -> String {
     let mut text = show(evaluation.value);
-    let Some(gradient) = &evaluation.gradient else {
+    let Some(gradient) = evaluation.gradient.as_ref().filter(|_| !wrt.is_empty()) else {
         return text;
     };
     let entries: Vec<String> = wrt
@@ -396,7 +472,7 @@ impl Completer for Editor {
 
 impl Validator for Editor {
     fn validate(&self, context: &mut ValidationContext<'_>) -> rustyline::Result<ValidationResult> {
-        Ok(if open_parentheses(context.input()) > 0 {
+        Ok(if continues(context.input()) {
             ValidationResult::Incomplete
         } else {
             ValidationResult::Valid(None)
@@ -423,50 +499,64 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
 /// Standard input is a file or a pipe: one result line per complete input.
 fn batch(mut session: Session, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let mut failures = 0;
-    let mut pending = String::new();
-    let mut first_line = 0;
+    let mut inputs = Inputs::default();
     for (index, line) in io::stdin().lock().lines().enumerate() {
         let line = line
             .map_err(|error| Fatal::usage(format!("error: cannot read standard input: {error}")))?;
-        if pending.is_empty() {
-            first_line = index + 1;
-        } else {
-            pending.push(' ');
-        }
-        pending.push_str(&line);
-        if open_parentheses(&pending) > 0 {
+        let Some((first_line, input)) = inputs.push(index + 1, &line) else {
             continue;
-        }
-        let input = std::mem::take(&mut pending);
-        if input.trim().is_empty() || input.trim_start().starts_with('!') {
-            continue;
-        }
-        match session.handle(&input, true) {
-            Ok(Reply::Quit) => break,
-            Ok(Reply::Text(text)) => {
-                if !text.is_empty() {
-                    writeln!(out, "{text}")?;
-                }
-            }
-            Err(message) => {
-                failures += 1;
-                out.flush()?;
-                eprint!("line {first_line}: {message}");
-                if !message.ends_with('\n') {
-                    eprintln!();
-                }
-            }
+        };
+        match answer(&mut session, first_line, &input, out)? {
+            Some(Reply::Quit) => return Ok(outcome(failures)),
+            Some(Reply::Text(_)) => {}
+            None => failures += 1,
         }
     }
-    if !pending.trim().is_empty() {
+    if let Some((first_line, input)) = inputs.finish()
+        && answer(&mut session, first_line, &input, out)?.is_none()
+    {
         failures += 1;
-        eprintln!("line {first_line}: the input ended with a parenthesis still open");
     }
-    Ok(if failures == 0 {
+    Ok(outcome(failures))
+}
+
+fn outcome(failures: usize) -> Outcome {
+    if failures == 0 {
         Outcome::Success
     } else {
         Outcome::Failure
-    })
+    }
+}
+
+/// Handles one input of a batch: its result line on `out`, or its error on
+/// standard error under its line number (`None`).
+fn answer(
+    session: &mut Session,
+    first_line: usize,
+    input: &str,
+    out: &mut impl Write,
+) -> Result<Option<Reply>, Fatal> {
+    let trimmed = input.trim_start();
+    if trimmed.is_empty() || trimmed.starts_with('!') {
+        return Ok(Some(Reply::Text(String::new())));
+    }
+    match session.handle(input, true) {
+        Ok(Reply::Text(text)) => {
+            if !text.is_empty() {
+                writeln!(out, "{text}")?;
+            }
+            Ok(Some(Reply::Text(text)))
+        }
+        Ok(Reply::Quit) => Ok(Some(Reply::Quit)),
+        Err(message) => {
+            out.flush()?;
+            eprint!("line {first_line}: {message}");
+            if !message.ends_with('\n') {
+                eprintln!();
+            }
+            Ok(None)
+        }
+    }
 }
 
 fn interactive(session: Session) -> Result<Outcome, Fatal> {
@@ -485,28 +575,35 @@ fn interactive(session: Session) -> Result<Outcome, Fatal> {
         "mbexpr {} — :help for commands, :quit to leave",
         env!("CARGO_PKG_VERSION")
     );
-    loop {
-        match editor.readline("mbexpr> ") {
-            Ok(line) => {
-                let _ = editor.add_history_entry(line.as_str());
-                let reply = session.borrow_mut().handle(&line, false);
-                match reply {
-                    Ok(Reply::Quit) => break,
-                    Ok(Reply::Text(text)) if text.is_empty() => {}
-                    Ok(Reply::Text(text)) => println!("{text}"),
-                    Err(message) => eprint!(
-                        "{}",
-                        if message.ends_with('\n') {
-                            message
-                        } else {
-                            message + "\n"
-                        }
-                    ),
-                }
-            }
+    'session: loop {
+        let text = match editor.readline("mbexpr> ") {
+            Ok(text) => text,
             Err(rustyline::error::ReadlineError::Interrupted) => continue,
             Err(rustyline::error::ReadlineError::Eof) => break,
             Err(error) => return Err(Fatal::usage(format!("error: {error}"))),
+        };
+        let _ = editor.add_history_entry(text.as_str());
+        // A pasted block arrives whole: each of its lines is an input of
+        // its own unless it visibly continues, as in a batch.
+        let mut inputs = Inputs::default();
+        let lines = text.lines().enumerate();
+        let complete = lines.filter_map(|(index, line)| inputs.push(index + 1, line));
+        let complete: Vec<(usize, String)> = complete.collect();
+        for (_, input) in complete.into_iter().chain(inputs.finish()) {
+            let reply = session.borrow_mut().handle(&input, false);
+            match reply {
+                Ok(Reply::Quit) => break 'session,
+                Ok(Reply::Text(text)) if text.is_empty() => {}
+                Ok(Reply::Text(text)) => println!("{text}"),
+                Err(message) => eprint!(
+                    "{}",
+                    if message.ends_with('\n') {
+                        message
+                    } else {
+                        message + "\n"
+                    }
+                ),
+            }
         }
     }
     if let Some(path) = &history {
