@@ -6,9 +6,9 @@
 //! The pipeline has one stage per module, each with its own error type:
 //!
 //! 1. [`parse`] — text to a syntax tree with byte spans ([`syntax`]);
-//! 2. [`check`] — names resolved, arguments counted and sorted, constant
+//! 2. [`check()`] — names resolved, arguments counted and sorted, constant
 //!    arguments checked against the functions' rules ([`mod@check`]);
-//! 3. [`compile`] — a flat [`Program`] for a list of inputs, constants folded
+//! 3. [`compile()`] — a flat [`Program`] for a list of inputs, constants folded
 //!    ([`mod@compile`]);
 //! 4. evaluate — the value over `f64`, or value, gradient and Hessian over
 //!    dual numbers ([`eval`]).

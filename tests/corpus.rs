@@ -2,19 +2,40 @@
 //! never copied here): every expression checks, and the suspect ones that are
 //! wrong in syntax or names are refused.
 
-use std::path::PathBuf;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 
-fn corpus_file(name: &str) -> Option<String> {
+/// `../shared/corpus/NAME`, when it is there.
+pub(crate) fn corpus_path(name: &str) -> Option<PathBuf> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../shared/corpus")
         .join(name);
-    match std::fs::read_to_string(&path) {
-        Ok(text) => Some(text),
-        Err(_) => {
-            eprintln!("note: {} not found; corpus test skipped", path.display());
-            None
-        }
+    if path.exists() {
+        Some(path)
+    } else {
+        missing(&path);
+        None
     }
+}
+
+/// Says that `path` is missing where the run shows it (standard error
+/// written directly, which the test harness does not capture), and fails
+/// the test when `MBEXPR_REQUIRE_CORPUS` is set, as `.ci/run` sets it: there
+/// the corpus must be present.
+pub(crate) fn missing(path: &Path) {
+    let message = format!("{} not found; corpus test skipped", path.display());
+    if std::env::var_os("MBEXPR_REQUIRE_CORPUS").is_some() {
+        panic!("{message}, and MBEXPR_REQUIRE_CORPUS is set");
+    }
+    let _ = writeln!(std::io::stderr(), "note: {message}");
+}
+
+fn corpus_file(name: &str) -> Option<String> {
+    let path = corpus_path(name)?;
+    Some(
+        std::fs::read_to_string(&path)
+            .unwrap_or_else(|error| panic!("{}: {error}", path.display())),
+    )
 }
 
 /// The `expression` column of a corpus TSV (the last but `skip_last` columns).

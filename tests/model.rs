@@ -131,10 +131,7 @@ fn errors_inside_continued_expressions_point_at_their_line() {
 fn corpus_models() -> Vec<(String, String)> {
     let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/models");
     let Ok(entries) = std::fs::read_dir(&folder) else {
-        eprintln!(
-            "note: {} not found; corpus model tests skipped",
-            folder.display()
-        );
+        crate::corpus::missing(&folder);
         return Vec::new();
     };
     let mut models: Vec<(String, String)> = entries

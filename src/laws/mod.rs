@@ -1,5 +1,5 @@
 //! The math rules of the language, each written once, generic over
-//! [`Number`](crate::number::Number) so that one definition serves values,
+//! [`Number`] so that one definition serves values,
 //! gradients and Hessians, the expression evaluator and the utility
 //! subroutines alike. Piecewise rules branch on the real part, exactly as
 //! SPEC section 5 says.

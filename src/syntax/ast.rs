@@ -1,7 +1,7 @@
 //! The syntax tree: owned, spanned, and exactly what was written.
 //!
 //! Names are kept as text; what a name means (a function, a constant, a
-//! marker, a variable) is decided by [`crate::check`].
+//! marker, a variable) is decided by [`crate::check()`].
 
 use std::fmt;
 

@@ -2,7 +2,7 @@
 //!
 //! The grammar is `grammar/expression.pest`; [`parse`] runs it and folds
 //! operator precedence with pest's Pratt parser. A failed parse is explained by
-//! a small token scanner ([`scan`]) in words a user understands.
+//! a small token scanner (`scan`) in words a user understands.
 
 pub mod ast;
 mod error;
