@@ -14,6 +14,7 @@ mod integrate_problems;
 mod model;
 mod numerics;
 mod parse;
+mod plot;
 mod properties;
 mod reference;
 mod repl;

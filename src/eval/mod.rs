@@ -284,10 +284,18 @@ impl<T: Number> Evaluator<'_, T> {
 
     /// Runs the program over the loaded slots.
     fn run(&mut self) -> Result<T, EvalError> {
+        self.run_observed(|_, _| {})
+    }
+
+    /// Runs the program, showing `observe` the index of each instruction
+    /// about to run and the slots it reads.
+    #[inline(always)]
+    fn run_observed(&mut self, mut observe: impl FnMut(usize, &[T])) -> Result<T, EvalError> {
         let program = self.program;
         let code = &program.code;
         let mut pc = 0;
         while let Some(instruction) = code.get(pc) {
+            observe(pc, &self.slots);
             pc += 1;
             let slots = &self.slots;
             let slot = |index: &Slot| slots[*index as usize].clone();
@@ -404,6 +412,17 @@ impl Evaluator<'_, f64> {
     pub fn value(&mut self, inputs: &[f64]) -> Result<f64, EvalError> {
         self.load(inputs, |_, value| value)?;
         self.run()
+    }
+
+    /// The value at `inputs`, showing `observe` each instruction that runs
+    /// (its index) with the slots it reads: what [`crate::kinks`] looks at.
+    pub(crate) fn trace(
+        &mut self,
+        inputs: &[f64],
+        observe: impl FnMut(usize, &[f64]),
+    ) -> Result<f64, EvalError> {
+        self.load(inputs, |_, value| value)?;
+        self.run_observed(observe)
     }
 }
 

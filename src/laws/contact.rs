@@ -211,7 +211,7 @@ impl Stops {
     }
 
     /// `x1`, `x2` and `[k, e, cmax, d]`, as given.
-    fn values(&self) -> (f64, Option<f64>, [f64; 4]) {
+    pub(crate) fn values(&self) -> (f64, Option<f64>, [f64; 4]) {
         let upper = self.upper.map(|upper| upper.value);
         (self.lower.value, upper, self.parameters.map(|p| p.value))
     }

@@ -9,8 +9,15 @@ use mbexpr::{Checked, Order, Scene};
 pub struct Curve {
     /// The legend's text.
     pub label: String,
-    /// `(x, y)` where the expression could be evaluated.
-    pub points: Vec<(f64, f64)>,
+    /// `(x, y)` where the expression could be evaluated, in runs between
+    /// the samples where it could not.
+    pub segments: Vec<Vec<(f64, f64)>>,
+}
+
+impl Curve {
+    fn points(&self) -> impl Iterator<Item = &(f64, f64)> {
+        self.segments.iter().flatten()
+    }
 }
 
 /// What to plot: an expression, the values of its other inputs, the variable
@@ -34,15 +41,42 @@ pub struct PlotRequest<'a> {
     pub derivatives: bool,
 }
 
-/// The curves of a plot, and the break points to mark on it.
+/// The curves of a plot, the break points to mark on it and the stretches
+/// where it could not be evaluated.
 pub struct Plot {
     /// Value, and derivatives on request.
     pub curves: Vec<Curve>,
     /// Where a STEP, IMPACT, BISTOP ... changes branch, inside the range.
     pub marks: Vec<f64>,
+    /// Ranges of x with samples that failed, from the last good sample
+    /// before to the first good one after.
+    pub gaps: Vec<(f64, f64)>,
+    /// How many samples failed, and the first failure's message and place.
+    pub failed: usize,
+    /// The first failure: `x` and what went wrong.
+    pub first_failure: Option<(f64, String)>,
+    /// How many samples were taken.
+    pub sampled: usize,
+    /// The range of x asked for.
+    pub range: (f64, f64),
 }
 
-/// Evaluates the curves; a point where evaluation fails is left out.
+impl Plot {
+    /// `wrote FILE (N points)`, with the failed samples when there were.
+    pub fn summary(&self, file: &str, over: &str) -> String {
+        let points = self.curves[0].points().count();
+        let mut text = format!("wrote {file} ({points} points");
+        if let Some((x, message)) = &self.first_failure {
+            text += &format!(
+                "; {} of {} samples could not be evaluated and are a gap, the first at {over} = {x}: {message}",
+                self.failed, self.sampled
+            );
+        }
+        text + ")"
+    }
+}
+
+/// Evaluates the curves; a sample where evaluation fails leaves a gap.
 pub fn curves(request: &PlotRequest<'_>) -> Result<Plot, String> {
     let bound = crate::binding::bind(
         request.checked,
@@ -55,13 +89,10 @@ pub fn curves(request: &PlotRequest<'_>) -> Result<Plot, String> {
     let over = program
         .input_index(request.over)
         .expect("the plotted variable is an input");
-    let breakpoints = mbexpr::kinks::breakpoints(request.checked, request.over);
-    let xs = mbexpr::kinks::samples(
-        request.range.0,
-        request.range.1,
-        request.samples,
-        &breakpoints,
-    );
+    let (low, high) = request.range;
+    let even = mbexpr::kinks::samples(low, high, request.samples, &[]);
+    let marks = mbexpr::kinks::breakpoints(&program, &values, over, &even);
+    let xs = mbexpr::kinks::samples(low, high, request.samples, &marks);
     let order = if request.derivatives {
         Order::Hessian
     } else {
@@ -75,57 +106,110 @@ pub fn curves(request: &PlotRequest<'_>) -> Result<Plot, String> {
                 1 => format!("d/d{}", request.over),
                 _ => format!("d²/d{}²", request.over),
             },
-            points: Vec::new(),
+            segments: vec![Vec::new()],
         })
         .collect();
+    let mut plot = Plot {
+        curves: Vec::new(),
+        marks,
+        gaps: Vec::new(),
+        failed: 0,
+        first_failure: None,
+        sampled: xs.len(),
+        range: request.range,
+    };
     // The samples are one run: AX, AY, AZ stay continuous along the curve.
     let mut run = program.run();
-    for x in xs {
+    let (mut last_good, mut gap_open) = (None, false);
+    for &x in &xs {
         values[over] = x;
-        let Ok(evaluation) = run.evaluate(&values, &[over], order) else {
-            continue;
+        let evaluation = match run.evaluate(&values, &[over], order) {
+            Ok(evaluation) => evaluation,
+            Err(error) => {
+                plot.failed += 1;
+                plot.first_failure.get_or_insert((x, error.to_string()));
+                if !gap_open {
+                    gap_open = true;
+                    plot.gaps.push((last_good.unwrap_or(x), high));
+                    for curve in &mut curves {
+                        curve.segments.push(Vec::new());
+                    }
+                }
+                continue;
+            }
         };
-        curves[0].points.push((x, evaluation.value));
-        if let (Some(gradient), Some(hessian)) = (&evaluation.gradient, &evaluation.hessian)
-            && request.derivatives
-        {
-            curves[1].points.push((x, gradient[0]));
-            curves[2].points.push((x, hessian[(0, 0)]));
+        if gap_open {
+            gap_open = false;
+            plot.gaps.last_mut().expect("an open gap").1 = x;
+        }
+        last_good = Some(x);
+        let mut ys = vec![evaluation.value];
+        if let (Some(gradient), Some(hessian)) = (&evaluation.gradient, &evaluation.hessian) {
+            ys.extend([gradient[0], hessian[(0, 0)]]);
+        }
+        for (curve, y) in curves.iter_mut().zip(ys) {
+            curve.segments.last_mut().expect("a segment").push((x, y));
         }
     }
-    if curves[0].points.is_empty() {
+    if curves[0].points().next().is_none() {
+        let reason = plot
+            .first_failure
+            .map(|(x, message)| format!(" (at {} = {x}: {message})", request.over))
+            .unwrap_or_default();
         return Err(format!(
-            "the expression could not be evaluated anywhere in {}..{}",
-            request.range.0, request.range.1
+            "the expression could not be evaluated anywhere in {low}..{high}{reason}"
         ));
     }
-    let (low, high) = request.range;
-    let marks = breakpoints
-        .into_iter()
-        .filter(|point| (low..=high).contains(point))
-        .collect();
-    Ok(Plot { curves, marks })
+    for curve in &mut curves {
+        curve.segments.retain(|segment| !segment.is_empty());
+    }
+    plot.curves = curves;
+    Ok(plot)
 }
 
-/// Draws the curves into an SVG file, one panel each, the x axis labelled
-/// with the variable's name and the break points marked by dashed lines.
+/// Draws the curves as SVG into `path`, one panel each, the x axis labelled
+/// with the variable's name, the break points marked by dashed lines and
+/// the stretches that could not be evaluated shaded. Only SVG is written.
 pub fn render_svg(path: &str, over: &str, plot: &Plot) -> Result<(), String> {
+    if !path.to_ascii_lowercase().ends_with(".svg") {
+        return Err(
+            "plots are written as SVG: name the file FILE.svg (for a PNG, convert it, e.g. rsvg-convert FILE.svg -o FILE.png)"
+                .to_string(),
+        );
+    }
+    let mut svg = String::new();
+    draw(SVGBackend::with_string(&mut svg, size(plot)), over, plot)?;
+    std::fs::write(path, svg).map_err(|error| error.to_string())
+}
+
+/// The picture's size in pixels: 320 high per panel.
+fn size(plot: &Plot) -> (u32, u32) {
+    (900, 320 * plot.curves.len() as u32)
+}
+
+fn draw<B: DrawingBackend>(backend: B, over: &str, plot: &Plot) -> Result<(), String> {
+    let error = |error: DrawingAreaErrorKind<B::ErrorType>| error.to_string();
     let curves = &plot.curves;
-    let height = 320 * curves.len() as u32;
-    let root = SVGBackend::new(path, (900, height)).into_drawing_area();
-    root.fill(&WHITE).map_err(|error| error.to_string())?;
+    let root = backend.into_drawing_area();
+    root.fill(&WHITE).map_err(error)?;
     let panels = root.split_evenly((curves.len(), 1));
     let colors = [BLUE, RED, GREEN];
+    // Plotters ticks an axis only when its width is above 2e-16 and
+    // finite: each axis is drawn in units of a power of ten that brings
+    // its values near 1, and its labels say the power.
+    let x_axis = Axis::new([plot.range.0, plot.range.1].into_iter(), false);
     for (index, ((panel, curve), color)) in panels.iter().zip(curves).zip(colors).enumerate() {
-        let (x_min, x_max) = bounds(curve.points.iter().map(|point| point.0));
-        let (y_min, y_max) = bounds(curve.points.iter().map(|point| point.1));
+        let y_axis = Axis::new(curve.points().map(|point| point.1), true);
+        let at = |(x, y): (f64, f64)| (x_axis.scaled(x), y_axis.scaled(y));
+        let (x_low, x_high) = (x_axis.scaled(x_axis.low), x_axis.scaled(x_axis.high));
+        let (y_low, y_high) = (y_axis.scaled(y_axis.low), y_axis.scaled(y_axis.high));
         let mut chart = ChartBuilder::on(panel)
             .caption(&curve.label, ("sans-serif", 18))
             .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x_min..x_max, y_min..y_max)
-            .map_err(|error| error.to_string())?;
+            .x_label_area_size(44)
+            .y_label_area_size(y_axis.label_area())
+            .build_cartesian_2d(x_low..x_high, y_low..y_high)
+            .map_err(error)?;
         chart
             .configure_mesh()
             .x_desc(over)
@@ -134,45 +218,139 @@ pub fn render_svg(path: &str, over: &str, plot: &Plot) -> Result<(), String> {
             } else {
                 curve.label.as_str()
             })
+            .x_label_formatter(&|x| x_axis.label(*x))
+            .y_label_formatter(&|y| y_axis.label(*y))
             .draw()
-            .map_err(|error| error.to_string())?;
+            .map_err(error)?;
+        for &(start, end) in &plot.gaps {
+            chart
+                .draw_series([Rectangle::new(
+                    [(x_axis.scaled(start), y_low), (x_axis.scaled(end), y_high)],
+                    RED.mix(0.08).filled(),
+                )])
+                .map_err(error)?;
+        }
         for &mark in &plot.marks {
+            let mark = x_axis.scaled(mark);
             chart
                 .draw_series(DashedLineSeries::new(
-                    [(mark, y_min), (mark, y_max)],
+                    [(mark, y_low), (mark, y_high)],
                     6,
                     4,
                     BLACK.mix(0.35).stroke_width(1),
                 ))
-                .map_err(|error| error.to_string())?;
+                .map_err(error)?;
         }
-        chart
-            .draw_series(LineSeries::new(
-                curve.points.iter().copied(),
-                color.stroke_width(2),
-            ))
-            .map_err(|error| error.to_string())?
-            .label(&curve.label)
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-            });
+        for (position, segment) in curve.segments.iter().enumerate() {
+            let points = segment.iter().map(|&point| at(point));
+            let series = chart
+                .draw_series(LineSeries::new(points, color.stroke_width(2)))
+                .map_err(error)?;
+            if position == 0 {
+                series.label(&curve.label).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+            }
+        }
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperMiddle)
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
             .draw()
-            .map_err(|error| error.to_string())?;
+            .map_err(error)?;
     }
-    root.present().map_err(|error| error.to_string())
+    root.present().map_err(error)
 }
 
-/// The range of the values, widened a little (and made non-empty).
-fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
+/// An axis: its range, the power of ten it is drawn in, and how its tick
+/// labels are written.
+struct Axis {
+    low: f64,
+    high: f64,
+    /// The power of ten (a multiple of 3) of the axis's unit, 0 for plain
+    /// numbers.
+    exponent: i32,
+    /// Digits after the point, enough to tell ticks apart.
+    decimals: usize,
+}
+
+impl Axis {
+    /// The axis for `values`, widened a little when `padded`.
+    fn new(values: impl Iterator<Item = f64>, padded: bool) -> Axis {
+        let (low, high) = bounds(values, padded);
+        let magnitude = low.abs().max(high.abs());
+        // Plain numbers from 0.001 to 99 999; engineering form beyond.
+        let exponent =
+            if (1e-3..1e5).contains(&magnitude) || magnitude == 0.0 || !magnitude.is_finite() {
+                0
+            } else {
+                (magnitude.log10() / 3.0).floor() as i32 * 3
+            };
+        let mut axis = Axis {
+            low,
+            high,
+            exponent,
+            decimals: 0,
+        };
+        // A tenth of the range, in the axis's unit, sets the digits.
+        let step = axis.scaled(high / 10.0) - axis.scaled(low / 10.0);
+        axis.decimals = (-step.log10().floor()).clamp(0.0, 12.0) as usize;
+        axis
+    }
+
+    /// `value` in the axis's unit: times 10 to the minus exponent, in two
+    /// factors, since 10 to the 312th (for values near 1e-310) is no double.
+    fn scaled(&self, value: f64) -> f64 {
+        let half = -self.exponent / 2;
+        value * 10f64.powi(half) * 10f64.powi(-self.exponent - half)
+    }
+
+    /// The label of the tick at `scaled` (in the axis's unit): `0.25`,
+    /// `1.5e-9`, `250e6`.
+    fn label(&self, scaled: f64) -> String {
+        let mut text = format!("{scaled:.*}", self.decimals);
+        if text.contains('.') {
+            text = text.trim_end_matches('0').trim_end_matches('.').to_string();
+        }
+        if text.trim_start_matches(['-', '0', '.']).is_empty() {
+            return "0".to_string();
+        }
+        if self.exponent == 0 {
+            text
+        } else {
+            format!("{text}e{}", self.exponent)
+        }
+    }
+
+    /// Room for the longest label and the axis title beside it, in pixels.
+    fn label_area(&self) -> u32 {
+        let longest = [self.low, (self.low + self.high) / 2.0, self.high]
+            .map(|value| self.label(self.scaled(value)).chars().count())
+            .into_iter()
+            .max()
+            .unwrap_or(1);
+        30 + 8 * longest as u32
+    }
+}
+
+/// The range of the values, widened by a twentieth on each side when
+/// `padded` (and made non-empty), within a quarter of the largest double
+/// either way: plotters loops forever on an axis whose width is not finite.
+fn bounds(values: impl Iterator<Item = f64>, padded: bool) -> (f64, f64) {
+    const LIMIT: f64 = f64::MAX / 4.0;
     let (low, high) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), value| {
         (low.min(value), high.max(value))
     });
-    let pad = ((high - low) * 0.05).max(1e-9 * low.abs().max(high.abs()).max(1.0));
+    let (low, high) = (low.clamp(-LIMIT, LIMIT), high.clamp(-LIMIT, LIMIT));
+    let half_width = high / 2.0 - low / 2.0;
+    let pad = if half_width > 0.0 {
+        if padded { half_width / 10.0 } else { 0.0 }
+    } else if low != 0.0 {
+        low.abs() * 1e-9
+    } else {
+        1.0
+    };
     (low - pad, high + pad)
 }
 
@@ -192,6 +370,12 @@ pub fn parse_range(text: &str) -> Result<(String, f64, f64), String> {
             .ok_or_else(|| format!("`{}` is not a finite number", text.trim()))
     };
     let (start, end) = (number(start)?, number(end)?);
+    if !(end - start).is_finite() {
+        return Err(format!(
+            "the range {} is wider than a double can hold: narrow it",
+            range.trim()
+        ));
+    }
     if start >= end {
         return Err(format!(
             "the range {start}..{end} is empty: A must be less than B"
@@ -259,11 +443,6 @@ pub fn run(args: &Args, out: &mut impl std::io::Write) -> Result<crate::Outcome,
     render_svg(&args.output, &over, &plot).map_err(|message| {
         Fatal::usage(format!("error: cannot write {}: {message}", args.output))
     })?;
-    writeln!(
-        out,
-        "wrote {} ({} points)",
-        args.output,
-        plot.curves[0].points.len()
-    )?;
+    writeln!(out, "{}", plot.summary(&args.output, &over))?;
     Ok(crate::Outcome::Success)
 }

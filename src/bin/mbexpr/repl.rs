@@ -304,10 +304,7 @@ impl Session {
         let file = file.trim();
         crate::plot::render_svg(file, &over, &plot)
             .map_err(|message| format!("error: cannot write {file}: {message}"))?;
-        Ok(format!(
-            "wrote {file} ({} points)",
-            plot.curves[0].points.len()
-        ))
+        Ok(plot.summary(file, &over))
     }
 
     /// The words a name at the cursor may complete to.
