@@ -15,6 +15,7 @@ mod model;
 mod numerics;
 mod parse;
 mod plot;
+mod probes;
 mod properties;
 mod reference;
 mod repl;

@@ -7,7 +7,7 @@ use proptest::prelude::*;
 
 /// Parse, check, compile (with inputs x, v, t) and evaluate with a Hessian:
 /// whatever happens, no panic, and every error's span lies in the text.
-fn run_everything(text: &str) {
+pub(crate) fn run_everything(text: &str) {
     let in_text = |span: mbexpr::Span| span.start <= span.end && span.end <= text.len();
     let tree = match mbexpr::parse(text) {
         Ok(tree) => tree,
