@@ -7,7 +7,9 @@ scene files; garbage in REPL batch mode.
 Each run counts as a panic (exit 101 or "panicked" on standard error), a
 hang (killed after --timeout seconds), or a NaN output ("NaN", "nan" or "inf"
 as a value on standard output); peak memory is the child's maximum resident
-set. Prints one Markdown table row per probe, for docs/reliability.md.
+set, as `/usr/bin/time -f %M` reads it (the rusage of a child forked from
+this script would count the script's own pages). Prints one Markdown table
+row per probe, for docs/reliability.md.
 
     python3 scripts/probes.py target/release/mbexpr [--seed 1] [--quick]
 """
@@ -54,7 +56,8 @@ def run(tally, binary, args, stdin=b"", timeout=20.0):
     """Runs the binary once and tallies what happened."""
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
         start = time.monotonic()
-        child = subprocess.Popen([binary] + args, stdin=subprocess.PIPE, stdout=out, stderr=err,
+        timed = ["/usr/bin/time", "-f", "MAXRSS %M", binary]
+        child = subprocess.Popen(timed + args, stdin=subprocess.PIPE, stdout=out, stderr=err,
                                  env=dict(os.environ, HOME=tempfile.gettempdir()))
         try:
             child.stdin.write(stdin)
@@ -64,10 +67,9 @@ def run(tally, binary, args, stdin=b"", timeout=20.0):
         deadline = start + timeout
         status = None
         while status is None:
-            pid, status_code, usage = os.wait4(child.pid, os.WNOHANG)
+            pid, status_code, _ = os.wait4(child.pid, os.WNOHANG)
             if pid:
                 status = status_code
-                tally.peak_kb = max(tally.peak_kb, usage.ru_maxrss)
             elif time.monotonic() > deadline:
                 child.kill()
                 os.wait4(child.pid, 0)
@@ -83,8 +85,13 @@ def run(tally, binary, args, stdin=b"", timeout=20.0):
         err.seek(0)
         stdout = out.read().decode("utf-8", "replace")
         stderr = err.read().decode("utf-8", "replace")
+    peak = re.search(r"MAXRSS (\d+)\s*$", stderr)
+    if peak:
+        tally.peak_kb = max(tally.peak_kb, int(peak.group(1)))
+        stderr = stderr[: peak.start()]
     code = os.waitstatus_to_exitcode(status) if status != -1 else None
-    if code == 101 or "panicked" in stderr or (code is not None and code < 0):
+    crashed = "panicked" in stderr or "terminated by signal" in stderr
+    if code == 101 or crashed or (code is not None and (code < 0 or code >= 128)):
         tally.panics += 1
         tally.examples.append(("panic", args, stdin[:200], stderr[:300]))
     if NAN.search(stdout):

@@ -34,10 +34,16 @@ fn mutated(text: &str, edits: &[(usize, usize, u8)]) -> String {
             0 if !chars.is_empty() => {
                 chars.remove(at.min(chars.len() - 1));
             }
-            1 => insert(&mut chars, ["(", ")", ",", ":", "**", "-", "1E400", "IF(", "é"][usize::from(byte) % 9]),
+            1 => insert(
+                &mut chars,
+                ["(", ")", ",", ":", "**", "-", "1E400", "IF(", "é"][usize::from(byte) % 9],
+            ),
             2 if !chars.is_empty() => {
                 let c = chars[at.min(chars.len() - 1)];
-                insert(&mut chars, &c.to_string().repeat(usize::from(byte) % 40 + 2));
+                insert(
+                    &mut chars,
+                    &c.to_string().repeat(usize::from(byte) % 40 + 2),
+                );
             }
             _ => insert(&mut chars, &char::from(byte % 95 + 32).to_string()),
         }
