@@ -411,11 +411,12 @@ fn points_case(case: &str) -> String {
         .replace("\\r", "\r")
         .replace("\\t", "\t")
         .replace("\\u{feff}", "\u{feff}");
-    let dir = std::env::temp_dir().join(format!(
-        "mbexpr-points-case-{}-{}",
-        std::process::id(),
-        case.len()
-    ));
+    // One folder per call: tests run in parallel, and cases of two tests
+    // may have the same length.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir =
+        std::env::temp_dir().join(format!("mbexpr-points-case-{}-{call}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("points.csv");
     std::fs::write(&file, &csv).unwrap();

@@ -169,13 +169,22 @@ pub fn curves(request: &PlotRequest<'_>) -> Result<Plot, String> {
 
 /// Draws the curves as SVG into `path`, one panel each, the x axis labelled
 /// with the variable's name, the break points marked by dashed lines and
-/// the stretches that could not be evaluated shaded. Only SVG is written.
+/// the stretches that could not be evaluated shaded. Only SVG is written:
+/// a name with the extension of another image format is refused.
 pub fn render_svg(path: &str, over: &str, plot: &Plot) -> Result<(), String> {
-    if !path.to_ascii_lowercase().ends_with(".svg") {
-        return Err(
-            "plots are written as SVG: name the file FILE.svg (for a PNG, convert it, e.g. rsvg-convert FILE.svg -o FILE.png)"
-                .to_string(),
-        );
+    const OTHER_FORMATS: [&str; 10] = [
+        "png", "jpg", "jpeg", "gif", "bmp", "tif", "tiff", "webp", "pdf", "eps",
+    ];
+    let extension = std::path::Path::new(path)
+        .extension()
+        .map(|extension| extension.to_string_lossy().to_ascii_lowercase());
+    if let Some(extension) =
+        extension.filter(|extension| OTHER_FORMATS.contains(&extension.as_str()))
+    {
+        return Err(format!(
+            "plots are written as SVG, not {}: name the file FILE.svg (for a PNG, convert it, e.g. rsvg-convert FILE.svg -o FILE.png)",
+            extension.to_uppercase()
+        ));
     }
     let mut svg = String::new();
     draw(SVGBackend::with_string(&mut svg, size(plot)), over, plot)?;
