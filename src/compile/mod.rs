@@ -5,11 +5,11 @@
 mod error;
 mod program;
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 pub use error::CompileError;
-pub(crate) use program::Tables;
 pub use program::{FrameArg, InputSlot, Instruction, Op, Program, Slot};
+pub(crate) use program::{InputNames, Tables};
 
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
@@ -33,7 +33,7 @@ pub fn compile<S: AsRef<str>>(
     checked: &Checked,
     inputs: &[S],
 ) -> Result<Program, Errors<CompileError>> {
-    compile_with(checked, inputs, None)
+    compile_with(checked, inputs, None, false)
 }
 
 /// Compiles `checked` in `scene`: like [`compile`], and the kinematic
@@ -46,32 +46,59 @@ pub fn compile_in_scene<S: AsRef<str>>(
     inputs: &[S],
     scene: &Scene,
 ) -> Result<Program, Errors<CompileError>> {
-    compile_with(checked, inputs, Some(scene))
+    compile_with(checked, inputs, Some(scene), false)
+}
+
+/// Compiles `checked` in the scene of a model whose VARIABLEs are evaluated
+/// one by one in dependency order: like [`compile_in_scene`], except that
+/// `VARVAL(id)` of a VARIABLE the scene defines is the input named
+/// [`variable_input`]`(id)`, whose value (with its derivatives) the caller
+/// gives, rather than the VARIABLE's expression compiled in place.
+pub fn compile_in_model<S: AsRef<str>>(
+    checked: &Checked,
+    inputs: &[S],
+    scene: &Scene,
+) -> Result<Program, Errors<CompileError>> {
+    compile_with(checked, inputs, Some(scene), true)
+}
+
+/// The name of the input that holds VARIABLE `id` in a program of
+/// [`compile_in_model`]: `VARVAL(7)` (no name of the language has a parenthesis).
+pub fn variable_input(id: u64) -> String {
+    format!("VARVAL({id})")
 }
 
 fn compile_with<S: AsRef<str>>(
     checked: &Checked,
     inputs: &[S],
     scene: Option<&Scene>,
+    variables_as_inputs: bool,
 ) -> Result<Program, Errors<CompileError>> {
     let mut compiler = Compiler {
         scene,
         inlining: Vec::new(),
+        inlining_set: HashSet::new(),
         tables: Tables::default(),
         frame_of: HashMap::new(),
         spline_of: HashMap::new(),
-        inputs: inputs
-            .iter()
-            .map(|name| name.as_ref().to_string())
-            .collect(),
+        inputs: InputNames::default(),
+        variable_slots: Vec::new(),
         constant_values: Vec::new(),
+        known_values: Vec::new(),
+        constant_slots: HashMap::new(),
         constants: Vec::new(),
         code: Vec::new(),
         spans: Vec::new(),
         memo: vec![HashMap::new()],
         loads: Vec::new(),
+        load_of: HashMap::new(),
         errors: Vec::new(),
+        variables_as_inputs,
     };
+    for name in inputs {
+        compiler.inputs.push(name.as_ref().to_string());
+    }
+    compiler.variable_slots.push(HashMap::new());
     let result = compiler.node(&checked.root);
     if !compiler.errors.is_empty() {
         compiler.errors.sort_by_key(|error| error.span().start);
@@ -93,13 +120,25 @@ struct Compiler<'s> {
     scene: Option<&'s Scene>,
     /// The VARIABLEs being compiled in place, outermost first.
     inlining: Vec<u64>,
+    /// The same, to look up.
+    inlining_set: HashSet<u64>,
     /// The marker frames and fitted splines used, and where each went.
     tables: Tables,
     frame_of: HashMap<Target, u32>,
     spline_of: HashMap<(u64, Method), u32>,
-    inputs: Vec<String>,
+    inputs: InputNames,
+    /// The slot of each VARIABLE compiled in place, by IF scope like `memo`.
+    variable_slots: Vec<HashMap<u64, Slot>>,
+    /// Whether `VARVAL(id)` is the input `VARVAL(id)` rather than the
+    /// VARIABLE's expression compiled in place.
+    variables_as_inputs: bool,
     /// The value of each slot when it is a compile-time constant.
     constant_values: Vec<Option<f64>>,
+    /// The same values with 0 for the slots that are not constants, as the
+    /// evaluator's `execute` reads them when folding.
+    known_values: Vec<f64>,
+    /// The slot of each constant, by its bits.
+    constant_slots: HashMap<u64, Slot>,
     constants: Vec<(Slot, f64)>,
     code: Vec<Instruction>,
     spans: Vec<Span>,
@@ -108,21 +147,25 @@ struct Compiler<'s> {
     memo: Vec<HashMap<Op, Slot>>,
     /// Where each input used is placed, and where it is first used.
     loads: Vec<InputSlot>,
+    /// The slot of each input used, by its index.
+    load_of: HashMap<usize, Slot>,
     errors: Vec<CompileError>,
 }
 
 impl Compiler<'_> {
     fn new_slot(&mut self, constant: Option<f64>) -> Slot {
         self.constant_values.push(constant);
+        self.known_values.push(constant.unwrap_or(0.0));
         Slot::try_from(self.constant_values.len() - 1).expect("fewer than 2^32 slots")
     }
 
     fn constant(&mut self, value: f64) -> Slot {
         let bits = value.to_bits();
-        if let Some(&(slot, _)) = self.constants.iter().find(|(_, v)| v.to_bits() == bits) {
+        if let Some(&slot) = self.constant_slots.get(&bits) {
             return slot;
         }
         let slot = self.new_slot(Some(value));
+        self.constant_slots.insert(bits, slot);
         self.constants.push((slot, value));
         slot
     }
@@ -135,12 +178,13 @@ impl Compiler<'_> {
 
     /// The slot input `index` is placed in before the program runs.
     fn input(&mut self, index: usize, span: Span) -> Slot {
-        if let Some(load) = self.loads.iter().find(|load| load.input as usize == index) {
-            return load.slot;
+        if let Some(&slot) = self.load_of.get(&index) {
+            return slot;
         }
         let slot = self.new_slot(None);
         let input = u32::try_from(index).expect("fewer than 2^32 inputs");
         self.loads.push(InputSlot { input, slot, span });
+        self.load_of.insert(index, slot);
         slot
     }
 
@@ -179,12 +223,7 @@ impl Compiler<'_> {
         {
             return None;
         }
-        let values: Vec<f64> = self
-            .constant_values
-            .iter()
-            .map(|value| value.unwrap_or(0.0))
-            .collect();
-        execute(op, &values, &self.tables)
+        execute(op, &self.known_values, &self.tables)
             .ok()
             .filter(|value| value.is_finite())
     }
@@ -216,9 +255,7 @@ impl Compiler<'_> {
     }
 
     fn input_index(&self, name: &str) -> Option<usize> {
-        self.inputs
-            .iter()
-            .position(|input| input.eq_ignore_ascii_case(name))
+        self.inputs.position(name)
     }
 
     fn variable(&mut self, name: &str, span: Span) -> Slot {
@@ -369,7 +406,22 @@ impl Compiler<'_> {
         });
         match (function, id) {
             (Function::Varval, Some(id)) if scene.statements.variables.contains_key(&id) => {
-                if self.inlining.contains(&id) {
+                if self.variables_as_inputs {
+                    let name = variable_input(id);
+                    let index = self
+                        .input_index(&name)
+                        .unwrap_or_else(|| self.inputs.push(name));
+                    return Ok(self.input(index, span));
+                }
+                if let Some(&slot) = self
+                    .variable_slots
+                    .iter()
+                    .rev()
+                    .find_map(|scope| scope.get(&id))
+                {
+                    return Ok(slot);
+                }
+                if self.inlining_set.contains(&id) {
                     let mut cycle: Vec<String> = self
                         .inlining
                         .iter()
@@ -382,6 +434,7 @@ impl Compiler<'_> {
                     });
                 }
                 self.inlining.push(id);
+                self.inlining_set.insert(id);
                 let root = &scene.statements.variables[&id].root;
                 // The VARIABLE's text is elsewhere: its instructions take the
                 // span of this VARVAL.
@@ -391,6 +444,11 @@ impl Compiler<'_> {
                     *instruction_span = span;
                 }
                 self.inlining.pop();
+                self.inlining_set.remove(&id);
+                self.variable_slots
+                    .last_mut()
+                    .expect("a scope")
+                    .insert(id, slot);
                 Ok(slot)
             }
             (Function::Aryval, Some(id)) if scene.statements.arrays.contains_key(&id) => {
@@ -583,10 +641,9 @@ impl Compiler<'_> {
         let state = body.map(|body| {
             StateComponent::ALL.map(|component| {
                 let name = scene.state_name(body, component);
-                let index = self.input_index(&name).unwrap_or_else(|| {
-                    self.inputs.push(name);
-                    self.inputs.len() - 1
-                });
+                let index = self
+                    .input_index(&name)
+                    .unwrap_or_else(|| self.inputs.push(name));
                 self.input(index, span)
             })
         });
@@ -620,7 +677,9 @@ impl Compiler<'_> {
         for (index, node) in [negative, zero, positive].into_iter().enumerate() {
             starts.push(u32::try_from(self.code.len()).expect("fewer than 2^32 instructions"));
             self.memo.push(HashMap::new());
+            self.variable_slots.push(HashMap::new());
             let value = self.node(node);
+            self.variable_slots.pop();
             self.memo.pop();
             self.emit(
                 Instruction::Copy {

@@ -1,6 +1,7 @@
 //! The compiled form: a flat program of instructions over numbered slots.
 
 use std::borrow::Cow;
+use std::collections::HashMap;
 use std::fmt;
 
 use crate::catalog::Function;
@@ -96,6 +97,39 @@ pub struct InputSlot {
     pub slot: Slot,
     /// Where the expression first uses it.
     pub span: Span,
+}
+
+/// Input names in order, with a case-insensitive index: finding a name
+/// costs the same for 100 000 inputs as for two.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct InputNames {
+    pub(crate) names: Vec<String>,
+    /// Each name in upper case to its first position.
+    positions: HashMap<String, usize>,
+}
+
+impl InputNames {
+    /// The position of `name` (case-insensitive), the first when it is given twice.
+    pub(crate) fn position(&self, name: &str) -> Option<usize> {
+        self.positions.get(&name.to_ascii_uppercase()).copied()
+    }
+
+    /// Adds `name` at the end (a name given twice keeps its first position).
+    pub(crate) fn push(&mut self, name: String) -> usize {
+        self.positions
+            .entry(name.to_ascii_uppercase())
+            .or_insert(self.names.len());
+        self.names.push(name);
+        self.names.len() - 1
+    }
+}
+
+impl std::ops::Deref for InputNames {
+    type Target = [String];
+
+    fn deref(&self) -> &[String] {
+        &self.names
+    }
 }
 
 /// The data instructions refer to by index: the constants of the marker
@@ -222,7 +256,7 @@ impl Instruction {
 /// evaluated over `f64` or dual numbers, any number of times.
 #[derive(Clone, Debug)]
 pub struct Program {
-    pub(crate) inputs: Vec<String>,
+    pub(crate) inputs: InputNames,
     pub(crate) slot_count: usize,
     pub(crate) constants: Vec<(Slot, f64)>,
     pub(crate) code: Vec<Instruction>,
@@ -238,14 +272,12 @@ pub struct Program {
 impl Program {
     /// The input names, in the order their values are passed.
     pub fn inputs(&self) -> &[String] {
-        &self.inputs
+        &self.inputs.names
     }
 
     /// The index of input `name` (case-insensitive).
     pub fn input_index(&self, name: &str) -> Option<usize> {
-        self.inputs
-            .iter()
-            .position(|input| input.eq_ignore_ascii_case(name))
+        self.inputs.position(name)
     }
 
     /// The inputs the program reads (indices into [`Program::inputs`]), in

@@ -1,6 +1,8 @@
 //! From a checked expression, the values a user gave and a scene, to a
 //! program and the values of its inputs: shared by `plot` and the REPL.
 
+use std::collections::{HashMap, HashSet};
+
 use mbexpr::{Checked, CompileError, Errors, Program, Scene};
 
 /// A compiled program and the value of each of its inputs.
@@ -23,8 +25,9 @@ pub fn bind(
     extra: &[String],
 ) -> Result<Bound, Errors<CompileError>> {
     let mut names: Vec<String> = Vec::new();
+    let mut seen = HashSet::new();
     let mut add = |name: &str| {
-        if !names.iter().any(|known| known.eq_ignore_ascii_case(name)) {
+        if seen.insert(name.to_ascii_uppercase()) {
             names.push(name.to_string());
         }
     };
@@ -38,20 +41,21 @@ pub fn bind(
         Some(scene) => mbexpr::compile_in_scene(checked, &names, scene),
         None => mbexpr::compile(checked, &names),
     }?;
+    // The last binding of each name wins.
+    let bound: HashMap<String, f64> = bindings
+        .iter()
+        .map(|(name, value)| (name.to_ascii_uppercase(), *value))
+        .collect();
     let values = program
         .inputs()
         .iter()
-        .map(|name| {
-            let bound = bindings
-                .iter()
-                .rev()
-                .find(|(known, _)| known.eq_ignore_ascii_case(name));
-            match (bound, scene) {
-                (Some((_, value)), _) => *value,
+        .map(
+            |name| match (bound.get(&name.to_ascii_uppercase()), scene) {
+                (Some(value), _) => *value,
                 (None, Some(scene)) => scene.value_of(name).unwrap_or(0.0),
                 (None, None) => 0.0,
-            }
-        })
+            },
+        )
         .collect();
     Ok(Bound { program, values })
 }
