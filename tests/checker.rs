@@ -101,3 +101,34 @@ fn every_function_is_found_by_its_name_in_any_case() {
     }
     assert_eq!(Function::lookup(&"STEP".repeat(20)), None);
 }
+
+/// Constants that fail whenever they are evaluated are refused by the check,
+/// with the message evaluation would give (issue 19.5); a branch of an IF
+/// that a constant condition does not choose, or that a varying one may not,
+/// is not evaluated, so it may hold them.
+#[test]
+fn constants_that_always_fail() {
+    insta::assert_snapshot!(table(
+        r"
+        LOG(0)
+        1/0
+        SQRT(-1)
+        x + 2*LOG10(-1)
+        STEP(x, 0/0, 0, 1, 1)
+        IMPACT(x, v, 0, 1, SQRT(-1), 1, 1)
+        EXP(1000)
+        10**400
+        0**-1
+        (-8)**(1/3)
+        ASIN(1.5) + ACOS(2)
+        MOD(5, 0)
+        MAX(1, 2, LOG(0))
+        IF(-1: 1, 1/0, 2)
+        IF(1: 1, 1/0, 2)
+        IF(x: 1, 1/0, 2)
+        IF(1/0: 1, 2, 3)
+        STEP(x, LOG(1), 0, EXP(0), 1)
+        STEP(x, 1 - 1, 0, 2 - 2, 1)
+        "
+    ));
+}

@@ -156,7 +156,14 @@ proptest! {
 
     #[test]
     fn evaluation_never_returns_nan_or_infinity(text in expression(), x in -3.0f64..3.0, v in -3.0f64..3.0) {
-        let checked = mbexpr::check(&mbexpr::parse(&text).unwrap()).unwrap();
+        // A constant part that fails whenever it runs is refused by the checker.
+        let checked = match mbexpr::check(&mbexpr::parse(&text).unwrap()) {
+            Ok(checked) => checked,
+            Err(errors) => {
+                prop_assert!(errors.iter().all(|error| matches!(error, mbexpr::CheckError::ConstantFails { .. })), "{text}: {errors}");
+                return Ok(());
+            }
+        };
         let program = mbexpr::compile(&checked, &["x", "v", "t"]).unwrap();
         for order in [Order::Value, Order::Gradient, Order::Hessian] {
             if let Ok(evaluation) = program.evaluate(&[x, v, 0.7], &[0, 1, 2], order) {
@@ -244,7 +251,14 @@ proptest! {
         let x2 = x1 + width + 1e-9;
         let x = x1 + fraction * (x2 - x1);
         let text = format!("BISTOP(x, v, {x1:?}, {x2:?}, {k:?}, {e:?}, {cmax:?}, {d:?})");
-        let checked = mbexpr::check(&mbexpr::parse(&text).unwrap()).unwrap();
+        // A constant part that fails whenever it runs is refused by the checker.
+        let checked = match mbexpr::check(&mbexpr::parse(&text).unwrap()) {
+            Ok(checked) => checked,
+            Err(errors) => {
+                prop_assert!(errors.iter().all(|error| matches!(error, mbexpr::CheckError::ConstantFails { .. })), "{text}: {errors}");
+                return Ok(());
+            }
+        };
         let program = mbexpr::compile(&checked, &["x", "v"]).unwrap();
         let evaluation = program.evaluate(&[x.clamp(x1, x2), v], &[0, 1], Order::Hessian).unwrap();
         prop_assert_eq!(evaluation.value, 0.0);
@@ -256,7 +270,14 @@ proptest! {
     fn step_and_its_slope_are_continuous_at_both_ends(x0 in -10.0f64..10.0, width in 0.01f64..10.0, h0 in -5.0f64..5.0, h1 in -5.0f64..5.0) {
         let x1 = x0 + width;
         let text = format!("STEP(x, {x0:?}, {h0:?}, {x1:?}, {h1:?})");
-        let checked = mbexpr::check(&mbexpr::parse(&text).unwrap()).unwrap();
+        // A constant part that fails whenever it runs is refused by the checker.
+        let checked = match mbexpr::check(&mbexpr::parse(&text).unwrap()) {
+            Ok(checked) => checked,
+            Err(errors) => {
+                prop_assert!(errors.iter().all(|error| matches!(error, mbexpr::CheckError::ConstantFails { .. })), "{text}: {errors}");
+                return Ok(());
+            }
+        };
         let program = mbexpr::compile(&checked, &["x"]).unwrap();
         let at = |x: f64| program.evaluate(&[x], &[0], Order::Gradient).unwrap();
         let step = 1e-9 * width;

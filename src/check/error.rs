@@ -3,6 +3,7 @@
 use thiserror::Error;
 
 use crate::catalog::RuleViolation;
+use crate::eval::EvalError;
 use crate::span::Span;
 
 /// A name, arity or argument problem found before any evaluation.
@@ -82,6 +83,13 @@ pub enum CheckError {
         /// The argument.
         span: Span,
     },
+    /// A part made of constants that fails whenever it is evaluated: a
+    /// domain error (`LOG(0)`, `1/0`) or an overflow, as evaluation says it.
+    #[error("{error}")]
+    ConstantFails {
+        /// What evaluation would report.
+        error: EvalError,
+    },
     /// Constant arguments that break a rule of the function (SPEC 3.3).
     #[error("{violation}")]
     RuleBroken {
@@ -104,6 +112,7 @@ impl CheckError {
             | CheckError::ObjectExpected { span, .. }
             | CheckError::FlagExpected { span, .. }
             | CheckError::RuleBroken { span, .. } => *span,
+            CheckError::ConstantFails { error } => error.span(),
         }
     }
 }
