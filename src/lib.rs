@@ -53,9 +53,9 @@ pub mod syntax;
 pub mod utility;
 
 pub use check::{CheckError, Checked, check};
-pub use compile::{CompileError, Program, compile, compile_in_scene};
+pub use compile::{CompileError, Program, compile, compile_in_model, compile_in_scene};
 pub use errors::Errors;
 pub use eval::{EvalError, Evaluation, Evaluator, Order, Run};
 pub use scene::Scene;
-pub use span::{Location, Span};
+pub use span::{LineIndex, Location, Span};
 pub use syntax::{ParseError, parse};

@@ -69,18 +69,90 @@ pub struct Location {
 
 impl Location {
     /// The location of byte `offset` in `text` (clamped to the end of the text
-    /// and to a character boundary).
+    /// and to a character boundary). This reads the text up to `offset`: to
+    /// place many offsets in one text, build a [`LineIndex`] once.
     pub fn of(text: &str, offset: usize) -> Location {
-        let mut offset = offset.min(text.len());
-        while !text.is_char_boundary(offset) {
+        LineIndex::new(text).location(offset)
+    }
+}
+
+/// Where each line of a text starts, and where its characters of more than
+/// one byte are, built in one pass: every [`LineIndex::location`] after that
+/// costs a binary search, not a scan from the start of the text.
+#[derive(Clone, Debug)]
+pub struct LineIndex<'t> {
+    text: &'t str,
+    /// The offset of the first byte of each line; the first is 0.
+    starts: Vec<usize>,
+    /// The offsets of the bytes that continue a character (UTF-8's
+    /// `10xxxxxx`), which the column does not count.
+    continuations: Vec<usize>,
+}
+
+impl<'t> LineIndex<'t> {
+    /// The index of `text`.
+    pub fn new(text: &'t str) -> LineIndex<'t> {
+        let mut starts = vec![0];
+        let mut continuations = Vec::new();
+        for (offset, byte) in text.bytes().enumerate() {
+            if byte == b'\n' {
+                starts.push(offset + 1);
+            } else if byte & 0xC0 == 0x80 {
+                continuations.push(offset);
+            }
+        }
+        LineIndex {
+            text,
+            starts,
+            continuations,
+        }
+    }
+
+    /// The text indexed.
+    pub fn text(&self) -> &'t str {
+        self.text
+    }
+
+    /// The line and column of byte `offset` (clamped to the end of the text
+    /// and to a character boundary).
+    pub fn location(&self, offset: usize) -> Location {
+        let mut offset = offset.min(self.text.len());
+        while !self.text.is_char_boundary(offset) {
             offset -= 1;
         }
-        let before = &text[..offset];
-        let line_start = before.rfind('\n').map_or(0, |newline| newline + 1);
+        let line = self.starts.partition_point(|&start| start <= offset);
+        let start = self.starts[line - 1];
+        let wide = self.continuations.partition_point(|&at| at < offset)
+            - self.continuations.partition_point(|&at| at < start);
         Location {
-            line: before.matches('\n').count() + 1,
-            column: before[line_start..].chars().count() + 1,
+            line,
+            column: offset - start - wide + 1,
         }
+    }
+
+    /// Line `number` (from 1) without its line break (`\n` or `\r\n`); empty
+    /// past the last line.
+    pub fn line(&self, number: usize) -> &'t str {
+        let Some(&start) = number
+            .checked_sub(1)
+            .and_then(|index| self.starts.get(index))
+        else {
+            return "";
+        };
+        let end = self
+            .starts
+            .get(number)
+            .map_or(self.text.len(), |&next| next - 1);
+        self.text[start..end].trim_end_matches('\r')
+    }
+
+    /// The byte offset where line `number` (from 1) starts.
+    pub fn line_start(&self, number: usize) -> usize {
+        number
+            .checked_sub(1)
+            .and_then(|index| self.starts.get(index))
+            .copied()
+            .unwrap_or(self.text.len())
     }
 }
 

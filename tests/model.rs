@@ -83,6 +83,7 @@ fn command_file_rules() {
 fn view_command_rules() {
     let cmd = r#"! Adams View command file
 model create model_name = model_1
+marker create marker_name = .model_1.PART_2.MARKER_1 adams_id = 1
 force create direct single_component_force  &
    single_component_force_name = .model_1.SFORCE_1  &
    adams_id = 1  &
@@ -309,4 +310,46 @@ fn brackets_nested_past_the_limit_are_refused_and_at_it_read() {
             .to_string()
             .contains("nest deeper")
     );
+}
+
+/// What the solver would refuse is an error at its place (issues 18.5,
+/// 19.4, 19.5): a bare name a dataset does not know, a misspelled keyword
+/// (its expression is not read), an unknown statement, an id given twice
+/// (at both places), and a missing marker beside a broken argument rule.
+#[test]
+fn names_keywords_statements_and_duplicate_ids() {
+    let adm = r"names and words
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKR/3, PART = 1
+VARIABLE/4, FUNCTION = TIEM*2 + time + Pi + mode*x
+VARIABLE/5, FUNCTON = STPE(TIME, 0, 0, 1, 1)
+VARI/7, FUNCTION = 1
+VARIABLE/7, FUNC = 2
+SFORCE/1, I = 1, J = 1, FUNCTION = STEP(DX(1, 9), 1, 0, 0, 1)
+SFORCE/2, I = 1, J = 1, FUNCTION = LOG(0) + DM(1, 8)
+SFORCE/3, I = 1, J = 1, FUNCTION = VARVAL(7)
+";
+    insta::assert_snapshot!(check(adm, FileKind::Adm));
+    let acf =
+        "model\nresults\nsimulate/dynamic, end = 1, steps = 10\nsimulat/static\nbogus/1\nstop\n";
+    insta::assert_snapshot!(check(acf, FileKind::Acf));
+}
+
+/// A long chain of VARIABLEs and a loop inside a larger group: each loop
+/// once, from its smallest id (issue 19.2: the search is linear).
+#[test]
+fn loops_in_chains() {
+    let mut adm = String::from("chains\n");
+    for id in 1..=2000 {
+        adm += &format!("VARIABLE/{id}, FUNCTION = VARVAL({})\n", id + 1);
+    }
+    adm += "VARIABLE/2001, FUNCTION = TIME\n";
+    adm += "VARIABLE/3001, FUNCTION = VARVAL(3002) + VARVAL(3003)\nVARIABLE/3002, FUNCTION = VARVAL(3003)\nVARIABLE/3003, FUNCTION = VARVAL(3001)\n";
+    let report = check(&adm, FileKind::Adm);
+    let errors: Vec<&str> = report
+        .lines()
+        .filter(|line| line.contains(": VARIABLE"))
+        .collect();
+    insta::assert_snapshot!(errors.join("\n"));
 }

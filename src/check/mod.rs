@@ -40,6 +40,18 @@ impl Checked {
         names
     }
 
+    /// Every use of a name the context must bind, with its place, in the
+    /// order written.
+    pub fn variable_uses(&self) -> Vec<(&str, Span)> {
+        let mut uses = Vec::new();
+        visit(&self.root, &mut |node| {
+            if let NodeKind::Variable(name) = &node.kind {
+                uses.push((name.as_str(), node.span));
+            }
+        });
+        uses
+    }
+
     /// The functions called, each once, in catalog order.
     pub fn functions(&self) -> Vec<Function> {
         let mut functions = Vec::new();

@@ -86,9 +86,11 @@ pub enum CompileError {
     },
     /// An acceleration measure on a body whose accelerations the scene does not give.
     #[error(
-        "{function} needs the acceleration and angular acceleration of body {body}, which the scene does not give"
+        "{function} needs the acceleration and angular acceleration of body {body}, which {place} does not give"
     )]
     NoAcceleration {
+        /// "the scene" or "the model".
+        place: &'static str,
         /// The measure.
         function: &'static str,
         /// The body.
@@ -97,8 +99,10 @@ pub enum CompileError {
         span: Span,
     },
     /// A measure that scenes do not evaluate.
-    #[error("{function} is recognised but not evaluated in scenes")]
+    #[error("{function} is recognised but not evaluated in {place}")]
     NotInScene {
+        /// "scenes" or "models".
+        place: &'static str,
         /// The measure.
         function: &'static str,
         /// The call.

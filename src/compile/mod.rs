@@ -19,7 +19,7 @@ use crate::laws::contact::Stops;
 use crate::laws::power::as_integer;
 use crate::laws::spline::{Method, Spline};
 use crate::scene::kinematics::FrameData;
-use crate::scene::{Scene, StateComponent, Target};
+use crate::scene::{Scene, SceneKind, StateComponent, Target};
 use crate::span::Span;
 use crate::syntax::ast::BinaryOp;
 
@@ -320,7 +320,7 @@ impl Compiler<'_> {
                     Ok(slot) => return slot,
                     Err(error) => Some(error),
                 },
-                None => Some(model_data_error(function, args, span, false)),
+                None => Some(model_data_error(function, args, span, None)),
             },
             Family::Solver => Some(CompileError::NeedsSolver {
                 function: function.name(),
@@ -391,8 +391,8 @@ impl Compiler<'_> {
     }
 
     /// `VARVAL(id)` as the VARIABLE's own expression, compiled in place (so
-    /// its derivatives flow), and `ARYVAL(id, i)` as a constant, from the
-    /// scene's statement data.
+    /// its derivatives flow), `ARYVAL(id, i)` and `DIF(id)` as constants,
+    /// from the scene's statement data.
     fn statement_data(
         &mut self,
         scene: &Scene,
@@ -470,12 +470,15 @@ impl Compiler<'_> {
                     }),
                 }
             }
+            (Function::Dif, Some(id)) if scene.statements.diffs.contains_key(&id) => {
+                Ok(self.constant(scene.statements.diffs[&id]))
+            }
             (Function::Akispl | Function::Cubspl, Some(id))
                 if scene.statements.splines.contains_key(&id) =>
             {
                 self.spline(scene, function, id, args, span)
             }
-            _ => Err(model_data_error(function, args, span, true)),
+            _ => Err(model_data_error(function, args, span, Some(scene))),
         }
     }
 
@@ -543,6 +546,7 @@ impl Compiler<'_> {
     ) -> Slot {
         if matches!(function, Function::Incang | Function::Orient) {
             self.errors.push(CompileError::NotInScene {
+                place: scene_plural(scene),
                 function: function.name(),
                 span,
             });
@@ -582,6 +586,7 @@ impl Compiler<'_> {
                 && (body.acceleration.is_none() || body.angular_acceleration.is_none())
             {
                 self.errors.push(CompileError::NoAcceleration {
+                    place: scene.kind.noun(),
                     function: function.name(),
                     body: body.name.clone(),
                     span: marker_span,
@@ -705,6 +710,14 @@ impl Compiler<'_> {
     }
 }
 
+/// "scenes" or "models", as `scene` is one or made from one.
+fn scene_plural(scene: &Scene) -> &'static str {
+    match scene.kind {
+        SceneKind::Scene => "scenes",
+        SceneKind::Model => "models",
+    }
+}
+
 /// The stops of a contact law from its arguments after `x` and `x'`, when
 /// all are constants: `x1 k e cmax d` for IMPACT, `x1 x2 k e cmax d` for BISTOP.
 fn constant_stops(arguments: &[Option<f64>]) -> Option<Stops> {
@@ -718,13 +731,13 @@ fn constant_stops(arguments: &[Option<f64>]) -> Option<Stops> {
 }
 
 /// The error for a model-data function: which statement would provide it
-/// (missing from the scene when `in_scene`), that only a running solver has
+/// (missing from `scene` when there is one), that only a running solver has
 /// its value, or that scenes do not evaluate it.
 fn model_data_error(
     function: Function,
     args: &[Argument],
     span: Span,
-    in_scene: bool,
+    scene: Option<&Scene>,
 ) -> CompileError {
     let object = args.iter().find_map(|arg| match arg {
         Argument::Object(reference, _) => Some(reference),
@@ -753,9 +766,10 @@ fn model_data_error(
         Function::Interp => "a data table".to_string(),
         _ => format!("SPLINE/{id}"),
     };
-    if in_scene {
+    if let Some(scene) = scene {
         return match function {
             Function::Curve | Function::Interp => CompileError::NotInScene {
+                place: scene_plural(scene),
                 function: function.name(),
                 span,
             },

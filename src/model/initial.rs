@@ -1,15 +1,18 @@
 //! The initial configuration of a solver dataset as a [`Scene`]: PART and
 //! MARKER statements give bodies and markers (REULER is body-fixed 3-1-3,
 //! radians unless written with `D`), VARIABLE functions give `VARVAL`, ARRAY
-//! NUMBERS give `ARYVAL`, SPLINE points give `AKISPL` and `CUBSPL`; the
-//! time is 0.
+//! NUMBERS give `ARYVAL`, SPLINE points give `AKISPL` and `CUBSPL`, DIFF
+//! initial values (`IC`, 0 when not given) give `DIF`; the time is 0.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use thiserror::Error;
 
 use super::{Argument, ModelCheck, Statement, Value, is_statement};
 use crate::laws::spline::{SplineData, SplineDataError};
-use crate::scene::{Body, Marker, Scene, euler_313};
+use std::collections::HashSet;
+
+use crate::check::Reference;
+use crate::scene::{Body, Marker, Scene, SceneKind, Target, euler_313};
 use crate::span::Span;
 
 /// A statement whose data cannot make a scene.
@@ -145,9 +148,12 @@ pub fn initial_scene(
     dataset: &super::Dataset,
     report: &ModelCheck,
 ) -> Result<Scene, Vec<ConfigurationError>> {
-    let mut scene = Scene::default();
+    let mut scene = Scene {
+        kind: SceneKind::Model,
+        ..Scene::default()
+    };
     let mut errors = Vec::new();
-    let mut ground_parts = Vec::new();
+    let mut ground_parts = HashSet::new();
     // PART id -> (body index, CM marker id).
     let mut parts = std::collections::HashMap::new();
     for statement in dataset
@@ -157,7 +163,7 @@ pub fn initial_scene(
     {
         let Some(id) = statement.id else { continue };
         if statement.argument("GROUND", 3).is_some() {
-            ground_parts.push(id);
+            ground_parts.insert(id);
             continue;
         }
         let mut body = Body::new(statement.label());
@@ -223,12 +229,14 @@ pub fn initial_scene(
             (Err(error), _) | (_, Err(error)) => errors.push(error),
         }
     }
+    scene.index();
     // A part's VX ... and WX ... are those of its CM marker (WX ... about the
     // CM marker's axes): carry them to the part's origin.
     for &(index, cm) in parts.values() {
-        let Some(marker) = scene.markers.iter().find(|marker| marker.id == Some(cm)) else {
+        let Ok(Target::Marker(marker)) = scene.find_marker(&Reference::Id(cm)) else {
             continue;
         };
+        let marker = &scene.markers[marker];
         let body = &mut scene.bodies[index];
         let cm_axes = body.orientation * marker.orientation;
         body.angular_velocity = cm_axes * body.angular_velocity;
@@ -254,6 +262,25 @@ pub fn initial_scene(
         {
             let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
             scene.statements.arrays.insert(id, values);
+        }
+    }
+    for statement in dataset
+        .statements
+        .iter()
+        .filter(|s| is_statement(s, "DIFF"))
+    {
+        if let Some(id) = statement.id {
+            let [initial] = match statement.argument("IC", 2) {
+                Some(argument) => match number_list(statement, argument) {
+                    Ok(values) => [values[0]],
+                    Err(error) => {
+                        errors.push(error);
+                        continue;
+                    }
+                },
+                None => [0.0],
+            };
+            scene.statements.diffs.insert(id, initial);
         }
     }
     for statement in dataset

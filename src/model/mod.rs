@@ -8,12 +8,16 @@ mod cmd;
 mod initial;
 mod references;
 mod text;
+mod variables;
+mod view;
+pub mod vocabulary;
 
 use thiserror::Error;
 
 pub use initial::{ConfigurationError, initial_scene};
 pub use references::{FoundExpression, ModelCheck, ModelError, Problem, check_model};
 pub use text::Embedded;
+pub use variables::evaluation_order;
 
 use crate::span::Span;
 use crate::syntax::MAX_NESTING;

@@ -3,16 +3,17 @@
 //! datasets to other statements verified (markers, variables, arrays,
 //! differential states, elements), with loops among VARIABLEs found.
 
+use std::cell::OnceCell;
 use std::collections::{HashMap, HashSet};
 
 use thiserror::Error;
 
-use super::{Dataset, Embedded, FileKind, ReadError, Statement, Value, is_kind};
+use super::variables::Reads;
+use super::{Dataset, Embedded, FileKind, ReadError, Statement, Value, is_kind, vocabulary};
 use crate::ParseError;
 use crate::catalog::{ArgKind, Function};
 use crate::check::{Argument, Checked, NodeKind, Reference, visit};
-use crate::span::Location;
-use crate::span::Span;
+use crate::span::{LineIndex, Span};
 
 /// A problem found in a model file.
 #[derive(Clone, Debug, Error, PartialEq)]
@@ -64,6 +65,65 @@ pub enum ModelError {
         /// The call in the file.
         span: Span,
     },
+    /// A bare name in a solver dataset, which knows only its system
+    /// variables and constants.
+    #[error(
+        "{name} is not defined: a dataset expression knows only TIME, MODE, PI, DTOR and RTOD{suggestions}"
+    )]
+    UnknownName {
+        /// The name as written.
+        name: String,
+        /// " (did you mean TIME?)" or nothing.
+        suggestions: String,
+        /// The name in the file.
+        span: Span,
+    },
+    /// A statement name the solver does not know.
+    #[error("{name} is not a statement of a solver {file}{suggestions}")]
+    UnknownStatement {
+        /// The name as written, upper case.
+        name: String,
+        /// "dataset" or "command file".
+        file: &'static str,
+        /// " (did you mean MARKER?)" or nothing.
+        suggestions: String,
+        /// The name in the file.
+        span: Span,
+    },
+    /// A keyword no dataset statement has (an expression after it is not read).
+    #[error("{keyword} is not a keyword of {statement}{suggestions}")]
+    UnknownKeyword {
+        /// The keyword as written, upper case.
+        keyword: String,
+        /// `VARIABLE/4`.
+        statement: String,
+        /// " (did you mean FUNCTION?)" or nothing.
+        suggestions: String,
+        /// The keyword in the file.
+        span: Span,
+    },
+    /// Two statements of one kind with one id.
+    #[error("{label} is defined twice: here and at line {other_line}")]
+    Duplicate {
+        /// `VARIABLE/7`.
+        label: String,
+        /// The line of the other definition.
+        other_line: usize,
+        /// The statement's name and id.
+        span: Span,
+    },
+    /// A name in a View command file that no command of the file creates.
+    #[error("{what} {name} is not created in this file{suggestions}")]
+    NotCreated {
+        /// "marker", "object" or "variable".
+        what: &'static str,
+        /// The name as written.
+        name: String,
+        /// " (did you mean ...?)" or nothing.
+        suggestions: String,
+        /// The reference in the file.
+        span: Span,
+    },
     /// VARIABLEs whose functions depend on each other in a loop.
     #[error("VARIABLE/{id} depends on itself: {cycle}")]
     VariableLoop {
@@ -85,6 +145,11 @@ impl ModelError {
             | ModelError::UnknownMarker { span, .. }
             | ModelError::MissingStatement { span, .. }
             | ModelError::ArrayTooShort { span, .. }
+            | ModelError::UnknownName { span, .. }
+            | ModelError::UnknownStatement { span, .. }
+            | ModelError::UnknownKeyword { span, .. }
+            | ModelError::Duplicate { span, .. }
+            | ModelError::NotCreated { span, .. }
             | ModelError::VariableLoop { span, .. } => *span,
         }
     }
@@ -127,10 +192,10 @@ pub struct ModelCheck {
 
 /// A parse error's message, with a column inside the joined expression
 /// turned into the line and column in the file.
-fn file_message(error: &ParseError, embedded: &Embedded, text: &str) -> String {
+fn file_message(error: &ParseError, embedded: &Embedded, lines: &LineIndex<'_>) -> String {
     match error {
         ParseError::Unclosed { opener, opened, .. } => {
-            let at = Location::of(text, embedded.file_offset(opened.start));
+            let at = lines.location(embedded.file_offset(opened.start));
             format!(
                 "expected `)` to close {opener} opened at line {}, column {}",
                 at.line, at.column
@@ -140,49 +205,92 @@ fn file_message(error: &ParseError, embedded: &Embedded, text: &str) -> String {
     }
 }
 
+/// The problems found so far, and the file's line index, built the first
+/// time a message needs a line number.
+struct Findings<'t> {
+    text: &'t str,
+    lines: OnceCell<LineIndex<'t>>,
+    problems: Vec<Problem>,
+}
+
+impl<'t> Findings<'t> {
+    fn lines(&self) -> &LineIndex<'t> {
+        self.lines.get_or_init(|| LineIndex::new(self.text))
+    }
+
+    fn push(&mut self, error: ModelError, statement: Option<usize>, expression: Option<usize>) {
+        self.problems.push(Problem {
+            error,
+            statement,
+            expression,
+        });
+    }
+}
+
 /// Finds and checks every expression of the model file `text`, read into
-/// `dataset` by [`super::read`].
+/// `dataset` by [`super::read`]: syntax, names, constant arguments, the
+/// statement names and keywords of a dataset, and the references between
+/// statements (datasets and command files by id, View command files by name).
 pub fn check_model(text: &str, dataset: &Dataset) -> ModelCheck {
-    let mut problems: Vec<Problem> = dataset
-        .problems
-        .iter()
-        .map(|error| Problem {
-            error: ModelError::Read {
+    let mut findings = Findings {
+        text,
+        lines: OnceCell::new(),
+        problems: Vec::new(),
+    };
+    for error in &dataset.problems {
+        findings.push(
+            ModelError::Read {
                 error: error.clone(),
             },
-            statement: None,
-            expression: None,
-        })
-        .collect();
+            None,
+            None,
+        );
+    }
+    let solver_file = dataset.kind != FileKind::Cmd;
+    if solver_file {
+        check_words(dataset, &mut findings);
+    }
     let mut expressions = Vec::new();
+    // The tree of every expression that parsed, errors or not, for its references.
+    let mut trees: Vec<Option<Checked>> = Vec::new();
     for (index, statement) in dataset.statements.iter().enumerate() {
         for (argument, embedded) in statement.expressions() {
             let expression = expressions.len();
-            let mut report = |message: String, span: Span| {
-                problems.push(Problem {
-                    error: ModelError::Expression {
-                        message,
-                        span: embedded.file_span(span),
-                    },
-                    statement: Some(index),
-                    expression: Some(expression),
-                });
+            let report = |findings: &mut Findings<'_>, message: String, span: Span| {
+                let span = embedded.file_span(span);
+                findings.push(
+                    ModelError::Expression { message, span },
+                    Some(index),
+                    Some(expression),
+                );
             };
-            let checked = match crate::parse(&embedded.text) {
+            let (checked, tree) = match crate::parse(&embedded.text) {
                 Err(error) => {
-                    report(file_message(&error, embedded, text), error.span());
-                    None
+                    let message = file_message(&error, embedded, findings.lines());
+                    report(&mut findings, message, error.span());
+                    (None, None)
                 }
-                Ok(tree) => match crate::check(&tree) {
-                    Err(errors) => {
-                        for error in errors {
-                            report(error.to_string(), error.span());
-                        }
-                        None
+                Ok(tree) => {
+                    let (tree, errors) = crate::check::check_partial(&tree);
+                    for error in &errors {
+                        report(&mut findings, error.to_string(), error.span());
                     }
-                    Ok(checked) => Some(checked),
-                },
+                    (errors.is_empty().then(|| tree.clone()), Some(tree))
+                }
             };
+            if solver_file && let Some(tree) = &tree {
+                for (name, span) in tree.variable_uses() {
+                    findings.push(
+                        ModelError::UnknownName {
+                            name: name.to_string(),
+                            suggestions: vocabulary::suggestions(name, DATASET_NAMES),
+                            span: embedded.file_span(span),
+                        },
+                        Some(index),
+                        Some(expression),
+                    );
+                }
+            }
             let span = match &argument.value {
                 Value::Expression { span, .. } => *span,
                 _ => argument.span,
@@ -194,11 +302,15 @@ pub fn check_model(text: &str, dataset: &Dataset) -> ModelCheck {
                 span,
                 checked,
             });
+            trees.push(tree);
         }
     }
-    if dataset.kind != FileKind::Cmd {
-        References::of(dataset).check(dataset, &expressions, &mut problems);
+    if solver_file {
+        References::of(dataset, &mut findings).check(dataset, &expressions, &trees, &mut findings);
+    } else {
+        super::view::check_names(dataset, &expressions, &trees, &mut findings.problems);
     }
+    let mut problems = findings.problems;
     problems.sort_by_key(|problem| problem.error.span().start);
     ModelCheck {
         expressions,
@@ -206,9 +318,76 @@ pub fn check_model(text: &str, dataset: &Dataset) -> ModelCheck {
     }
 }
 
+/// The names a dataset expression may use bare.
+const DATASET_NAMES: &[&str] = &["TIME", "MODE", "PI", "DTOR", "RTOD"];
+
+/// Statement names and (in datasets) keywords the solver does not know.
+fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
+    let (known, file) = match dataset.kind {
+        FileKind::Acf => (vocabulary::COMMANDS, "command file"),
+        _ => (vocabulary::DATASET_STATEMENTS, "dataset"),
+    };
+    for (index, statement) in dataset.statements.iter().enumerate() {
+        // A command file starts with the names of its dataset and output
+        // files, one word a line.
+        let file_name = dataset.kind == FileKind::Acf
+            && statement.id.is_none()
+            && statement.arguments.is_empty()
+            && findings.lines().location(statement.span.start).line <= 2;
+        if vocabulary::statement_name(&statement.name, known).is_none() && !file_name {
+            let span = Span::new(
+                statement.span.start,
+                statement.span.start + statement.name.len(),
+            );
+            let span = name_span(findings.text, statement.span, &statement.name).unwrap_or(span);
+            findings.push(
+                ModelError::UnknownStatement {
+                    name: statement.name.clone(),
+                    file,
+                    suggestions: vocabulary::suggestions(&statement.name, known),
+                    span,
+                },
+                Some(index),
+                None,
+            );
+            continue;
+        }
+        if dataset.kind != FileKind::Adm {
+            continue;
+        }
+        for argument in &statement.arguments {
+            if !vocabulary::is_keyword(&argument.keyword) {
+                findings.push(
+                    ModelError::UnknownKeyword {
+                        keyword: argument.keyword.clone(),
+                        statement: statement.label(),
+                        suggestions: vocabulary::suggestions(
+                            &argument.keyword,
+                            vocabulary::KEYWORDS,
+                        ),
+                        span: argument.keyword_span,
+                    },
+                    Some(index),
+                    None,
+                );
+            }
+        }
+    }
+}
+
+/// Where the name `name` stands in the statement `span` of `text` (after
+/// any leading blanks).
+fn name_span(text: &str, span: Span, name: &str) -> Option<Span> {
+    let statement = text.get(span.range())?;
+    let start = span.start + (statement.len() - statement.trim_start().len());
+    Some(Span::new(start, start + name.len()))
+}
+
 /// The statements other statements can refer to, by kind and id.
 struct References {
-    ids: HashMap<String, HashSet<u64>>,
+    /// `(kind, id)` of every statement with an id, the kind as the
+    /// vocabulary spells it (`VARI/3` is `VARIABLE`).
+    ids: HashSet<(String, u64)>,
     array_sizes: HashMap<u64, usize>,
 }
 
@@ -243,51 +422,75 @@ fn statement_kind(function: Function) -> Option<&'static str> {
 }
 
 impl References {
-    fn of(dataset: &Dataset) -> References {
-        let mut ids: HashMap<String, HashSet<u64>> = HashMap::new();
+    /// The statements of `dataset`; a kind and id given twice in a dataset
+    /// is reported at both places.
+    fn of(dataset: &Dataset, findings: &mut Findings<'_>) -> References {
+        let mut first: HashMap<(String, u64), usize> = HashMap::new();
         let mut array_sizes = HashMap::new();
-        for statement in &dataset.statements {
+        for (index, statement) in dataset.statements.iter().enumerate() {
             let Some(id) = statement.id else { continue };
-            ids.entry(statement.name.clone()).or_default().insert(id);
-            if is_kind(&statement.name, "ARRAY") {
-                let count = statement
-                    .argument("NUMBERS", 2)
-                    .and_then(|argument| match &argument.value {
-                        Value::List(items) => Some(items.len()),
-                        _ => None,
-                    })
-                    .or_else(|| {
-                        statement
-                            .argument("SIZE", 2)
-                            .and_then(|argument| match &argument.value {
-                                Value::List(items) => items.first()?.text.parse().ok(),
-                                _ => None,
-                            })
-                    });
-                if let Some(count) = count {
-                    array_sizes.insert(id, count);
-                }
+            let kind = canonical(&statement.name);
+            if is_kind(&kind, "ARRAY")
+                && let Some(count) = array_size(statement)
+            {
+                array_sizes.insert(id, count);
             }
+            let Some(&other) = first.get(&(kind.clone(), id)) else {
+                first.insert((kind, id), index);
+                continue;
+            };
+            // A command file changes statements again and again.
+            if dataset.kind != FileKind::Adm {
+                continue;
+            }
+            let label = format!("{kind}/{id}");
+            let at = |index: usize| dataset.statements[index].span;
+            let line_of = |index: usize| findings.lines().location(at(index).start).line;
+            let (line, other_line) = (line_of(index), line_of(other));
+            let place = |index: usize| {
+                name_span(findings.text, at(index), &dataset.statements[index].name)
+                    .unwrap_or(at(index))
+            };
+            let (first_place, own_place) = (place(other), place(index));
+            findings.push(
+                ModelError::Duplicate {
+                    label: label.clone(),
+                    other_line: line,
+                    span: first_place,
+                },
+                Some(other),
+                None,
+            );
+            findings.push(
+                ModelError::Duplicate {
+                    label,
+                    other_line,
+                    span: own_place,
+                },
+                Some(index),
+                None,
+            );
         }
-        References { ids, array_sizes }
+        References {
+            ids: first.into_keys().collect(),
+            array_sizes,
+        }
     }
 
     fn has(&self, kind: &str, id: u64) -> bool {
-        self.ids
-            .iter()
-            .any(|(name, ids)| is_kind(name, kind) && ids.contains(&id))
+        self.ids.contains(&(kind.to_string(), id))
     }
 
     fn check(
         &self,
         dataset: &Dataset,
         expressions: &[FoundExpression],
-        problems: &mut Vec<Problem>,
+        trees: &[Option<Checked>],
+        findings: &mut Findings<'_>,
     ) {
-        // VARIABLE id -> the VARIABLEs its function reads, with where.
-        let mut reads: HashMap<u64, Vec<(u64, Span)>> = HashMap::new();
+        let mut reads = Reads::default();
         for (index, found) in expressions.iter().enumerate() {
-            let Some(checked) = &found.checked else {
+            let Some(checked) = &trees[index] else {
                 continue;
             };
             let statement: &Statement = &dataset.statements[found.statement];
@@ -298,11 +501,7 @@ impl References {
                 continue;
             };
             let mut report = |error: ModelError| {
-                problems.push(Problem {
-                    error,
-                    statement: Some(found.statement),
-                    expression: Some(index),
-                });
+                findings.push(error, Some(found.statement), Some(index));
             };
             visit(&checked.root, &mut |node| {
                 let NodeKind::Call(function, args) = &node.kind else {
@@ -347,10 +546,7 @@ impl References {
                                 && is_kind(&statement.name, "VARIABLE")
                                 && let Some(variable) = statement.id
                             {
-                                reads
-                                    .entry(variable)
-                                    .or_default()
-                                    .push((*id, embedded.file_span(node.span)));
+                                reads.add(variable, *id, embedded.file_span(node.span), index);
                             }
                         }
                         _ => {}
@@ -358,59 +554,43 @@ impl References {
                 }
             });
         }
-        report_loops(&reads, dataset, problems);
+        for found in reads.loops() {
+            let statement = expressions[found.expression].statement;
+            findings.push(
+                ModelError::VariableLoop {
+                    id: found.first,
+                    cycle: found.cycle,
+                    span: found.span,
+                },
+                Some(statement),
+                Some(found.expression),
+            );
+        }
     }
 }
 
-/// Reports each loop among VARIABLE functions once, at the reference that closes it.
-fn report_loops(
-    reads: &HashMap<u64, Vec<(u64, Span)>>,
-    dataset: &Dataset,
-    problems: &mut Vec<Problem>,
-) {
-    let mut ids: Vec<u64> = reads.keys().copied().collect();
-    ids.sort_unstable();
-    let mut in_loop: HashSet<u64> = HashSet::new();
-    for &start in &ids {
-        if in_loop.contains(&start) {
-            continue;
-        }
-        // Depth-first search for a path from `start` back to itself.
-        let mut stack: Vec<(u64, usize)> = vec![(start, 0)];
-        let mut on_path: Vec<u64> = vec![start];
-        let mut seen: HashSet<u64> = HashSet::from([start]);
-        while let Some((node, next)) = stack.last_mut() {
-            let edges = reads.get(node).map_or(&[][..], Vec::as_slice);
-            let Some(&(target, span)) = edges.get(*next) else {
-                stack.pop();
-                on_path.pop();
-                continue;
-            };
-            *next += 1;
-            if target == start {
-                let mut cycle: Vec<String> =
-                    on_path.iter().map(|id| format!("VARIABLE/{id}")).collect();
-                cycle.push(format!("VARIABLE/{start}"));
-                in_loop.extend(on_path.iter().copied());
-                let statement = dataset.statements.iter().position(|statement| {
-                    is_kind(&statement.name, "VARIABLE")
-                        && statement.id == Some(*on_path.last().expect("a path"))
-                });
-                problems.push(Problem {
-                    error: ModelError::VariableLoop {
-                        id: start,
-                        cycle: cycle.join(" -> "),
-                        span,
-                    },
-                    statement,
-                    expression: None,
-                });
-                break;
-            }
-            if seen.insert(target) {
-                stack.push((target, 0));
-                on_path.push(target);
-            }
-        }
-    }
+/// The number of entries of an ARRAY statement: its `NUMBERS`, else its `SIZE`.
+fn array_size(statement: &Statement) -> Option<usize> {
+    statement
+        .argument("NUMBERS", 2)
+        .and_then(|argument| match &argument.value {
+            Value::List(items) => Some(items.len()),
+            _ => None,
+        })
+        .or_else(|| {
+            statement
+                .argument("SIZE", 2)
+                .and_then(|argument| match &argument.value {
+                    Value::List(items) => items.first()?.text.parse().ok(),
+                    _ => None,
+                })
+        })
+}
+
+/// A statement name as the vocabulary spells it (an abbreviation in full),
+/// or as written when the vocabulary does not know it.
+fn canonical(name: &str) -> String {
+    vocabulary::statement_name(name, vocabulary::DATASET_STATEMENTS)
+        .or_else(|| vocabulary::statement_name(name, vocabulary::COMMANDS))
+        .map_or_else(|| name.to_string(), str::to_string)
 }

@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use serde::Deserialize;
 
-use super::{Body, Marker, Scene, SceneError};
+use super::{Body, Marker, Scene, SceneError, SceneKind};
 use crate::catalog::SystemVariable;
 
 #[derive(Deserialize)]
@@ -207,7 +207,8 @@ impl Scene {
             expressions,
             bodies: Vec::new(),
             markers: Vec::new(),
-            statements: Default::default(),
+            kind: SceneKind::Scene,
+            ..Scene::default()
         };
         for body in &file.bodies {
             if scene.find_body(&body.name).is_some() || body.name.eq_ignore_ascii_case("ground") {
@@ -256,6 +257,7 @@ impl Scene {
                 orientation: marker.orientation.read(&owner)?,
             });
         }
+        scene.index();
         Ok(scene)
     }
 }

@@ -146,16 +146,20 @@ impl StateComponent {
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum SceneError {
     /// A marker reference that matches no marker.
-    #[error("there is no marker {reference} in the scene{suggestions}")]
+    #[error("there is no marker {reference} in {place}{suggestions}")]
     UnknownMarker {
+        /// "the scene" or "the model".
+        place: &'static str,
         /// The reference as written.
         reference: String,
         /// " (did you mean ...?)" or nothing.
         suggestions: String,
     },
     /// A name that is neither a variable, a system variable nor a state component.
-    #[error("the scene has no value for {name}{suggestions}")]
+    #[error("{place} has no value for {name}{suggestions}")]
     UnknownName {
+        /// "the scene" or "the model".
+        place: &'static str,
         /// The name.
         name: String,
         /// " (did you mean ...?)" or nothing.
@@ -181,10 +185,44 @@ pub struct Scene {
     pub bodies: Vec<Body>,
     /// The markers.
     pub markers: Vec<Marker>,
+    /// Whether it was read from a scene file or made from a model, for messages.
+    pub kind: SceneKind,
+    /// Marker ids and body names to their indices, built by
+    /// [`Scene::index`] for scenes as large as a model; a marker or body
+    /// added after that is still found, by a search.
+    pub lookup: Lookup,
     /// The data of a model's statements that expressions read: VARIABLE
     /// functions (for `VARVAL`), ARRAY values (for `ARYVAL`) and SPLINE
     /// points (for `AKISPL` and `CUBSPL`).
     pub statements: StatementData,
+}
+
+/// The indices of markers by id and bodies by name (upper case), which
+/// [`Scene::index`] builds.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Lookup {
+    markers: HashMap<u64, usize>,
+    bodies: HashMap<String, usize>,
+}
+
+/// Where a scene comes from, as its messages name it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SceneKind {
+    /// A scene file or one built in code: "the scene".
+    #[default]
+    Scene,
+    /// The initial configuration of a model file: "the model".
+    Model,
+}
+
+impl SceneKind {
+    /// "the scene" or "the model".
+    pub fn noun(self) -> &'static str {
+        match self {
+            SceneKind::Scene => "the scene",
+            SceneKind::Model => "the model",
+        }
+    }
 }
 
 /// What a model's data statements give expressions evaluated in its scene.
@@ -198,6 +236,9 @@ pub struct StatementData {
     /// SPLINE id to its points: `AKISPL(x, z, id)` and `CUBSPL(x, z, id)`
     /// interpolate them.
     pub splines: HashMap<u64, SplineData>,
+    /// DIFF id to the value of its state, `DIF(id)`: at the start of a run,
+    /// its `IC`.
+    pub diffs: HashMap<u64, f64>,
 }
 
 /// Where a marker reference leads.
@@ -216,9 +257,16 @@ impl Scene {
         let found = match reference {
             Reference::Id(0) => return Ok(Target::Ground),
             Reference::Id(id) => self
+                .lookup
                 .markers
-                .iter()
-                .position(|marker| marker.id == Some(*id)),
+                .get(id)
+                .copied()
+                .filter(|&index| self.markers.get(index).is_some_and(|m| m.id == Some(*id)))
+                .or_else(|| {
+                    self.markers
+                        .iter()
+                        .position(|marker| marker.id == Some(*id))
+                }),
             Reference::Name(name) => self.markers.iter().position(|marker| {
                 marker
                     .name
@@ -233,6 +281,7 @@ impl Scene {
                 labels.iter().map(String::as_str),
             ));
             SceneError::UnknownMarker {
+                place: self.kind.noun(),
                 reference: reference.to_string(),
                 suggestions,
             }
@@ -241,9 +290,37 @@ impl Scene {
 
     /// The index of the body named `name` (case-insensitive).
     pub fn find_body(&self, name: &str) -> Option<usize> {
-        self.bodies
+        self.lookup
+            .bodies
+            .get(&name.to_ascii_uppercase())
+            .copied()
+            .filter(|&index| {
+                self.bodies
+                    .get(index)
+                    .is_some_and(|body| body.name.eq_ignore_ascii_case(name))
+            })
+            .or_else(|| {
+                self.bodies
+                    .iter()
+                    .position(|body| body.name.eq_ignore_ascii_case(name))
+            })
+    }
+
+    /// Indexes the markers by id and the bodies by name, so that finding
+    /// one costs the same in a scene of 100 000 as in one of two.
+    pub fn index(&mut self) {
+        self.lookup.markers = self
+            .markers
             .iter()
-            .position(|body| body.name.eq_ignore_ascii_case(name))
+            .enumerate()
+            .filter_map(|(index, marker)| Some((marker.id?, index)))
+            .collect();
+        self.lookup.bodies = self
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(index, body)| (body.name.to_ascii_uppercase(), index))
+            .collect();
     }
 
     /// The input name of a body's state component: `ball.vx`.
@@ -294,6 +371,7 @@ impl Scene {
             known.extend(StateComponent::ALL.map(|component| self.state_name(index, component)));
         }
         Err(SceneError::UnknownName {
+            place: self.kind.noun(),
             name: name.to_string(),
             suggestions: did_you_mean(&closest(name, known.iter().map(String::as_str))),
         })

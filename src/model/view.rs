@@ -1,0 +1,118 @@
+//! The references of an Adams View command file (`.cmd`): the markers, the
+//! objects (`VARVAL(.model_1.VARIABLE_1)`) and the bare names (design
+//! variables such as `.model_1.DV_1`) its expressions use must be created by
+//! a command of the file (`marker create marker_name = ...`). A name may be
+//! written in full or relative to the model (`PART_2.MARKER_1`).
+
+use std::collections::HashSet;
+
+use super::{Dataset, FoundExpression, ModelError, Problem, Value};
+use crate::catalog::{ArgKind, closest, did_you_mean};
+use crate::check::{Argument, Checked, NodeKind, Reference, visit};
+use crate::span::Span;
+
+/// The names the file creates, full and by every tail after a dot.
+#[derive(Default)]
+struct Created {
+    /// Every created name as written (for "did you mean").
+    names: Vec<String>,
+    /// Upper case, full and every tail after a dot.
+    forms: HashSet<String>,
+}
+
+impl Created {
+    fn add(&mut self, name: &str) {
+        self.names.push(name.to_string());
+        let upper = name.trim_start_matches('.').to_ascii_uppercase();
+        let mut rest = upper.as_str();
+        loop {
+            self.forms.insert(rest.to_string());
+            match rest.split_once('.') {
+                Some((_, tail)) => rest = tail,
+                None => break,
+            }
+        }
+    }
+
+    fn has(&self, name: &str) -> bool {
+        self.forms
+            .contains(&name.trim_start_matches('.').to_ascii_uppercase())
+    }
+
+    fn suggestions(&self, name: &str) -> String {
+        did_you_mean(&closest(name, self.names.iter().map(String::as_str)))
+    }
+}
+
+/// Reports every name the expressions use that no command creates.
+pub(crate) fn check_names(
+    dataset: &Dataset,
+    expressions: &[FoundExpression],
+    trees: &[Option<Checked>],
+    problems: &mut Vec<Problem>,
+) {
+    let (mut markers, mut objects) = (Created::default(), Created::default());
+    for statement in &dataset.statements {
+        if !statement.name.split(' ').any(|word| word == "CREATE") {
+            continue;
+        }
+        for argument in &statement.arguments {
+            let Value::List(items) = &argument.value else {
+                continue;
+            };
+            let Some(name) = argument.keyword.strip_suffix("_NAME") else {
+                continue;
+            };
+            for item in items {
+                if name == "MARKER" {
+                    markers.add(&item.text);
+                }
+                objects.add(&item.text);
+            }
+        }
+    }
+    for (index, found) in expressions.iter().enumerate() {
+        let Some(tree) = &trees[index] else { continue };
+        let Some((_, embedded)) = dataset.statements[found.statement]
+            .expressions()
+            .find(|(argument, _)| argument.keyword == found.keyword)
+        else {
+            continue;
+        };
+        let mut report = |what: &'static str, name: &str, created: &Created, span: Span| {
+            problems.push(Problem {
+                error: ModelError::NotCreated {
+                    what,
+                    name: name.to_string(),
+                    suggestions: created.suggestions(name),
+                    span: embedded.file_span(span),
+                },
+                statement: Some(found.statement),
+                expression: Some(index),
+            });
+        };
+        visit(&tree.root, &mut |node| match &node.kind {
+            NodeKind::Variable(name) if !objects.has(name) => {
+                report("variable", name, &objects, node.span);
+            }
+            NodeKind::Call(function, args) => {
+                for (position, arg) in args.iter().enumerate() {
+                    match (arg, function.signature().kind(position)) {
+                        (Argument::Marker(Reference::Name(name), span), ArgKind::Marker)
+                            if !markers.has(name) =>
+                        {
+                            report("marker", name, &markers, *span);
+                        }
+                        (Argument::Object(Reference::Name(name), span), ArgKind::Object)
+                            if !objects.has(name) =>
+                        {
+                            report("object", name, &objects, *span);
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            _ => {}
+        });
+    }
+}
