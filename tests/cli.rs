@@ -625,3 +625,68 @@ fn completions_and_manual_pages() {
         }
     ));
 }
+
+/// Issue 18, items 4 to 8, as a user meets them: `eval --model` at the time
+/// given, on an expression of the user's, with a DIFF's IC and the Hessian
+/// in text; `check` with every error of an expression in jsonl, names it is
+/// told exist, a dataset known by its first line whatever its extension, a
+/// missing file among others, and a file saved in Windows-1252.
+#[test]
+fn model_files_as_an_engineer_meets_them() {
+    let dir = std::env::temp_dir().join(format!("mbexpr-engineer-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = "Adams View model name: timed\nPART/1, GROUND\nPART/2, QG = 1, 0, 0\nMARKER/10, PART = 2\nMARKER/20, PART = 1\nDIFF/3, IC = 0.25, FUNCTION = 1\nVARIABLE/1, FUNCTION = STEP(TIME, 1, 0, 2, 10) + DIF(3)\nSFORCE/1, I = 10, J = 20, FUNCTION = VARVAL(1)*DM(10, 20)**2\n";
+    let dat = dir.join("timed.dat");
+    std::fs::write(&dat, model).unwrap();
+    let mut latin = b"Adams View model name: caf\xe9\n! r\xe9glage \xb0C\nPART/1, GROUND\nVARIABLE/1, FUNCTION = STPE(TIME, 0, 0, 1, 1) + LOG(0)\n".to_vec();
+    latin.extend_from_slice(b"VARIABLE/2, FUNCTION = 2 \xb0\n");
+    let cp1252 = dir.join("windows.adm");
+    std::fs::write(&cp1252, latin).unwrap();
+    let expressions = dir.join("expressions.txt");
+    std::fs::write(
+        &expressions,
+        "STPE(x)+FOOO(y)+STEP(x,1,0,0,1)\nk*x + TIME\n",
+    )
+    .unwrap();
+    let (dat, cp1252, expressions) = (
+        dat.to_str().unwrap(),
+        cp1252.to_str().unwrap(),
+        expressions.to_str().unwrap(),
+    );
+    let report = check(&["eval", "--model", dat, "--set", "TIME=1.5"], "")
+        + &check(
+            &[
+                "eval",
+                "--model",
+                dat,
+                "DM(10, 20) + DIF(3)",
+                "--wrt",
+                "PART/2.x",
+                "--order",
+                "2",
+            ],
+            "",
+        )
+        + &check(
+            &[
+                "eval",
+                "--model",
+                dat,
+                "--wrt",
+                "PART/2.x,TIME",
+                "--order",
+                "2",
+                "--set",
+                "time=1.5",
+            ],
+            "",
+        )
+        + &check(&["eval", "--model", dat, "--set", "k=1"], "")
+        + &check(&["eval", "--model", dat, "DM(10, 99)"], "")
+        + &check(&["check", dat, "/no/such/file.adm", cp1252], "")
+        + &check(&["check", "--format", "jsonl", expressions], "")
+        + &check(&["check", "--names", "x,y", expressions], "")
+        + &check(&["check", "--kind", "expressions", dat], "");
+    std::fs::remove_dir_all(&dir).unwrap();
+    insta::assert_snapshot!(report.replace(dir.to_str().unwrap(), "DIR"));
+}

@@ -282,6 +282,33 @@ impl<T: Number> Evaluator<'_, T> {
         Ok(())
     }
 
+    /// The result with the value of every input given as a number of this
+    /// type: a dual number brings the derivatives of an input that was
+    /// itself computed (a model's VARIABLE, evaluated before the
+    /// expressions that read it), so that they flow on by the chain rule.
+    pub fn evaluate_numbers(&mut self, inputs: &[T]) -> Result<T, EvalError> {
+        let program = self.program;
+        if inputs.len() != program.inputs.len() {
+            return Err(EvalError::InputCount {
+                expected: program.inputs.len(),
+                found: inputs.len(),
+            });
+        }
+        for load in &program.loads {
+            let index = load.input as usize;
+            let value = &inputs[index];
+            if !value.is_all_finite() {
+                return Err(EvalError::InputNotFinite {
+                    name: program.inputs[index].clone(),
+                    value: value.value(),
+                    span: load.span,
+                });
+            }
+            self.slots[load.slot as usize] = value.clone();
+        }
+        self.run()
+    }
+
     /// Runs the program over the loaded slots.
     fn run(&mut self) -> Result<T, EvalError> {
         self.run_observed(|_, _| {})

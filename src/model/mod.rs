@@ -5,6 +5,7 @@
 
 mod adm;
 mod cmd;
+mod encoding;
 mod initial;
 mod references;
 mod text;
@@ -14,6 +15,7 @@ pub mod vocabulary;
 
 use thiserror::Error;
 
+pub use encoding::{Decoded, decode};
 pub use initial::{ConfigurationError, initial_scene};
 pub use references::{FoundExpression, ModelCheck, ModelError, Problem, check_model};
 pub use text::Embedded;
@@ -44,6 +46,43 @@ impl FileKind {
             _ => None,
         }
     }
+
+    /// The kind of a file named `path` holding `text`: by its extension
+    /// when that is `.adm`, `.acf` or `.cmd`, else by its first lines
+    /// (`.dat`, `.mac`, no extension). A solver dataset is known by its
+    /// title, `Adams View model name: ...` as Adams writes it, or by a first
+    /// statement line (`UNITS/FORCE = NEWTON`, `PART/1, GROUND`) after a
+    /// title; a command file by a statement on its first line. `None`: a
+    /// file of expressions, one a line.
+    pub fn detect(path: &str, text: &str) -> Option<FileKind> {
+        if let Some(kind) = FileKind::of_path(path) {
+            return Some(kind);
+        }
+        let mut lines = text.lines();
+        let title = lines.next()?.to_ascii_lowercase();
+        if title.contains("adams") && title.contains("model name") {
+            return Some(FileKind::Adm);
+        }
+        if is_statement_line(&title, vocabulary::COMMANDS) {
+            return Some(FileKind::Acf);
+        }
+        let first = lines
+            .map(str::trim)
+            .find(|line| !line.is_empty() && !line.starts_with('!'))?;
+        is_statement_line(first, vocabulary::DATASET_STATEMENTS).then_some(FileKind::Adm)
+    }
+}
+
+/// Whether `line` reads as a statement of the vocabulary `known`: a known
+/// name, a slash, and a `,` or `=` before any bracket (`PART/1, GROUND`;
+/// never an expression such as `PART/2`).
+fn is_statement_line(line: &str, known: &[&str]) -> bool {
+    let Some((name, rest)) = line.trim().split_once('/') else {
+        return false;
+    };
+    let name = name.trim().to_ascii_uppercase();
+    let head = rest.split('(').next().unwrap_or_default();
+    vocabulary::statement_name(&name, known).is_some() && head.contains([',', '='])
 }
 
 /// A model file as statements.

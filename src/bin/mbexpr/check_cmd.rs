@@ -3,10 +3,12 @@
 use std::io::{self, Read, Write};
 
 use clap::ValueEnum;
+use serde_json::{Value, json};
 
 use mbexpr::model::{self, FileKind};
+use mbexpr::{CompileError, LineIndex, Span};
 
-use crate::render::{diagnostic, line_diagnostics};
+use crate::render::{diagnostics, line_diagnostics};
 use crate::{Fatal, Outcome};
 
 /// Output formats of `check`.
@@ -14,56 +16,120 @@ use crate::{Fatal, Outcome};
 pub enum Format {
     /// Each error as `FILE:LINE:COL: message` with the line and a caret, then a summary.
     Text,
-    /// One JSON object per expression line.
+    /// One JSON object per expression (with all its errors), and one per
+    /// problem outside an expression.
     Jsonl,
+}
+
+/// What a file holds, when its extension and first lines do not say it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Kind {
+    /// A solver dataset: a title line, then statements.
+    Adm,
+    /// A solver command file.
+    Acf,
+    /// An Adams View command file.
+    Cmd,
+    /// Expressions, one a line.
+    Expressions,
 }
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Files with one expression per line; `-` reads standard input.
+    /// Files of expressions, one a line (`!` starts a comment line), or model
+    /// files (.adm, .acf, .cmd, or a dataset known by its first lines); `-`
+    /// reads standard input.
     #[arg(required = true)]
     files: Vec<String>,
     /// Output format.
     #[arg(long, value_enum, default_value = "text")]
     format: Format,
+    /// What every file holds, whatever its name and first lines say.
+    #[arg(long, value_enum)]
+    kind: Option<Kind>,
+    /// The names an expression file's expressions may use (TIME and MODE
+    /// always): any other name is an error, with the close names. Without
+    /// it, the names are listed in a note.
+    #[arg(long, value_name = "NAME,NAME", value_delimiter = ',')]
+    names: Option<Vec<String>>,
 }
 
-/// A problem in one expression: its span within the line and the message.
+/// A problem in one expression: its span within the file and the message.
 struct Problem {
-    span: mbexpr::Span,
+    span: Span,
     message: String,
 }
 
-/// Parses and checks one expression, returning its problems in source order.
-fn problems(expression: &str) -> Vec<Problem> {
-    match mbexpr::parse(expression) {
-        Err(error) => vec![Problem {
+/// Parses and checks one expression, returning its problems in source
+/// order; with `names`, a name outside them is a problem too. Names used
+/// and not bound are added to `unbound`.
+fn problems(expression: &str, names: Option<&[String]>, unbound: &mut Vec<String>) -> Vec<Problem> {
+    let tree = match mbexpr::parse(expression) {
+        Err(error) => {
+            return vec![Problem {
+                span: error.span(),
+                message: error.to_string(),
+            }];
+        }
+        Ok(tree) => tree,
+    };
+    let (checked, errors) = mbexpr::check::check_partial(&tree);
+    let mut found: Vec<Problem> = errors
+        .iter()
+        .map(|error| Problem {
             span: error.span(),
             message: error.to_string(),
-        }],
-        Ok(tree) => match mbexpr::check(&tree) {
-            Ok(_) => Vec::new(),
-            Err(errors) => errors
-                .into_iter()
-                .map(|error| Problem {
-                    span: error.span(),
-                    message: error.to_string(),
-                })
-                .collect(),
-        },
+        })
+        .collect();
+    match names {
+        Some(names) => {
+            let mut inputs = names.to_vec();
+            inputs.push("TIME".to_string());
+            if let Err(errors) = mbexpr::compile(&checked, &inputs) {
+                found.extend(
+                    errors
+                        .iter()
+                        .filter(|error| matches!(error, CompileError::UnboundVariable { .. }))
+                        .map(|error| Problem {
+                            span: error.span(),
+                            message: error.to_string(),
+                        }),
+                );
+                found.sort_by_key(|problem| problem.span.start);
+            }
+        }
+        None => {
+            for name in checked.variables() {
+                if !unbound.iter().any(|known| known.eq_ignore_ascii_case(name)) {
+                    unbound.push(name.to_string());
+                }
+            }
+        }
     }
+    found
 }
 
-fn read(file: &str) -> Result<String, Fatal> {
+/// The text of `file`, decoded (`-` is standard input).
+fn read(file: &str) -> Result<String, String> {
+    let mut bytes = Vec::new();
     if file == "-" {
-        let mut text = String::new();
         io::stdin()
-            .read_to_string(&mut text)
-            .map_err(|error| Fatal::usage(format!("error: cannot read standard input: {error}")))?;
-        return Ok(text);
+            .read_to_end(&mut bytes)
+            .map_err(|error| format!("cannot read standard input: {error}"))?;
+    } else {
+        bytes = std::fs::read(file).map_err(|error| format!("cannot read {file}: {error}"))?;
     }
-    std::fs::read_to_string(file)
-        .map_err(|error| Fatal::usage(format!("error: cannot read {file}: {error}")))
+    let decoded = model::decode(&bytes);
+    if decoded.is_converted() {
+        eprintln!("note: {file} is not UTF-8: read as {}", decoded.encoding);
+    }
+    Ok(decoded.text.into_owned())
+}
+
+/// `{"line", "column", "message"}` of a problem at `span`.
+fn error_json(lines: &LineIndex<'_>, span: Span, message: String) -> Value {
+    let at = lines.location(span.start);
+    json!({"line": at.line, "column": at.column, "message": message})
 }
 
 /// Checks a model file: every problem at its place, then a summary line.
@@ -77,26 +143,22 @@ fn check_model_file(
 ) -> Result<(usize, usize), Fatal> {
     let dataset = model::read(text, kind);
     let report = model::check_model(text, &dataset);
+    let lines = LineIndex::new(text);
     let statement_fields =
         |index: Option<usize>| match index.map(|index| &dataset.statements[index]) {
             Some(statement) => (
-                serde_json::Value::String(statement.name.clone()),
-                statement
-                    .id
-                    .map_or(serde_json::Value::Null, serde_json::Value::from),
+                Value::String(statement.name.clone()),
+                statement.id.map_or(Value::Null, Value::from),
             ),
-            None => (serde_json::Value::Null, serde_json::Value::Null),
+            None => (Value::Null, Value::Null),
         };
     match format {
         Format::Text => {
-            for problem in &report.problems {
-                let message = problem.error.to_string();
-                write!(
-                    out,
-                    "{}",
-                    diagnostic(origin, text, problem.error.span(), &message)
-                )?;
-            }
+            let problems = report
+                .problems
+                .iter()
+                .map(|problem| (problem.error.span(), problem.error.to_string()));
+            write!(out, "{}", diagnostics(origin, text, problems))?;
             writeln!(
                 out,
                 "{origin}: {}, {}, {}",
@@ -106,28 +168,24 @@ fn check_model_file(
             )?;
         }
         Format::Jsonl => {
-            for (index, found) in report.expressions.iter().enumerate() {
+            let mut errors: Vec<Vec<Value>> = vec![Vec::new(); report.expressions.len()];
+            for problem in &report.problems {
+                if let Some(index) = problem.expression {
+                    let span = problem.error.span();
+                    errors[index].push(error_json(&lines, span, problem.error.to_string()));
+                }
+            }
+            for (found, errors) in report.expressions.iter().zip(errors) {
                 let (statement, id) = statement_fields(Some(found.statement));
-                let location = mbexpr::Location::of(text, found.span.start);
-                let mut record = serde_json::json!({
+                let record = json!({
                     "file": origin,
-                    "line": location.line,
+                    "line": lines.location(found.span.start).line,
                     "statement": statement,
                     "id": id,
                     "keyword": found.keyword,
-                    "ok": true,
+                    "ok": errors.is_empty(),
+                    "errors": errors,
                 });
-                if let Some(problem) = report
-                    .problems
-                    .iter()
-                    .find(|problem| problem.expression == Some(index))
-                {
-                    let at = mbexpr::Location::of(text, problem.error.span().start);
-                    record["ok"] = false.into();
-                    record["line"] = at.line.into();
-                    record["column"] = at.column.into();
-                    record["error"] = problem.error.to_string().into();
-                }
                 writeln!(out, "{record}")?;
             }
             for problem in report
@@ -136,15 +194,14 @@ fn check_model_file(
                 .filter(|problem| problem.expression.is_none())
             {
                 let (statement, id) = statement_fields(problem.statement);
-                let at = mbexpr::Location::of(text, problem.error.span().start);
-                let record = serde_json::json!({
+                let span = problem.error.span();
+                let record = json!({
                     "file": origin,
-                    "line": at.line,
+                    "line": lines.location(span.start).line,
                     "statement": statement,
                     "id": id,
                     "ok": false,
-                    "column": at.column,
-                    "error": problem.error.to_string(),
+                    "errors": [error_json(&lines, span, problem.error.to_string())],
                 });
                 writeln!(out, "{record}")?;
             }
@@ -153,71 +210,127 @@ fn check_model_file(
     Ok((report.expressions.len(), report.problems.len()))
 }
 
+/// Checks a file of expressions, one a line. Returns the number of
+/// expressions and of errors.
+fn check_expression_file(
+    args: &Args,
+    origin: &str,
+    text: &str,
+    unbound: &mut Vec<String>,
+    out: &mut impl Write,
+) -> Result<(usize, usize), Fatal> {
+    let lines = LineIndex::new(text);
+    let (mut expressions, mut errors) = (0, 0);
+    let mut offset = 0;
+    for (index, raw_line) in text.split_inclusive('\n').enumerate() {
+        let line_start = offset;
+        offset += raw_line.len();
+        let line = raw_line.trim_end_matches(['\n', '\r']);
+        let trimmed = line.trim_start();
+        if trimmed.is_empty() || trimmed.starts_with('!') {
+            continue;
+        }
+        expressions += 1;
+        let expression = mbexpr::syntax::without_comment(line);
+        let found = problems(expression, args.names.as_deref(), unbound);
+        errors += found.len();
+        match args.format {
+            Format::Text => {
+                let problems = found
+                    .into_iter()
+                    .map(|problem| (problem.span, problem.message));
+                write!(out, "{}", line_diagnostics(origin, index + 1, line, problems))?;
+            }
+            Format::Jsonl => {
+                let errors: Vec<Value> = found
+                    .into_iter()
+                    .map(|problem| {
+                        error_json(&lines, problem.span.shifted(line_start), problem.message)
+                    })
+                    .collect();
+                let record = json!({
+                    "file": origin,
+                    "line": index + 1,
+                    "ok": errors.is_empty(),
+                    "errors": errors,
+                });
+                writeln!(out, "{record}")?;
+            }
+        }
+    }
+    Ok((expressions, errors))
+}
+
 /// `3 errors`, `1 error`.
 fn plural(count: usize, word: &str) -> String {
     format!("{count} {word}{}", if count == 1 { "" } else { "s" })
 }
 
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
-    let (mut expressions, mut errors) = (0usize, 0usize);
+    let (mut expressions, mut errors, mut unreadable) = (0usize, 0usize, 0usize);
     let mut models = 0;
+    let mut unbound = Vec::new();
     for file in &args.files {
-        let text = read(file)?;
+        let text = match read(file) {
+            Ok(text) => text,
+            // One file that cannot be read does not stop the others.
+            Err(message) => {
+                out.flush()?;
+                eprintln!("error: {message}");
+                unreadable += 1;
+                continue;
+            }
+        };
         let origin = if file == "-" {
             "<stdin>"
         } else {
             file.as_str()
         };
-        if let Some(kind) = FileKind::of_path(file) {
-            let (found, problems) = check_model_file(origin, &text, kind, args.format, out)?;
-            expressions += found;
-            errors += problems;
-            models += 1;
-            continue;
+        let kind = match args.kind {
+            Some(Kind::Adm) => Some(FileKind::Adm),
+            Some(Kind::Acf) => Some(FileKind::Acf),
+            Some(Kind::Cmd) => Some(FileKind::Cmd),
+            Some(Kind::Expressions) => None,
+            None => FileKind::detect(file, &text),
+        };
+        let (found, problems) = match kind {
+            Some(kind) => {
+                models += 1;
+                check_model_file(origin, &text, kind, args.format, out)?
+            }
+            None => check_expression_file(args, origin, &text, &mut unbound, out)?,
+        };
+        expressions += found;
+        errors += problems;
+    }
+    if args.format == Format::Text {
+        // A single model file has its own summary line already.
+        if !(models == 1 && args.files.len() == 1) {
+            let mut summary = format!(
+                "{}, {}",
+                plural(expressions, "expression"),
+                plural(errors, "error")
+            );
+            if unreadable > 0 {
+                summary += &format!(", {} not read", plural(unreadable, "file"));
+            }
+            writeln!(out, "{summary}")?;
         }
-        for (index, raw_line) in text.split_inclusive('\n').enumerate() {
-            let line = raw_line.trim_end_matches(['\n', '\r']);
-            let trimmed = line.trim_start();
-            if trimmed.is_empty() || trimmed.starts_with('!') {
-                continue;
-            }
-            expressions += 1;
-            let found = problems(mbexpr::syntax::without_comment(line));
-            errors += found.len();
-            match args.format {
-                Format::Text => {
-                    let problems = found
-                        .into_iter()
-                        .map(|problem| (problem.span, problem.message));
-                    let rendered = line_diagnostics(origin, index + 1, line, problems);
-                    write!(out, "{rendered}")?;
-                }
-                Format::Jsonl => {
-                    let record = match found.first() {
-                        None => serde_json::json!({"file": origin, "line": index + 1, "ok": true}),
-                        Some(problem) => serde_json::json!({
-                            "file": origin,
-                            "line": index + 1,
-                            "ok": false,
-                            "column": mbexpr::Location::of(line, problem.span.start).column,
-                            "error": problem.message,
-                        }),
-                    };
-                    writeln!(out, "{record}")?;
-                }
-            }
+        if !unbound.is_empty() {
+            writeln!(
+                out,
+                "note: names with no value here: {} (give --names to check them)",
+                unbound.join(", ")
+            )?;
         }
     }
-    // A single model file has its own summary line already.
-    if args.format == Format::Text && !(models == 1 && args.files.len() == 1) {
-        writeln!(
-            out,
-            "{}, {}",
-            plural(expressions, "expression"),
-            plural(errors, "error")
-        )?;
-    }
-    Ok(if errors == 0 {
+    Ok(if unreadable > 0 {
+        out.flush()?;
+        return Err(Fatal::usage(format!(
+            "error: {} not read",
+            plural(unreadable, "file")
+        )));
+    } else if errors == 0 {
         Outcome::Success
     } else {
         Outcome::Failure

@@ -31,16 +31,18 @@ pub enum Format {
 #[derive(clap::Args)]
 pub struct Args {
     /// The expression, e.g. "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
-    /// with --scene and no expression, every named expression of the scene.
-    /// It may start with a minus: `mbexpr eval "-2**2"`.
+    /// with --scene and no expression, every named expression of the scene;
+    /// with --model, evaluated in the model (`DM(68, 64)`) instead of the
+    /// model's own expressions. It may start with a minus: `mbexpr eval "-2**2"`.
     #[arg(allow_hyphen_values = true)]
     pub expression: Option<String>,
     /// A scene (TOML): bodies, markers, time, variables and named expressions.
     #[arg(long, value_name = "FILE.toml", conflicts_with = "model")]
     pub scene: Option<String>,
-    /// A solver dataset: evaluate every expression in it at its initial
-    /// configuration (TIME = 0); --wrt names part states such as PART/3.x.
-    #[arg(long, value_name = "FILE.adm", conflicts_with_all = ["expression", "points"])]
+    /// A solver dataset: evaluate every expression in it (or the expression
+    /// given) at its initial configuration, at TIME = 0 or --set TIME=...;
+    /// --wrt names TIME or part states such as PART/3.x.
+    #[arg(long, value_name = "FILE.adm", conflicts_with = "points")]
     model: Option<String>,
     /// A variable's value, NAME=VALUE (repeatable; names are case-insensitive; TIME too).
     #[arg(long = "set", value_name = "NAME=VALUE")]

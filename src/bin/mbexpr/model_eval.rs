@@ -1,17 +1,24 @@
-//! `mbexpr eval --model FILE.adm`: every expression of a dataset evaluated
-//! at the model's initial configuration (TIME = 0), one row per expression.
+//! `mbexpr eval --model FILE.adm [EXPR]`: every expression of a dataset, or
+//! the user's expression, evaluated at the model's initial configuration
+//! (TIME = 0 unless `--set TIME=...`), one row per expression. Each VARIABLE
+//! is evaluated once, after the VARIABLEs it reads, and `VARVAL` passes its
+//! value on with its derivatives.
 
+use std::collections::HashMap;
 use std::io::Write;
 
-use mbexpr::model::{self, FileKind};
-use mbexpr::{Order, Scene};
+use mbexpr::model::{self, FileKind, FoundExpression};
+use mbexpr::number::{Directional, Number};
+use mbexpr::{Checked, Evaluation, LineIndex, Order, Scene};
+use num_dual::{Dual2DVec64, DualDVec64};
 use serde_json::{Value, json};
 
-use crate::eval_cmd::{Args, Format, show, to_json};
-use crate::render::diagnostic;
+use crate::eval_cmd::{Args, Format, parse_assignment, show, to_json};
+use crate::render::{diagnostic, diagnostics};
 use crate::{Fatal, Outcome};
 
 /// Why a row has no value.
+#[derive(Clone)]
 struct NoValue {
     message: String,
     /// Nothing is wrong: only a running solver has the value, or mbexpr
@@ -28,51 +35,196 @@ impl NoValue {
     }
 }
 
-/// One row: the value and derivatives, or why there are none.
-fn evaluate_row(
-    scene: &Scene,
-    checked: &mbexpr::Checked,
-    wrt: &[String],
-    order: Order,
-) -> Result<mbexpr::Evaluation, NoValue> {
-    let mut inputs = scene.input_names();
-    inputs.extend(wrt.iter().cloned());
-    let program = mbexpr::compile_in_scene(checked, &inputs, scene).map_err(|errors| NoValue {
-        message: errors[0].to_string(),
-        needs_solver: errors.iter().all(mbexpr::CompileError::is_unavailable),
-    })?;
-    let values = scene.values(program.inputs()).map_err(NoValue::error)?;
-    let directions: Vec<usize> = wrt
-        .iter()
-        .filter_map(|name| program.input_index(name))
-        .collect();
-    program
-        .evaluate(&values, &directions, order)
-        .map_err(NoValue::error)
+/// What every evaluation of one run shares: the scene, its input names,
+/// the derivative directions and how to make and read numbers of type `T`.
+struct Context<'a, T> {
+    scene: &'a Scene,
+    inputs: Vec<String>,
+    wrt: &'a [String],
+    /// A value as a number of type `T`, seeded as direction `Some(j)`.
+    seed: fn(f64, Option<usize>, usize) -> T,
+    /// The values of the VARIABLEs evaluated so far.
+    variables: HashMap<u64, Result<T, NoValue>>,
 }
 
-pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fatal> {
-    let kind = match FileKind::of_path(path) {
+impl<T: Number> Context<'_, T> {
+    /// The value of `checked` with the VARIABLEs it reads from
+    /// [`Context::variables`].
+    fn evaluate(&self, checked: &Checked) -> Result<T, NoValue> {
+        let program =
+            mbexpr::compile_in_model(checked, &self.inputs, self.scene).map_err(|errors| {
+                NoValue {
+                    message: errors[0].to_string(),
+                    needs_solver: errors.iter().all(mbexpr::CompileError::is_unavailable),
+                }
+            })?;
+        let count = self.wrt.len();
+        let values = program
+            .inputs()
+            .iter()
+            .map(|name| match variable_id(name) {
+                Some(id) => match self.variables.get(&id) {
+                    Some(Ok(value)) => Ok(value.clone()),
+                    Some(Err(no_value)) => Err(NoValue {
+                        message: format!("VARVAL({id}) has no value: {}", no_value.message),
+                        needs_solver: no_value.needs_solver,
+                    }),
+                    None => Err(NoValue::error(format!("VARIABLE/{id} depends on itself"))),
+                },
+                None => {
+                    let value = self.scene.value_of(name).map_err(NoValue::error)?;
+                    let direction = self
+                        .wrt
+                        .iter()
+                        .position(|known| known.eq_ignore_ascii_case(name));
+                    Ok((self.seed)(value, direction, count))
+                }
+            })
+            .collect::<Result<Vec<T>, NoValue>>()?;
+        program
+            .evaluator::<T>()
+            .evaluate_numbers(&values)
+            .map_err(NoValue::error)
+    }
+}
+
+/// The VARIABLE id of an input named `VARVAL(id)` by `compile_in_model`.
+fn variable_id(name: &str) -> Option<u64> {
+    name.strip_prefix("VARVAL(")?
+        .strip_suffix(')')?
+        .parse()
+        .ok()
+}
+
+/// Every row (and the user's expression, last) evaluated over numbers of
+/// type `T`, read into [`Evaluation`]s by `finish`.
+fn evaluate_all<T: Number>(
+    mut context: Context<'_, T>,
+    rows: &[Option<&Checked>],
+    finish: impl Fn(&T) -> Evaluation,
+) -> Vec<Result<Evaluation, NoValue>> {
+    let (order, looped) = model::evaluation_order(&context.scene.statements.variables);
+    for id in looped {
+        let message = format!("VARIABLE/{id} depends on itself (see mbexpr check)");
+        context.variables.insert(id, Err(NoValue::error(message)));
+    }
+    for id in order {
+        let value = context.evaluate(&context.scene.statements.variables[&id]);
+        context.variables.insert(id, value);
+    }
+    rows.iter()
+        .map(|row| match row {
+            Some(checked) => context.evaluate(checked).map(|value| finish(&value)),
+            None => Err(NoValue::error(
+                "the expression does not check (see mbexpr check)",
+            )),
+        })
+        .collect()
+}
+
+/// [`evaluate_all`] over the number type `order` needs.
+fn evaluate_rows(
+    scene: &Scene,
+    inputs: Vec<String>,
+    wrt: &[String],
+    order: Order,
+    rows: &[Option<&Checked>],
+) -> Vec<Result<Evaluation, NoValue>> {
+    fn context<'a, T: Directional>(
+        scene: &'a Scene,
+        inputs: Vec<String>,
+        wrt: &'a [String],
+    ) -> Context<'a, T> {
+        Context {
+            scene,
+            inputs,
+            wrt,
+            seed: |value, direction, count| match direction {
+                Some(direction) => T::variable(value, direction, count),
+                None => T::from(value),
+            },
+            variables: HashMap::new(),
+        }
+    }
+    let count = wrt.len();
+    match order {
+        Order::Value => {
+            let context = Context::<f64> {
+                scene,
+                inputs,
+                wrt,
+                seed: |value, _, _| value,
+                variables: HashMap::new(),
+            };
+            evaluate_all(context, rows, |value| Evaluation {
+                value: *value,
+                gradient: None,
+                hessian: None,
+            })
+        }
+        Order::Gradient => evaluate_all(context::<DualDVec64>(scene, inputs, wrt), rows, |value| {
+            Evaluation {
+                value: value.value(),
+                gradient: Some(value.gradient(count)),
+                hessian: None,
+            }
+        }),
+        Order::Hessian => evaluate_all(context::<Dual2DVec64>(scene, inputs, wrt), rows, |value| {
+            Evaluation {
+                value: value.value(),
+                gradient: Some(value.gradient(count)),
+                hessian: value.hessian(count),
+            }
+        }),
+    }
+}
+
+/// The text of the model file and its statements.
+fn read_model(path: &str) -> Result<(String, model::Dataset), Fatal> {
+    let bytes = std::fs::read(path)
+        .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
+    let decoded = model::decode(&bytes);
+    if decoded.is_converted() {
+        eprintln!("note: {path} is not UTF-8: read as {}", decoded.encoding);
+    }
+    let text = decoded.text.into_owned();
+    let kind = match FileKind::detect(path, &text) {
         Some(kind @ (FileKind::Adm | FileKind::Acf)) => kind,
         _ => {
             return Err(Fatal::usage(format!(
-                "error: --model {path}: give a solver dataset (.adm) or command file (.acf)"
+                "error: --model {path}: give a solver dataset (.adm, or a file whose first lines are a dataset's) or command file (.acf)"
             )));
         }
     };
-    let text = std::fs::read_to_string(path)
-        .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
     let dataset = model::read(&text, kind);
+    Ok((text, dataset))
+}
+
+pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fatal> {
+    let (text, dataset) = read_model(path)?;
     let report = model::check_model(&text, &dataset);
-    let scene = model::initial_scene(&dataset, &report).map_err(|errors| {
-        let texts: Vec<String> = errors
+    let lines = LineIndex::new(&text);
+    let mut scene = model::initial_scene(&dataset, &report).map_err(|errors| {
+        let problems = errors
             .iter()
-            .map(|error| diagnostic(path, &text, error.span(), &error.to_string()))
-            .collect();
-        Fatal::input(texts.concat())
+            .map(|error| (error.span(), error.to_string()));
+        Fatal::input(diagnostics(path, &text, problems))
     })?;
+    for assignment in &args.set {
+        let (name, value) = parse_assignment(assignment)?;
+        match mbexpr::catalog::SystemVariable::lookup(&name) {
+            Some(mbexpr::catalog::SystemVariable::Time) => scene.time = value,
+            Some(mbexpr::catalog::SystemVariable::Mode) => scene.mode = Some(value),
+            None => {
+                return Err(Fatal::usage(format!(
+                    "error: --set {assignment}: a model's expressions read only TIME and MODE (its states are PART/id.x ..., set by its statements)"
+                )));
+            }
+        }
+    }
     for name in &args.wrt {
-        if scene.parse_state_name(name).is_none() {
+        let state = scene.parse_state_name(name).is_some();
+        if !state && !name.eq_ignore_ascii_case("TIME") {
             return Err(Fatal::usage(format!(
                 "error: --wrt {name}: {}",
                 not_a_state(&scene, name)
@@ -84,8 +236,38 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
         None if args.wrt.is_empty() => Order::Value,
         None => Order::Gradient,
     };
+    let mut inputs = scene.input_names();
+    inputs.extend(args.wrt.iter().cloned());
+
+    // The user's expression, or every expression of the model.
+    let own = match &args.expression {
+        Some(source) => {
+            let fail = |span, message: String| Fatal::input(diagnostic("", source, span, &message));
+            let tree =
+                mbexpr::parse(source).map_err(|error| fail(error.span(), error.to_string()))?;
+            let checked = mbexpr::check(&tree).map_err(|errors| {
+                let texts: Vec<String> = errors
+                    .iter()
+                    .map(|error| diagnostic("", source, error.span(), &error.to_string()))
+                    .collect();
+                Fatal::input(texts.concat())
+            })?;
+            Some((source.clone(), checked))
+        }
+        None => None,
+    };
+    let rows: Vec<Option<&Checked>> = match &own {
+        Some((_, checked)) => vec![Some(checked)],
+        None => report
+            .expressions
+            .iter()
+            .map(|found| found.checked.as_ref())
+            .collect(),
+    };
+    let results = evaluate_rows(&scene, inputs, &args.wrt, order, &rows);
+
     let (mut evaluated, mut need_solver, mut failures) = (0, 0, 0);
-    let mut rows = Vec::new();
+    let mut records = Vec::new();
     if args.format == Format::Text {
         write!(out, "{:<28} {:>24}", "statement", "value")?;
         for name in &args.wrt {
@@ -93,26 +275,17 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
         }
         writeln!(out)?;
     }
-    for found in &report.expressions {
-        let statement = &dataset.statements[found.statement];
-        let result = match &found.checked {
-            Some(checked) => evaluate_row(&scene, checked, &args.wrt, order),
-            None => Err(NoValue::error(
-                "the expression does not check (see mbexpr check)",
-            )),
-        };
-        match &result {
+    for (index, result) in results.iter().enumerate() {
+        match result {
             Ok(_) => evaluated += 1,
             Err(no_value) if no_value.needs_solver => need_solver += 1,
             Err(_) => failures += 1,
         }
-        let mut record = json!({
-            "statement": statement.name,
-            "id": statement.id,
-            "keyword": found.keyword,
-            "line": mbexpr::Location::of(&text, found.span.start).line,
-        });
-        let fields = match &result {
+        let (label, mut record) = match &own {
+            Some((source, _)) => (source.clone(), json!({"expression": source})),
+            None => row_fields(&dataset, &report.expressions[index], &lines),
+        };
+        let fields = match result {
             Ok(evaluation) => to_json(evaluation, &args.wrt),
             Err(no_value) if no_value.needs_solver => json!({"needs_solver": no_value.message}),
             Err(no_value) => json!({"error": no_value.message}),
@@ -122,28 +295,17 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
         }
         match args.format {
             Format::Jsonl => writeln!(out, "{record}")?,
-            Format::Json => rows.push(record),
-            Format::Text => {
-                let label = format!("{} {}", statement.label(), found.keyword);
-                match &result {
-                    Ok(evaluation) => {
-                        write!(out, "{label:<28} {:>24}", show(evaluation.value))?;
-                        for entry in evaluation.gradient.iter().flatten() {
-                            write!(out, " {:>24}", show(*entry))?;
-                        }
-                        writeln!(out)?;
-                    }
-                    Err(no_value) => writeln!(out, "{label:<28} {}", no_value.message)?,
-                }
-            }
+            Format::Json => records.push(record),
+            Format::Text => write_row(out, &label, result, &args.wrt)?,
         }
     }
+    let time = show(scene.time);
     match args.format {
-        Format::Json => writeln!(out, "{:#}", Value::Array(rows))?,
+        Format::Json => writeln!(out, "{:#}", Value::Array(records))?,
         Format::Text => writeln!(
             out,
-            "{path}: {} expressions: {evaluated} evaluated at TIME = 0, {need_solver} with no value outside a run, {failures} errors",
-            report.expressions.len(),
+            "{path}: {} expressions: {evaluated} evaluated at TIME = {time}, {need_solver} with no value outside a run, {failures} errors",
+            results.len(),
         )?,
         Format::Jsonl => {}
     }
@@ -154,12 +316,60 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
     })
 }
 
-/// Why `name` is not a state component of a part of `scene`: no part of
-/// that name (with the close ones), or no such component.
-fn not_a_state(scene: &mbexpr::Scene, name: &str) -> String {
+/// The label of a model row in text and its fields in JSON.
+fn row_fields(
+    dataset: &model::Dataset,
+    found: &FoundExpression,
+    lines: &LineIndex<'_>,
+) -> (String, Value) {
+    let statement = &dataset.statements[found.statement];
+    let label = format!("{} {}", statement.label(), found.keyword);
+    let record = json!({
+        "statement": statement.name,
+        "id": statement.id,
+        "keyword": found.keyword,
+        "line": lines.location(found.span.start).line,
+    });
+    (label, record)
+}
+
+/// One row of the text table: the value and gradient, then the Hessian's
+/// rows under it, each labelled with its direction.
+fn write_row(
+    out: &mut impl Write,
+    label: &str,
+    result: &Result<Evaluation, NoValue>,
+    wrt: &[String],
+) -> std::io::Result<()> {
+    let evaluation = match result {
+        Ok(evaluation) => evaluation,
+        Err(no_value) => return writeln!(out, "{label:<28} {}", no_value.message),
+    };
+    write!(out, "{label:<28} {:>24}", show(evaluation.value))?;
+    for entry in evaluation.gradient.iter().flatten() {
+        write!(out, " {:>24}", show(*entry))?;
+    }
+    writeln!(out)?;
+    if let Some(hessian) = &evaluation.hessian {
+        for (name, row) in wrt.iter().zip(hessian.row_iter()) {
+            write!(out, "{:<28} {:>24}", format!("  d/d{name}"), "")?;
+            for entry in row.iter() {
+                write!(out, " {:>24}", show(*entry))?;
+            }
+            writeln!(out)?;
+        }
+    }
+    Ok(())
+}
+
+/// Why `name` is neither TIME nor a state component of a part of `scene`:
+/// no part of that name (with the close ones), or no such component.
+fn not_a_state(scene: &Scene, name: &str) -> String {
     const COMPONENTS: &str = "x y z rx ry rz vx vy vz wx wy wz";
     let Some((part, component)) = name.rsplit_once('.') else {
-        return format!("name a part's state component, such as PART/3.x ({COMPONENTS})");
+        return format!(
+            "name TIME or a part's state component, such as PART/3.x ({COMPONENTS})"
+        );
     };
     if scene.find_body(part).is_none() {
         let parts = scene.bodies.iter().map(|body| body.name.as_str());

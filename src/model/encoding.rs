@@ -1,0 +1,50 @@
+//! The bytes of a file as text. A file is UTF-8 unless a byte-order mark
+//! says UTF-16; a file that is not valid UTF-8 is read as Windows-1252, the
+//! code page of models saved on Windows, in which every byte is a character
+//! (`è`, `°`, `’` in a comment, a title or an `adams_view_name`). Each
+//! character stays one column, so places in messages stay right. A UTF-8
+//! byte-order mark is dropped. (`docs/encoding.md` gives the rule.)
+
+use std::borrow::Cow;
+
+use encoding_rs::{Encoding, WINDOWS_1252};
+
+/// A file's text and the encoding it was read in.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Decoded<'b> {
+    /// The text.
+    pub text: Cow<'b, str>,
+    /// `UTF-8`, `UTF-16LE`, `UTF-16BE` or `windows-1252`.
+    pub encoding: &'static str,
+}
+
+impl Decoded<'_> {
+    /// Whether the file was not UTF-8 (worth a note to the user).
+    pub fn is_converted(&self) -> bool {
+        self.encoding != "UTF-8"
+    }
+}
+
+/// The text of `bytes`, by the rule of the module.
+pub fn decode(bytes: &[u8]) -> Decoded<'_> {
+    if let Some((encoding, bom)) = Encoding::for_bom(bytes) {
+        let (text, _) = encoding.decode_without_bom_handling(&bytes[bom..]);
+        return Decoded {
+            text,
+            encoding: encoding.name(),
+        };
+    }
+    match std::str::from_utf8(bytes) {
+        Ok(text) => Decoded {
+            text: Cow::Borrowed(text),
+            encoding: "UTF-8",
+        },
+        Err(_) => {
+            let (text, _) = WINDOWS_1252.decode_without_bom_handling(bytes);
+            Decoded {
+                text,
+                encoding: WINDOWS_1252.name(),
+            }
+        }
+    }
+}
