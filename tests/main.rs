@@ -20,6 +20,7 @@ mod properties;
 mod reference;
 mod repl;
 mod scene;
+mod span;
 mod spline;
 
 /// `case\n  => check(case)\n` for every non-blank line of `cases`: the

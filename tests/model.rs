@@ -353,3 +353,45 @@ fn loops_in_chains() {
         .collect();
     insta::assert_snapshot!(errors.join("\n"));
 }
+
+/// A file far larger than the readers' pieces (64 KiB) reads as the same
+/// statements, whatever continuation crosses where a piece could end: `,`
+/// lines after comment lines, and `&` at a line's end (issue 19.3: pest's
+/// tokens are those of one piece at a time).
+#[test]
+fn large_files_read_in_pieces_as_whole() {
+    let mut adm = String::from("pieces\n");
+    let mut acf = String::new();
+    let mut cmd = String::new();
+    for id in 1..=3000 {
+        adm += &format!(
+            "VARIABLE/{id}, FUNCTION = STEP(TIME, 0, 0,\n! a comment between\n\n, 1, {id})\n"
+        );
+        acf += &format!("VARIABLE/{id}, FUNCTION = STEP(TIME, 0, 0, &\n! note\n 1, {id})\n");
+        cmd += &format!(
+            "data_element create variable &\n   variable_name = .m.V{id} &\n   function = \"STEP(time, 0, 0,\", &\n   \" 1, {id})\"\n"
+        );
+    }
+    for (text, kind, time) in [
+        (&adm, FileKind::Adm, "TIME"),
+        (&acf, FileKind::Acf, "TIME"),
+        (&cmd, FileKind::Cmd, "time"),
+    ] {
+        let dataset = model::read(text, kind);
+        assert!(
+            dataset.problems.is_empty(),
+            "{kind:?}: {:?}",
+            dataset.problems.first()
+        );
+        assert_eq!(dataset.statements.len(), 3000, "{kind:?}");
+        let report = model::check_model(text, &dataset);
+        for (index, found) in report.expressions.iter().enumerate() {
+            let joined = found.text.split_whitespace().collect::<Vec<_>>().join(" ");
+            assert_eq!(
+                joined,
+                format!("STEP({time}, 0, 0, 1, {})", index + 1),
+                "{kind:?}"
+            );
+        }
+    }
+}

@@ -30,9 +30,10 @@ impl Checked {
     /// (case-insensitively), in order of first use.
     pub fn variables(&self) -> Vec<&str> {
         let mut names: Vec<&str> = Vec::new();
+        let mut seen = std::collections::HashSet::new();
         visit(&self.root, &mut |node| {
             if let NodeKind::Variable(name) = &node.kind
-                && !names.iter().any(|seen| seen.eq_ignore_ascii_case(name))
+                && seen.insert(name.to_ascii_uppercase())
             {
                 names.push(name);
             }
@@ -441,7 +442,7 @@ fn resolve_name(name: &str, span: Span, errors: &mut Vec<CheckError>) -> NodeKin
             span,
         });
     }
-    NodeKind::Variable(name.to_string())
+    NodeKind::Variable(name.into())
 }
 
 fn expected_count(min: usize, max: usize) -> String {

@@ -13,8 +13,9 @@ use crate::span::Span;
 #[grammar = "../grammar/dataset.pest"]
 struct DatasetParser;
 
-fn span_of(pair: &Pair<'_, Rule>) -> Span {
-    Span::new(pair.as_span().start(), pair.as_span().end())
+/// The span of a pair in the file, its piece starting at byte `base`.
+fn span_of(pair: &Pair<'_, Rule>, base: usize) -> Span {
+    Span::new(pair.as_span().start(), pair.as_span().end()).shifted(base)
 }
 
 /// Reads the statements of a dataset (`FileKind::Adm`, with its title line)
@@ -31,39 +32,45 @@ pub fn read(text: &str, kind: FileKind) -> Dataset {
         statements: Vec::new(),
         problems: Vec::new(),
     };
-    let top = match DatasetParser::parse(rule, text) {
-        Ok(mut pairs) => pairs.next().expect("the top rule matched"),
-        Err(error) => {
-            // The grammar takes any line (`unreadable`), so this is rare: a
-            // stray byte pest cannot take at all.
-            let offset = super::pest_offset(&error);
-            dataset.problems.push(ReadError::Unreadable {
-                span: Span::new(offset, offset),
-            });
-            return dataset;
-        }
-    };
-    for pair in top.into_inner() {
-        match pair.as_rule() {
-            Rule::title => dataset.title = Some(pair.as_str().trim_end().to_string()),
-            Rule::statement => dataset.statements.push(statement(pair)),
-            Rule::unreadable => dataset.problems.push(ReadError::Unreadable {
-                span: trimmed_span(&pair),
-            }),
-            _ => {}
+    // Piece by piece, so that pest's tokens are those of one piece at a
+    // time, not of the whole file.
+    for (index, piece) in super::pieces(text, kind).enumerate() {
+        let rule = if index == 0 { rule } else { Rule::acf };
+        let base = piece.start;
+        let top = match DatasetParser::parse(rule, &text[piece]) {
+            Ok(mut pairs) => pairs.next().expect("the top rule matched"),
+            Err(error) => {
+                // The grammar takes any line (`unreadable`), so this is rare: a
+                // stray byte pest cannot take at all.
+                let offset = base + super::pest_offset(&error);
+                dataset.problems.push(ReadError::Unreadable {
+                    span: Span::new(offset, offset),
+                });
+                continue;
+            }
+        };
+        for pair in top.into_inner() {
+            match pair.as_rule() {
+                Rule::title => dataset.title = Some(pair.as_str().trim_end().to_string()),
+                Rule::statement => dataset.statements.push(statement(pair, base)),
+                Rule::unreadable => dataset.problems.push(ReadError::Unreadable {
+                    span: trimmed_span(&pair, base),
+                }),
+                _ => {}
+            }
         }
     }
     dataset
 }
 
 /// The span of a pair without its trailing blanks and line break.
-fn trimmed_span(pair: &Pair<'_, Rule>) -> Span {
-    let span = span_of(pair);
+fn trimmed_span(pair: &Pair<'_, Rule>, base: usize) -> Span {
+    let span = span_of(pair, base);
     Span::new(span.start, span.start + pair.as_str().trim_end().len())
 }
 
-fn statement(pair: Pair<'_, Rule>) -> Statement {
-    let span = trimmed_span(&pair);
+fn statement(pair: Pair<'_, Rule>, base: usize) -> Statement {
+    let span = trimmed_span(&pair, base);
     let mut name = String::new();
     let mut id = None;
     let mut arguments = Vec::new();
@@ -71,8 +78,8 @@ fn statement(pair: Pair<'_, Rule>) -> Statement {
         match part.as_rule() {
             Rule::statement_name => name = part.as_str().to_uppercase(),
             Rule::id => id = part.as_str().parse().ok(),
-            Rule::expression_argument => arguments.push(expression_argument(part)),
-            Rule::plain_argument => arguments.push(plain_argument(part)),
+            Rule::expression_argument => arguments.push(expression_argument(part, base)),
+            Rule::plain_argument => arguments.push(plain_argument(part, base)),
             _ => {}
         }
     }
@@ -84,8 +91,8 @@ fn statement(pair: Pair<'_, Rule>) -> Statement {
     }
 }
 
-fn expression_argument(pair: Pair<'_, Rule>) -> Argument {
-    let span = span_of(&pair);
+fn expression_argument(pair: Pair<'_, Rule>, base: usize) -> Argument {
+    let span = span_of(&pair, base);
     let mut keyword = String::new();
     let mut keyword_span = span;
     let mut embedded = Embedded::default();
@@ -94,20 +101,20 @@ fn expression_argument(pair: Pair<'_, Rule>) -> Argument {
         match part.as_rule() {
             Rule::expression_key => {
                 keyword = part.as_str().to_uppercase();
-                keyword_span = span_of(&part);
+                keyword_span = span_of(&part, base);
             }
             Rule::expression => {
-                expression_span = span_of(&part);
+                expression_span = span_of(&part, base);
                 // The expression's text without its continuation markers.
                 let text = part.as_str();
-                let base = expression_span.start;
+                let start = expression_span.start;
                 let mut cursor = 0;
                 for continuation in part.into_inner() {
-                    let cut = span_of(&continuation);
-                    embedded.push(&text[cursor..cut.start - base], base + cursor);
-                    cursor = cut.end - base;
+                    let cut = span_of(&continuation, base);
+                    embedded.push(&text[cursor..cut.start - start], start + cursor);
+                    cursor = cut.end - start;
                 }
-                embedded.push(&text[cursor..], base + cursor);
+                embedded.push(&text[cursor..], start + cursor);
             }
             _ => {}
         }
@@ -123,8 +130,8 @@ fn expression_argument(pair: Pair<'_, Rule>) -> Argument {
     }
 }
 
-fn plain_argument(pair: Pair<'_, Rule>) -> Argument {
-    let span = span_of(&pair);
+fn plain_argument(pair: Pair<'_, Rule>, base: usize) -> Argument {
+    let span = span_of(&pair, base);
     let mut keyword = String::new();
     let mut keyword_span = span;
     let mut items = Vec::new();
@@ -132,7 +139,7 @@ fn plain_argument(pair: Pair<'_, Rule>) -> Argument {
         match part.as_rule() {
             Rule::keyword => {
                 keyword = part.as_str().to_uppercase();
-                keyword_span = span_of(&part);
+                keyword_span = span_of(&part, base);
             }
             Rule::values => {
                 for item in part
@@ -140,7 +147,7 @@ fn plain_argument(pair: Pair<'_, Rule>) -> Argument {
                     .filter(|item| item.as_rule() == Rule::value)
                 {
                     let text = item.as_str().trim_end();
-                    let start = item.as_span().start();
+                    let start = base + item.as_span().start();
                     items.push(ValueItem {
                         text: text.to_string(),
                         span: Span::new(start, start + text.len()),

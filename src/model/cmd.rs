@@ -13,8 +13,9 @@ use crate::span::Span;
 #[grammar = "../grammar/command.pest"]
 struct CommandParser;
 
-fn span_of(pair: &Pair<'_, Rule>) -> Span {
-    Span::new(pair.as_span().start(), pair.as_span().end())
+/// The span of a pair in the file, its piece starting at byte `base`.
+fn span_of(pair: &Pair<'_, Rule>, base: usize) -> Span {
+    Span::new(pair.as_span().start(), pair.as_span().end()).shifted(base)
 }
 
 /// Whether a parameter holds an expression: `function`, `*_function`, `f1` ... `f8`.
@@ -33,41 +34,45 @@ pub fn read(text: &str) -> Dataset {
         statements: Vec::new(),
         problems: Vec::new(),
     };
-    let top = match CommandParser::parse(Rule::cmd, text) {
-        Ok(mut pairs) => pairs.next().expect("the top rule matched"),
-        Err(error) => {
-            let offset = super::pest_offset(&error);
-            dataset.problems.push(ReadError::Unreadable {
-                span: Span::at(offset),
-            });
-            return dataset;
-        }
-    };
-    for pair in top.into_inner() {
-        match pair.as_rule() {
-            Rule::command => dataset.statements.push(command(pair)),
-            Rule::unreadable => {
-                let span = span_of(&pair);
-                let length = pair.as_str().trim_end().len();
+    // Piece by piece, so that pest's tokens are those of one piece at a time.
+    for piece in super::pieces(text, FileKind::Cmd) {
+        let base = piece.start;
+        let top = match CommandParser::parse(Rule::cmd, &text[piece]) {
+            Ok(mut pairs) => pairs.next().expect("the top rule matched"),
+            Err(error) => {
+                let offset = base + super::pest_offset(&error);
                 dataset.problems.push(ReadError::Unreadable {
-                    span: Span::new(span.start, span.start + length),
+                    span: Span::at(offset),
                 });
+                continue;
             }
-            _ => {}
+        };
+        for pair in top.into_inner() {
+            match pair.as_rule() {
+                Rule::command => dataset.statements.push(command(pair, base)),
+                Rule::unreadable => {
+                    let span = span_of(&pair, base);
+                    let length = pair.as_str().trim_end().len();
+                    dataset.problems.push(ReadError::Unreadable {
+                        span: Span::new(span.start, span.start + length),
+                    });
+                }
+                _ => {}
+            }
         }
     }
     dataset
 }
 
-fn command(pair: Pair<'_, Rule>) -> Statement {
-    let span = span_of(&pair);
+fn command(pair: Pair<'_, Rule>, base: usize) -> Statement {
+    let span = span_of(&pair, base);
     let span = Span::new(span.start, span.start + pair.as_str().trim_end().len());
     let mut words = Vec::new();
     let mut arguments = Vec::new();
     for part in pair.into_inner() {
         match part.as_rule() {
             Rule::words => words.extend(part.into_inner().map(|word| word.as_str().to_uppercase())),
-            Rule::parameter => arguments.push(parameter(part)),
+            Rule::parameter => arguments.push(parameter(part, base)),
             _ => {}
         }
     }
@@ -86,12 +91,12 @@ fn command(pair: Pair<'_, Rule>) -> Statement {
     }
 }
 
-fn parameter(pair: Pair<'_, Rule>) -> Argument {
-    let span = span_of(&pair);
+fn parameter(pair: Pair<'_, Rule>, base: usize) -> Argument {
+    let span = span_of(&pair, base);
     let mut inner = pair.into_inner();
     let name = inner.next().expect("a parameter starts with its name");
     let keyword = name.as_str().to_uppercase();
-    let keyword_span = span_of(&name);
+    let keyword_span = span_of(&name, base);
     let values: Vec<Pair<'_, Rule>> = inner.flat_map(|values| values.into_inner()).collect();
     let value = if holds_expression(&keyword) {
         let mut embedded = Embedded::default();
@@ -104,12 +109,12 @@ fn parameter(pair: Pair<'_, Rule>) -> Argument {
                         .into_inner()
                         .next()
                         .expect("a string has a body");
-                    (body.as_str(), body.as_span().start())
+                    (body.as_str(), base + body.as_span().start())
                 }
-                _ => (value.as_str(), value.as_span().start()),
+                _ => (value.as_str(), base + value.as_span().start()),
             };
             embedded.push(text, start);
-            let piece = span_of(value);
+            let piece = span_of(value, base);
             expression_span = Some(expression_span.map_or(piece, |known| known.to(piece)));
         }
         Value::Expression {
@@ -122,7 +127,7 @@ fn parameter(pair: Pair<'_, Rule>) -> Argument {
                 .iter()
                 .map(|value| ValueItem {
                     text: value.as_str().trim_matches('"').to_string(),
-                    span: span_of(value),
+                    span: span_of(value, base),
                 })
                 .collect(),
         )

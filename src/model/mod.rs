@@ -280,6 +280,48 @@ fn too_deep(text: &str) -> Option<Span> {
     None
 }
 
+/// How many bytes a piece that [`pieces`] gives grows to before it is cut
+/// at the next line that begins a statement.
+const PIECE: usize = 64 * 1024;
+
+/// The file cut into pieces of about [`PIECE`] bytes, each cut at the
+/// start of a line that begins a statement or command: a letter (or `_` in
+/// a View command file) first, and no `&` on the last line before it that
+/// is neither blank nor a comment (it would continue onto this line). No
+/// statement runs across a cut, since a continuation line starts with `,`
+/// or follows a `&`, so the readers parse each piece on its own and pest's
+/// tokens never hold more than one piece. A dataset's first piece holds its
+/// title line.
+fn pieces(text: &str, kind: FileKind) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
+    let begins = move |c: char| c.is_ascii_alphabetic() || (kind == FileKind::Cmd && c == '_');
+    let mut start = 0;
+    let mut offset = 0;
+    let mut continued = false;
+    let mut lines = text.split_inclusive('\n');
+    std::iter::from_fn(move || {
+        if start >= text.len() {
+            return None;
+        }
+        for line in lines.by_ref() {
+            let line_start = offset;
+            offset += line.len();
+            let content = line.trim_start();
+            let cut = line_start - start >= PIECE && !continued && content.starts_with(begins);
+            if !content.is_empty() && !content.starts_with('!') {
+                continued = content.contains('&');
+            }
+            if cut {
+                let piece = start..line_start;
+                start = line_start;
+                return Some(piece);
+            }
+        }
+        let piece = start..text.len();
+        start = text.len();
+        Some(piece)
+    })
+}
+
 /// Whether a statement named `name` is of `kind` (statement names may be
 /// abbreviated to four letters or more).
 pub fn is_kind(name: &str, kind: &str) -> bool {

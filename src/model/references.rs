@@ -253,6 +253,7 @@ pub fn check_model(text: &str, dataset: &Dataset) -> ModelCheck {
     let mut expressions = Vec::new();
     // The tree of every expression that parsed, errors or not, for its references.
     let mut trees: Vec<Option<Checked>> = Vec::new();
+    let mut cleanly: Vec<bool> = Vec::new();
     for (index, statement) in dataset.statements.iter().enumerate() {
         for (argument, embedded) in statement.expressions() {
             let expression = expressions.len();
@@ -264,18 +265,18 @@ pub fn check_model(text: &str, dataset: &Dataset) -> ModelCheck {
                     Some(expression),
                 );
             };
-            let (checked, tree) = match crate::parse(&embedded.text) {
+            let (clean, tree) = match crate::parse(&embedded.text) {
                 Err(error) => {
                     let message = file_message(&error, embedded, findings.lines());
                     report(&mut findings, message, error.span());
-                    (None, None)
+                    (false, None)
                 }
                 Ok(tree) => {
                     let (tree, errors) = crate::check::check_partial(&tree);
                     for error in &errors {
                         report(&mut findings, error.to_string(), error.span());
                     }
-                    (errors.is_empty().then(|| tree.clone()), Some(tree))
+                    (errors.is_empty(), Some(tree))
                 }
             };
             if solver_file && let Some(tree) = &tree {
@@ -300,15 +301,22 @@ pub fn check_model(text: &str, dataset: &Dataset) -> ModelCheck {
                 keyword: argument.keyword.clone(),
                 text: embedded.text.clone(),
                 span,
-                checked,
+                checked: None,
             });
             trees.push(tree);
+            cleanly.push(clean);
         }
     }
     if solver_file {
         References::of(dataset, &mut findings).check(dataset, &expressions, &trees, &mut findings);
     } else {
         super::view::check_names(dataset, &expressions, &trees, &mut findings.problems);
+    }
+    // The trees of the expressions that checked cleanly are the report's.
+    for ((found, tree), clean) in expressions.iter_mut().zip(trees).zip(cleanly) {
+        if clean {
+            found.checked = tree;
+        }
     }
     let mut problems = findings.problems;
     problems.sort_by_key(|problem| problem.error.span().start);

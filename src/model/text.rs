@@ -40,10 +40,12 @@ impl Embedded {
     /// across a continuation is cut at the end of its first piece.
     pub fn file_span(&self, span: Span) -> Span {
         let start = self.file_offset(span.start);
+        let next = self
+            .pieces
+            .partition_point(|&(piece_start, _)| piece_start <= span.start);
         let piece_end = self
             .pieces
-            .iter()
-            .find(|&&(piece_start, _)| piece_start > span.start)
+            .get(next)
             .map_or(self.text.len(), |&(piece_start, _)| piece_start);
         let end = self.file_offset(span.start) + (span.end.min(piece_end) - span.start);
         Span::new(start, end.max(start))

@@ -1,5 +1,6 @@
 //! `mbexpr check FILE...`: every expression of every file, every problem.
 
+use std::collections::HashSet;
 use std::io::{self, Read, Write};
 
 use clap::ValueEnum;
@@ -54,6 +55,14 @@ pub struct Args {
     names: Option<Vec<String>>,
 }
 
+/// The names the expressions of expression files use with no value, each
+/// once (case-insensitively), in order of first use.
+#[derive(Default)]
+struct Unbound {
+    names: Vec<String>,
+    seen: HashSet<String>,
+}
+
 /// A problem in one expression: its span within the file and the message.
 struct Problem {
     span: Span,
@@ -63,7 +72,7 @@ struct Problem {
 /// Parses and checks one expression, returning its problems in source
 /// order; with `names`, a name outside them is a problem too. Names used
 /// and not bound are added to `unbound`.
-fn problems(expression: &str, names: Option<&[String]>, unbound: &mut Vec<String>) -> Vec<Problem> {
+fn problems(expression: &str, names: Option<&[String]>, unbound: &mut Unbound) -> Vec<Problem> {
     let tree = match mbexpr::parse(expression) {
         Err(error) => {
             return vec![Problem {
@@ -100,8 +109,8 @@ fn problems(expression: &str, names: Option<&[String]>, unbound: &mut Vec<String
         }
         None => {
             for name in checked.variables() {
-                if !unbound.iter().any(|known| known.eq_ignore_ascii_case(name)) {
-                    unbound.push(name.to_string());
+                if unbound.seen.insert(name.to_ascii_uppercase()) {
+                    unbound.names.push(name.to_string());
                 }
             }
         }
@@ -216,7 +225,7 @@ fn check_expression_file(
     args: &Args,
     origin: &str,
     text: &str,
-    unbound: &mut Vec<String>,
+    unbound: &mut Unbound,
     out: &mut impl Write,
 ) -> Result<(usize, usize), Fatal> {
     let lines = LineIndex::new(text);
@@ -269,7 +278,7 @@ fn plural(count: usize, word: &str) -> String {
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let (mut expressions, mut errors, mut unreadable) = (0usize, 0usize, 0usize);
     let mut models = 0;
-    let mut unbound = Vec::new();
+    let mut unbound = Unbound::default();
     for file in &args.files {
         let text = match read(file) {
             Ok(text) => text,
@@ -316,11 +325,15 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
             }
             writeln!(out, "{summary}")?;
         }
-        if !unbound.is_empty() {
+        if !unbound.names.is_empty() {
+            const SHOWN: usize = 10;
+            let mut listed = unbound.names[..unbound.names.len().min(SHOWN)].join(", ");
+            if unbound.names.len() > SHOWN {
+                listed += &format!(" and {} more", unbound.names.len() - SHOWN);
+            }
             writeln!(
                 out,
-                "note: names with no value here: {} (give --names to check them)",
-                unbound.join(", ")
+                "note: names with no value here: {listed} (give --names to check them)"
             )?;
         }
     }
