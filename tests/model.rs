@@ -395,3 +395,44 @@ fn large_files_read_in_pieces_as_whole() {
         }
     }
 }
+
+/// A VARIABLE read twice is compiled once (issue 19.2): sixty VARIABLEs,
+/// each reading the one before twice, would be 2^59 walks otherwise.
+#[test]
+fn a_variable_read_twice_is_compiled_once() {
+    let mut adm = String::from("doubling\nVARIABLE/1, FUNCTION = TIME\n");
+    for id in 2..=60 {
+        adm += &format!(
+            "VARIABLE/{id}, FUNCTION = VARVAL({0}) + VARVAL({0})\n",
+            id - 1
+        );
+    }
+    let dataset = model::read(&adm, FileKind::Adm);
+    let report = model::check_model(&adm, &dataset);
+    let scene = model::initial_scene(&dataset, &report).unwrap();
+    let last = report.expressions.last().unwrap().checked.as_ref().unwrap();
+    let program = mbexpr::compile_in_scene(last, &["TIME"], &scene).unwrap();
+    assert_eq!(program.len(), 59);
+    assert_eq!(program.value(&[1.0]).unwrap(), 2f64.powi(59));
+}
+
+/// The bytes of a file as text (issue 18.4, docs/encoding.md): UTF-8 as
+/// it is, a byte-order mark's encoding, else Windows-1252.
+#[test]
+fn files_that_are_not_utf8_are_read() {
+    let cases: [(&str, &[u8]); 5] = [
+        ("UTF-8", "PART/1 ! réglage °C".as_bytes()),
+        ("Windows-1252", b"PART/1 ! r\xe9glage \xb0C \x92"),
+        ("UTF-8 with a mark", b"\xef\xbb\xbfPART/1"),
+        ("UTF-16LE with a mark", b"\xff\xfeP\0A\0R\0T\0"),
+        ("UTF-8 cut in a character", b"PART/1 ! caf\xc3"),
+    ];
+    let report: String = cases
+        .iter()
+        .map(|(label, bytes)| {
+            let (text, encoding) = model::decode_owned(bytes.to_vec());
+            format!("{label}: {encoding} {text:?}\n")
+        })
+        .collect();
+    insta::assert_snapshot!(report);
+}

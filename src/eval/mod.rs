@@ -260,24 +260,30 @@ impl<T: Number> Evaluator<'_, T> {
     /// Places each input the program uses in its slot, input `i` as
     /// `seed(i, value)`.
     fn load(&mut self, inputs: &[f64], seed: impl Fn(usize, f64) -> T) -> Result<(), EvalError> {
+        self.load_numbers(inputs.len(), |index| seed(index, inputs[index]))
+    }
+
+    /// Places each input the program uses in its slot, input `i` as
+    /// `input(i)`, of the `count` given; each must be finite.
+    fn load_numbers(&mut self, count: usize, input: impl Fn(usize) -> T) -> Result<(), EvalError> {
         let program = self.program;
-        if inputs.len() != program.inputs.len() {
+        if count != program.inputs.len() {
             return Err(EvalError::InputCount {
                 expected: program.inputs.len(),
-                found: inputs.len(),
+                found: count,
             });
         }
         for load in &program.loads {
             let index = load.input as usize;
-            let value = inputs[index];
-            if !value.is_finite() {
+            let value = input(index);
+            if !value.is_all_finite() {
                 return Err(EvalError::InputNotFinite {
                     name: program.inputs[index].clone(),
-                    value,
+                    value: value.value(),
                     span: load.span,
                 });
             }
-            self.slots[load.slot as usize] = seed(index, value);
+            self.slots[load.slot as usize] = value;
         }
         Ok(())
     }
@@ -287,25 +293,7 @@ impl<T: Number> Evaluator<'_, T> {
     /// itself computed (a model's VARIABLE, evaluated before the
     /// expressions that read it), so that they flow on by the chain rule.
     pub fn evaluate_numbers(&mut self, inputs: &[T]) -> Result<T, EvalError> {
-        let program = self.program;
-        if inputs.len() != program.inputs.len() {
-            return Err(EvalError::InputCount {
-                expected: program.inputs.len(),
-                found: inputs.len(),
-            });
-        }
-        for load in &program.loads {
-            let index = load.input as usize;
-            let value = &inputs[index];
-            if !value.is_all_finite() {
-                return Err(EvalError::InputNotFinite {
-                    name: program.inputs[index].clone(),
-                    value: value.value(),
-                    span: load.span,
-                });
-            }
-            self.slots[load.slot as usize] = value.clone();
-        }
+        self.load_numbers(inputs.len(), |index| inputs[index].clone())?;
         self.run()
     }
 

@@ -84,7 +84,7 @@ fn statement(pair: Pair<'_, Rule>, base: usize) -> Statement {
         }
     }
     Statement {
-        name,
+        name: name.into(),
         id,
         span,
         arguments,
@@ -120,7 +120,7 @@ fn expression_argument(pair: Pair<'_, Rule>, base: usize) -> Argument {
         }
     }
     Argument {
-        keyword,
+        keyword: keyword.into(),
         keyword_span,
         span,
         value: Value::Expression {
@@ -149,7 +149,7 @@ fn plain_argument(pair: Pair<'_, Rule>, base: usize) -> Argument {
                     let text = item.as_str().trim_end();
                     let start = base + item.as_span().start();
                     items.push(ValueItem {
-                        text: text.to_string(),
+                        text: text.into(),
                         span: Span::new(start, start + text.len()),
                     });
                 }
@@ -158,7 +158,7 @@ fn plain_argument(pair: Pair<'_, Rule>, base: usize) -> Argument {
         }
     }
     Argument {
-        keyword,
+        keyword: keyword.into(),
         keyword_span,
         span,
         value: if items.is_empty() {

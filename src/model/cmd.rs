@@ -84,7 +84,7 @@ fn command(pair: Pair<'_, Rule>, base: usize) -> Statement {
             _ => None,
         });
     Statement {
-        name: words.join(" "),
+        name: words.join(" ").into(),
         id,
         span,
         arguments,
@@ -126,14 +126,14 @@ fn parameter(pair: Pair<'_, Rule>, base: usize) -> Argument {
             values
                 .iter()
                 .map(|value| ValueItem {
-                    text: value.as_str().trim_matches('"').to_string(),
+                    text: value.as_str().trim_matches('"').into(),
                     span: span_of(value, base),
                 })
                 .collect(),
         )
     };
     Argument {
-        keyword,
+        keyword: keyword.into(),
         keyword_span,
         span,
         value,

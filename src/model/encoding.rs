@@ -18,10 +18,19 @@ pub struct Decoded<'b> {
     pub encoding: &'static str,
 }
 
-impl Decoded<'_> {
-    /// Whether the file was not UTF-8 (worth a note to the user).
-    pub fn is_converted(&self) -> bool {
-        self.encoding != "UTF-8"
+/// The text of `bytes`, by the rule of the module, and its encoding: a
+/// UTF-8 file becomes its text without a copy.
+pub fn decode_owned(bytes: Vec<u8>) -> (String, &'static str) {
+    match String::from_utf8(bytes) {
+        Ok(text) if !text.starts_with('\u{feff}') => (text, "UTF-8"),
+        Ok(text) => {
+            let decoded = decode(text.as_bytes());
+            (decoded.text.into_owned(), decoded.encoding)
+        }
+        Err(error) => {
+            let decoded = decode(error.as_bytes());
+            (decoded.text.into_owned(), decoded.encoding)
+        }
     }
 }
 

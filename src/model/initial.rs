@@ -92,7 +92,7 @@ fn number_list(statement: &Statement, argument: &Argument) -> Result<Vec<f64>, C
     if values.is_empty() || values.len() != items.len() {
         return Err(ConfigurationError::Numbers {
             statement: statement.label(),
-            keyword: argument.keyword.clone(),
+            keyword: argument.keyword.to_string(),
             count: items.len().max(1),
             span: argument.span,
         });

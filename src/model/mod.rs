@@ -13,9 +13,10 @@ mod variables;
 mod view;
 pub mod vocabulary;
 
+use compact_str::CompactString;
 use thiserror::Error;
 
-pub use encoding::{Decoded, decode};
+pub use encoding::{Decoded, decode, decode_owned};
 pub use initial::{ConfigurationError, initial_scene};
 pub use references::{FoundExpression, ModelCheck, ModelError, Problem, check_model};
 pub use text::Embedded;
@@ -102,8 +103,10 @@ pub struct Dataset {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Statement {
     /// The statement name, upper case (`SFORCE`; for View commands the
-    /// command words, `FORCE CREATE DIRECT SINGLE_COMPONENT_FORCE`).
-    pub name: String,
+    /// command words, `FORCE CREATE DIRECT SINGLE_COMPONENT_FORCE`). Names,
+    /// keywords and values are held inline up to 24 bytes: a model of
+    /// 100 MB is millions of them.
+    pub name: CompactString,
     /// The id after the slash, when there is one.
     pub id: Option<u64>,
     /// The statement's text in the file.
@@ -117,7 +120,7 @@ impl Statement {
     pub fn label(&self) -> String {
         match self.id {
             Some(id) => format!("{}/{id}", self.name),
-            None => self.name.clone(),
+            None => self.name.to_string(),
         }
     }
 
@@ -145,7 +148,7 @@ impl Statement {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Argument {
     /// The keyword, upper case, as written (possibly abbreviated).
-    pub keyword: String,
+    pub keyword: CompactString,
     /// Where the keyword stands.
     pub keyword_span: Span,
     /// The whole argument.
@@ -174,7 +177,7 @@ pub enum Value {
 #[derive(Clone, Debug, PartialEq)]
 pub struct ValueItem {
     /// The item as written.
-    pub text: String,
+    pub text: CompactString,
     /// Where it stands.
     pub span: Span,
 }

@@ -6,6 +6,7 @@
 use std::cell::OnceCell;
 use std::collections::{HashMap, HashSet};
 
+use compact_str::CompactString;
 use thiserror::Error;
 
 use super::variables::Reads;
@@ -161,7 +162,7 @@ pub struct FoundExpression {
     /// Index of its statement in [`Dataset::statements`].
     pub statement: usize,
     /// The keyword it is the value of (`FUNCTION`, `F3`, `x_force_function`).
-    pub keyword: String,
+    pub keyword: CompactString,
     /// The joined expression text.
     pub text: String,
     /// Where it stands in the file.
@@ -350,7 +351,7 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
             let span = name_span(findings.text, statement.span, &statement.name).unwrap_or(span);
             findings.push(
                 ModelError::UnknownStatement {
-                    name: statement.name.clone(),
+                    name: statement.name.to_string(),
                     file,
                     suggestions: vocabulary::suggestions(&statement.name, known),
                     span,
@@ -367,7 +368,7 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
             if !vocabulary::is_keyword(&argument.keyword) {
                 findings.push(
                     ModelError::UnknownKeyword {
-                        keyword: argument.keyword.clone(),
+                        keyword: argument.keyword.to_string(),
                         statement: statement.label(),
                         suggestions: vocabulary::suggestions(
                             &argument.keyword,

@@ -128,11 +128,11 @@ fn read(file: &str) -> Result<String, String> {
     } else {
         bytes = std::fs::read(file).map_err(|error| format!("cannot read {file}: {error}"))?;
     }
-    let decoded = model::decode(&bytes);
-    if decoded.is_converted() {
-        eprintln!("note: {file} is not UTF-8: read as {}", decoded.encoding);
+    let (text, encoding) = model::decode_owned(bytes);
+    if encoding != "UTF-8" {
+        eprintln!("note: {file} is not UTF-8: read as {encoding}");
     }
-    Ok(decoded.text.into_owned())
+    Ok(text)
 }
 
 /// `{"line", "column", "message"}` of a problem at `span`.
@@ -156,7 +156,7 @@ fn check_model_file(
     let statement_fields =
         |index: Option<usize>| match index.map(|index| &dataset.statements[index]) {
             Some(statement) => (
-                Value::String(statement.name.clone()),
+                Value::String(statement.name.to_string()),
                 statement.id.map_or(Value::Null, Value::from),
             ),
             None => (Value::Null, Value::Null),
@@ -191,7 +191,7 @@ fn check_model_file(
                     "line": lines.location(found.span.start).line,
                     "statement": statement,
                     "id": id,
-                    "keyword": found.keyword,
+                    "keyword": found.keyword.as_str(),
                     "ok": errors.is_empty(),
                     "errors": errors,
                 });

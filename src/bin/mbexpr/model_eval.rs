@@ -183,11 +183,10 @@ fn evaluate_rows(
 fn read_model(path: &str) -> Result<(String, model::Dataset), Fatal> {
     let bytes = std::fs::read(path)
         .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
-    let decoded = model::decode(&bytes);
-    if decoded.is_converted() {
-        eprintln!("note: {path} is not UTF-8: read as {}", decoded.encoding);
+    let (text, encoding) = model::decode_owned(bytes);
+    if encoding != "UTF-8" {
+        eprintln!("note: {path} is not UTF-8: read as {encoding}");
     }
-    let text = decoded.text.into_owned();
     let kind = match FileKind::detect(path, &text) {
         Some(kind @ (FileKind::Adm | FileKind::Acf)) => kind,
         _ => {
@@ -325,9 +324,9 @@ fn row_fields(
     let statement = &dataset.statements[found.statement];
     let label = format!("{} {}", statement.label(), found.keyword);
     let record = json!({
-        "statement": statement.name,
+        "statement": statement.name.as_str(),
         "id": statement.id,
-        "keyword": found.keyword,
+        "keyword": found.keyword.as_str(),
         "line": lines.location(found.span.start).line,
     });
     (label, record)
