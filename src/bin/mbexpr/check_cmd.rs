@@ -248,7 +248,11 @@ fn check_expression_file(
                 let problems = found
                     .into_iter()
                     .map(|problem| (problem.span, problem.message));
-                write!(out, "{}", line_diagnostics(origin, index + 1, line, problems))?;
+                write!(
+                    out,
+                    "{}",
+                    line_diagnostics(origin, index + 1, line, problems)
+                )?;
             }
             Format::Jsonl => {
                 let errors: Vec<Value> = found

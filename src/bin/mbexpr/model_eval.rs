@@ -204,9 +204,7 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
     let report = model::check_model(&text, &dataset);
     let lines = LineIndex::new(&text);
     let mut scene = model::initial_scene(&dataset, &report).map_err(|errors| {
-        let problems = errors
-            .iter()
-            .map(|error| (error.span(), error.to_string()));
+        let problems = errors.iter().map(|error| (error.span(), error.to_string()));
         Fatal::input(diagnostics(path, &text, problems))
     })?;
     for assignment in &args.set {
@@ -366,9 +364,7 @@ fn write_row(
 fn not_a_state(scene: &Scene, name: &str) -> String {
     const COMPONENTS: &str = "x y z rx ry rz vx vy vz wx wy wz";
     let Some((part, component)) = name.rsplit_once('.') else {
-        return format!(
-            "name TIME or a part's state component, such as PART/3.x ({COMPONENTS})"
-        );
+        return format!("name TIME or a part's state component, such as PART/3.x ({COMPONENTS})");
     };
     if scene.find_body(part).is_none() {
         let parts = scene.bodies.iter().map(|body| body.name.as_str());
