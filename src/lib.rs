@@ -48,6 +48,7 @@ pub mod laws;
 pub mod model;
 pub mod number;
 pub mod scene;
+pub mod simulate;
 pub mod span;
 pub mod syntax;
 pub mod utility;

@@ -20,6 +20,7 @@ mod properties;
 mod reference;
 mod repl;
 mod scene;
+mod simulate;
 mod span;
 mod spline;
 

@@ -108,7 +108,7 @@ pub enum CompileError {
         /// The call.
         span: Span,
     },
-    /// VARIABLE functions that read each other in a loop.
+    /// VARIABLE (or DIFF) functions that read each other in a loop.
     #[error("VARVAL loops: {cycle}")]
     VariableLoop {
         /// `VARIABLE/1 -> VARIABLE/2 -> VARIABLE/1`.

@@ -8,8 +8,8 @@ mod program;
 use std::collections::{HashMap, HashSet};
 
 pub use error::CompileError;
-pub use program::{FrameArg, InputSlot, Instruction, Op, Program, Slot};
-pub(crate) use program::{InputNames, Tables};
+pub use program::{FrameArg, InputSlot, Instruction, Op, Program, Site, SiteKind, Slot};
+pub(crate) use program::{InputNames, NO_SITE, Tables};
 
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
@@ -68,16 +68,31 @@ pub fn variable_input(id: u64) -> String {
     format!("VARVAL({id})")
 }
 
-fn compile_with<S: AsRef<str>>(
-    checked: &Checked,
+/// Compiles several trees into one program with one output each (the
+/// forces and DIFF functions of a model, for a simulation): a subexpression
+/// they share is computed once, and [`Program::origin`] tells which tree an
+/// instruction's span belongs to. On failure, each tree's errors with its
+/// index.
+pub fn compile_outputs<S: AsRef<str>>(
+    trees: &[&Checked],
+    inputs: &[S],
+    scene: Option<&Scene>,
+) -> Result<Program, Vec<(usize, Errors<CompileError>)>> {
+    compile_all(trees, inputs, scene, false)
+}
+
+fn compile_all<S: AsRef<str>>(
+    trees: &[&Checked],
     inputs: &[S],
     scene: Option<&Scene>,
     variables_as_inputs: bool,
-) -> Result<Program, Errors<CompileError>> {
+) -> Result<Program, Vec<(usize, Errors<CompileError>)>> {
     let mut compiler = Compiler {
         scene,
+        origin: 0,
         inlining: Vec::new(),
         inlining_set: HashSet::new(),
+        inlining_diffs: Vec::new(),
         tables: Tables::default(),
         frame_of: HashMap::new(),
         spline_of: HashMap::new(),
@@ -89,6 +104,7 @@ fn compile_with<S: AsRef<str>>(
         constants: Vec::new(),
         code: Vec::new(),
         spans: Vec::new(),
+        origins: Vec::new(),
         memo: vec![HashMap::new()],
         loads: Vec::new(),
         load_of: HashMap::new(),
@@ -99,29 +115,56 @@ fn compile_with<S: AsRef<str>>(
         compiler.inputs.push(name.as_ref().to_string());
     }
     compiler.variable_slots.push(HashMap::new());
-    let result = compiler.node(&checked.root);
-    if !compiler.errors.is_empty() {
-        compiler.errors.sort_by_key(|error| error.span().start);
-        return Err(Errors(compiler.errors));
+    let mut results = Vec::with_capacity(trees.len());
+    let mut failures = Vec::new();
+    for (index, tree) in trees.iter().enumerate() {
+        compiler.origin = u32::try_from(index).expect("fewer than 2^32 outputs");
+        results.push(compiler.node(&tree.root));
+        let mut errors = std::mem::take(&mut compiler.errors);
+        if !errors.is_empty() {
+            errors.sort_by_key(|error| error.span().start);
+            failures.push((index, Errors(errors)));
+        }
     }
+    if !failures.is_empty() {
+        return Err(failures);
+    }
+    let (sites, site_of) = program::find_sites(&compiler.code);
     Ok(Program {
         slot_count: compiler.constant_values.len(),
         inputs: compiler.inputs,
         constants: compiler.constants,
         code: compiler.code,
         spans: compiler.spans,
-        result,
+        origins: compiler.origins,
+        results,
         tables: compiler.tables,
         loads: compiler.loads,
+        sites,
+        site_of,
     })
+}
+
+fn compile_with<S: AsRef<str>>(
+    checked: &Checked,
+    inputs: &[S],
+    scene: Option<&Scene>,
+    variables_as_inputs: bool,
+) -> Result<Program, Errors<CompileError>> {
+    compile_all(&[checked], inputs, scene, variables_as_inputs)
+        .map_err(|mut failures| failures.swap_remove(0).1)
 }
 
 struct Compiler<'s> {
     scene: Option<&'s Scene>,
+    /// The index of the tree being compiled, recorded with each instruction.
+    origin: u32,
     /// The VARIABLEs being compiled in place, outermost first.
     inlining: Vec<u64>,
     /// The same, to look up.
     inlining_set: HashSet<u64>,
+    /// The DIFFs whose FUNCTION is being compiled in place for `DIF1`.
+    inlining_diffs: Vec<u64>,
     /// The marker frames and fitted splines used, and where each went.
     tables: Tables,
     frame_of: HashMap<Target, u32>,
@@ -142,6 +185,7 @@ struct Compiler<'s> {
     constants: Vec<(Slot, f64)>,
     code: Vec<Instruction>,
     spans: Vec<Span>,
+    origins: Vec<u32>,
     /// Computed ops by scope: the outer scopes' entries hold inside an IF
     /// branch, a branch's own entries are dropped when it ends.
     memo: Vec<HashMap<Op, Slot>>,
@@ -173,6 +217,7 @@ impl Compiler<'_> {
     fn emit(&mut self, instruction: Instruction, span: Span) -> u32 {
         self.code.push(instruction);
         self.spans.push(span);
+        self.origins.push(self.origin);
         u32::try_from(self.code.len() - 1).expect("fewer than 2^32 instructions")
     }
 
@@ -404,6 +449,16 @@ impl Compiler<'_> {
             Argument::Object(Reference::Id(id), _) => Some(*id),
             _ => None,
         });
+        if function == Function::Dif1
+            && let Some(id) = id
+            && let Some(tree) = scene
+                .statements
+                .diffs
+                .get(&id)
+                .and_then(|diff| diff.function.as_ref())
+        {
+            return self.inline_diff(id, tree, span);
+        }
         match (function, id) {
             (Function::Varval, Some(id)) if scene.statements.variables.contains_key(&id) => {
                 if self.variables_as_inputs {
@@ -471,7 +526,11 @@ impl Compiler<'_> {
                 }
             }
             (Function::Dif, Some(id)) if scene.statements.diffs.contains_key(&id) => {
-                Ok(self.constant(scene.statements.diffs[&id]))
+                let name = crate::scene::diff_input(id);
+                let index = self
+                    .input_index(&name)
+                    .unwrap_or_else(|| self.inputs.push(name));
+                Ok(self.input(index, span))
             }
             (Function::Akispl | Function::Cubspl, Some(id))
                 if scene.statements.splines.contains_key(&id) =>
@@ -480,6 +539,33 @@ impl Compiler<'_> {
             }
             _ => Err(model_data_error(function, args, span, Some(scene))),
         }
+    }
+
+    /// `DIF1(id)`: the FUNCTION of DIFF `id`, compiled in place so that its
+    /// derivatives flow.
+    fn inline_diff(&mut self, id: u64, tree: &Checked, span: Span) -> Result<Slot, CompileError> {
+        if self.inlining_diffs.contains(&id) {
+            let mut cycle: Vec<String> = self
+                .inlining_diffs
+                .iter()
+                .map(|id| format!("DIFF/{id}"))
+                .collect();
+            cycle.push(format!("DIFF/{id}"));
+            return Err(CompileError::VariableLoop {
+                cycle: cycle.join(" -> "),
+                span,
+            });
+        }
+        self.inlining_diffs.push(id);
+        // The DIFF's text is elsewhere: its instructions take the span of
+        // this DIF1.
+        let spans_before = self.spans.len();
+        let slot = self.node(&tree.root);
+        for instruction_span in &mut self.spans[spans_before..] {
+            *instruction_span = span;
+        }
+        self.inlining_diffs.pop();
+        Ok(slot)
     }
 
     /// `AKISPL(x, z, id [, iord])` or `CUBSPL(...)` over SPLINE `id`, fitted
@@ -617,6 +703,7 @@ impl Compiler<'_> {
                         let body = marker.body.map(|body| &scene.bodies[body]);
                         FrameData {
                             label: marker.label(),
+                            body: marker.body,
                             body_orientation: body
                                 .map_or_else(nalgebra::Matrix3::identity, |body| {
                                     body.orientation.to_rotation_matrix().into_inner()

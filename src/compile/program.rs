@@ -252,6 +252,66 @@ impl Instruction {
     }
 }
 
+/// A piecewise instruction of a program (a STEP, IMPACT, BISTOP, ABS, MIN,
+/// ... call or an arithmetic IF), which a simulation holds on one branch
+/// through a step: see [`crate::laws::branch`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Site {
+    /// The instruction's index.
+    pub instruction: u32,
+    /// Its first switching value among the program's.
+    pub first: u32,
+    /// How many switching values it has.
+    pub count: u32,
+}
+
+/// What a piecewise instruction is, for messages and event lists.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SiteKind {
+    /// A call of this function.
+    Call(Function),
+    /// An arithmetic IF.
+    If,
+}
+
+/// The sites of `code`, and each instruction's site (`NO_SITE` for none).
+pub(crate) fn find_sites(code: &[Instruction]) -> (Vec<Site>, Vec<u32>) {
+    let mut sites = Vec::new();
+    let mut site_of = Vec::with_capacity(code.len());
+    let mut first = 0;
+    for (index, instruction) in code.iter().enumerate() {
+        let count = match instruction {
+            Instruction::Branch { .. } => Some(2),
+            Instruction::Compute {
+                op: Op::Contact { .. },
+                ..
+            } => Some(3),
+            Instruction::Compute {
+                op: Op::Call { function, args, .. },
+                ..
+            } => crate::laws::branch::switch_count(*function, args.len()),
+            _ => None,
+        };
+        match count {
+            Some(count) => {
+                let count = u32::try_from(count).expect("fewer than 2^32 arguments");
+                site_of.push(u32::try_from(sites.len()).expect("fewer than 2^32 sites"));
+                sites.push(Site {
+                    instruction: u32::try_from(index).expect("fewer than 2^32 instructions"),
+                    first,
+                    count,
+                });
+                first += count;
+            }
+            None => site_of.push(NO_SITE),
+        }
+    }
+    (sites, site_of)
+}
+
+/// The entry of an instruction that is no site in [`Program`]'s `site_of`.
+pub(crate) const NO_SITE: u32 = u32::MAX;
+
 /// A checked expression compiled for a given list of inputs: ready to be
 /// evaluated over `f64` or dual numbers, any number of times.
 #[derive(Clone, Debug)]
@@ -262,11 +322,19 @@ pub struct Program {
     pub(crate) code: Vec<Instruction>,
     /// The span of the expression text each instruction comes from.
     pub(crate) spans: Vec<Span>,
-    pub(crate) result: Slot,
+    /// Which output's text each instruction comes from (its index among the
+    /// trees compiled together; 0 for a program of one expression).
+    pub(crate) origins: Vec<u32>,
+    /// The slot of each output's value (one for a single expression).
+    pub(crate) results: Vec<Slot>,
     /// The marker frames and splines the instructions refer to.
     pub(crate) tables: Tables,
     /// The inputs used, and their slots.
     pub(crate) loads: Vec<InputSlot>,
+    /// The piecewise instructions.
+    pub(crate) sites: Vec<Site>,
+    /// Each instruction's index in `sites`, or [`NO_SITE`].
+    pub(crate) site_of: Vec<u32>,
 }
 
 impl Program {
@@ -294,6 +362,53 @@ impl Program {
     /// Whether the program is a constant (no instruction at all).
     pub fn is_empty(&self) -> bool {
         self.code.is_empty()
+    }
+
+    /// How many values the program computes: one for [`crate::compile`],
+    /// one per tree for [`crate::compile::compile_outputs`].
+    pub fn output_count(&self) -> usize {
+        self.results.len()
+    }
+
+    /// Whether the program reads input `index` (an expression may not use
+    /// every input it was compiled for).
+    pub fn uses_input(&self, index: usize) -> bool {
+        self.loads.iter().any(|load| load.input as usize == index)
+    }
+
+    /// The piecewise instructions, in program order.
+    pub fn sites(&self) -> &[Site] {
+        &self.sites
+    }
+
+    /// How many switching values the sites have in all.
+    pub fn switch_count(&self) -> usize {
+        self.sites
+            .last()
+            .map_or(0, |site| (site.first + site.count) as usize)
+    }
+
+    /// What a site is.
+    pub fn site_kind(&self, site: &Site) -> SiteKind {
+        match &self.code[site.instruction as usize] {
+            Instruction::Compute {
+                op: Op::Call { function, .. } | Op::Contact { function, .. },
+                ..
+            } => SiteKind::Call(*function),
+            _ => SiteKind::If,
+        }
+    }
+
+    /// The span of the text instruction `index` comes from (in the text of
+    /// output [`Program::origin`]`(index)`).
+    pub fn span(&self, index: usize) -> Span {
+        self.spans[index]
+    }
+
+    /// The output whose text instruction `index` comes from (a subexpression
+    /// that several outputs share comes from the first of them).
+    pub fn origin(&self, index: usize) -> usize {
+        self.origins.get(index).map_or(0, |&origin| origin as usize)
     }
 }
 
@@ -331,7 +446,13 @@ impl fmt::Display for Program {
             };
             writeln!(f, "s{dst} = {op}")?;
         }
-        write!(f, "result s{}", self.result)
+        let results: Vec<String> = self.results.iter().map(|slot| format!("s{slot}")).collect();
+        let label = if results.len() == 1 {
+            "result"
+        } else {
+            "results"
+        };
+        write!(f, "{label} {}", results.join(", "))
     }
 }
 

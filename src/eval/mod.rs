@@ -6,8 +6,12 @@
 //! number carries no derivative part at all, and order 0 runs on plain `f64`.
 
 mod error;
+mod held;
 
 pub use error::EvalError;
+pub use held::OutputError;
+
+use held::{Branching, Natural};
 
 use nalgebra::{DMatrix, DVector};
 use num_dual::{Dual2DVec64, Dual2SVec64, DualDVec64, DualSVec64};
@@ -93,26 +97,41 @@ pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Resul
             function,
             args,
             check_rules,
-        } => {
-            if *check_rules {
-                check_rules_with(*function, |position| {
-                    args.get(position).map(|&index| slot(index).value())
-                })
-                .map_err(LawError::Rule)?;
-            }
-            // Up to eight arguments (all but the longest series) stay on the stack.
-            const INLINE: usize = 8;
-            if let [arg] = **args {
-                laws::apply(*function, &[slot(arg)])?
-            } else if args.len() <= INLINE {
-                let values: [&T; INLINE] =
-                    std::array::from_fn(|position| slot(args[position.min(args.len() - 1)]));
-                laws::apply(*function, &values[..args.len()])?
-            } else {
-                let values: Vec<&T> = args.iter().map(|&index| slot(index)).collect();
-                laws::apply(*function, &values)?
-            }
-        }
+        } => with_arguments(*function, args, *check_rules, slots, |values| {
+            laws::apply(*function, values)
+        })??,
+    })
+}
+
+/// Runs `body` on the values of a call's argument slots, after checking the
+/// function's argument rules when `check_rules` says they are not known to
+/// hold.
+#[inline]
+fn with_arguments<T: Number, R>(
+    function: crate::catalog::Function,
+    args: &[Slot],
+    check_rules: bool,
+    slots: &[T],
+    body: impl FnOnce(&[&T]) -> R,
+) -> Result<R, LawError> {
+    let slot = |index: Slot| &slots[index as usize];
+    if check_rules {
+        check_rules_with(function, |position| {
+            args.get(position).map(|&index| slot(index).value())
+        })
+        .map_err(LawError::Rule)?;
+    }
+    // Up to eight arguments (all but the longest series) stay on the stack.
+    const INLINE: usize = 8;
+    Ok(if let [arg] = *args {
+        body(&[slot(arg)])
+    } else if args.len() <= INLINE {
+        let values: [&T; INLINE] =
+            std::array::from_fn(|position| slot(args[position.min(args.len() - 1)]));
+        body(&values[..args.len()])
+    } else {
+        let values: Vec<&T> = args.iter().map(|&index| slot(index)).collect();
+        body(&values)
     })
 }
 
@@ -121,6 +140,9 @@ pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Resul
 /// and AZ stay continuous through ±π from one call to the next (see [`Run`]).
 pub struct Evaluator<'p, T> {
     program: &'p Program,
+    /// The program's tables with the bodies turned to their current
+    /// orientations ([`Evaluator::reorient`]); `None`: the program's own.
+    turned: Option<Box<Tables>>,
     slots: Vec<T>,
     /// The last value of each AX, AY, AZ instruction (empty until one runs).
     angles: Vec<Option<f64>>,
@@ -203,6 +225,7 @@ impl Program {
         }
         Evaluator {
             program: self,
+            turned: None,
             slots,
             angles: Vec::new(),
         }
@@ -297,20 +320,36 @@ impl<T: Number> Evaluator<'_, T> {
         self.run()
     }
 
-    /// Runs the program over the loaded slots.
-    fn run(&mut self) -> Result<T, EvalError> {
-        self.run_observed(|_, _| {})
+    /// Turns every body the program's markers are on to the orientation
+    /// `orientation` gives for its index in the scene, in place of its
+    /// orientation when the program was compiled (a simulation's bodies
+    /// turn; the small-rotation inputs `BODY.rx` ... stay perturbations of
+    /// the current orientation).
+    pub fn reorient(&mut self, orientation: impl Fn(usize) -> nalgebra::Matrix3<f64>) {
+        let program = self.program;
+        let tables = self
+            .turned
+            .get_or_insert_with(|| Box::new(program.tables.clone()));
+        for frame in &mut tables.frames {
+            if let Some(body) = frame.body {
+                frame.body_orientation = orientation(body);
+            }
+        }
     }
 
-    /// Runs the program, showing `observe` the index of each instruction
-    /// about to run and the slots it reads.
-    #[inline(always)]
-    fn run_observed(&mut self, mut observe: impl FnMut(usize, &[T])) -> Result<T, EvalError> {
+    /// Runs the program over the loaded slots.
+    fn run(&mut self) -> Result<T, EvalError> {
+        self.run_with(&mut Natural).map_err(|(_, error)| error)
+    }
+
+    /// Runs the program over the loaded slots, the piecewise instructions
+    /// branching as `branching` says; an error comes with the index of the
+    /// instruction that failed.
+    fn run_with<B: Branching<T>>(&mut self, branching: &mut B) -> Result<T, (usize, EvalError)> {
         let program = self.program;
         let code = &program.code;
         let mut pc = 0;
         while let Some(instruction) = code.get(pc) {
-            observe(pc, &self.slots);
             pc += 1;
             let slots = &self.slots;
             let slot = |index: &Slot| slots[*index as usize].clone();
@@ -319,26 +358,32 @@ impl<T: Number> Evaluator<'_, T> {
                 Instruction::Add { dst, a, b } => (dst, slot(a) + slot(b)),
                 Instruction::Sub { dst, a, b } => (dst, slot(a) - slot(b)),
                 Instruction::Mul { dst, a, b } => (dst, slot(a) * slot(b)),
-                Instruction::Compute { dst, op } => match execute(op, slots, &program.tables) {
-                    Ok(result) if matches!(op, Op::Measure { .. }) => {
-                        (dst, self.continue_angle(op, pc - 1, result))
+                Instruction::Compute { dst, op } => {
+                    let tables = self.turned.as_deref().unwrap_or(&program.tables);
+                    let computed = branching
+                        .compute(program, pc - 1, op, slots)
+                        .unwrap_or_else(|| execute(op, slots, tables));
+                    match computed {
+                        Ok(result) if matches!(op, Op::Measure { .. }) => {
+                            (dst, self.continue_angle(op, pc - 1, result))
+                        }
+                        Ok(result) => (dst, result),
+                        Err(error) => {
+                            let span = program.spans[pc - 1];
+                            return Err((pc - 1, EvalError::Law { error, span }));
+                        }
                     }
-                    Ok(result) => (dst, result),
-                    Err(error) => {
-                        let span = program.spans[pc - 1];
-                        return Err(EvalError::Law { error, span });
-                    }
-                },
+                }
                 Instruction::Branch {
                     condition,
                     zero,
                     positive,
                 } => {
-                    let value = self.slots[*condition as usize].value();
-                    if value == 0.0 {
-                        pc = *zero as usize;
-                    } else if value > 0.0 {
-                        pc = *positive as usize;
+                    let e1 = self.slots[*condition as usize].value();
+                    match branching.choose(program, pc - 1, e1) {
+                        0 => {}
+                        1 => pc = *zero as usize,
+                        _ => pc = *positive as usize,
                     }
                     continue;
                 }
@@ -352,9 +397,12 @@ impl<T: Number> Evaluator<'_, T> {
                 }
             };
             if !result.is_all_finite() {
-                return Err(not_finite(instruction, &result, program.spans[pc - 1]));
+                return Err((
+                    pc - 1,
+                    not_finite(instruction, &result, program.spans[pc - 1]),
+                ));
             }
-            if pc == code.len() && *dst == program.result {
+            if pc == code.len() && program.results.len() == 1 && *dst == program.results[0] {
                 // The program's last step: its result is returned as it is,
                 // not stored and read back at once (which stalls the
                 // processor on a wide dual number).
@@ -362,7 +410,10 @@ impl<T: Number> Evaluator<'_, T> {
             }
             self.slots[*dst as usize] = result;
         }
-        Ok(self.slots[program.result as usize].clone())
+        Ok(program
+            .results
+            .first()
+            .map_or_else(T::zero, |&slot| self.slots[slot as usize].clone()))
     }
 
     /// `result` of instruction `index`, moved by whole turns to the value
@@ -427,17 +478,6 @@ impl Evaluator<'_, f64> {
     pub fn value(&mut self, inputs: &[f64]) -> Result<f64, EvalError> {
         self.load(inputs, |_, value| value)?;
         self.run()
-    }
-
-    /// The value at `inputs`, showing `observe` each instruction that runs
-    /// (its index) with the slots it reads: what [`crate::kinks`] looks at.
-    pub(crate) fn trace(
-        &mut self,
-        inputs: &[f64],
-        observe: impl FnMut(usize, &[f64]),
-    ) -> Result<f64, EvalError> {
-        self.load(inputs, |_, value| value)?;
-        self.run_observed(observe)
     }
 }
 

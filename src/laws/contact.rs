@@ -125,13 +125,31 @@ impl<T: Number> Parameter<T> for Varying<'_, T> {
     }
 }
 
-/// The damping ramp `s(w) = w^2 (3 - 2w)` of `w = p/d`, 1 for `p >= d`.
+/// The part of a stop's damping ramp that applies: the cubic (`p < d`) or
+/// the constant `cmax` beyond it (`p >= d`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Piece {
+    /// `0 < p < d`: damping `cmax*w^2*(3 - 2w)`, `w = p/d`.
+    Ramp,
+    /// `p >= d`: damping `cmax`.
+    Full,
+}
+
+impl Piece {
+    /// The piece the penetration `p` is on.
+    fn of(p: f64, d: f64) -> Piece {
+        if p >= d { Piece::Full } else { Piece::Ramp }
+    }
+}
+
+/// The damping ramp `s(w) = w^2 (3 - 2w)` of `w = p/d` on `piece` (1 on
+/// [`Piece::Full`]; the cubic continues past `[0, d]` when held there).
 #[inline]
-fn ramp<T: Number, P: Parameter<T>>(p: &T, d: &P) -> T {
-    let (p0, d0) = (p.value(), d.value());
-    if p0 >= d0 {
+fn ramp<T: Number, P: Parameter<T>>(p: &T, d: &P, piece: Piece) -> T {
+    if piece == Piece::Full {
         return T::one();
     }
+    let (p0, d0) = (p.value(), d.value());
     // One division: p/d and (d - p)/d each round once more, harmlessly.
     let per_d = d.reciprocal();
     let w0 = p0 * per_d;
@@ -142,21 +160,38 @@ fn ramp<T: Number, P: Parameter<T>>(p: &T, d: &P) -> T {
     })
 }
 
-/// One stop: `max(k p^e + c(p) * rate, 0)` for penetration `p > 0` growing
-/// at `rate`; `None` on the clamped branch. A constant zero `k` or `cmax`
-/// leaves its term out (no `0 * inf` from a steep power).
+/// The unclamped force of one stop, `k p^e + c(p) * rate`, with the ramp
+/// on `piece`. A constant zero `k` or `cmax` leaves its term out (no
+/// `0 * inf` from a steep power). A negative `p` (a stop held by the
+/// simulator past its contact) takes the odd continuation `-k |p|^e` of a
+/// real power, so the force stays smooth through contact.
 #[inline]
-fn stop<T: Number, P: Parameter<T>>(p: &T, rate: T, [k, e, cmax, d]: [&P; 4]) -> Option<T> {
+fn unclamped<T: Number, P: Parameter<T>>(
+    p: &T,
+    rate: T,
+    [k, e, cmax, d]: [&P; 4],
+    piece: Piece,
+) -> T {
     let stiffness = if k.value() == 0.0 && k.is_constant() {
         T::zero()
+    } else if p.value() < 0.0 && super::power::as_integer(e.value()).is_none() {
+        -k.times(e.power_of(&-p.clone()))
     } else {
         k.times(e.power_of(p))
     };
-    let raw = if cmax.value() == 0.0 && cmax.is_constant() {
+    if cmax.value() == 0.0 && cmax.is_constant() {
         stiffness
     } else {
-        stiffness + cmax.times(ramp(p, d) * rate)
-    };
+        stiffness + cmax.times(ramp(p, d, piece) * rate)
+    }
+}
+
+/// One stop: `max(k p^e + c(p) * rate, 0)` for penetration `p > 0` growing
+/// at `rate`; `None` on the clamped branch.
+#[inline]
+fn stop<T: Number, P: Parameter<T>>(p: &T, rate: T, parameters: [&P; 4]) -> Option<T> {
+    let piece = Piece::of(p.value(), parameters[3].value());
+    let raw = unclamped(p, rate, parameters, piece);
     (raw.value() > 0.0).then_some(raw)
 }
 
@@ -179,6 +214,175 @@ fn stops<T: Number, P: Parameter<T>>(
         return stop(&x2.from(x), v.clone(), parameters).map_or_else(T::zero, |force| -force);
     }
     T::zero()
+}
+
+/// Where a contact law is, as the simulator holds it through a step: in
+/// the gap (or free of IMPACT's stop), or at a stop on a piece of its
+/// ramp, or clamped there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ContactBranch {
+    /// `x1 <= x (<= x2)`: no force.
+    Free,
+    /// Below `x1`, unclamped, on a piece of the ramp.
+    Lower(Piece),
+    /// Below `x1`, clamped (the raw force is not positive).
+    LowerClamped,
+    /// Above `x2`, unclamped, on a piece of the ramp.
+    Upper(Piece),
+    /// Above `x2`, clamped.
+    UpperClamped,
+}
+
+impl ContactBranch {
+    /// All branches, in the order of their codes.
+    const ALL: [ContactBranch; 7] = [
+        ContactBranch::Free,
+        ContactBranch::Lower(Piece::Ramp),
+        ContactBranch::Lower(Piece::Full),
+        ContactBranch::LowerClamped,
+        ContactBranch::Upper(Piece::Ramp),
+        ContactBranch::Upper(Piece::Full),
+        ContactBranch::UpperClamped,
+    ];
+
+    /// The branch's code (its index in a fixed order).
+    pub fn code(self) -> i64 {
+        Self::ALL
+            .iter()
+            .position(|&branch| branch == self)
+            .unwrap_or(0) as i64
+    }
+
+    /// The branch of a code; [`ContactBranch::Free`] for an unknown one.
+    pub fn from_code(code: i64) -> ContactBranch {
+        usize::try_from(code)
+            .ok()
+            .and_then(|index| Self::ALL.get(index).copied())
+            .unwrap_or(ContactBranch::Free)
+    }
+
+    /// A short name for event lists: `gap`, `lower ramp`, `upper clamped`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactBranch::Free => "free",
+            ContactBranch::Lower(Piece::Ramp) => "lower stop, damping ramp",
+            ContactBranch::Lower(Piece::Full) => "lower stop, full damping",
+            ContactBranch::LowerClamped => "lower stop, clamped",
+            ContactBranch::Upper(Piece::Ramp) => "upper stop, damping ramp",
+            ContactBranch::Upper(Piece::Full) => "upper stop, full damping",
+            ContactBranch::UpperClamped => "upper stop, clamped",
+        }
+    }
+}
+
+/// The branch a contact law takes at `x`, `v` (SPEC 3.3 and 5), and its
+/// switching values for `held` (the natural branch when `None`): three numbers, each positive while the law
+/// stays on `held` and negative once it has left it (the penetration, the
+/// distance to the ramp's end, the unclamped force; 1 where one does not
+/// apply).
+fn contact_switching<P: Parameter<f64>>(
+    x: f64,
+    v: f64,
+    x1: &P,
+    x2: Option<&P>,
+    parameters: [&P; 4],
+    held: Option<ContactBranch>,
+) -> (ContactBranch, [f64; 3]) {
+    let d = parameters[3].value();
+    // Without damping the ramp's pieces give the same force: one branch.
+    let piece_of = |p: f64| {
+        if parameters[2].value() == 0.0 {
+            Piece::Full
+        } else {
+            Piece::of(p, d)
+        }
+    };
+    let lower = || (x1.value() - x, -v);
+    let upper = || x2.map(|x2| (x - x2.value(), v));
+    let natural = {
+        let side =
+            |(p, rate): (f64, f64), unclamped_branch: fn(Piece) -> ContactBranch, clamped| {
+                let piece = piece_of(p);
+                if unclamped(&p, rate, parameters, piece) > 0.0 {
+                    unclamped_branch(piece)
+                } else {
+                    clamped
+                }
+            };
+        if x < x1.value() {
+            side(lower(), ContactBranch::Lower, ContactBranch::LowerClamped)
+        } else if let Some((p, rate)) = upper().filter(|&(p, _)| p > 0.0) {
+            side((p, rate), ContactBranch::Upper, ContactBranch::UpperClamped)
+        } else {
+            ContactBranch::Free
+        }
+    };
+    let at_stop = |(p, rate): (f64, f64), piece: Option<Piece>| -> [f64; 3] {
+        match piece {
+            Some(piece) => {
+                let end = if piece == Piece::Ramp { d - p } else { p - d };
+                [p, end, unclamped(&p, rate, parameters, piece)]
+            }
+            None => [p, -unclamped(&p, rate, parameters, piece_of(p)), 1.0],
+        }
+    };
+    let values = match held.unwrap_or(natural) {
+        ContactBranch::Free => [x - x1.value(), upper().map_or(1.0, |(p, _)| -p), 1.0],
+        ContactBranch::Lower(piece) => at_stop(lower(), Some(piece)),
+        ContactBranch::LowerClamped => at_stop(lower(), None),
+        ContactBranch::Upper(piece) => upper().map_or([1.0; 3], |side| at_stop(side, Some(piece))),
+        ContactBranch::UpperClamped => upper().map_or([1.0; 3], |side| at_stop(side, None)),
+    };
+    (natural, values)
+}
+
+/// The largest step a simulator should take with a law held on `held` at
+/// `x`, `v`: for a softening stop (`e < 1`, whose slope is unbounded at
+/// first touch) half the time the penetration takes to double or vanish
+/// at its current rate, so that steps grow and shrink geometrically with
+/// the penetration; unbounded otherwise.
+fn contact_step_limit<P: Parameter<f64>>(
+    x: f64,
+    v: f64,
+    x1: &P,
+    x2: Option<&P>,
+    exponent: &P,
+    held: ContactBranch,
+) -> f64 {
+    if exponent.value() >= 1.0 {
+        return f64::INFINITY;
+    }
+    let (p, rate) = match held {
+        ContactBranch::Lower(_) | ContactBranch::LowerClamped => (x1.value() - x, -v),
+        ContactBranch::Upper(_) | ContactBranch::UpperClamped => match x2 {
+            Some(x2) => (x - x2.value(), v),
+            None => return f64::INFINITY,
+        },
+        ContactBranch::Free => return f64::INFINITY,
+    };
+    if rate == 0.0 {
+        return f64::INFINITY;
+    }
+    0.5 * p.max(0.0) / rate.abs()
+}
+
+/// The force on branch `held`, continued smoothly past the branch's
+/// boundaries (the simulator's view within a step).
+fn contact_held<T: Number, P: Parameter<T>>(
+    x: &T,
+    v: &T,
+    x1: &P,
+    x2: Option<&P>,
+    parameters: [&P; 4],
+    held: ContactBranch,
+) -> T {
+    match (held, x2) {
+        (ContactBranch::Lower(piece), _) => unclamped(&x1.minus(x), -v.clone(), parameters, piece),
+        (ContactBranch::Upper(piece), Some(x2)) => {
+            -unclamped(&x2.from(x), v.clone(), parameters, piece)
+        }
+        _ => T::zero(),
+    }
 }
 
 /// The stops and parameters of a contact law given as constants (the usual
@@ -208,6 +412,50 @@ impl Stops {
     pub fn force<T: Number>(&self, x: &T, v: &T) -> T {
         let [k, e, cmax, d] = &self.parameters;
         stops(x, v, &self.lower, self.upper.as_ref(), [k, e, cmax, d])
+    }
+
+    /// The force on branch `held`, continued past its boundaries.
+    pub fn force_held<T: Number>(&self, x: &T, v: &T, held: ContactBranch) -> T {
+        let [k, e, cmax, d] = &self.parameters;
+        contact_held(
+            x,
+            v,
+            &self.lower,
+            self.upper.as_ref(),
+            [k, e, cmax, d],
+            held,
+        )
+    }
+
+    /// The branch at `x`, `v`, and the switching values for `held`
+    /// (see [`switching`]).
+    pub fn switching(
+        &self,
+        x: f64,
+        v: f64,
+        held: Option<ContactBranch>,
+    ) -> (ContactBranch, [f64; 3]) {
+        let [k, e, cmax, d] = &self.parameters;
+        contact_switching(
+            x,
+            v,
+            &self.lower,
+            self.upper.as_ref(),
+            [k, e, cmax, d],
+            held,
+        )
+    }
+
+    /// The largest step to take on branch `held` (see [`step_limit`]).
+    pub fn step_limit(&self, x: f64, v: f64, held: ContactBranch) -> f64 {
+        contact_step_limit(
+            x,
+            v,
+            &self.lower,
+            self.upper.as_ref(),
+            &self.parameters[1],
+            held,
+        )
     }
 
     /// `x1`, `x2` and `[k, e, cmax, d]`, as given.
@@ -264,4 +512,42 @@ pub fn impact<T: Number>(x: &T, v: &T, x1: &T, k: &T, e: &T, cmax: &T, d: &T) ->
 #[inline]
 pub fn bistop<T: Number>(x: &T, v: &T, x1: &T, x2: &T, k: &T, e: &T, cmax: &T, d: &T) -> T {
     contact(x, v, x1, Some(x2), [k, e, cmax, d])
+}
+
+/// The branch of `IMPACT` (no `x2`) or `BISTOP` at `x`, `v` with the other
+/// arguments as plain numbers, and the switching values for `held`: three
+/// numbers, positive while the law stays on `held` (the natural branch
+/// when `None`).
+pub fn switching(
+    x: f64,
+    v: f64,
+    x1: f64,
+    x2: Option<f64>,
+    [k, e, cmax, d]: [f64; 4],
+    held: Option<ContactBranch>,
+) -> (ContactBranch, [f64; 3]) {
+    contact_switching(x, v, &x1, x2.as_ref(), [&k, &e, &cmax, &d], held)
+}
+
+/// `IMPACT` (no `x2`) or `BISTOP` on branch `held`, continued past its
+/// boundaries.
+pub fn held<T: Number>(
+    x: &T,
+    v: &T,
+    x1: &T,
+    x2: Option<&T>,
+    [k, e, cmax, d]: [&T; 4],
+    held: ContactBranch,
+) -> T {
+    let x2 = x2.map(Varying);
+    let parameters = [&Varying(k), &Varying(e), &Varying(cmax), &Varying(d)];
+    contact_held(x, v, &Varying(x1), x2.as_ref(), parameters, held)
+}
+
+/// The largest step a simulator should take with `IMPACT` (no `x2`) or
+/// `BISTOP` held on `held`: for a softening stop (`e < 1`, whose slope is
+/// unbounded at first touch) half the time the penetration takes to double
+/// or vanish at its current rate; unbounded otherwise.
+pub fn step_limit(x: f64, v: f64, x1: f64, x2: Option<f64>, e: f64, held: ContactBranch) -> f64 {
+    contact_step_limit(x, v, &x1, x2.as_ref(), &e, held)
 }

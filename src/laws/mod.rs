@@ -4,6 +4,7 @@
 //! subroutines alike. Piecewise rules branch on the real part, exactly as
 //! SPEC section 5 says.
 
+pub mod branch;
 pub mod contact;
 pub mod intrinsics;
 pub mod power;

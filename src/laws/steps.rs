@@ -26,13 +26,51 @@ impl Shape {
     }
 }
 
+/// Which part of a step applies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StepBranch {
+    /// `x <= x0`: `h0`.
+    Before,
+    /// `x0 < x < x1`: the ramp.
+    Ramp,
+    /// `x >= x1`: `h1`.
+    After,
+}
+
+impl StepBranch {
+    /// The branch at `x` (SPEC 5: `x <= x0` is before, `x >= x1` after).
+    pub fn of(x: f64, x0: f64, x1: f64) -> StepBranch {
+        if x <= x0 {
+            StepBranch::Before
+        } else if x >= x1 {
+            StepBranch::After
+        } else {
+            StepBranch::Ramp
+        }
+    }
+}
+
 /// `STEP(x, x0, h0, x1, h1)` and its siblings.
 pub fn step<T: Number>(shape: Shape, x: &T, x0: &T, h0: &T, x1: &T, h1: &T) -> T {
-    if x.value() <= x0.value() {
-        return h0.clone();
-    }
-    if x.value() >= x1.value() {
-        return h1.clone();
+    let branch = StepBranch::of(x.value(), x0.value(), x1.value());
+    step_on(branch, shape, x, x0, h0, x1, h1)
+}
+
+/// The step on `branch`; the ramp's polynomial (or cosine) continues past
+/// `[x0, x1]` when the simulator holds it there.
+pub fn step_on<T: Number>(
+    branch: StepBranch,
+    shape: Shape,
+    x: &T,
+    x0: &T,
+    h0: &T,
+    x1: &T,
+    h1: &T,
+) -> T {
+    match branch {
+        StepBranch::Before => return h0.clone(),
+        StepBranch::After => return h1.clone(),
+        StepBranch::Ramp => {}
     }
     let u = (x.clone() - x0.clone()) / (x1.clone() - x0.clone());
     let rise = h1.clone() - h0.clone();

@@ -12,7 +12,7 @@ use crate::laws::spline::{SplineData, SplineDataError};
 use std::collections::HashSet;
 
 use crate::check::Reference;
-use crate::scene::{Body, Marker, Scene, SceneKind, Target, euler_313};
+use crate::scene::{Body, DiffData, Marker, Scene, SceneKind, Target, euler_313};
 use crate::span::Span;
 
 /// A statement whose data cannot make a scene.
@@ -64,7 +64,7 @@ impl ConfigurationError {
 }
 
 /// The numbers of argument `keyword` (`count` of them), or `default`.
-fn numbers<const N: usize>(
+pub(crate) fn numbers<const N: usize>(
     statement: &Statement,
     keyword: &str,
     default: [f64; N],
@@ -83,7 +83,10 @@ fn numbers<const N: usize>(
 }
 
 /// All the numbers of `argument`, a value list.
-fn number_list(statement: &Statement, argument: &Argument) -> Result<Vec<f64>, ConfigurationError> {
+pub(crate) fn number_list(
+    statement: &Statement,
+    argument: &Argument,
+) -> Result<Vec<f64>, ConfigurationError> {
     let items = match &argument.value {
         Value::List(items) => items.as_slice(),
         _ => &[],
@@ -133,7 +136,11 @@ fn spline_data(statement: &Statement) -> Result<Option<SplineData>, Configuratio
 }
 
 /// One number, `keyword = value`, or `default`.
-fn number(statement: &Statement, keyword: &str, default: f64) -> Result<f64, ConfigurationError> {
+pub(crate) fn number(
+    statement: &Statement,
+    keyword: &str,
+    default: f64,
+) -> Result<f64, ConfigurationError> {
     numbers(statement, keyword, [default]).map(|[value]| value)
 }
 
@@ -264,10 +271,11 @@ pub fn initial_scene(
             scene.statements.arrays.insert(id, values);
         }
     }
-    for statement in dataset
+    for (index, statement) in dataset
         .statements
         .iter()
-        .filter(|s| is_statement(s, "DIFF"))
+        .enumerate()
+        .filter(|(_, s)| is_statement(s, "DIFF"))
     {
         if let Some(id) = statement.id {
             let [initial] = match statement.argument("IC", 2) {
@@ -280,7 +288,17 @@ pub fn initial_scene(
                 },
                 None => [0.0],
             };
-            scene.statements.diffs.insert(id, initial);
+            let function = report
+                .expressions
+                .iter()
+                .find(|found| {
+                    found.statement == index && "FUNCTION".starts_with(found.keyword.as_str())
+                })
+                .and_then(|found| found.checked.clone());
+            scene
+                .statements
+                .diffs
+                .insert(id, DiffData { initial, function });
         }
     }
     for statement in dataset

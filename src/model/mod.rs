@@ -6,7 +6,7 @@
 mod adm;
 mod cmd;
 mod encoding;
-mod initial;
+pub(crate) mod initial;
 mod references;
 mod text;
 mod variables;

@@ -23,6 +23,16 @@ struct SceneFile {
     bodies: Vec<BodyFile>,
     #[serde(default, rename = "marker")]
     markers: Vec<MarkerFile>,
+    /// What a simulation reads ([`crate::simulate::from_scene`]): allowed
+    /// here, read there.
+    #[serde(default, rename = "force")]
+    _forces: Vec<toml::Value>,
+    #[serde(default, rename = "diff")]
+    _diffs: Vec<toml::Value>,
+    #[serde(rename = "gravity")]
+    _gravity: Option<toml::Value>,
+    #[serde(rename = "simulate")]
+    _simulate: Option<toml::Value>,
 }
 
 /// How an orientation is written: a quaternion or 3-1-3 Euler angles.
@@ -51,6 +61,13 @@ struct BodyFile {
     angular_velocity: [f64; 3],
     acceleration: Option<[f64; 3]>,
     angular_acceleration: Option<[f64; 3]>,
+    /// A simulation's mass properties ([`crate::simulate::from_scene`]).
+    #[serde(rename = "mass")]
+    _mass: Option<toml::Value>,
+    #[serde(rename = "inertia")]
+    _inertia: Option<toml::Value>,
+    #[serde(rename = "centre")]
+    _centre: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]

@@ -16,6 +16,9 @@ use crate::number::Number;
 pub struct FrameData {
     /// The marker's name or id, for messages.
     pub label: String,
+    /// The index of the body it is on in [`crate::Scene::bodies`]; `None`
+    /// for ground.
+    pub body: Option<usize>,
     /// The body's orientation at the scene's time (identity for ground).
     pub body_orientation: Matrix3<f64>,
     /// The marker's origin in the body frame.
@@ -33,6 +36,7 @@ impl FrameData {
     pub fn ground() -> FrameData {
         FrameData {
             label: "ground".to_string(),
+            body: None,
             body_orientation: Matrix3::identity(),
             offset: Vector3::zeros(),
             axes: Matrix3::identity(),

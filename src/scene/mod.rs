@@ -236,9 +236,31 @@ pub struct StatementData {
     /// SPLINE id to its points: `AKISPL(x, z, id)` and `CUBSPL(x, z, id)`
     /// interpolate them.
     pub splines: HashMap<u64, SplineData>,
-    /// DIFF id to the value of its state, `DIF(id)`: at the start of a run,
-    /// its `IC`.
-    pub diffs: HashMap<u64, f64>,
+    /// DIFF id to its differential state: `DIF(id)` is an input named
+    /// [`diff_input`]`(id)` (the initial condition outside a simulation),
+    /// `DIF1(id)` the DIFF's FUNCTION, evaluated in place.
+    pub diffs: HashMap<u64, DiffData>,
+}
+
+/// A differential state `DIFF/id` (explicit form: `d DIF(id)/dt = FUNCTION`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiffData {
+    /// The initial condition `IC` (0 when not given).
+    pub initial: f64,
+    /// The checked FUNCTION: the state's time derivative (`None` when it
+    /// does not check, or is a user subroutine's).
+    pub function: Option<Checked>,
+}
+
+/// The name of the input that holds `DIF(id)`: `DIF(3)`.
+pub fn diff_input(id: u64) -> String {
+    format!("DIF({id})")
+}
+
+/// The DIFF id of an input named `DIF(3)` (as [`diff_input`] writes it).
+pub fn parse_diff_input(name: &str) -> Option<u64> {
+    let inner = name.strip_prefix("DIF(")?.strip_suffix(')')?;
+    inner.parse().ok()
 }
 
 /// Where a marker reference leads.
@@ -351,6 +373,9 @@ impl Scene {
             .find(|(variable, _)| variable.eq_ignore_ascii_case(name))
         {
             return Ok(*value);
+        }
+        if let Some(diff) = parse_diff_input(name).and_then(|id| self.statements.diffs.get(&id)) {
+            return Ok(diff.initial);
         }
         if let Some((index, component)) = self.parse_state_name(name) {
             let body = &self.bodies[index];

@@ -9,6 +9,7 @@ mod points;
 mod record;
 mod render;
 mod repl;
+mod simulate_cmd;
 mod sweep;
 
 use std::io::{self, Write};
@@ -50,6 +51,8 @@ enum Command {
         /// The command: parse, check, eval, plot, repl or completions; none for mbexpr itself.
         command: Option<String>,
     },
+    /// Integrate a model's DIFF equations and free parts in time.
+    Simulate(simulate_cmd::Args),
 }
 
 /// How a run ended, as the process's exit status.
@@ -149,6 +152,7 @@ fn run(cli: Cli) -> Result<Outcome, Fatal> {
             manual_page(command.as_deref())?.render(&mut out)?;
             Outcome::Success
         }
+        Command::Simulate(args) => simulate_cmd::run(&args, &mut out)?,
     };
     out.flush()?;
     Ok(outcome)

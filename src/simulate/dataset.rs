@@ -1,0 +1,523 @@
+//! A [`Model`] from a solver dataset: PART and MARKER statements give the
+//! bodies (MASS, CM, IP, IM) and their initial states, DIFF the
+//! differential states, SFORCE, VFORCE, VTORQUE and GFORCE the forces,
+//! ACCGRAV gravity, REQUEST's `F1` ... `F8` the output columns. Statements
+//! that need a constraint solver, and force elements the simulator does
+//! not integrate, are refused at their place.
+
+use std::collections::HashMap;
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::error::SimulateError;
+use super::model::{Diff, Expression, Force, MassProperties, Model, Output};
+use crate::check::Reference;
+use crate::model::initial::{number, numbers};
+use crate::model::{Dataset, ModelCheck, Statement, Value, initial_scene, is_kind};
+use crate::scene::{Scene, Target};
+use crate::span::Span;
+
+/// Statements that need a constraint solver.
+const CONSTRAINTS: [&str; 10] = [
+    "JOINT",
+    "JPRIM",
+    "MOTION",
+    "COUPLER",
+    "GEAR",
+    "UCON",
+    "PTCV",
+    "CVCV",
+    "FLEX_BODY",
+    "CONSTRAINT",
+];
+
+/// Statements that take no part in the motion (output, graphics, units,
+/// solver settings and data read by elements that are refused anyway).
+const LEFT_ASIDE: [&str; 20] = [
+    "ADAMS",
+    "TITLE",
+    "END",
+    "GRAPHICS",
+    "OUTPUT",
+    "RESULTS",
+    "UNITS",
+    "MATERIAL",
+    "STRING",
+    "PREFERENCES",
+    "EQUILIBRIUM",
+    "KINEMATICS",
+    "DEBUG",
+    "LIST",
+    "NOLIST",
+    "SECTION",
+    "IC",
+    "MATRIX",
+    "CURVE",
+    "FEMDATA",
+];
+
+/// Solver settings that the simulator's own settings replace.
+const SOLVER_SETTINGS: [&str; 3] = ["INTEGRATOR", "DYNAMICS", "SIMULATE"];
+
+/// The statements the simulator reads.
+const SIMULATED: [&str; 12] = [
+    "PART", "MARKER", "DIFF", "SFORCE", "VFORCE", "VTORQUE", "GFORCE", "ACCGRAV", "VARIABLE",
+    "ARRAY", "SPLINE", "REQUEST",
+];
+
+/// The model of a dataset that [`crate::model::check_model`] has checked
+/// (`report`). Every statement that cannot be simulated is reported.
+pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec<SimulateError>> {
+    let mut errors = Vec::new();
+    let mut notes = Vec::new();
+    for statement in &dataset.statements {
+        let kind = |kinds: &[&str]| kinds.iter().any(|kind| is_kind(&statement.name, kind));
+        if kind(&CONSTRAINTS) {
+            errors.push(SimulateError::Constraint {
+                statement: statement.label(),
+                span: statement.span,
+            });
+        } else if kind(&SOLVER_SETTINGS) {
+            notes.push((
+                format!(
+                    "{} is a solver setting: the simulation uses its own (--method, --rtol, --end, --steps)",
+                    statement.label()
+                ),
+                statement.span,
+            ));
+        } else if !kind(&SIMULATED) && !kind(&LEFT_ASIDE) {
+            errors.push(SimulateError::Unsupported {
+                statement: statement.label(),
+                reason: "is not among the elements mbexpr integrates (PART, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, ACCGRAV)"
+                    .to_string(),
+                span: statement.span,
+            });
+        }
+    }
+    let scene = match initial_scene(dataset, report) {
+        Ok(scene) => scene,
+        Err(problems) => {
+            errors.extend(problems.into_iter().map(|problem| SimulateError::Model {
+                message: problem.to_string(),
+                span: problem.span(),
+            }));
+            return Err(errors);
+        }
+    };
+    let mut reader = Reader {
+        dataset,
+        report,
+        scene,
+        expressions: Vec::new(),
+        errors,
+    };
+    let model = reader.model(notes);
+    if reader.errors.is_empty() {
+        Ok(model)
+    } else {
+        Err(reader.errors)
+    }
+}
+
+/// The end time and the number of output steps of a command file's
+/// `SIMULATE/DYNAMIC, END = ..., STEPS = ...`, with the statement's span.
+pub fn run_settings(commands: &Dataset) -> Option<(f64, usize, Span)> {
+    commands.statements.iter().find_map(|statement| {
+        if !is_kind(&statement.name, "SIMULATE") {
+            return None;
+        }
+        let end = number(statement, "END", f64::NAN).ok()?;
+        let steps = number(statement, "STEPS", f64::NAN).ok()?;
+        (steps.fract() == 0.0 && steps >= 0.0).then_some((end, steps as usize, statement.span))
+    })
+}
+
+struct Reader<'d> {
+    dataset: &'d Dataset,
+    report: &'d ModelCheck,
+    scene: Scene,
+    expressions: Vec<Expression>,
+    errors: Vec<SimulateError>,
+}
+
+impl Reader<'_> {
+    fn statements(&self, kind: &'static str) -> impl Iterator<Item = (usize, &Statement)> {
+        self.dataset
+            .statements
+            .iter()
+            .enumerate()
+            .filter(move |(_, statement)| is_kind(&statement.name, kind))
+    }
+
+    fn model(&mut self, mut notes: Vec<(String, Span)>) -> Model {
+        let masses = self.masses();
+        let diffs = self.diffs();
+        let forces = self.forces();
+        let gravity = self.gravity();
+        let outputs = self.outputs(&mut notes);
+        Model {
+            scene: std::mem::take(&mut self.scene),
+            masses,
+            diffs,
+            forces,
+            gravity,
+            expressions: std::mem::take(&mut self.expressions),
+            outputs,
+            notes,
+            run: None,
+        }
+    }
+
+    /// The expression `keyword` of statement `index`, added to the model's
+    /// expressions (its checked tree from the report).
+    fn expression(&mut self, index: usize, keyword: &str) -> Option<usize> {
+        let dataset = self.dataset;
+        let statement = &dataset.statements[index];
+        let argument = statement.argument(keyword, keyword.len().min(4))?;
+        let Value::Expression { text, .. } = &argument.value else {
+            self.errors.push(SimulateError::Model {
+                message: format!(
+                    "{}: {keyword} must be a function expression",
+                    statement.label()
+                ),
+                span: argument.span,
+            });
+            return None;
+        };
+        let found = self
+            .report
+            .expressions
+            .iter()
+            .find(|found| found.statement == index && found.keyword == argument.keyword)?;
+        // An expression that does not check is reported by the check.
+        let checked = found.checked.clone()?;
+        self.expressions.push(Expression {
+            label: format!("{} {keyword}", statement.label()),
+            checked,
+            text: text.clone(),
+        });
+        Some(self.expressions.len() - 1)
+    }
+
+    fn marker(&mut self, statement: &Statement, keyword: &str) -> Option<Target> {
+        let argument = statement.argument(keyword, keyword.len())?;
+        let found = number(statement, keyword, f64::NAN)
+            .ok()
+            .filter(|id| id.fract() == 0.0 && *id >= 0.0)
+            .and_then(|id| self.scene.find_marker(&Reference::Id(id as u64)).ok());
+        if found.is_none() {
+            self.errors.push(SimulateError::Model {
+                message: format!(
+                    "{}: {keyword} must name a MARKER of the model (a floating marker only as JFLOAT)",
+                    statement.label()
+                ),
+                span: argument.span,
+            });
+        }
+        found
+    }
+
+    fn masses(&mut self) -> Vec<MassProperties> {
+        let mut masses = Vec::new();
+        let parts: Vec<usize> = self
+            .statements("PART")
+            .filter(|(_, statement)| statement.argument("GROUND", 3).is_none())
+            .map(|(index, _)| index)
+            .collect();
+        let dataset = self.dataset;
+        for index in parts {
+            masses.push(self.mass(&dataset.statements[index]));
+        }
+        masses
+    }
+
+    fn mass(&mut self, statement: &Statement) -> MassProperties {
+        let label = statement.label();
+        let fail = |errors: &mut Vec<SimulateError>, message: String| {
+            errors.push(SimulateError::Model {
+                message,
+                span: statement.span,
+            });
+        };
+        let mass = number(statement, "MASS", f64::NAN).unwrap_or(f64::NAN);
+        if statement.argument("MASS", 2).is_none() {
+            fail(
+                &mut self.errors,
+                format!(
+                    "{label} has no MASS: give MASS = a positive number (a part without mass cannot move under forces)"
+                ),
+            );
+        } else if !(mass > 0.0 && mass.is_finite()) {
+            fail(
+                &mut self.errors,
+                format!(
+                    "{label}: MASS must be a positive number, not {mass} (a part without mass cannot move under forces)"
+                ),
+            );
+        }
+        let marker_of = |keyword: &str| {
+            number(statement, keyword, f64::NAN)
+                .ok()
+                .filter(|id| id.is_finite())
+                .and_then(|id| {
+                    self.scene
+                        .markers
+                        .iter()
+                        .find(|marker| marker.id == Some(id as u64))
+                })
+        };
+        let centre = marker_of("CM").map_or_else(Vector3::zeros, |marker| marker.position);
+        let inertia_marker = marker_of("IM").or_else(|| marker_of("CM"));
+        let [xx, yy, zz, xy, xz, yz] = match numbers(statement, "IP", [0.0; 6]) {
+            Ok(values) => values,
+            Err(_) => match numbers(statement, "IP", [0.0; 3]) {
+                Ok([xx, yy, zz]) => [xx, yy, zz, 0.0, 0.0, 0.0],
+                Err(error) => {
+                    fail(&mut self.errors, error.to_string());
+                    [0.0; 6]
+                }
+            },
+        };
+        // Adams gives the products as positive integrals (Ixy = ∫xy dm).
+        let in_marker = Matrix3::new(xx, -xy, -xz, -xy, yy, -yz, -xz, -yz, zz);
+        let (axes, origin) = inertia_marker.map_or((Matrix3::identity(), centre), |marker| {
+            (
+                marker.orientation.to_rotation_matrix().into_inner(),
+                marker.position,
+            )
+        });
+        let about_origin = axes * in_marker * axes.transpose();
+        // Parallel axes: from the inertia marker's origin to the centre of mass.
+        let d = origin - centre;
+        let shift = (Matrix3::identity() * d.dot(&d) - d * d.transpose()) * mass;
+        let inertia = about_origin - shift;
+        if mass > 0.0 && inertia.cholesky().is_none() {
+            fail(
+                &mut self.errors,
+                format!(
+                    "{label}: the inertia is singular or not positive definite about the centre of mass: give IP = xx, yy, zz (and products) with positive moments"
+                ),
+            );
+        }
+        MassProperties {
+            mass,
+            centre,
+            inertia,
+            span: statement.span,
+        }
+    }
+
+    fn diffs(&mut self) -> Vec<Diff> {
+        let indices: Vec<usize> = self.statements("DIFF").map(|(index, _)| index).collect();
+        let mut diffs = Vec::new();
+        let dataset = self.dataset;
+        for index in indices {
+            let statement = &dataset.statements[index];
+            let Some(id) = statement.id else { continue };
+            if statement.argument("IMPLICIT", 3).is_some() {
+                self.errors.push(SimulateError::Unsupported {
+                    statement: statement.label(),
+                    reason: "is implicit (FUNCTION = 0 defines the state): only explicit DIFFs (d DIF/dt = FUNCTION) are simulated".to_string(),
+                    span: statement.span,
+                });
+                continue;
+            }
+            let initial = number(statement, "IC", 0.0).unwrap_or_else(|error| {
+                self.errors.push(SimulateError::Model {
+                    message: error.to_string(),
+                    span: error.span(),
+                });
+                0.0
+            });
+            let Some(function) = self.expression(index, "FUNCTION") else {
+                if statement.argument("FUNCTION", 4).is_none() {
+                    self.errors.push(SimulateError::Model {
+                        message: format!(
+                            "{}: a DIFF needs FUNCTION = its time derivative",
+                            statement.label()
+                        ),
+                        span: statement.span,
+                    });
+                }
+                continue;
+            };
+            diffs.push(Diff {
+                id,
+                initial,
+                function,
+            });
+        }
+        diffs
+    }
+
+    fn forces(&mut self) -> Vec<Force> {
+        let floating: HashMap<u64, Option<usize>> = self.floating_markers();
+        let mut forces = Vec::new();
+        let elements: Vec<usize> = self
+            .dataset
+            .statements
+            .iter()
+            .enumerate()
+            .filter(|(_, statement)| {
+                ["SFORCE", "VFORCE", "VTORQUE", "GFORCE"]
+                    .iter()
+                    .any(|kind| is_kind(&statement.name, kind))
+            })
+            .map(|(index, _)| index)
+            .collect();
+        for index in elements {
+            let dataset = self.dataset;
+            let statement = &dataset.statements[index];
+            let Some(i) = self.marker(statement, "I") else {
+                continue;
+            };
+            if is_kind(&statement.name, "SFORCE") {
+                let Some(j) = self.marker(statement, "J") else {
+                    continue;
+                };
+                let Some(magnitude) = self.expression(index, "FUNCTION") else {
+                    continue;
+                };
+                let action_only = statement.argument("ACTIONONLY", 3).is_some();
+                forces.push(if statement.argument("ROTATIONAL", 3).is_some() {
+                    Force::Rotational {
+                        i,
+                        j,
+                        magnitude,
+                        action_only,
+                    }
+                } else {
+                    Force::Translational {
+                        i,
+                        j,
+                        magnitude,
+                        action_only,
+                    }
+                });
+                continue;
+            }
+            let reaction = match statement.argument("JFLOAT", 2) {
+                None => None,
+                Some(argument) => {
+                    let id = number(statement, "JFLOAT", f64::NAN).unwrap_or(f64::NAN);
+                    match floating.get(&(id as u64)) {
+                        Some(body) => *body,
+                        None => {
+                            self.errors.push(SimulateError::Model {
+                                message: format!(
+                                    "{}: JFLOAT must name a floating MARKER (MARKER/id, PART = ..., FLOATING)",
+                                    statement.label()
+                                ),
+                                span: argument.span,
+                            });
+                            continue;
+                        }
+                    }
+                }
+            };
+            let axes = match statement.argument("RM", 2) {
+                Some(_) => match self.marker(statement, "RM") {
+                    Some(axes) => axes,
+                    None => continue,
+                },
+                None => Target::Ground,
+            };
+            let force_keywords = if is_kind(&statement.name, "VTORQUE") {
+                [None; 3]
+            } else {
+                [Some("FX"), Some("FY"), Some("FZ")]
+            };
+            let torque_keywords = if is_kind(&statement.name, "VFORCE") {
+                [None; 3]
+            } else {
+                [Some("TX"), Some("TY"), Some("TZ")]
+            };
+            let force =
+                force_keywords.map(|keyword| keyword.and_then(|k| self.expression(index, k)));
+            let torque =
+                torque_keywords.map(|keyword| keyword.and_then(|k| self.expression(index, k)));
+            forces.push(Force::Vector {
+                i,
+                reaction,
+                axes,
+                force,
+                torque,
+            });
+        }
+        forces
+    }
+
+    /// Floating markers by id, with the body they are on (`None`: ground).
+    fn floating_markers(&self) -> HashMap<u64, Option<usize>> {
+        let mut bodies = HashMap::new();
+        let mut index = 0;
+        for (_, part) in self.statements("PART") {
+            let Some(id) = part.id else { continue };
+            if part.argument("GROUND", 3).is_some() {
+                bodies.insert(id, None);
+            } else {
+                bodies.insert(id, Some(index));
+                index += 1;
+            }
+        }
+        self.statements("MARKER")
+            .filter(|(_, marker)| marker.argument("FLOATING", 3).is_some())
+            .filter_map(|(_, marker)| {
+                let part = number(marker, "PART", f64::NAN).ok()? as u64;
+                Some((marker.id?, *bodies.get(&part)?))
+            })
+            .collect()
+    }
+
+    fn gravity(&mut self) -> Vector3<f64> {
+        let mut gravity = Vector3::zeros();
+        let dataset = self.dataset;
+        let statements: Vec<&Statement> = dataset
+            .statements
+            .iter()
+            .filter(|statement| is_kind(&statement.name, "ACCGRAV"))
+            .collect();
+        for statement in statements {
+            for (axis, keyword) in ["IGRAV", "JGRAV", "KGRAV"].into_iter().enumerate() {
+                match number(statement, keyword, 0.0) {
+                    Ok(value) => gravity[axis] = value,
+                    Err(error) => self.errors.push(SimulateError::Model {
+                        message: error.to_string(),
+                        span: error.span(),
+                    }),
+                }
+            }
+        }
+        gravity
+    }
+
+    fn outputs(&mut self, notes: &mut Vec<(String, Span)>) -> Vec<Output> {
+        let requests: Vec<usize> = self.statements("REQUEST").map(|(index, _)| index).collect();
+        let mut outputs = Vec::new();
+        let dataset = self.dataset;
+        for index in requests {
+            let statement = &dataset.statements[index];
+            let label = statement.label();
+            let mut any = false;
+            for keyword in ["F1", "F2", "F3", "F4", "F5", "F6", "F7", "F8"] {
+                if statement.argument(keyword, 2).is_none() {
+                    continue;
+                }
+                any = true;
+                if let Some(expression) = self.expression(index, keyword) {
+                    outputs.push(Output {
+                        name: format!("{label}.{keyword}"),
+                        expression,
+                    });
+                }
+            }
+            if !any {
+                notes.push((
+                    format!("{label} is not computed: simulate writes a REQUEST's F1 ... F8 expressions (write DX(i, j), VX(i, j) ... there)"),
+                    statement.span,
+                ));
+            }
+        }
+        outputs
+    }
+}

@@ -1,0 +1,681 @@
+//! The equations of motion of a [`Model`], written once over any
+//! [`Number`]: over `f64` they are the right-hand side `dy/dt = f(t, y)`,
+//! over dual numbers seeded in the states they give its exact Jacobian.
+//!
+//! The state is, in order: the value of each DIFF; then for each body its
+//! centre of mass in ground (3), its orientation as a quaternion `w x y z`
+//! (4), the velocity of its centre of mass in ground (3) and its angular
+//! velocity in its own axes (3). A body moves by Newton's and Euler's
+//! equations about its centre of mass:
+//!
+//! ```text
+//! p' = v          q' = q ⊗ (0, ω) / 2          (R from q/|q|)
+//! v' = F/m + g    ω' = I⁻¹ (Rᵀ τ − ω × I ω)
+//! ```
+//!
+//! where `F` and `τ` (about the centre of mass, in ground) sum the force
+//! elements acting on the body. The expressions see each body through its
+//! state inputs `BODY.x` ... `BODY.wz` (the origin of the body frame, a
+//! small rotation about the current orientation, the origin's velocity, the
+//! angular velocity in ground): they are computed from the state here, with
+//! their derivative parts, so the program's derivatives flow into the
+//! Jacobian by the chain rule with no hand-written derivative.
+
+use nalgebra::{DMatrix, Matrix3, Vector3};
+use num_dual::{DualDVec64, DualSVec64};
+
+use super::model::{Force, Model};
+use crate::compile::Program;
+use crate::eval::{Evaluator, OutputError};
+use crate::laws::branch::Code;
+use crate::number::{Directional, Number};
+use crate::scene::{StateComponent, Target, parse_diff_input};
+
+/// Components of a body's state.
+pub(crate) const BODY_STATES: usize = 13;
+
+/// Where a program input's value comes from.
+#[derive(Clone, Copy, Debug)]
+enum Source {
+    /// `TIME`.
+    Time,
+    /// A constant (a user variable of the scene).
+    Constant(f64),
+    /// The state component at this index (a DIFF).
+    State(usize),
+    /// A body's state input.
+    Body(usize, StateComponent),
+}
+
+/// A body's state as the expressions and the force elements see it.
+struct Kinematics<T: Number> {
+    centre: Vector3<T>,
+    /// The quaternion as integrated (not normalised).
+    quaternion: [T; 4],
+    rotation: Matrix3<T>,
+    /// A small rotation about the current orientation, with value 0 and the
+    /// derivative parts of the orientation.
+    turn: Vector3<T>,
+    velocity: Vector3<T>,
+    /// Angular velocity in the body's axes.
+    omega: Vector3<T>,
+    /// Angular velocity in ground.
+    omega_ground: Vector3<T>,
+    /// From the centre of mass to the body frame's origin, in ground.
+    to_origin: Vector3<T>,
+}
+
+impl<T: Number> Kinematics<T> {
+    fn of(state: &[T], centre_in_body: &Vector3<f64>) -> Kinematics<T> {
+        let vector = |first: usize| {
+            Vector3::new(
+                state[first].clone(),
+                state[first + 1].clone(),
+                state[first + 2].clone(),
+            )
+        };
+        let quaternion = [
+            state[3].clone(),
+            state[4].clone(),
+            state[5].clone(),
+            state[6].clone(),
+        ];
+        let length = quaternion
+            .iter()
+            .map(|part| part.clone() * part.clone())
+            .reduce(|sum, term| sum + term)
+            .expect("four parts")
+            .sqrt();
+        let [w, x, y, z] = quaternion.clone().map(|part| part / length.clone());
+        let rotation = rotation_matrix(&w, &x, &y, &z);
+        // vec(n ⊗ n0*) = w0 v − w v0 − v × v0, twice, is the small rotation
+        // whose derivative parts are the orientation's.
+        let (w0, v0) = (w.value(), Vector3::new(x.value(), y.value(), z.value()));
+        let v = Vector3::new(x, y, z);
+        let cross = v.cross(&v0.map(T::from));
+        let turn = (v.clone() * T::from(w0) - v0.map(|c| w.clone() * c) - cross) * T::from(2.0);
+        let turn = turn.map(|component| component.clone() - component.value());
+        let omega = vector(10);
+        let omega_ground = &rotation * &omega;
+        let to_origin = -(&rotation * centre_in_body.map(T::from));
+        Kinematics {
+            centre: vector(0),
+            quaternion,
+            rotation,
+            turn,
+            velocity: vector(7),
+            omega,
+            omega_ground,
+            to_origin,
+        }
+    }
+
+    /// The value of state input `component` (of the body frame's origin).
+    fn input(&self, component: StateComponent) -> T {
+        match component {
+            StateComponent::Position(axis) => {
+                self.centre[axis].clone() + self.to_origin[axis].clone()
+            }
+            StateComponent::Rotation(axis) => self.turn[axis].clone(),
+            StateComponent::Velocity(axis) => {
+                self.velocity[axis].clone() + self.omega_ground.cross(&self.to_origin)[axis].clone()
+            }
+            StateComponent::AngularVelocity(axis) => self.omega_ground[axis].clone(),
+        }
+    }
+}
+
+/// The rotation matrix of the unit quaternion `w x y z`.
+fn rotation_matrix<T: Number>(w: &T, x: &T, y: &T, z: &T) -> Matrix3<T> {
+    let two = |a: &T, b: &T| a.clone() * b.clone() * 2.0;
+    let one = T::one();
+    Matrix3::new(
+        one.clone() - two(y, y) - two(z, z),
+        two(x, y) - two(w, z),
+        two(x, z) + two(w, y),
+        two(x, y) + two(w, z),
+        one.clone() - two(x, x) - two(z, z),
+        two(y, z) - two(w, x),
+        two(x, z) - two(w, y),
+        two(y, z) + two(w, x),
+        one - two(x, x) - two(y, y),
+    )
+}
+
+/// A marker's origin and axes in ground.
+struct Placed<T: Number> {
+    origin: Vector3<T>,
+    axes: Matrix3<T>,
+    body: Option<usize>,
+}
+
+/// The force and the torque about the centre of mass, in ground, that the
+/// force elements apply to each body.
+struct Loads<T: Number> {
+    force: Vec<Vector3<T>>,
+    torque: Vec<Vector3<T>>,
+}
+
+impl<T: Number> Loads<T> {
+    /// `force` at `point` on `body` (nothing on ground).
+    fn push(
+        &mut self,
+        body: Option<usize>,
+        point: &Vector3<T>,
+        force: &Vector3<T>,
+        kinematics: &[Kinematics<T>],
+    ) {
+        if let Some(body) = body {
+            let arm = point - &kinematics[body].centre;
+            self.torque[body] += arm.cross(force);
+            self.force[body] += force;
+        }
+    }
+
+    /// `torque` on `body` (nothing on ground).
+    fn turn(&mut self, body: Option<usize>, torque: &Vector3<T>) {
+        if let Some(body) = body {
+            self.torque[body] += torque;
+        }
+    }
+}
+
+/// The equations of motion of a model, with its compiled expressions.
+pub(crate) struct Mechanics<'m> {
+    equations: Equations<'m>,
+    /// The states that are derivative directions of the Jacobian.
+    directions: Vec<usize>,
+    /// Bodies whose motion nothing couples to the rest (no force acts on
+    /// them, no expression reads them): their Jacobian block is their own.
+    free_bodies: Vec<usize>,
+    values: Evaluator<'m, f64>,
+    duals: DualEvaluator<'m>,
+}
+
+/// The evaluator of the Jacobian's dual numbers: static sizes for few
+/// directions, dynamic beyond.
+enum DualEvaluator<'m> {
+    One(Evaluator<'m, DualSVec64<1>>),
+    Two(Evaluator<'m, DualSVec64<2>>),
+    Three(Evaluator<'m, DualSVec64<3>>),
+    Four(Evaluator<'m, DualSVec64<4>>),
+    Many(Evaluator<'m, DualDVec64>),
+}
+
+/// The state index of the first component of body `body`.
+pub(crate) fn body_offset(model: &Model, body: usize) -> usize {
+    model.diffs.len() + BODY_STATES * body
+}
+
+impl<'m> Mechanics<'m> {
+    /// The equations of `model`, whose DIFF functions and force components
+    /// `program` computes (output `k` is the expression `computed[k]`).
+    pub(crate) fn new(model: &'m Model, program: &'m Program, computed: &[usize]) -> Mechanics<'m> {
+        let mut output_of = vec![None; model.expressions.len()];
+        for (output, &expression) in computed.iter().enumerate() {
+            output_of[expression] = Some(output);
+        }
+        let sources: Vec<Source> = program
+            .inputs()
+            .iter()
+            .map(|name| {
+                if name.eq_ignore_ascii_case("TIME") {
+                    Source::Time
+                } else if let Some(id) = parse_diff_input(name) {
+                    let index = model.diffs.iter().position(|diff| diff.id == id);
+                    Source::State(index.expect("the compiler binds only DIFFs of the model"))
+                } else if let Some((body, component)) = model.scene.parse_state_name(name) {
+                    Source::Body(body, component)
+                } else {
+                    Source::Constant(model.scene.value_of(name).unwrap_or(0.0))
+                }
+            })
+            .collect();
+        let diff_outputs = model
+            .diffs
+            .iter()
+            .map(|diff| output_of[diff.function])
+            .collect();
+        let inverse_inertia = model
+            .masses
+            .iter()
+            .map(|mass| mass.inertia.try_inverse().unwrap_or_else(Matrix3::zeros))
+            .collect();
+        let (directions, free_bodies) = couplings(model, program, &sources);
+        let duals = match directions.len() {
+            1 => DualEvaluator::One(program.evaluator()),
+            2 => DualEvaluator::Two(program.evaluator()),
+            3 => DualEvaluator::Three(program.evaluator()),
+            4 => DualEvaluator::Four(program.evaluator()),
+            _ => DualEvaluator::Many(program.evaluator()),
+        };
+        Mechanics {
+            equations: Equations {
+                model,
+                program,
+                sources,
+                diff_outputs,
+                output_of,
+                inverse_inertia,
+            },
+            directions,
+            free_bodies,
+            values: program.evaluator(),
+            duals,
+        }
+    }
+
+    /// The number of states.
+    pub(crate) fn dimension(&self) -> usize {
+        let model = self.equations.model;
+        model.diffs.len() + BODY_STATES * model.scene.bodies.len()
+    }
+
+    /// `dy/dt` at `(t, y)` with the sites on the branches `held`.
+    pub(crate) fn rates(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        rates: &mut [f64],
+    ) -> Result<(), OutputError> {
+        self.equations.rates(&mut self.values, t, y, held, rates)
+    }
+
+    /// The natural branch of every site and their switching values at
+    /// `(t, y)`, with the sites held on `held`, and the largest step they
+    /// allow (see [`Evaluator::observe`]).
+    pub(crate) fn observe(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        natural: &mut [Option<Code>],
+        switching: &mut [f64],
+    ) -> Result<f64, OutputError> {
+        let equations = &self.equations;
+        let kinematics = equations.kinematics(y);
+        let inputs = inputs(&equations.sources, t, y, &kinematics);
+        let mut outputs = vec![0.0; equations.program.output_count()];
+        reorient(&mut self.values, &kinematics);
+        self.values
+            .observe(&inputs, held, natural, switching, &mut outputs)
+    }
+
+    /// Every output of the program at `(t, y)`, all branches natural.
+    pub(crate) fn outputs(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        outputs: &mut [f64],
+    ) -> Result<(), OutputError> {
+        let equations = &self.equations;
+        let kinematics = equations.kinematics(y);
+        let inputs = inputs(&equations.sources, t, y, &kinematics);
+        reorient(&mut self.values, &kinematics);
+        self.values.outputs(&inputs, None, outputs)
+    }
+
+    /// `d(dy/dt)/dy` at `(t, y)` with the sites on `held`, into `jacobian`.
+    pub(crate) fn jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        jacobian: &mut DMatrix<f64>,
+    ) -> Result<(), OutputError> {
+        jacobian.fill(0.0);
+        let (equations, directions) = (&self.equations, self.directions.as_slice());
+        if !directions.is_empty() {
+            match &mut self.duals {
+                DualEvaluator::One(evaluator) => {
+                    equations.columns(evaluator, t, y, held, directions, jacobian)?;
+                }
+                DualEvaluator::Two(evaluator) => {
+                    equations.columns(evaluator, t, y, held, directions, jacobian)?;
+                }
+                DualEvaluator::Three(evaluator) => {
+                    equations.columns(evaluator, t, y, held, directions, jacobian)?;
+                }
+                DualEvaluator::Four(evaluator) => {
+                    equations.columns(evaluator, t, y, held, directions, jacobian)?;
+                }
+                DualEvaluator::Many(evaluator) => {
+                    equations.columns(evaluator, t, y, held, directions, jacobian)?;
+                }
+            }
+        }
+        for &body in &self.free_bodies {
+            equations.free_body_block(body, y, jacobian);
+        }
+        Ok(())
+    }
+}
+
+/// The states the Jacobian takes derivatives in (the DIFFs the program
+/// reads, every state of a body that a force acts on or an expression
+/// reads), and the bodies left free of both.
+fn couplings(model: &Model, program: &Program, sources: &[Source]) -> (Vec<usize>, Vec<usize>) {
+    let mut coupled = vec![false; model.scene.bodies.len()];
+    let mut directions = Vec::new();
+    for (input, source) in sources.iter().enumerate() {
+        let used = program.uses_input(input);
+        match *source {
+            Source::State(index) if used => directions.push(index),
+            Source::Body(body, _) if used => coupled[body] = true,
+            _ => {}
+        }
+    }
+    let body_of = |target: &Target| match target {
+        Target::Marker(index) => model.scene.markers[*index].body,
+        Target::Ground => None,
+    };
+    for force in &model.forces {
+        let bodies = match force {
+            Force::Translational { i, j, .. } | Force::Rotational { i, j, .. } => {
+                [body_of(i), body_of(j), None]
+            }
+            Force::Vector {
+                i, reaction, axes, ..
+            } => [body_of(i), body_of(axes), *reaction],
+        };
+        for body in bodies.into_iter().flatten() {
+            coupled[body] = true;
+        }
+    }
+    directions.sort_unstable();
+    directions.dedup();
+    let mut free = Vec::new();
+    for (body, &is_coupled) in coupled.iter().enumerate() {
+        let offset = body_offset(model, body);
+        if is_coupled {
+            directions.extend(offset..offset + BODY_STATES);
+        } else {
+            free.push(body);
+        }
+    }
+    (directions, free)
+}
+
+/// The program input values from the state.
+fn inputs<T: Number>(sources: &[Source], t: f64, y: &[T], kinematics: &[Kinematics<T>]) -> Vec<T> {
+    sources
+        .iter()
+        .map(|source| match *source {
+            Source::Time => T::from(t),
+            Source::Constant(value) => T::from(value),
+            Source::State(index) => y[index].clone(),
+            Source::Body(body, component) => kinematics[body].input(component),
+        })
+        .collect()
+}
+
+/// Turns the program's bodies to the orientations of `kinematics`.
+fn reorient<T: Number, U: Number>(evaluator: &mut Evaluator<'_, U>, kinematics: &[Kinematics<T>]) {
+    if kinematics.is_empty() {
+        return;
+    }
+    evaluator.reorient(|body| kinematics[body].rotation.map(|entry| entry.value()));
+}
+
+/// The equations: the model, where each program input comes from, and
+/// what the program's outputs are.
+struct Equations<'m> {
+    model: &'m Model,
+    program: &'m Program,
+    sources: Vec<Source>,
+    /// The output of the program that is each DIFF's function (`None` in
+    /// a program that computes only output columns).
+    diff_outputs: Vec<Option<usize>>,
+    /// The program's output of each expression it computes, by expression.
+    output_of: Vec<Option<usize>>,
+    /// The inverse inertia of each body.
+    inverse_inertia: Vec<Matrix3<f64>>,
+}
+
+impl Equations<'_> {
+    fn kinematics<T: Number>(&self, y: &[T]) -> Vec<Kinematics<T>> {
+        (0..self.model.scene.bodies.len())
+            .map(|body| {
+                let offset = body_offset(self.model, body);
+                Kinematics::of(
+                    &y[offset..offset + BODY_STATES],
+                    &self.model.masses[body].centre,
+                )
+            })
+            .collect()
+    }
+
+    /// `dy/dt` over `T`.
+    fn rates<T: Number>(
+        &self,
+        evaluator: &mut Evaluator<'_, T>,
+        t: f64,
+        y: &[T],
+        held: Option<&[Option<Code>]>,
+        rates: &mut [T],
+    ) -> Result<(), OutputError> {
+        let model = self.model;
+        let kinematics = self.kinematics(y);
+        let inputs = inputs(&self.sources, t, y, &kinematics);
+        reorient(evaluator, &kinematics);
+        let mut outputs = vec![T::zero(); self.program.output_count()];
+        evaluator.outputs(&inputs, held, &mut outputs)?;
+        for (rate, output) in rates.iter_mut().zip(&self.diff_outputs) {
+            *rate = output.map_or_else(T::zero, |output| outputs[output].clone());
+        }
+        let bodies = model.scene.bodies.len();
+        let mut loads = Loads {
+            force: vec![Vector3::zeros(); bodies],
+            torque: vec![Vector3::zeros(); bodies],
+        };
+        let value = |expression: Option<usize>| {
+            expression
+                .and_then(|expression| self.output_of[expression])
+                .map_or_else(T::zero, |output| outputs[output].clone())
+        };
+        for force in &model.forces {
+            self.apply(force, &kinematics, &value, &mut loads);
+        }
+        for (body, state) in kinematics.iter().enumerate() {
+            let offset = body_offset(model, body);
+            self.body_rates(
+                body,
+                state,
+                &loads.force[body],
+                &loads.torque[body],
+                &mut rates[offset..offset + BODY_STATES],
+            );
+        }
+        Ok(())
+    }
+
+    /// A marker's origin and axes in ground.
+    fn place<T: Number>(&self, target: &Target, kinematics: &[Kinematics<T>]) -> Placed<T> {
+        let Target::Marker(index) = target else {
+            return Placed {
+                origin: Vector3::zeros(),
+                axes: Matrix3::identity(),
+                body: None,
+            };
+        };
+        let marker = &self.model.scene.markers[*index];
+        let axes_in_body = marker.orientation.to_rotation_matrix().into_inner();
+        match marker.body {
+            None => Placed {
+                origin: marker.position.map(T::from),
+                axes: axes_in_body.map(T::from),
+                body: None,
+            },
+            Some(body) => {
+                let state = &kinematics[body];
+                let offset = marker.position - self.model.masses[body].centre;
+                Placed {
+                    origin: &state.centre + &state.rotation * offset.map(T::from),
+                    axes: &state.rotation * axes_in_body.map(T::from),
+                    body: Some(body),
+                }
+            }
+        }
+    }
+
+    /// Adds what `force` applies to the bodies.
+    fn apply<T: Number>(
+        &self,
+        force: &Force,
+        kinematics: &[Kinematics<T>],
+        value: &impl Fn(Option<usize>) -> T,
+        loads: &mut Loads<T>,
+    ) {
+        match force {
+            Force::Translational {
+                i,
+                j,
+                magnitude,
+                action_only,
+            } => {
+                let (i, j) = (self.place(i, kinematics), self.place(j, kinematics));
+                let magnitude = value(Some(*magnitude));
+                if *action_only {
+                    let along = j.axes.column(2).into_owned() * magnitude;
+                    loads.push(i.body, &i.origin, &along, kinematics);
+                    return;
+                }
+                let line = &i.origin - &j.origin;
+                let length = line.dot(&line).sqrt();
+                if length.value() == 0.0 {
+                    // Coincident markers: no line of action, no force.
+                    return;
+                }
+                let push = line / length * magnitude;
+                loads.push(i.body, &i.origin, &push, kinematics);
+                loads.push(j.body, &j.origin, &-push, kinematics);
+            }
+            Force::Rotational {
+                i,
+                j,
+                magnitude,
+                action_only,
+            } => {
+                let (i, j) = (self.place(i, kinematics), self.place(j, kinematics));
+                let torque = j.axes.column(2).into_owned() * value(Some(*magnitude));
+                loads.turn(i.body, &torque);
+                if !*action_only {
+                    loads.turn(j.body, &-torque);
+                }
+            }
+            Force::Vector {
+                i,
+                reaction,
+                axes,
+                force,
+                torque,
+            } => {
+                let i = self.place(i, kinematics);
+                let axes = self.place(axes, kinematics).axes;
+                let along = |components: &[Option<usize>; 3]| {
+                    let local = Vector3::new(
+                        value(components[0]),
+                        value(components[1]),
+                        value(components[2]),
+                    );
+                    &axes * local
+                };
+                let (push, turn) = (along(force), along(torque));
+                loads.push(i.body, &i.origin, &push, kinematics);
+                loads.turn(i.body, &turn);
+                if reaction.is_some() {
+                    loads.push(*reaction, &i.origin, &-push, kinematics);
+                    loads.turn(*reaction, &-turn);
+                }
+            }
+        }
+    }
+
+    /// The rates of one body's 13 states under `force` and `torque` (about
+    /// its centre of mass, in ground).
+    fn body_rates<T: Number>(
+        &self,
+        body: usize,
+        state: &Kinematics<T>,
+        force: &Vector3<T>,
+        torque: &Vector3<T>,
+        rates: &mut [T],
+    ) {
+        let mass = &self.model.masses[body];
+        let inertia = mass.inertia.map(T::from);
+        let acceleration = force / T::from(mass.mass) + self.model.gravity.map(T::from);
+        let omega = &state.omega;
+        let body_torque = state.rotation.transpose() * torque;
+        let angular = self.inverse_inertia[body].map(T::from)
+            * (body_torque - omega.cross(&(&inertia * omega)));
+        let [w, x, y, z] = &state.quaternion;
+        let v = Vector3::new(x.clone(), y.clone(), z.clone());
+        let spin_w = -v.dot(omega) * 0.5;
+        let spin_v = (omega * w.clone() + v.cross(omega)) * T::from(0.5);
+        let rows: [T; 13] = [
+            state.velocity[0].clone(),
+            state.velocity[1].clone(),
+            state.velocity[2].clone(),
+            spin_w,
+            spin_v[0].clone(),
+            spin_v[1].clone(),
+            spin_v[2].clone(),
+            acceleration[0].clone(),
+            acceleration[1].clone(),
+            acceleration[2].clone(),
+            angular[0].clone(),
+            angular[1].clone(),
+            angular[2].clone(),
+        ];
+        for (rate, row) in rates.iter_mut().zip(rows) {
+            *rate = row;
+        }
+    }
+
+    /// The Jacobian's columns in `directions`, by one evaluation over dual
+    /// numbers seeded in them.
+    fn columns<T: Directional>(
+        &self,
+        evaluator: &mut Evaluator<'_, T>,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        directions: &[usize],
+        jacobian: &mut DMatrix<f64>,
+    ) -> Result<(), OutputError> {
+        let count = directions.len();
+        let mut seeded: Vec<T> = y.iter().map(|&value| T::from(value)).collect();
+        for (direction, &state) in directions.iter().enumerate() {
+            seeded[state] = T::variable(y[state], direction, count);
+        }
+        let mut rates = vec![T::zero(); y.len()];
+        self.rates(evaluator, t, &seeded, held, &mut rates)?;
+        for (row, rate) in rates.iter().enumerate() {
+            let gradient = rate.gradient(count);
+            for (direction, &state) in directions.iter().enumerate() {
+                jacobian[(row, state)] = gradient[direction];
+            }
+        }
+        Ok(())
+    }
+
+    /// The Jacobian block of a body that moves on its own (gravity and its
+    /// own spin only), over its 13 states.
+    fn free_body_block(&self, body: usize, y: &[f64], jacobian: &mut DMatrix<f64>) {
+        let offset = body_offset(self.model, body);
+        let seeded: Vec<DualDVec64> = (0..BODY_STATES)
+            .map(|index| DualDVec64::variable(y[offset + index], index, BODY_STATES))
+            .collect();
+        let state = Kinematics::of(&seeded, &self.model.masses[body].centre);
+        let mut rates = vec![DualDVec64::from(0.0); BODY_STATES];
+        let zero = Vector3::zeros();
+        self.body_rates(body, &state, &zero, &zero, &mut rates);
+        for (row, rate) in rates.iter().enumerate() {
+            let gradient = rate.gradient(BODY_STATES);
+            for column in 0..BODY_STATES {
+                jacobian[(offset + row, offset + column)] = gradient[column];
+            }
+        }
+    }
+}

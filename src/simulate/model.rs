@@ -1,0 +1,137 @@
+//! What a simulation integrates, whichever file it came from: the scene
+//! (bodies at their initial states, markers, the data of VARIABLE, ARRAY,
+//! SPLINE and DIFF statements), the bodies' masses, the force elements and
+//! DIFF equations with their expressions, gravity, and the output columns.
+
+use nalgebra::{Matrix3, Vector3};
+
+use crate::check::Checked;
+use crate::model::Embedded;
+use crate::scene::{Scene, Target};
+use crate::span::Span;
+
+/// A model ready to simulate (see [`crate::simulate::from_dataset`] and
+/// [`crate::simulate::from_scene`]).
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// The world the expressions are evaluated in, at time 0.
+    pub scene: Scene,
+    /// The mass of each of the scene's bodies, in the same order.
+    pub masses: Vec<MassProperties>,
+    /// The differential states, in the order of their output columns.
+    pub diffs: Vec<Diff>,
+    /// The force elements.
+    pub forces: Vec<Force>,
+    /// The acceleration of gravity, in ground.
+    pub gravity: Vector3<f64>,
+    /// Every expression of the model: the DIFF functions, the force
+    /// components, the outputs. Forces, DIFFs and outputs refer to them by
+    /// index.
+    pub expressions: Vec<Expression>,
+    /// Named output columns after the states (REQUESTs, named expressions).
+    pub outputs: Vec<Output>,
+    /// What the model's file says that the simulation leaves aside (a
+    /// REQUEST kind it does not compute, solver settings), each with its place.
+    pub notes: Vec<(String, Span)>,
+    /// The end time and number of output steps the file gives (a
+    /// `SIMULATE/DYNAMIC` command), when it gives them.
+    pub run: Option<(f64, usize)>,
+}
+
+/// The mass, centre of mass and inertia of a body.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MassProperties {
+    /// The mass (positive).
+    pub mass: f64,
+    /// The centre of mass in the body frame.
+    pub centre: Vector3<f64>,
+    /// The inertia tensor about the centre of mass, in the body's axes
+    /// (symmetric, positive definite).
+    pub inertia: Matrix3<f64>,
+    /// Where the body is defined (for messages).
+    pub span: Span,
+}
+
+/// A differential state `DIFF/id`: `d DIF(id)/dt = FUNCTION`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diff {
+    /// The statement id.
+    pub id: u64,
+    /// The initial value.
+    pub initial: f64,
+    /// Its FUNCTION, an index into [`Model::expressions`].
+    pub function: usize,
+}
+
+/// A force element: its geometry, and the expressions of its components.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Force {
+    /// `SFORCE, TRANSLATIONAL`: a force of the given magnitude along the
+    /// line from J to I, on I's body at I (positive pushes them apart) and
+    /// the opposite on J's body at J; with `action_only`, along the z axis
+    /// of J, on I's body only.
+    Translational {
+        /// The marker the force acts at.
+        i: Target,
+        /// The marker it reacts at (or whose z axis it acts along).
+        j: Target,
+        /// The magnitude, an index into [`Model::expressions`].
+        magnitude: usize,
+        /// Along J's z axis, on I's body only.
+        action_only: bool,
+    },
+    /// `SFORCE, ROTATIONAL`: a torque about the z axis of J, on I's body and
+    /// the opposite on J's body (not with `action_only`).
+    Rotational {
+        /// The marker on the body the torque acts on.
+        i: Target,
+        /// The marker whose z axis the torque is about.
+        j: Target,
+        /// The magnitude, an index into [`Model::expressions`].
+        magnitude: usize,
+        /// On I's body only.
+        action_only: bool,
+    },
+    /// `VFORCE`, `VTORQUE`, `GFORCE`: force and torque components along the
+    /// axes of marker RM, on I's body at I, and the opposite on the body of
+    /// the floating marker JFLOAT (at the same point), when it is not ground.
+    Vector {
+        /// The marker the force acts at.
+        i: Target,
+        /// The body that takes the reaction (`None`: ground).
+        reaction: Option<usize>,
+        /// The marker whose axes the components are along.
+        axes: Target,
+        /// Force components, indices into [`Model::expressions`].
+        force: [Option<usize>; 3],
+        /// Torque components, indices into [`Model::expressions`].
+        torque: [Option<usize>; 3],
+    },
+}
+
+/// An expression of the model, with its text and how to find it in the file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Expression {
+    /// What it is: `SFORCE/3 FUNCTION`, `force contact`.
+    pub label: String,
+    /// The checked expression.
+    pub checked: Checked,
+    /// The text and the way from each of its bytes back to the file.
+    pub text: Embedded,
+}
+
+impl Expression {
+    /// The span in the file of `span` in the expression's text.
+    pub fn file_span(&self, span: Span) -> Span {
+        self.text.file_span(span)
+    }
+}
+
+/// A named output column, computed at every output time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Output {
+    /// The column name: `REQUEST/4.F2`, `gap`.
+    pub name: String,
+    /// An index into [`Model::expressions`].
+    pub expression: usize,
+}

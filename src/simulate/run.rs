@@ -1,0 +1,777 @@
+//! The run: the integrator steps the equations with every piecewise
+//! function held on its branch; after each accepted step the switching
+//! values are looked at on the step's continuous output, a sign change is
+//! located to about 1e-13 in time, the step is cut there, the branches
+//! switch and the method starts afresh.
+
+use std::collections::VecDeque;
+use std::time::{Duration, Instant};
+
+use nalgebra::DMatrix;
+
+use super::error::SimulateError;
+use super::mechanics::{BODY_STATES, Mechanics, body_offset};
+use super::{Model, Simulation};
+use crate::compile::{Program, SiteKind};
+use crate::eval::OutputError;
+use crate::integrate::{
+    AbsoluteTolerance, IntegrateError, Method, Options, Rejection, Stats, Stepper, System,
+};
+use crate::laws::branch::{self, Code};
+
+/// How to run a simulation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    /// The integration method.
+    pub method: Method,
+    /// The end time (positive); the run starts at 0.
+    pub end: f64,
+    /// The number of output steps: `steps + 1` rows at equally spaced
+    /// times from 0 to `end`.
+    pub steps: usize,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance.
+    pub atol: f64,
+    /// The largest step (infinity for none).
+    pub h_max: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            method: Method::Radau5,
+            end: 1.0,
+            steps: 100,
+            rtol: 1e-6,
+            atol: 1e-9,
+            h_max: f64::INFINITY,
+        }
+    }
+}
+
+impl Settings {
+    fn check(&self) -> Result<(), SimulateError> {
+        let problem = if !(self.end > 0.0 && self.end.is_finite()) {
+            Some(format!(
+                "the end time must be a positive number, not {}",
+                self.end
+            ))
+        } else if self.steps == 0 {
+            Some("the number of output steps must be at least 1".to_string())
+        } else if !(self.rtol > 0.0 && self.rtol < 1.0) {
+            Some(format!(
+                "the relative tolerance must be between 0 and 1, not {}",
+                self.rtol
+            ))
+        } else if !(self.atol > 0.0 && self.atol.is_finite()) {
+            Some(format!(
+                "the absolute tolerance must be a positive number, not {}",
+                self.atol
+            ))
+        } else if !(self.h_max > 0.0) {
+            Some(format!(
+                "the largest step must be positive, not {}",
+                self.h_max
+            ))
+        } else {
+            None
+        };
+        problem.map_or(Ok(()), |message| {
+            Err(SimulateError::Settings {
+                message,
+                span: None,
+            })
+        })
+    }
+}
+
+/// A located branch switch.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Event {
+    /// When.
+    pub time: f64,
+    /// The function (`BISTOP`) or `IF`.
+    pub function: String,
+    /// The expression it is in, an index into [`Model::expressions`].
+    pub expression: usize,
+    /// Its span in that expression.
+    pub span: crate::Span,
+    /// The branch it leaves.
+    pub from: String,
+    /// The branch it takes.
+    pub to: String,
+}
+
+/// What a run cost and found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Summary {
+    /// The integrator's counts: steps, rejected steps, right-hand sides,
+    /// Jacobians, LU decompositions (over every restart).
+    pub stats: Stats,
+    /// Every branch switch, in time order.
+    pub events: Vec<Event>,
+    /// The wall time of the run.
+    pub wall_time: Duration,
+    /// Whether the row callback asked to stop before the end.
+    pub stopped: bool,
+}
+
+/// A step limit of the sites, raised to what the integrator can take at
+/// time `t` (a hundred times its smallest step).
+fn floor(limit: f64, t: f64) -> f64 {
+    limit.max(100.0 * crate::integrate::smallest_step(t))
+}
+
+/// The counts of two runs of the integrator together.
+fn add(a: Stats, b: Stats) -> Stats {
+    Stats {
+        steps: a.steps + b.steps,
+        rejected: a.rejected + b.rejected,
+        rhs_evaluations: a.rhs_evaluations + b.rhs_evaluations,
+        rhs_failures: a.rhs_failures + b.rhs_failures,
+        jacobian_evaluations: a.jacobian_evaluations + b.jacobian_evaluations,
+        lu_decompositions: a.lu_decompositions + b.lu_decompositions,
+    }
+}
+
+/// Points inside each step at which the switching values are looked at
+/// (besides its end): a switching function that changes sign twice within
+/// one step is caught when one of them falls between its two roots.
+const LOOKS_PER_STEP: usize = 4;
+
+/// Looks at the stretch of a step before a located switch: evenly spaced,
+/// and crowding towards it.
+const LOOKS_BEFORE_SWITCH: usize = 8;
+const LOOKS_CROWDING: usize = 20;
+
+/// Switches closer together than this, relative to the time, in a row of
+/// [`CHATTER_COUNT`], are chattering.
+const CHATTER_WINDOW: f64 = 1e-9;
+const CHATTER_COUNT: usize = 100;
+
+/// The equations with the sites held on their branches: what the
+/// integrator sees.
+struct Held<'m> {
+    mechanics: Mechanics<'m>,
+    held: Vec<Option<Code>>,
+}
+
+impl System for Held<'_> {
+    type Error = OutputError;
+
+    fn dimension(&self) -> usize {
+        self.mechanics.dimension()
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), OutputError> {
+        self.mechanics.rates(t, y, Some(&self.held), dy)
+    }
+
+    fn jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        _dy: &[f64],
+        jacobian: &mut DMatrix<f64>,
+    ) -> Result<(), OutputError> {
+        self.mechanics.jacobian(t, y, Some(&self.held), jacobian)
+    }
+}
+
+impl Held<'_> {
+    /// The switching values at `(t, y)` for the held branches, and the
+    /// natural branches into `natural`; the largest step the sites allow.
+    fn look(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        natural: &mut [Option<Code>],
+        switching: &mut [f64],
+    ) -> Result<f64, OutputError> {
+        self.mechanics
+            .observe(t, y, Some(&self.held), natural, switching)
+    }
+}
+
+/// The initial state of the model.
+pub(crate) fn initial_state(model: &Model) -> Vec<f64> {
+    let mut y: Vec<f64> = model.diffs.iter().map(|diff| diff.initial).collect();
+    for (body, state) in model.scene.bodies.iter().enumerate() {
+        let rotation = state.orientation;
+        let arm = rotation * model.masses[body].centre;
+        let centre = state.position + arm;
+        let velocity = state.velocity + state.angular_velocity.cross(&arm);
+        let omega = rotation.inverse() * state.angular_velocity;
+        let q = rotation.quaternion();
+        y.extend(centre.iter());
+        y.extend([q.w, q.i, q.j, q.k]);
+        y.extend(velocity.iter());
+        y.extend(omega.iter());
+    }
+    y
+}
+
+/// The rows' values at state `y` (everything but the time).
+struct Rows<'m> {
+    model: &'m Model,
+    outputs: Mechanics<'m>,
+    values: Vec<f64>,
+}
+
+impl Rows<'_> {
+    fn at(&mut self, t: f64, y: &[f64]) -> Result<&[f64], OutputError> {
+        let model = self.model;
+        self.values.clear();
+        self.values.extend_from_slice(&y[..model.diffs.len()]);
+        for (body, mass) in model.masses.iter().enumerate() {
+            let offset = body_offset(model, body);
+            let state = &y[offset..offset + BODY_STATES];
+            let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                state[3], state[4], state[5], state[6],
+            ));
+            let arm = q * mass.centre;
+            let omega = q * nalgebra::Vector3::new(state[10], state[11], state[12]);
+            let velocity = nalgebra::Vector3::new(state[7], state[8], state[9]) - omega.cross(&arm);
+            self.values
+                .extend([state[0] - arm.x, state[1] - arm.y, state[2] - arm.z]);
+            self.values.extend([q.w, q.i, q.j, q.k]);
+            self.values.extend(velocity.iter());
+            self.values.extend(omega.iter());
+        }
+        let start = self.values.len();
+        self.values.resize(start + model.outputs.len(), 0.0);
+        if !model.outputs.is_empty() {
+            self.outputs.outputs(t, y, &mut self.values[start..])?;
+        }
+        Ok(&self.values)
+    }
+}
+
+impl Simulation<'_> {
+    /// Runs from time 0 to `settings.end`, calling `row` with the time and
+    /// the values of the columns after `time` ([`crate::simulate::columns`])
+    /// at each output time; `row` returns `false` to stop the run there.
+    /// Rows written before an error stay written.
+    pub fn run(
+        &self,
+        settings: &Settings,
+        mut row: impl FnMut(f64, &[f64]) -> bool,
+    ) -> Result<Summary, SimulateError> {
+        settings.check()?;
+        let started = Instant::now();
+        let model = self.model;
+        let program = &self.dynamics;
+        let mut system = Held {
+            mechanics: Mechanics::new(model, program, &self.computed),
+            held: vec![None; program.sites().len()],
+        };
+        let mut rows = Rows {
+            model,
+            outputs: Mechanics::new(model, &self.outputs, &self.output_expressions),
+            values: Vec::new(),
+        };
+        let fail = |time: f64, error: OutputError| SimulateError::Evaluation {
+            time,
+            expression: self.expression_of(program, error.output),
+            error: error.error,
+        };
+        let y0 = initial_state(model);
+        let mut natural = vec![None; program.sites().len()];
+        let mut switching = vec![0.0; program.switch_count()];
+        let limit = system
+            .mechanics
+            .observe(0.0, &y0, None, &mut natural, &mut switching)
+            .map_err(|error| fail(0.0, error))?;
+        system.held.clone_from(&natural);
+        let options = |limit: f64| Options {
+            rtol: settings.rtol,
+            atol: AbsoluteTolerance::All(settings.atol),
+            h_max: settings.h_max.min(floor(limit, 0.0)),
+            max_steps: usize::MAX,
+            ..Options::default()
+        };
+        let mut stepper = Stepper::new(settings.method, options(limit), 0.0, &y0, &mut system)
+            .map_err(|error| self.integration_error(error))?;
+        let mut summary = Summary {
+            stats: Stats::default(),
+            events: Vec::new(),
+            wall_time: Duration::ZERO,
+            stopped: false,
+        };
+        let output_time = |index: usize| settings.end * index as f64 / settings.steps as f64;
+        let values = rows.at(0.0, &y0).map_err(|error| fail(0.0, error))?;
+        summary.stopped = !row(0.0, values);
+        let mut next_output = 1;
+        let mut dense = vec![0.0; y0.len()];
+        let mut recent = VecDeque::new();
+        // The counts of the steppers before the last restart.
+        let mut before = Stats::default();
+        // Radau's continuous output is of order 3 inside a step: its steps
+        // land on the output times instead. DOP853's is of order 7.
+        let land = settings.method == Method::Radau5;
+        // The state at the start of the step, and the switching values there.
+        let mut step_start = y0.clone();
+        let mut start_values = switching.clone();
+        while !summary.stopped && stepper.t() < settings.end {
+            step_start.copy_from_slice(stepper.y());
+            let target = if land && next_output <= settings.steps {
+                output_time(next_output).min(settings.end)
+            } else {
+                settings.end
+            };
+            stepper
+                .step_to(&mut system, target)
+                .map_err(|error| self.integration_error(error))?;
+            let (t0, t1) = (stepper.t_previous(), stepper.t());
+            let switch = find_switch(
+                &mut system,
+                &stepper,
+                t0,
+                t1,
+                &start_values,
+                &mut natural,
+                &mut switching,
+            )
+            .map_err(|(time, error)| fail(time, error))?;
+            let reached = switch.map_or(t1, |located| located.right);
+            while next_output <= settings.steps && output_time(next_output) <= reached {
+                let time = output_time(next_output);
+                stepper.dense(time, &mut dense);
+                let state = if time == t1 { stepper.y() } else { &dense };
+                let values = rows.at(time, state).map_err(|error| fail(time, error))?;
+                if !row(time, values) {
+                    summary.stopped = true;
+                    break;
+                }
+                next_output += 1;
+            }
+            let located = match switch {
+                Ok(located) => located,
+                Err(limit) => {
+                    // The last look was at t1.
+                    start_values.copy_from_slice(&switching);
+                    stepper.set_h_max(settings.h_max.min(floor(limit, t1)));
+                    continue;
+                }
+            };
+            let slope =
+                switching_slope(&mut system, &stepper, located, &mut natural, &mut switching)
+                    .map_err(|(time, error)| fail(time, error))?;
+            before = add(before, stepper.stats());
+            let (right, state) = self.cut(
+                &mut system,
+                settings,
+                (t0, &step_start),
+                located,
+                slope,
+                &mut before,
+            )?;
+            dense.copy_from_slice(&state);
+            system
+                .mechanics
+                .observe(right, &dense, None, &mut natural, &mut switching)
+                .map_err(|error| fail(right, error))?;
+            for (site, (held, now)) in program.sites().iter().zip(system.held.iter().zip(&natural))
+            {
+                if let (Some(from), Some(to)) = (held, now)
+                    && from != to
+                {
+                    summary
+                        .events
+                        .push(self.event(program, site, right, *from, *to));
+                }
+            }
+            system.held.clone_from(&natural);
+            let limit = system
+                .look(right, &dense, &mut natural, &mut start_values)
+                .map_err(|error| fail(right, error))?;
+            recent.push_back(right);
+            if recent.len() > CHATTER_COUNT {
+                recent.pop_front();
+            }
+            if recent.len() == CHATTER_COUNT
+                && let (Some(first), Some(last)) = (recent.front(), recent.back())
+                && last - first <= CHATTER_WINDOW * last.abs().max(1.0)
+                && let Some(event) = summary.events.last()
+            {
+                return Err(SimulateError::Chattering {
+                    time: *last,
+                    function: event.function.clone(),
+                    count: CHATTER_COUNT,
+                    window: last - first,
+                    expression: event.expression,
+                    span: event.span,
+                });
+            }
+            // A fresh start: the first step is chosen anew for the new
+            // branch (a step fit for free flight would cross a contact).
+            stepper = Stepper::new(settings.method, options(limit), right, &dense, &mut system)
+                .map_err(|error| self.integration_error(error))?;
+        }
+        summary.stats = add(before, stepper.stats());
+        summary.wall_time = started.elapsed();
+        Ok(summary)
+    }
+
+    /// The state at a switch located on a step's continuous output, from
+    /// integrating again from the step's start `(t0, y0)` on the branches
+    /// held through the step: the continuous output may be of lower order
+    /// than the steps (Radau's), so the time is refined on the integrated
+    /// states, by Newton's rule with the switching value's `slope` in time,
+    /// until the state lies past the switch by no more than the location's
+    /// tolerance. The time and the state there.
+    fn cut(
+        &self,
+        system: &mut Held<'_>,
+        settings: &Settings,
+        (t0, y0): (f64, &[f64]),
+        located: Switch,
+        slope: f64,
+        counts: &mut Stats,
+    ) -> Result<(f64, Vec<f64>), SimulateError> {
+        let program = &self.dynamics;
+        let mut natural = vec![None; program.sites().len()];
+        let mut switching = vec![0.0; program.switch_count()];
+        let tolerance = 1e-13 * located.right.abs().max(located.right - t0);
+        let mut time = located.right;
+        let mut best: Option<(f64, Vec<f64>)> = None;
+        for _ in 0..4 {
+            let mut stepper = Stepper::new(
+                settings.method,
+                Options {
+                    rtol: settings.rtol,
+                    atol: AbsoluteTolerance::All(settings.atol),
+                    h_init: Some(time - t0),
+                    max_steps: usize::MAX,
+                    ..Options::default()
+                },
+                t0,
+                y0,
+                system,
+            )
+            .map_err(|error| self.integration_error(error))?;
+            while stepper.t() < time {
+                stepper
+                    .step_to(system, time)
+                    .map_err(|error| self.integration_error(error))?;
+            }
+            *counts = add(*counts, stepper.stats());
+            let state = stepper.y().to_vec();
+            system
+                .look(time, &state, &mut natural, &mut switching)
+                .map_err(|error| SimulateError::Evaluation {
+                    time,
+                    expression: self.expression_of(program, error.output),
+                    error: error.error,
+                })?;
+            let value = switching[located.index];
+            let root = time - value / slope;
+            if value < 0.0 {
+                let past = time - root <= tolerance || !root.is_finite();
+                best = Some((time, state));
+                if past {
+                    break;
+                }
+            }
+            if !(root.is_finite() && root > t0) {
+                break;
+            }
+            // Aim just past the switch.
+            time = root + 0.5 * tolerance;
+        }
+        best.ok_or_else(|| SimulateError::Integration {
+            time: located.right,
+            message: "integrating again to a located switch never reaches it: the switching value's continuous output and the integrated states disagree".to_string(),
+            cause: None,
+        })
+    }
+
+    /// The model expression that output `output` of `program` computes.
+    fn expression_of(&self, program: &Program, output: usize) -> usize {
+        if std::ptr::eq(program, &self.dynamics) {
+            self.computed[output]
+        } else {
+            self.output_expressions[output]
+        }
+    }
+
+    /// The event of `site` switching from `from` to `to` at `time`.
+    fn event(
+        &self,
+        program: &Program,
+        site: &crate::compile::Site,
+        time: f64,
+        from: Code,
+        to: Code,
+    ) -> Event {
+        let index = site.instruction as usize;
+        let (function, from, to) = match program.site_kind(site) {
+            SiteKind::Call(function) => (
+                function.name().to_string(),
+                branch::describe(function, from),
+                branch::describe(function, to),
+            ),
+            SiteKind::If => (
+                "IF".to_string(),
+                branch::describe_if(from).to_string(),
+                branch::describe_if(to).to_string(),
+            ),
+        };
+        Event {
+            time,
+            function,
+            expression: self.expression_of(program, program.origin(index)),
+            span: program.span(index),
+            from,
+            to,
+        }
+    }
+
+    /// The error for an integration that cannot go on.
+    fn integration_error(&self, error: IntegrateError<OutputError>) -> SimulateError {
+        let (time, cause) = match &error {
+            IntegrateError::Start { t, cause }
+            | IntegrateError::StepSizeTooSmall { t, cause, .. } => (*t, Some(cause)),
+            IntegrateError::TooManySteps { t, .. }
+            | IntegrateError::JacobianNotFinite { t }
+            | IntegrateError::EndNotAhead { t, .. } => (*t, None),
+            IntegrateError::Jacobian { t, error } => {
+                return SimulateError::Evaluation {
+                    time: *t,
+                    expression: self.expression_of(&self.dynamics, error.output),
+                    error: error.error.clone(),
+                };
+            }
+            IntegrateError::Settings(message) => {
+                return SimulateError::Settings {
+                    message: message.clone(),
+                    span: None,
+                };
+            }
+        };
+        let cause = match cause {
+            Some(Rejection::System(failure)) => Some((
+                self.expression_of(&self.dynamics, failure.output),
+                failure.error.span(),
+            )),
+            _ => None,
+        };
+        SimulateError::Integration {
+            time,
+            message: error.to_string(),
+            cause,
+        }
+    }
+}
+
+/// The first switch in the last step `[t0, t1]`: `Err(limit)` when there
+/// is none (`limit`: the largest next step the sites allow at `t1`), or the
+/// located time as `(left, right)`, a bracket no wider than about 1e-13
+/// relative with every held branch still valid at `left` and some
+/// switching value negative at `right`.
+///
+/// The switching values are looked at [`LOOKS_PER_STEP`] times across the
+/// step. Once a crossing is located, the stretch before it is looked at
+/// again, evenly and crowding towards the crossing: a switch and its
+/// return can lie between two looks, and they come most often just before
+/// another switch (a contact's clamp releases just before the body leaves
+/// the stop).
+fn find_switch(
+    system: &mut Held<'_>,
+    stepper: &Stepper,
+    t0: f64,
+    t1: f64,
+    start: &[f64],
+    natural: &mut [Option<Code>],
+    switching: &mut [f64],
+) -> Result<Result<Switch, f64>, (f64, OutputError)> {
+    // A switching value negative at the step's start (the state a switch
+    // restarts from can lie a rounding error on the old side) is watched
+    // from the first look at which it is positive.
+    let armed = std::cell::RefCell::new(
+        start
+            .iter()
+            .map(|&value| value >= 0.0)
+            .collect::<Vec<bool>>(),
+    );
+    let mut state = vec![0.0; stepper.y().len()];
+    let mut limit = f64::INFINITY;
+    let mut look = |time: f64, switching: &mut [f64]| -> Result<bool, (f64, OutputError)> {
+        if time == t1 {
+            state.copy_from_slice(stepper.y());
+        } else {
+            stepper.dense(time, &mut state);
+        }
+        limit = system
+            .look(time, &state, natural, switching)
+            .map_err(|error| (time, error))?;
+        Ok(crossed(&armed.borrow(), switching).next().is_some())
+    };
+    // The first look at `times` with a negative switching value, and the
+    // time of the look before.
+    let scan = |from: f64,
+                times: &[f64],
+                look: &mut dyn FnMut(f64, &mut [f64]) -> Result<bool, (f64, OutputError)>,
+                switching: &mut [f64]|
+     -> Result<(f64, Option<f64>), (f64, OutputError)> {
+        let mut clean = from;
+        for &time in times {
+            if look(time, switching)? {
+                return Ok((clean, Some(time)));
+            }
+            for (armed, &value) in armed.borrow_mut().iter_mut().zip(switching.iter()) {
+                *armed |= value >= 0.0;
+            }
+            clean = time;
+        }
+        Ok((clean, None))
+    };
+    let across: Vec<f64> = (1..=LOOKS_PER_STEP)
+        .map(|index| {
+            if index == LOOKS_PER_STEP {
+                t1
+            } else {
+                t0 + (t1 - t0) * index as f64 / LOOKS_PER_STEP as f64
+            }
+        })
+        .collect();
+    let (mut left, crossing) = scan(t0, &across, &mut look, switching)?;
+    let Some(mut right) = crossing else {
+        return Ok(Err(limit));
+    };
+    loop {
+        look(right, switching)?;
+        let watched = armed.borrow().clone();
+        let located = locate(&mut look, &watched, switching, left, right, t1 - t0)?;
+        if located.left <= left {
+            return Ok(Ok(located));
+        }
+        let (clean, earlier) = scan(
+            left,
+            &before_switch(left, located.left),
+            &mut look,
+            switching,
+        )?;
+        match earlier {
+            Some(earlier) => {
+                left = clean;
+                right = earlier;
+            }
+            None => return Ok(Ok(located)),
+        }
+    }
+}
+
+/// Times in `(from, to)` to look at before a switch located at `to`:
+/// evenly spaced, and crowding towards `to` (halving the distance each
+/// time), where a switch that is undone by the located one begins.
+fn before_switch(from: f64, to: f64) -> Vec<f64> {
+    let width = to - from;
+    let mut times: Vec<f64> = (1..LOOKS_BEFORE_SWITCH)
+        .map(|index| from + width * index as f64 / LOOKS_BEFORE_SWITCH as f64)
+        .chain((1..=LOOKS_CROWDING).map(|halvings| to - width * 0.5f64.powi(halvings as i32)))
+        .filter(|&time| time > from && time < to)
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times.dedup();
+    times
+}
+
+/// The switching values that are negative among those `armed`.
+fn crossed<'v>(armed: &'v [bool], values: &'v [f64]) -> impl Iterator<Item = usize> + 'v {
+    (0..values.len()).filter(|&index| values[index] < 0.0 && armed[index])
+}
+
+/// Locates the first time in `[left, right]` where one of the switching
+/// values negative at `right` (in `switching` on entry) crosses zero, by
+/// regula falsi (Illinois) on the least of them: a bracket no wider than
+/// 1e-13 relative.
+fn locate(
+    look: &mut dyn FnMut(f64, &mut [f64]) -> Result<bool, (f64, OutputError)>,
+    armed: &[bool],
+    switching: &mut [f64],
+    mut left: f64,
+    mut right: f64,
+    step: f64,
+) -> Result<Switch, (f64, OutputError)> {
+    let crossed: Vec<usize> = crossed(armed, switching).collect();
+    let least = |values: &[f64]| {
+        crossed
+            .iter()
+            .map(|&index| values[index])
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut g_right = least(switching);
+    look(left, switching)?;
+    let mut g_left = least(switching).max(0.0);
+    let tolerance = 1e-13 * right.abs().max(step);
+    let mut side = 0i8;
+    for _ in 0..200 {
+        if right - left <= tolerance {
+            break;
+        }
+        let mut middle = right - g_right * (right - left) / (g_right - g_left);
+        if !(middle > left && middle < right) {
+            middle = 0.5 * (left + right);
+        }
+        look(middle, switching)?;
+        let g = least(switching);
+        if g < 0.0 {
+            right = middle;
+            g_right = g;
+            if side == -1 {
+                g_left *= 0.5;
+            }
+            side = -1;
+        } else {
+            left = middle;
+            g_left = g;
+            if side == 1 {
+                g_right *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    look(right, switching)?;
+    let index = crossed
+        .iter()
+        .copied()
+        .min_by(|&a, &b| switching[a].total_cmp(&switching[b]))
+        .unwrap_or(0);
+    Ok(Switch { left, right, index })
+}
+
+/// The rate of change in time of the switching value that crossed at
+/// `located`, on the step's continuous output.
+fn switching_slope(
+    system: &mut Held<'_>,
+    stepper: &Stepper,
+    located: Switch,
+    natural: &mut [Option<Code>],
+    switching: &mut [f64],
+) -> Result<f64, (f64, OutputError)> {
+    let width = 1e-6 * (stepper.t() - stepper.t_previous());
+    let mut state = vec![0.0; stepper.y().len()];
+    let mut value = |time: f64| -> Result<f64, (f64, OutputError)> {
+        stepper.dense(time, &mut state);
+        system
+            .look(time, &state, natural, switching)
+            .map_err(|error| (time, error))?;
+        Ok(switching[located.index])
+    };
+    let before = value(located.right - width)?;
+    let after = value(located.right + width)?;
+    Ok((after - before) / (2.0 * width))
+}
+
+/// A located switch: a bracket of its time, and the switching value that
+/// crossed zero there.
+#[derive(Clone, Copy, Debug)]
+struct Switch {
+    /// Every held branch is valid here.
+    left: f64,
+    /// The switching value `index` is negative here.
+    right: f64,
+    index: usize,
+}

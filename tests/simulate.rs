@@ -1,0 +1,421 @@
+//! Simulation: closed forms (a linear stop's half-sine, a conservative
+//! stop's energy, free flight, a torque-free symmetric top), the located
+//! branch switches of the study's ball, the DIFF and PART forms of one
+//! ball, and every refusal and error at its place in the file.
+
+use mbexpr::Location;
+use mbexpr::integrate::Method;
+use mbexpr::model::{self, FileKind};
+use mbexpr::simulate::{self, Event, Model, Place, Settings, SimulateError, Simulation};
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+
+/// A run's rows (time first) and its events.
+struct Run {
+    rows: Vec<Vec<f64>>,
+    events: Vec<Event>,
+}
+
+/// The model of a scene file (text starting with `#` or `[`) or a dataset
+/// (which must check first, as `mbexpr simulate` asks).
+fn model_of(text: &str) -> Result<Model, String> {
+    if text.starts_with('#') || text.starts_with('[') {
+        return simulate::from_scene(text).map_err(|errors| render(text, None, &errors));
+    }
+    let dataset = model::read(text, FileKind::Adm);
+    let report = model::check_model(text, &dataset);
+    if !report.problems.is_empty() {
+        return Err(report
+            .problems
+            .iter()
+            .map(|problem| {
+                let at = Location::of(text, problem.error.span().start);
+                format!("{at}: {} (check)\n", problem.error)
+            })
+            .collect());
+    }
+    simulate::from_dataset(&dataset, &report).map_err(|errors| render(text, None, &errors))
+}
+
+/// Runs the model of `text`; every error as `LINE:COL: message`.
+fn run(text: &str, settings: &Settings) -> Result<Run, String> {
+    let model = model_of(text)?;
+    let simulation =
+        Simulation::new(&model).map_err(|errors| render(text, Some(&model), &errors))?;
+    let mut rows = Vec::new();
+    let summary = simulation
+        .run(settings, |time, values| {
+            rows.push([&[time], values].concat());
+            true
+        })
+        .map_err(|error| render(text, Some(&model), &[error]))?;
+    Ok(Run {
+        rows,
+        events: summary.events,
+    })
+}
+
+fn render(text: &str, model: Option<&Model>, errors: &[SimulateError]) -> String {
+    errors
+        .iter()
+        .map(|error| {
+            let span = match (error.place(), model) {
+                (Place::File(span), _) => Some(span),
+                (Place::Expression { expression, span }, Some(model)) => {
+                    Some(model.expressions[expression].file_span(span))
+                }
+                _ => None,
+            };
+            match span {
+                Some(span) => format!("{}: {error}\n", Location::of(text, span.start)),
+                None => format!("{error}\n"),
+            }
+        })
+        .collect()
+}
+
+fn settings(end: f64, steps: usize, rtol: f64) -> Settings {
+    Settings {
+        end,
+        steps,
+        rtol,
+        atol: rtol * 1e-3,
+        ..Settings::default()
+    }
+}
+
+/// What a run of `text` reports: its size, or its errors.
+fn check(text: &str, settings: &Settings) -> String {
+    match run(text, settings) {
+        Ok(run) => format!("ran: {} rows, {} events", run.rows.len(), run.events.len()),
+        Err(errors) => errors.trim_end().replace('\n', "\n     "),
+    }
+}
+
+/// The study's A1 ball as two DIFFs.
+const BALL: &str = "A1: a ball between two walls
+DIFF/1, IC = 0, FUNCTION = DIF(2)
+DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
+";
+
+#[test]
+fn every_refusal_and_error_names_its_place() {
+    let short = settings(1.0, 10, 1e-6);
+    let cases: [(&str, &str, Settings); 12] = [
+        (
+            "a joint and a motion need a constraint solver",
+            "joint
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+JOINT/1, REVOLUTE, I = 3, J = 1
+MOTION/1, JOINT = 1, FUNCTION = TIME
+",
+            short.clone(),
+        ),
+        (
+            "a bushing is not simulated",
+            "bushing
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+BUSHING/1, I = 3, J = 1, K = 1, 1, 1
+",
+            short.clone(),
+        ),
+        (
+            "parts without mass",
+            "massless
+PART/1, GROUND
+PART/2, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+PART/4, MASS = 0, CM = 5, IP = 1, 1, 1
+MARKER/5, PART = 4
+",
+            short.clone(),
+        ),
+        (
+            "singular inertias",
+            "singular
+PART/1, GROUND
+PART/2, MASS = 1, CM = 3, IP = 1, 0, 1
+MARKER/3, PART = 2
+PART/4, MASS = 1, CM = 5
+MARKER/5, PART = 4
+",
+            short.clone(),
+        ),
+        (
+            "a DIF that does not exist",
+            "missing
+DIFF/1, IC = 0, FUNCTION = DIF(7)
+",
+            short.clone(),
+        ),
+        (
+            "an implicit DIFF",
+            "implicit
+DIFF/1, IC = 0, IMPLICIT, FUNCTION = DIF1(1) - 1
+",
+            short.clone(),
+        ),
+        (
+            "an end time that is not positive",
+            BALL,
+            settings(0.0, 10, 1e-6),
+        ),
+        ("no output step", BALL, settings(1.0, 0, 1e-6)),
+        (
+            "a domain error the run cannot step around",
+            "sqrt: SQRT(1 - TIME) has no value after t = 1
+DIFF/1, IC = 0, FUNCTION = SQRT(1 - TIME)
+",
+            settings(2.0, 4, 1e-6),
+        ),
+        (
+            "a blow-up in finite time",
+            "blowup: y' = y**2, y(0) = 1 passes every bound at t = 1
+DIFF/1, IC = 1, FUNCTION = DIF(1)**2
+",
+            settings(2.0, 4, 1e-6),
+        ),
+        (
+            "a sliding mode chatters",
+            "sliding: x' = -SIGN(1, x) slides on x = 0 from t = 1
+DIFF/1, IC = 1, FUNCTION = -SIGN(1, DIF(1))
+",
+            settings(2.0, 4, 1e-6),
+        ),
+        (
+            "a solver's result has no value in a simulation",
+            "solver
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+SFORCE/1, TRANSLATIONAL, I = 3, J = 1, FUNCTION = FX(3, 1)
+",
+            short,
+        ),
+    ];
+    let table: String = cases
+        .iter()
+        .map(|(name, text, settings)| format!("{name}\n  => {}\n", check(text, settings)))
+        .collect();
+    insta::assert_snapshot!(table);
+}
+
+/// The rows' column `column` at every output time.
+fn column(run: &Run, column: usize) -> impl Iterator<Item = f64> + '_ {
+    run.rows.iter().map(move |row| row[column])
+}
+
+#[test]
+fn a_linear_stop_gives_a_half_sine_contact() {
+    // e = 1, cmax = 0: a contact lasts pi*sqrt(m/k) and returns the speed.
+    let text = "linear stop: k = 1e4, e = 1, no damping
+DIFF/1, IC = 0, FUNCTION = DIF(2)
+DIFF/2, IC = 2, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e4, 1, 0, 0.01)
+";
+    for method in [Method::Radau5, Method::Dop853] {
+        let run = run(
+            text,
+            &Settings {
+                method,
+                ..settings(0.6, 6, 1e-12)
+            },
+        )
+        .expect("runs");
+        let times: Vec<f64> = run.events.iter().map(|event| event.time).collect();
+        assert_eq!(times.len(), 2, "{:?}", run.events);
+        let duration = times[1] - times[0];
+        let expected = std::f64::consts::PI / 100.0;
+        assert!(
+            (times[0] - 0.5).abs() < 1e-12,
+            "{method}: enters at {}",
+            times[0]
+        );
+        assert!(
+            (duration - expected).abs() < 1e-10,
+            "{method}: contact lasts {duration}, not {expected}"
+        );
+        let exit_speed = run.rows.last().expect("rows")[2];
+        assert!(
+            (exit_speed + 2.0).abs() < 1e-9,
+            "{method}: leaves at {exit_speed}"
+        );
+    }
+}
+
+#[test]
+fn a_conservative_stop_keeps_its_energy() {
+    // cmax = 0, e = 1.5: m v^2/2 + k p^(e+1)/(e+1) is constant through
+    // five contacts.
+    let text = "conservative stop: k = 1e5, e = 1.5, no damping
+DIFF/1, IC = 0, FUNCTION = DIF(2)
+DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 0, 0.01)
+";
+    let energy = |x: f64, v: f64| {
+        let p = (x - 1.0).max(0.0) + (-1.0 - x).max(0.0);
+        0.5 * v * v + 1e5 * p.powf(2.5) / 2.5
+    };
+    for method in [Method::Radau5, Method::Dop853] {
+        let run = run(
+            text,
+            &Settings {
+                method,
+                ..settings(2.2, 2200, 1e-12)
+            },
+        )
+        .expect("runs");
+        let contacts = run
+            .events
+            .iter()
+            .filter(|event| event.from == "free")
+            .count();
+        assert_eq!(contacts, 5, "{method}");
+        let drift = run
+            .rows
+            .iter()
+            .map(|row| (energy(row[1], row[2]) - 12.5).abs() / 12.5)
+            .fold(0.0, f64::max);
+        assert!(drift < 1e-9, "{method}: relative energy drift {drift:e}");
+    }
+}
+
+#[test]
+fn free_flight_is_exact() {
+    let text = "free flight: a part thrown in gravity
+PART/1, GROUND
+PART/2, MASS = 2, CM = 3, IP = 1, 2, 3, QG = 1, 2, 3, VX = 4, VY = -1, VZ = 10
+MARKER/3, PART = 2
+ACCGRAV/IGRAV = 0, JGRAV = 0, KGRAV = -9.81
+";
+    let run = run(text, &settings(2.0, 8, 1e-10)).expect("runs");
+    for row in &run.rows {
+        let t = row[0];
+        let expected = [1.0 + 4.0 * t, 2.0 - t, 3.0 + 10.0 * t - 0.5 * 9.81 * t * t];
+        for (axis, value) in expected.iter().enumerate() {
+            assert!(
+                (row[1 + axis] - value).abs() < 1e-9,
+                "t = {t}: axis {axis} is {}, not {value}",
+                row[1 + axis]
+            );
+        }
+        assert!((row[10] - (10.0 - 9.81 * t)).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn a_torque_free_symmetric_top_precesses_as_the_closed_form_says() {
+    // I1 = I2 = 1, I3 = 2: in the body, w = (w1 cos(W t), w1 sin(W t), w3)
+    // with W = (I3 - I1)/I1 * w3; in ground, I w (the angular momentum) stays.
+    let text = "# A torque-free symmetric top
+[[body]]
+name = \"top\"
+mass = 1.0
+inertia = [1.0, 1.0, 2.0]
+angular_velocity = [0.3, 0.0, 1.5]
+";
+    let run = run(text, &settings(4.0, 40, 1e-11)).expect("runs");
+    let inertia = Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 2.0));
+    let (w1, w3) = (0.3, 1.5);
+    let precession = (2.0 - 1.0) / 1.0 * w3;
+    let momentum0 = inertia * Vector3::new(w1, 0.0, w3);
+    for row in &run.rows {
+        let t = row[0];
+        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+            row[4], row[5], row[6], row[7],
+        ));
+        let omega_ground = Vector3::new(row[11], row[12], row[13]);
+        let omega_body = q.inverse() * omega_ground;
+        // Euler's equations: w1' = -W w2, w2' = W w1.
+        let expected = Vector3::new(w1 * (precession * t).cos(), w1 * (precession * t).sin(), w3);
+        assert!(
+            (omega_body - expected).norm() < 1e-8,
+            "t = {t}: body rates {omega_body} not {expected}"
+        );
+        let momentum = q * (inertia * omega_body);
+        assert!((momentum - momentum0).norm() < 1e-8, "t = {t}: {momentum}");
+        assert!((q.quaternion().norm() - 1.0).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn the_balls_clamp_release_windows_are_located() {
+    // A1: the clamp lets go just before the ball leaves each wall, for
+    // 0.18 ms at the first contact and 1.08 ms at the second.
+    for method in [Method::Radau5, Method::Dop853] {
+        let run = run(
+            BALL,
+            &Settings {
+                method,
+                ..settings(1.0, 10, 1e-10)
+            },
+        )
+        .expect("runs");
+        let windows: Vec<f64> = run
+            .events
+            .windows(2)
+            .filter(|pair| {
+                pair[0].to.ends_with("damping ramp") && pair[0].from.ends_with("clamped")
+            })
+            .map(|pair| pair[1].time - pair[0].time)
+            .collect();
+        assert_eq!(windows.len(), 2, "{method}: {:#?}", run.events);
+        assert!(
+            (windows[0] - 1.785e-4).abs() < 1e-6,
+            "{method}: {windows:?}"
+        );
+        assert!(
+            (windows[1] - 1.0794e-3).abs() < 1e-6,
+            "{method}: {windows:?}"
+        );
+    }
+}
+
+#[test]
+fn the_diff_and_part_forms_of_one_ball_agree() {
+    let part = "A1 as a part pushed along ground x by a VFORCE
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/4, PART = 1, FLOATING
+PART/2, MASS = 1, CM = 3, IP = 0.4, 0.4, 0.4, VX = 5
+MARKER/3, PART = 2
+VFORCE/1, I = 3, JFLOAT = 4, RM = 1, FY = 0, FZ = 0
+, FX = BISTOP(DX(3, 1, 1), VX(3, 1, 1, 1), -1, 1, 1e5, 1.5, 50, 0.01)
+";
+    let scene = "# A1 as a body in a scene file
+[[body]]
+name = \"ball\"
+mass = 1.0
+inertia = [0.4, 0.4, 0.4]
+velocity = [5.0, 0.0, 0.0]
+
+[[marker]]
+name = \"ball\"
+body = \"ball\"
+
+[[marker]]
+name = \"wall\"
+
+[[force]]
+name = \"walls\"
+kind = \"vector\"
+i = \"ball\"
+axes = \"wall\"
+fx = \"BISTOP(DX(ball, wall, wall), VX(ball, wall, wall, wall), -1, 1, 1e5, 1.5, 50, 0.01)\"
+";
+    let tight = settings(3.0, 60, 1e-11);
+    let diffs = run(BALL, &tight).expect("the DIFF form runs");
+    for (form, text) in [("part", part), ("scene", scene)] {
+        let body = run(text, &tight).expect("the body form runs");
+        let (x, v): (Vec<f64>, Vec<f64>) = (column(&body, 1).collect(), column(&body, 8).collect());
+        for (index, row) in diffs.rows.iter().enumerate() {
+            assert!((x[index] - row[1]).abs() < 1e-7, "{form} x at {}", row[0]);
+            assert!((v[index] - row[2]).abs() < 1e-6, "{form} v at {}", row[0]);
+        }
+        assert_eq!(body.events.len(), diffs.events.len(), "{form}");
+    }
+}
