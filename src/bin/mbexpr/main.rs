@@ -48,7 +48,7 @@ enum Command {
     },
     /// Print the manual page of mbexpr or of one of its commands (`mbexpr man eval | man -l -`).
     Man {
-        /// The command: parse, check, eval, plot, repl or completions; none for mbexpr itself.
+        /// The command: parse, check, eval, plot, repl, simulate or completions; none for mbexpr itself.
         command: Option<String>,
     },
     /// Integrate a model's DIFF equations and free parts in time.
