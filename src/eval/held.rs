@@ -247,7 +247,7 @@ impl Evaluator<'_, f64> {
     ) -> Result<f64, OutputError> {
         natural.fill(None);
         switching.fill(1.0);
-        self.load_numbers(inputs.len(), |index| inputs[index].clone())
+        self.load_numbers(inputs.len(), |index| inputs[index])
             .map_err(|error| OutputError { output: 0, error })?;
         let mut observer = Observe {
             held,
