@@ -364,7 +364,7 @@ impl Program {
         self.code.is_empty()
     }
 
-    /// How many values the program computes: one for [`crate::compile`],
+    /// How many values the program computes: one for [`crate::compile()`],
     /// one per tree for [`crate::compile::compile_outputs`].
     pub fn output_count(&self) -> usize {
         self.results.len()
