@@ -207,7 +207,12 @@ fn draw<B: DrawingBackend>(backend: B, over: &str, plot: &Plot) -> Result<(), St
     // finite: each axis is drawn in units of a power of ten that brings
     // its values near 1, and its labels say the power.
     let x_axis = Axis::new([plot.range.0, plot.range.1].into_iter(), false);
-    for (index, ((panel, curve), color)) in panels.iter().zip(curves).zip(colors).enumerate() {
+    for (index, ((panel, curve), color)) in panels
+        .iter()
+        .zip(curves)
+        .zip(colors.into_iter().cycle())
+        .enumerate()
+    {
         let y_axis = Axis::new(curve.points().map(|point| point.1), true);
         let at = |(x, y): (f64, f64)| (x_axis.scaled(x), y_axis.scaled(y));
         let (x_low, x_high) = (x_axis.scaled(x_axis.low), x_axis.scaled(x_axis.high));
