@@ -118,8 +118,8 @@ fn problems(expression: &str, names: Option<&[String]>, unbound: &mut Unbound) -
     found
 }
 
-/// The text of `file`, decoded (`-` is standard input).
-fn read(file: &str) -> Result<String, String> {
+/// The text of `file`, decoded (`-` is standard input; docs/encoding.md).
+pub(crate) fn read(file: &str) -> Result<String, String> {
     let mut bytes = Vec::new();
     if file == "-" {
         io::stdin()

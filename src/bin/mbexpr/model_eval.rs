@@ -181,12 +181,8 @@ fn evaluate_rows(
 
 /// The text of the model file and its statements.
 fn read_model(path: &str) -> Result<(String, model::Dataset), Fatal> {
-    let bytes = std::fs::read(path)
-        .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
-    let (text, encoding) = model::decode_owned(bytes);
-    if encoding != "UTF-8" {
-        eprintln!("note: {path} is not UTF-8: read as {encoding}");
-    }
+    let text = crate::check_cmd::read(path)
+        .map_err(|message| Fatal::usage(format!("error: {message}")))?;
     let kind = match FileKind::detect(path, &text) {
         Some(kind @ (FileKind::Adm | FileKind::Acf)) => kind,
         _ => {

@@ -27,14 +27,27 @@ pub enum RowFormat {
     Text,
 }
 
+/// What a file to simulate is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ModelKind {
+    /// A solver dataset.
+    Adm,
+    /// A scene file (TOML).
+    Scene,
+}
+
 /// The arguments of `mbexpr simulate`.
 #[derive(clap::Args)]
 pub struct Args {
     /// A solver dataset (.adm; an .acf beside it may give END and STEPS) or
-    /// a scene file (.toml).
+    /// a scene file (.toml); `-` reads standard input (a dataset unless
+    /// --kind scene).
     file: String,
+    /// What the file is (by default its extension says).
+    #[arg(long, value_enum)]
+    kind: Option<ModelKind>,
     /// The end time (the run starts at 0).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     end: Option<f64>,
     /// Output steps: STEPS + 1 rows at equally spaced times from 0 to END.
     #[arg(long)]
@@ -43,13 +56,13 @@ pub struct Args {
     #[arg(long, default_value = "radau", value_parser = parse_method)]
     method: Method,
     /// Relative tolerance.
-    #[arg(long, default_value_t = 1e-6)]
+    #[arg(long, default_value_t = 1e-6, allow_hyphen_values = true)]
     rtol: f64,
     /// Absolute tolerance (default: RTOL * 1e-3).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     atol: Option<f64>,
     /// The largest step.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     hmax: Option<f64>,
     /// Row format (default: csv on a pipe, text on a terminal).
     #[arg(long, value_enum)]
@@ -99,25 +112,31 @@ impl Source {
     }
 }
 
-/// Reads the model of `path`, reporting every problem at its place.
-fn read_model(path: &str) -> Result<(Source, Model), Fatal> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
+/// Reads the model of `path` (`-`: standard input), reporting every problem
+/// at its place.
+fn read_model(path: &str, kind: Option<ModelKind>) -> Result<(Source, Model), Fatal> {
+    let text = crate::check_cmd::read(path)
+        .map_err(|message| Fatal::usage(format!("error: {message}")))?;
     let source = Source {
         path: path.to_string(),
         text,
     };
-    let is_scene = path.to_ascii_lowercase().ends_with(".toml");
-    let model = if is_scene {
+    let kind = kind.unwrap_or(if path.to_ascii_lowercase().ends_with(".toml") {
+        ModelKind::Scene
+    } else {
+        ModelKind::Adm
+    });
+    let model = if kind == ModelKind::Scene {
         simulate::from_scene(&source.text).map_err(|errors| source.render_all(None, &errors))?
     } else {
         let kind = match FileKind::of_path(path) {
-            Some(kind @ (FileKind::Adm | FileKind::Acf)) => kind,
-            _ => {
+            Some(FileKind::Acf) => FileKind::Acf,
+            Some(FileKind::Cmd) => {
                 return Err(Fatal::usage(format!(
-                    "error: {path}: give a solver dataset (.adm) or a scene file (.toml)"
+                    "error: {path}: an Adams View command file is not simulated: give a solver dataset (.adm) or a scene file (.toml)"
                 )));
             }
+            _ => FileKind::Adm,
         };
         let dataset = model::read(&source.text, kind);
         let report = model::check_model(&source.text, &dataset);
@@ -135,8 +154,7 @@ fn read_model(path: &str) -> Result<(Source, Model), Fatal> {
                 })
                 .collect();
             return Err(Fatal::input(format!(
-                "{texts}{path}: the model does not check ({} problems): nothing simulated\n",
-                report.problems.len()
+                "{texts}{path}: the model does not check: nothing simulated\n"
             )));
         }
         let mut model = simulate::from_dataset(&dataset, &report)
@@ -150,7 +168,7 @@ fn read_model(path: &str) -> Result<(Source, Model), Fatal> {
 /// END and STEPS from `SIMULATE/DYNAMIC` in an `.acf` beside the dataset.
 fn commands_beside(path: &str) -> Result<Option<(f64, usize)>, Fatal> {
     let commands = Path::new(path).with_extension("acf");
-    if path.to_ascii_lowercase().ends_with(".acf") || !commands.exists() {
+    if path == "-" || path.to_ascii_lowercase().ends_with(".acf") || !commands.exists() {
         return Ok(None);
     }
     let text = std::fs::read_to_string(&commands).map_err(|error| {
@@ -207,7 +225,7 @@ impl Progress {
 
 /// Runs `mbexpr simulate`.
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
-    let (source, model) = read_model(&args.file)?;
+    let (source, model) = read_model(&args.file, args.kind)?;
     let (end, steps) = match (args.end, args.steps, model.run) {
         (Some(end), Some(steps), _) => (end, steps),
         (end, steps, Some((file_end, file_steps))) => {
@@ -244,7 +262,8 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         RowFormat::Csv
     });
     let writer = Rows::new(format, &columns);
-    let mut written: std::io::Result<()> = writer.header(out);
+    // The header goes with the first row: a run refused before it writes none.
+    let mut written: std::io::Result<()> = Ok(());
     let mut kept: Vec<Vec<f64>> = Vec::new();
     let mut progress = Progress::new(end);
     let result = simulation.run(&settings, |time, values| {
@@ -254,7 +273,12 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
             row.extend_from_slice(values);
             kept.push(row);
         }
-        written = writer.row(out, time, values);
+        written = if time == 0.0 {
+            writer.header(out)
+        } else {
+            Ok(())
+        }
+        .and_then(|()| writer.row(out, time, values));
         written.is_ok()
     });
     progress.finish();
