@@ -109,6 +109,8 @@ struct Observe<'o> {
     switching: &'o mut [f64],
     /// The least step limit of the sites that ran.
     step_limit: f64,
+    /// A call's argument values (kept to spare an allocation per call).
+    arguments: Vec<f64>,
 }
 
 impl Observe<'_> {
@@ -136,22 +138,24 @@ impl Branching<f64> for Observe<'_> {
         let natural = match op {
             Op::Contact { table, x, v, .. } => {
                 let stops = &program.tables.contacts[*table as usize];
-                let (natural, values) =
-                    stops.switching(slot(*x), slot(*v), held.map(ContactBranch::from_code));
-                out.copy_from_slice(&values);
-                let on = held.map_or(natural, ContactBranch::from_code);
-                self.step_limit = self
-                    .step_limit
-                    .min(stops.step_limit(slot(*x), slot(*v), on));
-                natural.code()
+                let (x, v) = (slot(*x), slot(*v));
+                let seen = stops.switching(x, v, held.map(ContactBranch::from_code));
+                out.copy_from_slice(&seen.values);
+                let on = held.map_or(seen.natural, ContactBranch::from_code);
+                self.step_limit = self.step_limit.min(stops.step_limit(x, v, on));
+                self.natural[site_index as usize] = Some(seen.natural.code());
+                // The force on the held branch comes with the switching values.
+                return Some(Ok(seen.force));
             }
             Op::Call { function, args, .. } => {
-                let values: Vec<f64> = args.iter().map(|&arg| slot(arg)).collect();
-                let natural = branch::switching(*function, &values, held, out);
+                let values = &mut self.arguments;
+                values.clear();
+                values.extend(args.iter().map(|&arg| slot(arg)));
+                let natural = branch::switching(*function, values, held, out);
                 let on = held.unwrap_or(natural);
                 self.step_limit = self
                     .step_limit
-                    .min(branch::step_limit(*function, &values, on));
+                    .min(branch::step_limit(*function, values, on));
                 natural
             }
             _ => return None,
@@ -254,6 +258,7 @@ impl Evaluator<'_, f64> {
             natural,
             switching,
             step_limit: f64::INFINITY,
+            arguments: Vec::new(),
         };
         let last = self.run_with(&mut observer);
         let step_limit = observer.step_limit;

@@ -65,7 +65,7 @@ pub fn switching(function: Function, args: &[f64], held: Option<Code>, out: &mut
                 (None, &args[3..7])
             };
             let parameters = [rest[0], rest[1], rest[2], rest[3]];
-            let (natural, values) = contact::switching(
+            let seen = contact::switching(
                 arg(0),
                 arg(1),
                 arg(2),
@@ -73,8 +73,8 @@ pub fn switching(function: Function, args: &[f64], held: Option<Code>, out: &mut
                 parameters,
                 held.map(ContactBranch::from_code),
             );
-            out.copy_from_slice(&values);
-            natural.code()
+            out.copy_from_slice(&seen.values);
+            seen.natural.code()
         }
         F::Abs => {
             let natural = Code::from(arg(0) < 0.0);

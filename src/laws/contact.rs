@@ -275,11 +275,24 @@ impl ContactBranch {
     }
 }
 
-/// The branch a contact law takes at `x`, `v` (SPEC 3.3 and 5), and its
-/// switching values for `held` (the natural branch when `None`): three numbers, each positive while the law
-/// stays on `held` and negative once it has left it (the penetration, the
-/// distance to the ramp's end, the unclamped force; 1 where one does not
-/// apply).
+/// What a simulator sees of a contact law at a point: the branch it takes
+/// there (SPEC 3.3 and 5), the switching values of the held branch (three
+/// numbers, each positive while the law stays on that branch and negative
+/// once it has left it: the penetration, the distance to the ramp's end,
+/// the unclamped force; 1 where one does not apply), and the force on the
+/// held branch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Observation {
+    /// The branch the law takes at the point.
+    pub natural: ContactBranch,
+    /// The held branch's switching values.
+    pub values: [f64; 3],
+    /// The force on the held branch, continued past its boundaries.
+    pub force: f64,
+}
+
+/// The [`Observation`] of a contact law at `x`, `v` with `held` (the
+/// natural branch when `None`). Each unclamped force is computed once.
 fn contact_switching<P: Parameter<f64>>(
     x: f64,
     v: f64,
@@ -287,7 +300,7 @@ fn contact_switching<P: Parameter<f64>>(
     x2: Option<&P>,
     parameters: [&P; 4],
     held: Option<ContactBranch>,
-) -> (ContactBranch, [f64; 3]) {
+) -> Observation {
     let d = parameters[3].value();
     // Without damping the ramp's pieces give the same force: one branch.
     let piece_of = |p: f64| {
@@ -297,43 +310,64 @@ fn contact_switching<P: Parameter<f64>>(
             Piece::of(p, d)
         }
     };
-    let lower = || (x1.value() - x, -v);
-    let upper = || x2.map(|x2| (x - x2.value(), v));
-    let natural = {
-        let side =
-            |(p, rate): (f64, f64), unclamped_branch: fn(Piece) -> ContactBranch, clamped| {
-                let piece = piece_of(p);
-                if unclamped(&p, rate, parameters, piece) > 0.0 {
-                    unclamped_branch(piece)
-                } else {
-                    clamped
-                }
-            };
-        if x < x1.value() {
-            side(lower(), ContactBranch::Lower, ContactBranch::LowerClamped)
-        } else if let Some((p, rate)) = upper().filter(|&(p, _)| p > 0.0) {
-            side((p, rate), ContactBranch::Upper, ContactBranch::UpperClamped)
+    let lower = (x1.value() - x, -v);
+    let upper = x2.map(|x2| (x - x2.value(), v));
+    // The unclamped force of a side (`true`: the upper stop) on a piece,
+    // the last one kept.
+    let mut kept: Option<((bool, Piece), f64)> = None;
+    let mut raw = |upper_side: bool, (p, rate): (f64, f64), piece: Piece| match kept {
+        Some((key, value)) if key == (upper_side, piece) => value,
+        _ => {
+            let value = unclamped(&p, rate, parameters, piece);
+            kept = Some(((upper_side, piece), value));
+            value
+        }
+    };
+    let natural = if x < x1.value() {
+        let piece = piece_of(lower.0);
+        if raw(false, lower, piece) > 0.0 {
+            ContactBranch::Lower(piece)
         } else {
-            ContactBranch::Free
+            ContactBranch::LowerClamped
         }
+    } else if let Some(side) = upper.filter(|&(p, _)| p > 0.0) {
+        let piece = piece_of(side.0);
+        if raw(true, side, piece) > 0.0 {
+            ContactBranch::Upper(piece)
+        } else {
+            ContactBranch::UpperClamped
+        }
+    } else {
+        ContactBranch::Free
     };
-    let at_stop = |(p, rate): (f64, f64), piece: Option<Piece>| -> [f64; 3] {
-        match piece {
-            Some(piece) => {
-                let end = if piece == Piece::Ramp { d - p } else { p - d };
-                [p, end, unclamped(&p, rate, parameters, piece)]
+    let mut at_stop =
+        |upper_side: bool, side: (f64, f64), piece: Option<Piece>| -> ([f64; 3], f64) {
+            let p = side.0;
+            match piece {
+                Some(piece) => {
+                    let end = if piece == Piece::Ramp { d - p } else { p - d };
+                    let force = raw(upper_side, side, piece);
+                    ([p, end, force], if upper_side { -force } else { force })
+                }
+                None => ([p, -raw(upper_side, side, piece_of(p)), 1.0], 0.0),
             }
-            None => [p, -unclamped(&p, rate, parameters, piece_of(p)), 1.0],
+        };
+    let (values, force) = match held.unwrap_or(natural) {
+        ContactBranch::Free => ([x - x1.value(), upper.map_or(1.0, |(p, _)| -p), 1.0], 0.0),
+        ContactBranch::Lower(piece) => at_stop(false, lower, Some(piece)),
+        ContactBranch::LowerClamped => at_stop(false, lower, None),
+        ContactBranch::Upper(piece) => {
+            upper.map_or(([1.0; 3], 0.0), |side| at_stop(true, side, Some(piece)))
+        }
+        ContactBranch::UpperClamped => {
+            upper.map_or(([1.0; 3], 0.0), |side| at_stop(true, side, None))
         }
     };
-    let values = match held.unwrap_or(natural) {
-        ContactBranch::Free => [x - x1.value(), upper().map_or(1.0, |(p, _)| -p), 1.0],
-        ContactBranch::Lower(piece) => at_stop(lower(), Some(piece)),
-        ContactBranch::LowerClamped => at_stop(lower(), None),
-        ContactBranch::Upper(piece) => upper().map_or([1.0; 3], |side| at_stop(side, Some(piece))),
-        ContactBranch::UpperClamped => upper().map_or([1.0; 3], |side| at_stop(side, None)),
-    };
-    (natural, values)
+    Observation {
+        natural,
+        values,
+        force,
+    }
 }
 
 /// The largest step a simulator should take with a law held on `held` at
@@ -427,14 +461,8 @@ impl Stops {
         )
     }
 
-    /// The branch at `x`, `v`, and the switching values for `held`
-    /// (see [`switching`]).
-    pub fn switching(
-        &self,
-        x: f64,
-        v: f64,
-        held: Option<ContactBranch>,
-    ) -> (ContactBranch, [f64; 3]) {
+    /// What a simulator sees at `x`, `v` with `held` (see [`switching`]).
+    pub fn switching(&self, x: f64, v: f64, held: Option<ContactBranch>) -> Observation {
         let [k, e, cmax, d] = &self.parameters;
         contact_switching(
             x,
@@ -514,10 +542,9 @@ pub fn bistop<T: Number>(x: &T, v: &T, x1: &T, x2: &T, k: &T, e: &T, cmax: &T, d
     contact(x, v, x1, Some(x2), [k, e, cmax, d])
 }
 
-/// The branch of `IMPACT` (no `x2`) or `BISTOP` at `x`, `v` with the other
-/// arguments as plain numbers, and the switching values for `held`: three
-/// numbers, positive while the law stays on `held` (the natural branch
-/// when `None`).
+/// What a simulator sees of `IMPACT` (no `x2`) or `BISTOP` at `x`, `v`
+/// with the other arguments as plain numbers, held on `held` (the natural
+/// branch when `None`): see [`Observation`].
 pub fn switching(
     x: f64,
     v: f64,
@@ -525,7 +552,7 @@ pub fn switching(
     x2: Option<f64>,
     [k, e, cmax, d]: [f64; 4],
     held: Option<ContactBranch>,
-) -> (ContactBranch, [f64; 3]) {
+) -> Observation {
     contact_switching(x, v, &x1, x2.as_ref(), [&k, &e, &cmax, &d], held)
 }
 

@@ -189,6 +189,7 @@ pub(crate) struct Mechanics<'m> {
     /// them, no expression reads them): their Jacobian block is their own.
     free_bodies: Vec<usize>,
     values: Evaluator<'m, f64>,
+    buffers: Buffers<f64>,
     duals: DualEvaluator<'m>,
 }
 
@@ -261,6 +262,7 @@ impl<'m> Mechanics<'m> {
             directions,
             free_bodies,
             values: program.evaluator(),
+            buffers: Buffers::new(program),
             duals,
         }
     }
@@ -279,7 +281,8 @@ impl<'m> Mechanics<'m> {
         held: Option<&[Option<Code>]>,
         rates: &mut [f64],
     ) -> Result<(), OutputError> {
-        self.equations.rates(&mut self.values, t, y, held, rates)
+        self.equations
+            .rates(&mut self.values, t, y, held, rates, &mut self.buffers)
     }
 
     /// The natural branch of every site and their switching values at
@@ -295,11 +298,16 @@ impl<'m> Mechanics<'m> {
     ) -> Result<f64, OutputError> {
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
-        let inputs = inputs(&equations.sources, t, y, &kinematics);
-        let mut outputs = vec![0.0; equations.program.output_count()];
+        let buffers = &mut self.buffers;
+        fill_inputs(&equations.sources, t, y, &kinematics, &mut buffers.inputs);
         reorient(&mut self.values, &kinematics);
-        self.values
-            .observe(&inputs, held, natural, switching, &mut outputs)
+        self.values.observe(
+            &buffers.inputs,
+            held,
+            natural,
+            switching,
+            &mut buffers.outputs,
+        )
     }
 
     /// Every output of the program at `(t, y)`, all branches natural.
@@ -311,9 +319,10 @@ impl<'m> Mechanics<'m> {
     ) -> Result<(), OutputError> {
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
-        let inputs = inputs(&equations.sources, t, y, &kinematics);
+        let inputs = &mut self.buffers.inputs;
+        fill_inputs(&equations.sources, t, y, &kinematics, inputs);
         reorient(&mut self.values, &kinematics);
-        self.values.outputs(&inputs, None, outputs)
+        self.values.outputs(inputs, None, outputs)
     }
 
     /// `d(dy/dt)/dy` at `(t, y)` with the sites on `held`, into `jacobian`.
@@ -397,17 +406,36 @@ fn couplings(model: &Model, program: &Program, sources: &[Source]) -> (Vec<usize
     (directions, free)
 }
 
-/// The program input values from the state.
-fn inputs<T: Number>(sources: &[Source], t: f64, y: &[T], kinematics: &[Kinematics<T>]) -> Vec<T> {
-    sources
-        .iter()
-        .map(|source| match *source {
-            Source::Time => T::from(t),
-            Source::Constant(value) => T::from(value),
-            Source::State(index) => y[index].clone(),
-            Source::Body(body, component) => kinematics[body].input(component),
-        })
-        .collect()
+/// The program input values from the state, into `inputs`.
+fn fill_inputs<T: Number>(
+    sources: &[Source],
+    t: f64,
+    y: &[T],
+    kinematics: &[Kinematics<T>],
+    inputs: &mut Vec<T>,
+) {
+    inputs.clear();
+    inputs.extend(sources.iter().map(|source| match *source {
+        Source::Time => T::from(t),
+        Source::Constant(value) => T::from(value),
+        Source::State(index) => y[index].clone(),
+        Source::Body(body, component) => kinematics[body].input(component),
+    }));
+}
+
+/// The program's inputs and outputs, kept from call to call.
+struct Buffers<T> {
+    inputs: Vec<T>,
+    outputs: Vec<T>,
+}
+
+impl<T: Number> Buffers<T> {
+    fn new(program: &Program) -> Buffers<T> {
+        Buffers {
+            inputs: Vec::with_capacity(program.inputs().len()),
+            outputs: vec![T::zero(); program.output_count()],
+        }
+    }
 }
 
 /// Turns the program's bodies to the orientations of `kinematics`.
@@ -454,13 +482,14 @@ impl Equations<'_> {
         y: &[T],
         held: Option<&[Option<Code>]>,
         rates: &mut [T],
+        buffers: &mut Buffers<T>,
     ) -> Result<(), OutputError> {
         let model = self.model;
         let kinematics = self.kinematics(y);
-        let inputs = inputs(&self.sources, t, y, &kinematics);
+        fill_inputs(&self.sources, t, y, &kinematics, &mut buffers.inputs);
         reorient(evaluator, &kinematics);
-        let mut outputs = vec![T::zero(); self.program.output_count()];
-        evaluator.outputs(&inputs, held, &mut outputs)?;
+        evaluator.outputs(&buffers.inputs, held, &mut buffers.outputs)?;
+        let outputs = &buffers.outputs;
         for (rate, output) in rates.iter_mut().zip(&self.diff_outputs) {
             *rate = output.map_or_else(T::zero, |output| outputs[output].clone());
         }
@@ -650,7 +679,8 @@ impl Equations<'_> {
             seeded[state] = T::variable(y[state], direction, count);
         }
         let mut rates = vec![T::zero(); y.len()];
-        self.rates(evaluator, t, &seeded, held, &mut rates)?;
+        let mut buffers = Buffers::new(self.program);
+        self.rates(evaluator, t, &seeded, held, &mut rates, &mut buffers)?;
         for (row, rate) in rates.iter().enumerate() {
             let gradient = rate.gradient(count);
             for (direction, &state) in directions.iter().enumerate() {
