@@ -193,7 +193,53 @@ impl Rows<'_> {
     }
 }
 
+/// A model's equations `dy/dt = f(t, y)` as an integration
+/// [`System`](crate::integrate::System), every piecewise function on the
+/// branch the state decides, with the exact Jacobian from dual numbers: for
+/// a driver of one's own ([`Simulation::equations`]). The state is laid out
+/// as the simulation's (see [`Simulation::initial_state`]).
+pub struct Equations<'m> {
+    mechanics: Mechanics<'m>,
+}
+
+impl crate::integrate::System for Equations<'_> {
+    type Error = OutputError;
+
+    fn dimension(&self) -> usize {
+        self.mechanics.dimension()
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), OutputError> {
+        self.mechanics.rates(t, y, None, dy)
+    }
+
+    fn jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        _dy: &[f64],
+        jacobian: &mut nalgebra::DMatrix<f64>,
+    ) -> Result<(), OutputError> {
+        self.mechanics.jacobian(t, y, None, jacobian)
+    }
+}
+
 impl Simulation<'_> {
+    /// The model's equations, for a driver of one's own.
+    pub fn equations(&self) -> Equations<'_> {
+        Equations {
+            mechanics: Mechanics::new(self.model, &self.dynamics, &self.computed),
+        }
+    }
+
+    /// The state at time 0: the value of each DIFF, then for each body its
+    /// centre of mass in ground, its orientation as a quaternion `w x y z`,
+    /// the velocity of its centre of mass and its angular velocity in its
+    /// own axes (13 numbers).
+    pub fn initial_state(&self) -> Vec<f64> {
+        initial_state(self.model)
+    }
+
     /// Runs from time 0 to `settings.end`, calling `row` with the time and
     /// the values of the columns after `time` ([`crate::simulate::columns`])
     /// at each output time; `row` returns `false` to stop the run there.
