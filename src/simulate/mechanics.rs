@@ -463,6 +463,9 @@ struct Equations<'m> {
 
 impl Equations<'_> {
     fn kinematics<T: Number>(&self, y: &[T]) -> Vec<Kinematics<T>> {
+        if self.model.scene.bodies.is_empty() {
+            return Vec::new();
+        }
         (0..self.model.scene.bodies.len())
             .map(|body| {
                 let offset = body_offset(self.model, body);

@@ -349,14 +349,14 @@ impl Simulation<'_> {
             let slope =
                 switching_slope(&mut system, &stepper, located, &mut natural, &mut switching)
                     .map_err(|(time, error)| fail(time, error))?;
-            before = add(before, stepper.stats());
+            stepper.dense(located.right, &mut dense);
             let (right, state) = self.cut(
                 &mut system,
-                settings,
+                &mut stepper,
                 (t0, &step_start),
                 located,
+                &dense,
                 slope,
-                &mut before,
             )?;
             dense.copy_from_slice(&state);
             system
@@ -397,6 +397,7 @@ impl Simulation<'_> {
             }
             // A fresh start: the first step is chosen anew for the new
             // branch (a step fit for free flight would cross a contact).
+            before = add(before, stepper.stats());
             stepper = Stepper::new(settings.method, options(limit), right, &dense, &mut system)
                 .map_err(|error| self.integration_error(error))?;
         }
@@ -407,19 +408,22 @@ impl Simulation<'_> {
 
     /// The state at a switch located on a step's continuous output, from
     /// integrating again from the step's start `(t0, y0)` on the branches
-    /// held through the step: the continuous output may be of lower order
-    /// than the steps (Radau's), so the time is refined on the integrated
-    /// states, by Newton's rule with the switching value's `slope` in time,
-    /// until the state lies past the switch by no more than the location's
-    /// tolerance. The time and the state there.
+    /// held through the step (the stepper restarted there): the continuous
+    /// output may be of lower order than the steps (Radau's), so the time
+    /// is refined on the integrated states, by Newton's rule with the
+    /// switching value's `slope` in time, until the state lies past the
+    /// switch by no more than the location's tolerance. When the integrated
+    /// states never confirm the switch (a loose tolerance, where the
+    /// continuous output strays), the located time and `located_state`, the
+    /// continuous output's state there, are kept. The time and the state.
     fn cut(
         &self,
         system: &mut Held<'_>,
-        settings: &Settings,
+        stepper: &mut Stepper,
         (t0, y0): (f64, &[f64]),
         located: Switch,
+        located_state: &[f64],
         slope: f64,
-        counts: &mut Stats,
     ) -> Result<(f64, Vec<f64>), SimulateError> {
         let program = &self.dynamics;
         let mut natural = vec![None; program.sites().len()];
@@ -428,26 +432,12 @@ impl Simulation<'_> {
         let mut time = located.right;
         let mut best: Option<(f64, Vec<f64>)> = None;
         for _ in 0..4 {
-            let mut stepper = Stepper::new(
-                settings.method,
-                Options {
-                    rtol: settings.rtol,
-                    atol: AbsoluteTolerance::All(settings.atol),
-                    h_init: Some(time - t0),
-                    max_steps: usize::MAX,
-                    ..Options::default()
-                },
-                t0,
-                y0,
-                system,
-            )
-            .map_err(|error| self.integration_error(error))?;
+            stepper.restart(t0, y0);
             while stepper.t() < time {
                 stepper
                     .step_to(system, time)
                     .map_err(|error| self.integration_error(error))?;
             }
-            *counts = add(*counts, stepper.stats());
             let state = stepper.y().to_vec();
             system
                 .look(time, &state, &mut natural, &mut switching)
@@ -471,11 +461,7 @@ impl Simulation<'_> {
             // Aim just past the switch.
             time = root + 0.5 * tolerance;
         }
-        best.ok_or_else(|| SimulateError::Integration {
-            time: located.right,
-            message: "integrating again to a located switch never reaches it: the switching value's continuous output and the integrated states disagree".to_string(),
-            cause: None,
-        })
+        Ok(best.unwrap_or_else(|| (located.right, located_state.to_vec())))
     }
 
     /// The model expression that output `output` of `program` computes.

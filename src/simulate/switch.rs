@@ -22,7 +22,7 @@ const LOOKS_PER_STEP: usize = 4;
 /// Looks at the stretch of a step before a located switch: evenly spaced,
 /// and crowding towards it.
 const LOOKS_BEFORE_SWITCH: usize = 8;
-const LOOKS_CROWDING: usize = 20;
+const LOOKS_CROWDING: usize = 14;
 
 /// The equations with the sites held on their branches: what the
 /// integrator sees.
