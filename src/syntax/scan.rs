@@ -407,9 +407,23 @@ fn end_of_input(
     }
 }
 
+/// A called name as messages show it: as written when it is a plain name
+/// (`STEP`), in backticks when it has other characters (`` `.m.AZ.` ``), so
+/// that a message never ends on a name's dot.
+fn call_name(name: &str) -> String {
+    if name
+        .chars()
+        .all(|character| character.is_ascii_alphanumeric() || character == '_')
+    {
+        name.to_string()
+    } else {
+        format!("`{name}`")
+    }
+}
+
 fn opener_description(opener: &Opener) -> String {
     match &opener.function {
-        Some(function) => format!("the call of {function}"),
+        Some(function) => format!("the call of {}", call_name(function)),
         None => "the `(`".to_string(),
     }
 }
@@ -429,7 +443,7 @@ fn what_may_follow(innermost: Option<&Opener>) -> (&'static str, String) {
             ..
         }) => (
             "an operator, `,` or `)`",
-            format!(" in the call of {function}"),
+            format!(" in the call of {}", call_name(function)),
         ),
         Some(_) => ("an operator or `)`", String::new()),
         None => ("an operator or the end of the expression", String::new()),
