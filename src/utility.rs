@@ -23,6 +23,7 @@
 use num_dual::{Dual2SVec64, DualSVec64};
 use thiserror::Error;
 
+use crate::Shown;
 use crate::catalog::{Function, RuleViolation, check_rules_with};
 use crate::laws::{contact, steps};
 use crate::number::{Directional, Number};
@@ -37,7 +38,7 @@ pub enum UtilityError {
     #[error("iord ({0}) must be 0, 1 or 2")]
     Order(i32),
     /// An input is NaN or infinite.
-    #[error("{function}: {argument} ({value}) is not a finite number")]
+    #[error("{function}: {argument} ({}) is not a finite number", Shown(*value))]
     NotFinite {
         /// The subroutine.
         function: &'static str,

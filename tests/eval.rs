@@ -183,6 +183,14 @@ fn evaluation_errors_name_the_operation() {
         IMPACT(x, v, 1, 1e4, 1.5, 10, d) ; x=0 v=0 d=0
         IMPACT(x, v, 1, 1e4, 0.5, 10, 0.1) ; x=1e-300 v=0 ; wrt x ; order 2
         x ; x=1 ; wrt x
+        SQRT(x) ; x=-1e300
+        LOG(x) ; x=-2.5e-310
+        ASIN(x) ; x=1e30
+        x/y ; x=-1e300 y=0
+        x**0.5 ; x=-1.5e-300
+        x**y ; x=-1e300 y=0.5 ; wrt y
+        STEP(t, a, 0, b, 1) ; t=0 a=1e300 b=-1e300
+        IMPACT(x, v, 1, 1e4, 1.5, 10, d) ; x=0 v=0 d=-1e-300
         "
     ));
 }

@@ -16,6 +16,7 @@
 //!   is an infinity, which the evaluator reports as an error.
 
 use super::power::{as_integer, constant_power};
+use crate::Shown;
 use crate::number::Number;
 
 /// A parameter of a contact law: a plain `f64` when the expression gives a
@@ -505,10 +506,11 @@ impl PartialEq for Stops {
 impl std::fmt::Display for Stops {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (lower, upper, [k, e, cmax, d]) = self.values();
-        write!(f, "x1 {lower}")?;
+        write!(f, "x1 {}", Shown(lower))?;
         if let Some(upper) = upper {
-            write!(f, ", x2 {upper}")?;
+            write!(f, ", x2 {}", Shown(upper))?;
         }
+        let [k, e, cmax, d] = [k, e, cmax, d].map(Shown);
         write!(f, ", k {k}, e {e}, cmax {cmax}, d {d}")
     }
 }

@@ -1,6 +1,7 @@
 //! FORTRAN intrinsics and the other functions of SPEC 3.1.
 
 use super::{LawError, domain};
+use crate::Shown;
 use crate::catalog::Function;
 use crate::number::Number;
 
@@ -18,7 +19,10 @@ pub(super) fn apply<T: Number>(function: Function, args: &[&T]) -> Result<T, Law
         F::Asin | F::Acos => {
             if !(-1.0..=1.0).contains(&x) {
                 let name = if function == F::Asin { "ASIN" } else { "ACOS" };
-                return domain(name, format!("the argument ({x}) must be between -1 and 1"));
+                return domain(
+                    name,
+                    format!("the argument ({}) must be between -1 and 1", Shown(x)),
+                );
             }
             if function == F::Asin {
                 a.asin()
@@ -35,7 +39,10 @@ pub(super) fn apply<T: Number>(function: Function, args: &[&T]) -> Result<T, Law
         F::Log | F::Log10 => {
             if x <= 0.0 {
                 let name = if function == F::Log { "LOG" } else { "LOG10" };
-                return domain(name, format!("the argument ({x}) must be positive"));
+                return domain(
+                    name,
+                    format!("the argument ({}) must be positive", Shown(x)),
+                );
             }
             if function == F::Log {
                 a.ln()
@@ -45,7 +52,10 @@ pub(super) fn apply<T: Number>(function: Function, args: &[&T]) -> Result<T, Law
         }
         F::Sqrt => {
             if x < 0.0 {
-                return domain("SQRT", format!("the argument ({x}) must not be negative"));
+                return domain(
+                    "SQRT",
+                    format!("the argument ({}) must not be negative", Shown(x)),
+                );
             }
             a.sqrt()
         }
@@ -63,7 +73,7 @@ pub(super) fn apply<T: Number>(function: Function, args: &[&T]) -> Result<T, Law
         F::Mod => {
             let b = args[1];
             if b.value() == 0.0 {
-                return domain("MOD", format!("the divisor is 0 (MOD({x}, 0))"));
+                return domain("MOD", format!("the divisor is 0 (MOD({}, 0))", Shown(x)));
             }
             let quotient = (x / b.value()).trunc();
             a.clone() - b.clone() * quotient

@@ -3,12 +3,16 @@
 //! dual-exponent power, and never a formula that overflows for a tiny base).
 
 use super::{LawError, domain};
+use crate::Shown;
 use crate::number::Number;
 
 /// `a / b`.
 pub fn divide<T: Number>(a: &T, b: &T) -> Result<T, LawError> {
     if b.value() == 0.0 {
-        return domain("`/`", format!("division by zero ({} / 0)", a.value()));
+        return domain(
+            "`/`",
+            format!("division by zero ({} / 0)", Shown(a.value())),
+        );
     }
     Ok(a.clone() / b.clone())
 }
@@ -99,11 +103,18 @@ pub fn powf<T: Number>(x: &T, e: f64) -> Result<T, LawError> {
     if x0 < 0.0 {
         return domain(
             "`**`",
-            format!("a negative base ({x0}) to the non-integer power {e} is not a real number"),
+            format!(
+                "a negative base ({}) to the non-integer power {} is not a real number",
+                Shown(x0),
+                Shown(e)
+            ),
         );
     }
     if x0 == 0.0 && e < 0.0 {
-        return domain("`**`", format!("0 to the negative power {e} is infinite"));
+        return domain(
+            "`**`",
+            format!("0 to the negative power {} is infinite", Shown(e)),
+        );
     }
     Ok(constant_power(x, e, None))
 }
@@ -119,7 +130,8 @@ pub fn pow<T: Number>(x: &T, y: &T) -> Result<T, LawError> {
         return domain(
             "`**`",
             format!(
-                "the base ({x0}) must be positive when the exponent varies (the derivative in the exponent is x**y*LOG(x))"
+                "the base ({}) must be positive when the exponent varies (the derivative in the exponent is x**y*LOG(x))",
+                Shown(x0)
             ),
         );
     }

@@ -16,6 +16,7 @@
 
 use thiserror::Error;
 
+use crate::Shown;
 use crate::number::Number;
 
 /// The fitting method of a spline function.
@@ -34,7 +35,11 @@ pub enum SplineDataError {
     #[error("a spline needs at least four x values; found {0}")]
     TooFewPoints(usize),
     /// The x values do not increase.
-    #[error("x values must increase: x{position} = {value} follows {previous}")]
+    #[error(
+        "x values must increase: x{position} = {} follows {}",
+        Shown(*value),
+        Shown(*previous)
+    )]
     XNotIncreasing {
         /// Position of the offending value, from 1.
         position: usize,
@@ -44,7 +49,11 @@ pub enum SplineDataError {
         previous: f64,
     },
     /// The z values of a family do not increase.
-    #[error("the z values of the curves must increase: {value} follows {previous}")]
+    #[error(
+        "the z values of the curves must increase: {} follows {}",
+        Shown(*value),
+        Shown(*previous)
+    )]
     ZNotIncreasing {
         /// The offending z.
         value: f64,

@@ -5,6 +5,7 @@
 use nalgebra::{Matrix3, SMatrix, Vector3};
 use num_dual::DualNum;
 
+use crate::Shown;
 use crate::catalog::Function;
 use crate::laws::intrinsics::atan2;
 use crate::laws::{LawError, domain};
@@ -284,7 +285,10 @@ pub fn measure<T: Number>(function: Function, frames: &[Frame<T>]) -> Result<T, 
 fn within_unit<T: Number>(name: &'static str, value: T) -> Result<T, LawError> {
     let v = value.value();
     if v.abs() > 1.0 + 1e-12 {
-        return domain(name, format!("the orientation is not a rotation ({v})"));
+        return domain(
+            name,
+            format!("the orientation is not a rotation ({})", Shown(v)),
+        );
     }
     if v.abs() > 1.0 {
         return Ok(T::from(v.signum()));
