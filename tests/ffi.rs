@@ -16,12 +16,13 @@ fn build_dir() -> PathBuf {
         .to_path_buf()
 }
 
-/// Compiles `source` with `compiler` against the static library and runs
-/// it; `None` (with a note) when the compiler is not installed.
-fn compile_and_run(compiler: &str, source: &str, extra: &[&str]) -> Option<String> {
+/// Compiles `sources` with `compiler` and `flags` against the static
+/// library and runs the program; `None` (with a note) when the compiler is
+/// not installed.
+fn compile_and_run(compiler: &str, sources: &[PathBuf], flags: &[&str]) -> Option<String> {
     if Command::new(compiler).arg("--version").output().is_err() {
         eprintln!(
-            "note: {compiler} is not installed; the {source} test is skipped (.ci/run installs it)"
+            "note: {compiler} is not installed; a test of {sources:?} is skipped (.ci/run installs it)"
         );
         return None;
     }
@@ -33,46 +34,160 @@ fn compile_and_run(compiler: &str, source: &str, extra: &[&str]) -> Option<Strin
         "{} is built with the library",
         library.display()
     );
-    let scratch =
-        std::env::temp_dir().join(format!("mbexpr-ffi-{}-{compiler}", std::process::id()));
-    std::fs::create_dir_all(&scratch).unwrap();
+    let scratch = scratch(compiler);
     let program = scratch.join("user_sub");
-    let status = Command::new(compiler)
+    let output = Command::new(compiler)
         .current_dir(&scratch)
-        .args(extra)
-        .arg(root.join(source))
+        .args(flags)
+        .args(sources)
         .arg("-I")
         .arg(root.join("include"))
         .arg(&library)
         .args(["-lpthread", "-ldl", "-lm", "-o"])
         .arg(&program)
-        .status()
+        .output()
         .expect("the compiler runs");
-    assert!(status.success(), "{compiler} failed on {source}");
+    assert!(
+        output.status.success(),
+        "{compiler} failed on {sources:?}:\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     let output = Command::new(&program).output().expect("the program runs");
     std::fs::remove_dir_all(&scratch).unwrap();
     assert!(
         output.status.success(),
-        "{}",
+        "{sources:?}: {}",
         String::from_utf8_lossy(&output.stderr)
     );
     Some(String::from_utf8(output.stdout).unwrap())
 }
 
+/// A fresh folder for one compilation.
+fn scratch(name: &str) -> PathBuf {
+    static COUNT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let count = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let folder =
+        std::env::temp_dir().join(format!("mbexpr-ffi-{}-{name}-{count}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    folder
+}
+
+/// A file of this repository.
+fn file(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+}
+
 #[test]
 fn a_c_user_subroutine_calls_the_library() {
-    if let Some(output) = compile_and_run("cc", "tests/c/user_sub.c", &[]) {
+    if let Some(output) =
+        compile_and_run("cc", &[file("tests/c/user_sub.c")], &["-Wall", "-Werror"])
+    {
         insta::assert_snapshot!(output);
     }
 }
 
 #[test]
 fn a_fortran_user_subroutine_calls_the_library() {
-    let module = Path::new(env!("CARGO_MANIFEST_DIR")).join("include/mbexpr.f90");
-    let module = module.to_str().unwrap();
-    if let Some(output) = compile_and_run("gfortran", "tests/fortran/user_sub.f90", &[module]) {
+    let sources = [
+        "include/mbexpr.f90",
+        "tests/fortran/old_style.f",
+        "tests/fortran/user_sub.f90",
+    ]
+    .map(file);
+    if let Some(output) = compile_and_run("gfortran", &sources, &["-Wall", "-Werror"]) {
         insta::assert_snapshot!(output);
     }
+}
+
+/// A fenced code block of a Markdown file: its language and text.
+fn fenced_blocks(markdown: &str) -> Vec<(String, String)> {
+    let mut blocks = Vec::new();
+    let mut open: Option<(String, String)> = None;
+    for line in markdown.lines() {
+        match (&mut open, line.trim_start().strip_prefix("```")) {
+            (None, Some(language)) => open = Some((language.trim().to_string(), String::new())),
+            (Some(_), Some(_)) => blocks.extend(open.take()),
+            (Some((_, text)), None) => {
+                text.push_str(line);
+                text.push('\n');
+            }
+            (None, None) => {}
+        }
+    }
+    blocks
+}
+
+/// Whether a FORTRAN text is in fixed form: every line a comment (C, *, !
+/// in column 1), or a label field of digits and blanks before column 7.
+fn fixed_form(text: &str) -> bool {
+    text.lines().all(|line| {
+        line.trim().is_empty()
+            || line.starts_with(['C', 'c', '*', '!'])
+            || line.chars().take(5).all(|c| c == ' ' || c.is_ascii_digit()) && line.len() > 6
+    })
+}
+
+/// Issue 18.1: every C and FORTRAN block of the README and `docs/` compiles
+/// exactly as written, with `-Wall -Werror` (fixed-form FORTRAN as fixed
+/// form, where gfortran cuts lines at column 72), and runs: a block
+/// without a main program with the driver in `tests/docs/` named after the
+/// routine it defines.
+#[test]
+fn every_c_and_fortran_block_of_the_docs_compiles_and_runs() {
+    let mut documents = vec![file("README.md")];
+    let mut pages: Vec<PathBuf> = std::fs::read_dir(file("docs"))
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|extension| extension == "md"))
+        .collect();
+    pages.sort();
+    documents.extend(pages);
+    let drivers: Vec<PathBuf> = std::fs::read_dir(file("tests/docs"))
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .collect();
+    let mut report = String::new();
+    for document in &documents {
+        let markdown = std::fs::read_to_string(document).unwrap();
+        for (index, (language, text)) in fenced_blocks(&markdown).into_iter().enumerate() {
+            let (compiler, extension, main) = match language.as_str() {
+                "c" => ("cc", "c", "main("),
+                "fortran" if fixed_form(&text) => ("gfortran", "f", "PROGRAM"),
+                "fortran" => ("gfortran", "f90", "PROGRAM"),
+                _ => continue,
+            };
+            let name = format!(
+                "{}-{index}",
+                document.file_stem().unwrap().to_string_lossy()
+            );
+            let folder = scratch(&name);
+            let block = folder.join(format!("{name}.{extension}"));
+            std::fs::write(&block, &text).unwrap();
+            let mut sources = vec![block];
+            if !text.to_uppercase().contains(&main.to_uppercase()) {
+                // The driver whose name is a routine the block defines.
+                let defined = text.to_lowercase();
+                let driver = drivers
+                    .iter()
+                    .find(|driver| {
+                        let stem = driver.file_stem().unwrap().to_string_lossy().to_lowercase();
+                        let language_matches = match extension {
+                            "c" => driver.extension().is_some_and(|e| e == "c"),
+                            _ => driver.extension().is_some_and(|e| e != "c"),
+                        };
+                        language_matches && defined.contains(&format!("{stem}("))
+                    })
+                    .unwrap_or_else(|| panic!("{name}: a block without a main program needs a driver in tests/docs/ named after its routine:\n{text}"));
+                sources.push(driver.clone());
+            }
+            let Some(output) = compile_and_run(compiler, &sources, &["-Wall", "-Werror"]) else {
+                continue;
+            };
+            std::fs::remove_dir_all(&folder).unwrap();
+            report += &format!("{name} ({language}):\n{output}");
+        }
+    }
+    insta::assert_snapshot!(report);
 }
 
 #[test]
