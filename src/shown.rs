@@ -16,6 +16,7 @@ use std::fmt;
 /// assert_eq!(Shown(5e-324).to_string(), "5e-324");
 /// assert_eq!(Shown(100.0).to_string(), "100");
 /// assert_eq!(Shown(-0.0).to_string(), "0");
+/// assert_eq!(format!("{:>6}", Shown(2.5)), "   2.5");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shown(pub f64);
@@ -55,10 +56,15 @@ impl Shown {
     }
 }
 
+/// Takes a width and alignment (`{:>24}`) as a string does.
 impl fmt::Display for Shown {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut buffer = ShownBuffer::new();
-        for piece in self.pieces(&mut buffer) {
+        let pieces = self.pieces(&mut buffer);
+        if f.width().is_some() {
+            return f.pad(&pieces.concat());
+        }
+        for piece in pieces {
             f.write_str(piece)?;
         }
         Ok(())
