@@ -5,8 +5,12 @@
 !
 ! VECTOR(1..3): F, 0, 0 (IORD = 0); dF/dx, dF/dx', 0 (IORD = 1);
 ! d2F/dx2, d2F/dxdx', 0 (IORD = 2). ERRFLG is .TRUE. and VECTOR zero on a
-! broken argument rule, an IORD other than 0, 1, 2 or an input that is not
-! finite.
+! broken argument rule, an IORD other than 0, 1, 2, an input that is not
+! finite, or an entry beyond the range of a double; otherwise every entry
+! is a finite number. Keep implicit calls (old user subroutines) and calls
+! through this module in separate files: gfortran checks the calls of one
+! file against each other and takes VECTOR(3) and an implicit array
+! argument for a "shape mismatch".
 MODULE mbexpr
   IMPLICIT NONE
   INTERFACE

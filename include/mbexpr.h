@@ -10,10 +10,11 @@
  *   [2]    | 0        | 0          | d2F/dx'2 (always 0)
  *
  * On a broken argument rule (x1 >= x2, k < 0, e <= 0, cmax < 0, d <= 0),
- * an iord other than 0, 1, 2, or an input that is not finite, *errflg is
- * set to 1 and VECTOR (or *value) to zeros; otherwise *errflg is 0. No NaN
- * is ever returned; a value beyond the largest double is an infinity of
- * the right sign. See docs/contact.md.
+ * an iord other than 0, 1, 2, an input that is not finite, or an entry
+ * asked for that is beyond the range of a double (about 1.8e308), *errflg
+ * is set to 1 and VECTOR (or *value) to zeros; otherwise *errflg is 0 and
+ * every entry is a finite number: no NaN and no infinity is ever returned.
+ * See docs/contact.md.
  */
 #ifndef MBEXPR_H
 #define MBEXPR_H

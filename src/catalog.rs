@@ -7,6 +7,8 @@
 use std::cmp::Ordering;
 use std::fmt;
 
+use crate::Shown;
+
 /// What an argument position holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ArgKind {
@@ -80,14 +82,14 @@ impl fmt::Display for RuleViolation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let name = self.function.name();
         let param = |position: usize| self.function.param_name(position);
-        let value = self.values[0];
+        let value = Shown(self.values[0]);
         match self.rule {
             Rule::Less(a, b) => write!(
                 f,
                 "{name}: {} ({value}) must be less than {} ({})",
                 param(a),
                 param(b),
-                self.values[1]
+                Shown(self.values[1])
             ),
             Rule::Positive(a) => write!(f, "{name}: {} ({value}) must be positive", param(a)),
             Rule::NonNegative(a) => {

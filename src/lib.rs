@@ -48,6 +48,7 @@ pub mod laws;
 pub mod model;
 pub mod number;
 pub mod scene;
+mod shown;
 pub mod simulate;
 pub mod span;
 pub mod syntax;
@@ -58,5 +59,6 @@ pub use compile::{CompileError, Program, compile, compile_in_model, compile_in_s
 pub use errors::Errors;
 pub use eval::{EvalError, Evaluation, Evaluator, Order, Run};
 pub use scene::Scene;
+pub use shown::{Shown, ShownBuffer};
 pub use span::{LineIndex, Location, Span};
 pub use syntax::{ParseError, parse};

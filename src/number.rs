@@ -23,9 +23,17 @@ pub trait Number: DualNum<Primitive = f64> + nalgebra::RealField + Clone + 'stat
     fn chain(&self, f0: f64, derivatives: impl FnOnce() -> (f64, f64)) -> Self;
 
     /// `f(self, other)` for a scalar function of two arguments whose value
-    /// is `f0` and whose partial derivatives `derivatives` gives as
-    /// `[f_a, f_b, f_aa, f_ab, f_bb]` (`a` is `self`, `b` is `other`).
-    fn chain2(&self, other: &Self, f0: f64, derivatives: impl FnOnce() -> [f64; 5]) -> Self;
+    /// is `f0`, whose first partial derivatives `first` gives as `[f_a,
+    /// f_b]` and whose second ones `second` gives as `[f_aa, f_ab, f_bb]`
+    /// (`a` is `self`, `b` is `other`); each is called only where a
+    /// derivative of that order is carried.
+    fn chain2(
+        &self,
+        other: &Self,
+        f0: f64,
+        first: impl FnOnce() -> [f64; 2],
+        second: impl FnOnce() -> [f64; 3],
+    ) -> Self;
 
     /// Whether the number carries no derivative part (a constant).
     fn is_constant(&self) -> bool;
@@ -39,7 +47,13 @@ impl Number for f64 {
         f0
     }
 
-    fn chain2(&self, _: &Self, f0: f64, _: impl FnOnce() -> [f64; 5]) -> Self {
+    fn chain2(
+        &self,
+        _: &Self,
+        f0: f64,
+        _: impl FnOnce() -> [f64; 2],
+        _: impl FnOnce() -> [f64; 3],
+    ) -> Self {
         f0
     }
 
@@ -70,6 +84,28 @@ where
     )
 }
 
+/// `factor * a^T b` (a Hessian term of the chain rule) formed as
+/// `(factor * a)^T b`, so that a zero `factor` contributes nothing even
+/// where `a^T b` would overflow (a ramp of width 1e-200 at its inflection),
+/// and a huge `factor` meets a tiny `a` before `b`. An infinite `factor`
+/// keeps the entries of `a^T b` that are zero at zero.
+fn outer<D: Dim>(
+    a: &Derivative<f64, U1, D>,
+    b: &Derivative<f64, U1, D>,
+    factor: f64,
+) -> Derivative<f64, D, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    if factor == 0.0 {
+        Derivative::none()
+    } else if factor.is_finite() {
+        (a * factor).tr_mul(b)
+    } else {
+        times(&a.tr_mul(b), factor)
+    }
+}
+
 fn all_finite<R: Dim, C: Dim>(derivative: &Derivative<f64, R, C>) -> bool
 where
     DefaultAllocator: Allocator<R, C>,
@@ -93,11 +129,17 @@ where
         DualVec::new(f0, times(&self.eps, f1))
     }
 
-    fn chain2(&self, other: &Self, f0: f64, derivatives: impl FnOnce() -> [f64; 5]) -> Self {
+    fn chain2(
+        &self,
+        other: &Self,
+        f0: f64,
+        first: impl FnOnce() -> [f64; 2],
+        _: impl FnOnce() -> [f64; 3],
+    ) -> Self {
         if self.is_constant() && other.is_constant() {
             return DualVec::from_re(f0);
         }
-        let [fa, fb, ..] = derivatives();
+        let [fa, fb] = first();
         DualVec::new(f0, times(&self.eps, fa) + times(&other.eps, fb))
     }
 
@@ -122,22 +164,30 @@ where
         }
         let (f1, f2) = derivatives();
         let gradient = times(&self.v1, f1);
-        let hessian = times(&self.v2, f1) + times(&self.v1.tr_mul(&self.v1), f2);
+        let hessian = times(&self.v2, f1) + outer(&self.v1, &self.v1, f2);
         Dual2Vec::new(f0, gradient, hessian)
     }
 
-    fn chain2(&self, other: &Self, f0: f64, derivatives: impl FnOnce() -> [f64; 5]) -> Self {
+    fn chain2(
+        &self,
+        other: &Self,
+        f0: f64,
+        first: impl FnOnce() -> [f64; 2],
+        second: impl FnOnce() -> [f64; 3],
+    ) -> Self {
         if self.is_constant() && other.is_constant() {
             return Dual2Vec::from_re(f0);
         }
-        let [fa, fb, faa, fab, fbb] = derivatives();
+        let [fa, fb] = first();
+        let [faa, fab, fbb] = second();
         let (a, b) = (&self.v1, &other.v1);
         let gradient = times(a, fa) + times(b, fb);
         let hessian = times(&self.v2, fa)
             + times(&other.v2, fb)
-            + times(&a.tr_mul(a), faa)
-            + times(&(a.tr_mul(b) + b.tr_mul(a)), fab)
-            + times(&b.tr_mul(b), fbb);
+            + outer(a, a, faa)
+            + outer(a, b, fab)
+            + outer(b, a, fab)
+            + outer(b, b, fbb);
         Dual2Vec::new(f0, gradient, hessian)
     }
 

@@ -10,7 +10,12 @@
 //! | 2 | 0 | dF/dx' | d2F/dx dx' |
 //! | 3 | 0 | 0 | d2F/dx'2 (always 0) |
 //!
-//! Entries beyond the largest double are infinities of the right sign.
+//! Every entry returned is a finite number: where the force, or a
+//! derivative asked for, is beyond the range of a double, the call fails
+//! ([`UtilityError::BeyondRange`]; ERRFLG from C and FORTRAN), as the
+//! evaluator reports the same expression as an error. The laws are
+//! computed so that no intermediate passes the range where the result
+//! does not (`docs/contact.md`).
 //!
 //! ```
 //! // 0.05 beyond the upper wall, moving outwards: a restoring force.
@@ -23,6 +28,7 @@
 use num_dual::{Dual2SVec64, DualSVec64};
 use thiserror::Error;
 
+use crate::Shown;
 use crate::catalog::{Function, RuleViolation, check_rules_with};
 use crate::laws::{contact, steps};
 use crate::number::{Directional, Number};
@@ -37,7 +43,7 @@ pub enum UtilityError {
     #[error("iord ({0}) must be 0, 1 or 2")]
     Order(i32),
     /// An input is NaN or infinite.
-    #[error("{function}: {argument} ({value}) is not a finite number")]
+    #[error("{function}: {argument} ({}) is not a finite number", Shown(*value))]
     NotFinite {
         /// The subroutine.
         function: &'static str,
@@ -45,6 +51,14 @@ pub enum UtilityError {
         argument: &'static str,
         /// Its value.
         value: f64,
+    },
+    /// An entry of the result is beyond the range of a double.
+    #[error("{function}: {quantity} is beyond the range of a double here")]
+    BeyondRange {
+        /// The subroutine.
+        function: &'static str,
+        /// The entry, as `F`, `dF/dx`, `d2F/dx dx'`, ...
+        quantity: &'static str,
     },
 }
 
@@ -97,29 +111,55 @@ impl Law for Impact {
     }
 }
 
-/// `+0` for `-0`.
-fn tidy(value: f64) -> f64 {
-    value + 0.0
+/// `values` with `-0` as `+0`, or the error naming the first entry that is
+/// not a finite number (`quantities` names the entries).
+fn finite<const N: usize>(
+    function: Function,
+    values: [f64; N],
+    quantities: [&'static str; N],
+) -> Result<[f64; N], UtilityError> {
+    match values.iter().position(|value| !value.is_finite()) {
+        Some(position) => Err(UtilityError::BeyondRange {
+            function: function.name(),
+            quantity: quantities[position],
+        }),
+        None => Ok(values.map(|value| value + 0.0)),
+    }
 }
 
-/// The VECTOR of `law` at (x, x') for `iord` (already checked to be 0, 1 or 2).
-fn vector(law: &impl Law, x: f64, v: f64, iord: i32) -> [f64; 3] {
+/// The VECTOR of `law` at (x, x') for `iord` (already checked to be 0, 1
+/// or 2), or the error for an entry beyond the range of a double.
+fn vector(
+    function: Function,
+    law: &impl Law,
+    x: f64,
+    v: f64,
+    iord: i32,
+) -> Result<[f64; 3], UtilityError> {
     fn seeded<T: Directional>(law: &impl Law, x: f64, v: f64) -> T {
         law.at(&T::variable(x, 0, 2), &T::variable(v, 1, 2))
     }
-    match iord {
-        0 => [tidy(law.at(&x, &v)), 0.0, 0.0],
+    let [first, second] = match iord {
+        0 => {
+            let [force] = finite(function, [law.at(&x, &v)], ["the force"])?;
+            [force, 0.0]
+        }
         1 => {
             let gradient = seeded::<DualSVec64<2>>(law, x, v).gradient(2);
-            [tidy(gradient[0]), tidy(gradient[1]), 0.0]
+            finite(function, [gradient[0], gradient[1]], ["dF/dx", "dF/dx'"])?
         }
         _ => {
             let hessian = seeded::<Dual2SVec64<2>>(law, x, v)
                 .hessian(2)
                 .expect("second-order numbers carry a Hessian");
-            [tidy(hessian[(0, 0)]), tidy(hessian[(0, 1)]), 0.0]
+            finite(
+                function,
+                [hessian[(0, 0)], hessian[(0, 1)]],
+                ["d2F/dx2", "d2F/dx dx'"],
+            )?
         }
-    }
+    };
+    Ok([first, second, 0.0])
 }
 
 /// `CALL BISTOP(X, XD, X1, X2, K, E, CMAX, D, IORD, VECTOR, ERRFLG)`: the
@@ -139,7 +179,13 @@ pub fn bistop(
     let values = [x, xd, x1, x2, k, e, cmax, d];
     let names = ["x", "x'", "x1", "x2", "k", "e", "cmax", "d"];
     validate(Function::Bistop, &names, &values, iord)?;
-    Ok(vector(&Bistop([x1, x2, k, e, cmax, d]), x, xd, iord))
+    vector(
+        Function::Bistop,
+        &Bistop([x1, x2, k, e, cmax, d]),
+        x,
+        xd,
+        iord,
+    )
 }
 
 /// `CALL IMPACT(X, XD, X1, K, E, CMAX, D, IORD, VECTOR, ERRFLG)`: the
@@ -158,7 +204,7 @@ pub fn impact(
     let values = [x, xd, x1, k, e, cmax, d];
     let names = ["x", "x'", "x1", "k", "e", "cmax", "d"];
     validate(Function::Impact, &names, &values, iord)?;
-    Ok(vector(&Impact([x1, k, e, cmax, d]), x, xd, iord))
+    vector(Function::Impact, &Impact([x1, k, e, cmax, d]), x, xd, iord)
 }
 
 /// `CALL STEP(X, X0, H0, X1, H1, IORD, VALUE, ERRFLG)`: the cubic step
@@ -176,11 +222,16 @@ pub fn step(x: f64, x0: f64, h0: f64, x1: f64, h1: f64, iord: i32) -> Result<f64
         steps::step(steps::Shape::Cubic, x, &x0, &h0, &x1, &h1)
     };
     let result = law(&Dual2SVec64::<1>::variable(x, 0, 1));
-    Ok(tidy(match iord {
-        0 => result.value(),
-        1 => result.gradient(1)[0],
-        _ => result
-            .hessian(1)
-            .expect("second-order numbers carry a Hessian")[(0, 0)],
-    }))
+    let [value] = match iord {
+        0 => finite(Function::Step, [result.value()], ["the value"]),
+        1 => finite(Function::Step, [result.gradient(1)[0]], ["d/dx"]),
+        _ => finite(
+            Function::Step,
+            [result
+                .hessian(1)
+                .expect("second-order numbers carry a Hessian")[(0, 0)]],
+            ["d2/dx2"],
+        ),
+    }?;
+    Ok(value)
 }

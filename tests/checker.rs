@@ -80,6 +80,9 @@ fn refusals() {
         MOD(x, 0)
         SWEEP(x, 1, 2, 1, 1, 5, 0.5)
         STPE(x) + DX(1.5) + BISTOP(x, v, 1, 1, 1, 1, 1, 1)
+        STEP(x, 1e300, 0, -1e300, 1)
+        IMPACT(x, v, 1, 1e4, 1.5, 10, -1e-300)
+        BISTOP(x, v, 0.1 + 0.2, 0.1, 1e5, 2.2, 100, 0.1)
         "
     ));
 }

@@ -726,6 +726,22 @@ fn simulate_writes_rows_statistics_and_events() {
     );
 }
 
+/// Issue 17.3 in the simulator's rows and statistics: numbers as the
+/// shortest text that reads back, in exponent form when large or small.
+#[test]
+fn simulate_rows_show_large_and_small_numbers_short() {
+    let model = "extremes\nDIFF/1, IC = 1E-300, FUNCTION = 0\nDIFF/2, IC = 1E300, FUNCTION = 0\nDIFF/3, IC = 0, FUNCTION = 1E-7\n";
+    let run = |format: &str| {
+        check_run(
+            &[
+                "simulate", "-", "--end", "2", "--steps", "2", "--format", format,
+            ],
+            model,
+        )
+    };
+    insta::assert_snapshot!(run("csv") + &run("text"));
+}
+
 #[test]
 fn simulate_refuses_what_it_cannot_run() {
     let joint = "joint\nPART/1, GROUND\nMARKER/1, PART = 1\nPART/2, MASS = 1, CM = 3, IP = 1, 1, 1\nMARKER/3, PART = 2\nJOINT/1, REVOLUTE, I = 3, J = 1\n";

@@ -183,6 +183,58 @@ fn evaluation_errors_name_the_operation() {
         IMPACT(x, v, 1, 1e4, 1.5, 10, d) ; x=0 v=0 d=0
         IMPACT(x, v, 1, 1e4, 0.5, 10, 0.1) ; x=1e-300 v=0 ; wrt x ; order 2
         x ; x=1 ; wrt x
+        SQRT(x) ; x=-1e300
+        LOG(x) ; x=-2.5e-310
+        ASIN(x) ; x=1e30
+        x/y ; x=-1e300 y=0
+        x**0.5 ; x=-1.5e-300
+        x**y ; x=-1e300 y=0.5 ; wrt y
+        STEP(t, a, 0, b, 1) ; t=0 a=1e300 b=-1e300
+        IMPACT(x, v, 1, 1e4, 1.5, 10, d) ; x=0 v=0 d=-1e-300
+        "
+    ));
+}
+
+/// Issue 17.2: functions whose plain formula overflows or underflows on the
+/// way to a result that is a double.
+#[test]
+fn intermediates_beyond_the_range_where_the_result_is_not() {
+    insta::assert_snapshot!(table(
+        r"
+        TANH(x) ; x=1000 ; wrt x ; order 2
+        TANH(x) ; x=-1000 ; wrt x ; order 2
+        TANH(x) ; x=20 ; wrt x ; order 2
+        TANH(x) ; x=5e-324 ; wrt x ; order 2
+        TANH(BISTOP(v, x, -1.65, 0.03, 8473.3, 1.82, 19.88, 0.641)) ; v=1.047 x=-0.668 ; wrt x,v ; order 2
+        SINH(x) ; x=710 ; wrt x ; order 2
+        COSH(x) ; x=-710 ; wrt x ; order 2
+        ATAN2(y, x) ; y=1e200 x=-1e200 ; wrt y,x ; order 2
+        ATAN2(y, x) ; y=1e-200 x=1e-200 ; wrt y,x ; order 1
+        ATAN(x) ; x=1e100 ; wrt x ; order 2
+        ATAN(x) ; x=1e160 ; wrt x ; order 1
+        SQRT(x) ; x=5e-324 ; wrt x
+        LOG10(x) ; x=4e-309 ; wrt x
+        LOG(x) ; x=1e160 ; wrt x ; order 2
+        x/y ; x=1e300 y=1e300 ; wrt x,y ; order 2
+        x/y ; x=1e-311 y=1e-310 ; wrt x
+        x**y ; x=1e300 y=1.005 ; wrt x,y ; order 2
+        x**-1030 ; x=2 ; wrt x
+        MOD(x, y) ; x=1e300 y=3e-300 ; wrt x
+        IMPACT(x, v, 0, 1e-300, 3, 0, 1) ; x=-1e200 v=0 ; wrt x ; order 2
+        IMPACT(x, v, 0, 1, 2, 1, 1e-160) ; x=-5e-161 v=0 ; wrt x,v ; order 2
+        IMPACT(x, v, 0, 1, 2, 1, 1e-200) ; x=-5e-201 v=0 ; wrt x,v ; order 1
+        BISTOP(x, v, -10, 10, 1e308, 3, 100, 0.1) ; x=12 v=-7e306
+        BISTOP(x, v, -10, 10, 1e308, 3, 100, 0.1) ; x=12 v=-1e307
+        BISTOP(x, v, -10, 10, 1e308, 3, 100, 0.1) ; x=12 v=-1e306
+        BISTOP(x, v, -10, 10, k, e, c, d) ; x=12 v=-7e306 k=1e308 e=3 c=100 d=0.1 ; wrt v,k,c
+        STEP(x, 0, -1e308, 1, 1e308) ; x=0.25
+        STEP5(x, 0, 0, 1e-300, 1) ; x=5e-301 ; wrt x ; order 2
+        HAVSIN(x, 0, -1e308, 1, 1e308) ; x=0.01 ; wrt x
+        SHF(x, y, 1, 1e-300, 0, 0) ; x=1e308 y=-1e308 ; wrt x ; order 2
+        POLY(x, y, 0, 0.25) ; x=1e308 y=-1e308 ; wrt x
+        CHEBY(x, 0, 1, 0, 0) ; x=1e200 ; wrt x ; order 2
+        FORCOS(x, 0, 1e300, 1, 1, 1, 1) ; x=100000000 ; wrt x
+        SWEEP(x, 1, 0, 1, 1e300, 2, 1) ; x=1e200 ; wrt x ; order 2
         "
     ));
 }

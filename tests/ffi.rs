@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use mbexpr::{Order, utility};
+use mbexpr::{Order, Shown, utility};
 use proptest::prelude::*;
 
 /// `target/<profile>`, where the binary and `libmbexpr.a` are built.
@@ -16,12 +16,13 @@ fn build_dir() -> PathBuf {
         .to_path_buf()
 }
 
-/// Compiles `source` with `compiler` against the static library and runs
-/// it; `None` (with a note) when the compiler is not installed.
-fn compile_and_run(compiler: &str, source: &str, extra: &[&str]) -> Option<String> {
+/// Compiles `sources` with `compiler` and `flags` against the static
+/// library and runs the program; `None` (with a note) when the compiler is
+/// not installed.
+fn compile_and_run(compiler: &str, sources: &[PathBuf], flags: &[&str]) -> Option<String> {
     if Command::new(compiler).arg("--version").output().is_err() {
         eprintln!(
-            "note: {compiler} is not installed; the {source} test is skipped (.ci/run installs it)"
+            "note: {compiler} is not installed; a test of {sources:?} is skipped (.ci/run installs it)"
         );
         return None;
     }
@@ -33,46 +34,160 @@ fn compile_and_run(compiler: &str, source: &str, extra: &[&str]) -> Option<Strin
         "{} is built with the library",
         library.display()
     );
-    let scratch =
-        std::env::temp_dir().join(format!("mbexpr-ffi-{}-{compiler}", std::process::id()));
-    std::fs::create_dir_all(&scratch).unwrap();
+    let scratch = scratch(compiler);
     let program = scratch.join("user_sub");
-    let status = Command::new(compiler)
+    let output = Command::new(compiler)
         .current_dir(&scratch)
-        .args(extra)
-        .arg(root.join(source))
+        .args(flags)
+        .args(sources)
         .arg("-I")
         .arg(root.join("include"))
         .arg(&library)
         .args(["-lpthread", "-ldl", "-lm", "-o"])
         .arg(&program)
-        .status()
+        .output()
         .expect("the compiler runs");
-    assert!(status.success(), "{compiler} failed on {source}");
+    assert!(
+        output.status.success(),
+        "{compiler} failed on {sources:?}:\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     let output = Command::new(&program).output().expect("the program runs");
     std::fs::remove_dir_all(&scratch).unwrap();
     assert!(
         output.status.success(),
-        "{}",
+        "{sources:?}: {}",
         String::from_utf8_lossy(&output.stderr)
     );
     Some(String::from_utf8(output.stdout).unwrap())
 }
 
+/// A fresh folder for one compilation.
+fn scratch(name: &str) -> PathBuf {
+    static COUNT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let count = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let folder =
+        std::env::temp_dir().join(format!("mbexpr-ffi-{}-{name}-{count}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    folder
+}
+
+/// A file of this repository.
+fn file(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+}
+
 #[test]
 fn a_c_user_subroutine_calls_the_library() {
-    if let Some(output) = compile_and_run("cc", "tests/c/user_sub.c", &[]) {
+    if let Some(output) =
+        compile_and_run("cc", &[file("tests/c/user_sub.c")], &["-Wall", "-Werror"])
+    {
         insta::assert_snapshot!(output);
     }
 }
 
 #[test]
 fn a_fortran_user_subroutine_calls_the_library() {
-    let module = Path::new(env!("CARGO_MANIFEST_DIR")).join("include/mbexpr.f90");
-    let module = module.to_str().unwrap();
-    if let Some(output) = compile_and_run("gfortran", "tests/fortran/user_sub.f90", &[module]) {
+    let sources = [
+        "include/mbexpr.f90",
+        "tests/fortran/old_style.f",
+        "tests/fortran/user_sub.f90",
+    ]
+    .map(file);
+    if let Some(output) = compile_and_run("gfortran", &sources, &["-Wall", "-Werror"]) {
         insta::assert_snapshot!(output);
     }
+}
+
+/// A fenced code block of a Markdown file: its language and text.
+fn fenced_blocks(markdown: &str) -> Vec<(String, String)> {
+    let mut blocks = Vec::new();
+    let mut open: Option<(String, String)> = None;
+    for line in markdown.lines() {
+        match (&mut open, line.trim_start().strip_prefix("```")) {
+            (None, Some(language)) => open = Some((language.trim().to_string(), String::new())),
+            (Some(_), Some(_)) => blocks.extend(open.take()),
+            (Some((_, text)), None) => {
+                text.push_str(line);
+                text.push('\n');
+            }
+            (None, None) => {}
+        }
+    }
+    blocks
+}
+
+/// Whether a FORTRAN text is in fixed form: every line a comment (C, *, !
+/// in column 1), or a label field of digits and blanks before column 7.
+fn fixed_form(text: &str) -> bool {
+    text.lines().all(|line| {
+        line.trim().is_empty()
+            || line.starts_with(['C', 'c', '*', '!'])
+            || line.chars().take(5).all(|c| c == ' ' || c.is_ascii_digit()) && line.len() > 6
+    })
+}
+
+/// Issue 18.1: every C and FORTRAN block of the README and `docs/` compiles
+/// exactly as written, with `-Wall -Werror` (fixed-form FORTRAN as fixed
+/// form, where gfortran cuts lines at column 72), and runs: a block
+/// without a main program with the driver in `tests/docs/` named after the
+/// routine it defines.
+#[test]
+fn every_c_and_fortran_block_of_the_docs_compiles_and_runs() {
+    let mut documents = vec![file("README.md")];
+    let mut pages: Vec<PathBuf> = std::fs::read_dir(file("docs"))
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|extension| extension == "md"))
+        .collect();
+    pages.sort();
+    documents.extend(pages);
+    let drivers: Vec<PathBuf> = std::fs::read_dir(file("tests/docs"))
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .collect();
+    let mut report = String::new();
+    for document in &documents {
+        let markdown = std::fs::read_to_string(document).unwrap();
+        for (index, (language, text)) in fenced_blocks(&markdown).into_iter().enumerate() {
+            let (compiler, extension, main) = match language.as_str() {
+                "c" => ("cc", "c", "main("),
+                "fortran" if fixed_form(&text) => ("gfortran", "f", "PROGRAM"),
+                "fortran" => ("gfortran", "f90", "PROGRAM"),
+                _ => continue,
+            };
+            let name = format!(
+                "{}-{index}",
+                document.file_stem().unwrap().to_string_lossy()
+            );
+            let folder = scratch(&name);
+            let block = folder.join(format!("{name}.{extension}"));
+            std::fs::write(&block, &text).unwrap();
+            let mut sources = vec![block];
+            if !text.to_uppercase().contains(&main.to_uppercase()) {
+                // The driver whose name is a routine the block defines.
+                let defined = text.to_lowercase();
+                let driver = drivers
+                    .iter()
+                    .find(|driver| {
+                        let stem = driver.file_stem().unwrap().to_string_lossy().to_lowercase();
+                        let language_matches = match extension {
+                            "c" => driver.extension().is_some_and(|e| e == "c"),
+                            _ => driver.extension().is_some_and(|e| e != "c"),
+                        };
+                        language_matches && defined.contains(&format!("{stem}("))
+                    })
+                    .unwrap_or_else(|| panic!("{name}: a block without a main program needs a driver in tests/docs/ named after its routine:\n{text}"));
+                sources.push(driver.clone());
+            }
+            let Some(output) = compile_and_run(compiler, &sources, &["-Wall", "-Werror"]) else {
+                continue;
+            };
+            std::fs::remove_dir_all(&folder).unwrap();
+            report += &format!("{name} ({language}):\n{output}");
+        }
+    }
+    insta::assert_snapshot!(report);
 }
 
 #[test]
@@ -129,29 +244,68 @@ fn vector_across_every_branch() {
     insta::assert_snapshot!(table);
 }
 
-#[test]
-fn never_nan_and_infinities_of_the_right_sign() {
-    // k p^e beyond the largest double: +inf (lower stop pushes up), -inf above.
-    let huge = utility::bistop(-1e200, 0.0, -1.0, 1.0, 1e12, 3.0, 0.0, 1e-9, 0).unwrap();
-    assert_eq!(huge, [f64::INFINITY, 0.0, 0.0]);
-    let huge = utility::bistop(1e200, 0.0, -1.0, 1.0, 1e12, 3.0, 0.0, 1e-9, 0).unwrap();
-    assert_eq!(huge, [f64::NEG_INFINITY, 0.0, 0.0]);
-    // A penetration of 1e-300 with e = 0.1: d2F/dx2 passes the largest
-    // double, while d2F/dx dx' stays 0 (no 0 * inf).
-    let steep = utility::impact(-1e-300, 0.0, 0.0, 1e12, 0.1, 0.0, 1e-9, 2).unwrap();
-    assert_eq!(steep[0], f64::NEG_INFINITY, "{steep:?}");
-    assert_eq!(steep[1], 0.0);
-    for iord in 0..=2 {
-        for x in [-1e300, -1.0 - 1e-300, -1.0, 0.0, 1.0 + 1e-12, 1e300] {
-            for v in [-1e300, -1.0, 0.0, 1.0, 1e300] {
-                let vector = utility::bistop(x, v, -1.0, 1.0, 1e12, 0.1, 1e6, 1e-9, iord).unwrap();
-                assert!(
-                    vector.iter().all(|entry| !entry.is_nan()),
-                    "NaN at x={x} v={v} iord={iord}: {vector:?}"
-                );
-            }
+/// One utility call, `NAME ARG ... IORD` (the arguments in the calling
+/// sequence's order): VECTOR (or STEP's value), or the error that sets ERRFLG.
+fn call(case: &str) -> String {
+    let mut words = case.split_whitespace();
+    let name = words.next().unwrap();
+    let numbers: Vec<f64> = words.map(|word| word.parse().unwrap()).collect();
+    let (arguments, iord) = numbers.split_at(numbers.len() - 1);
+    let iord = iord[0] as i32;
+    let result = match (name, arguments) {
+        ("bistop", &[x, xd, x1, x2, k, e, cmax, d]) => {
+            utility::bistop(x, xd, x1, x2, k, e, cmax, d, iord)
         }
+        ("impact", &[x, xd, x1, k, e, cmax, d]) => utility::impact(x, xd, x1, k, e, cmax, d, iord),
+        ("step", &[x, x0, h0, x1, h1]) => {
+            utility::step(x, x0, h0, x1, h1, iord).map(|value| [value, 0.0, 0.0])
+        }
+        _ => panic!("not a call: {case}"),
+    };
+    match result {
+        Ok([a, b, c]) => format!("[{}, {}, {}]", Shown(a), Shown(b), Shown(c)),
+        Err(error) => format!("ERRFLG: {error}"),
     }
+}
+
+#[test]
+fn extreme_arguments_give_the_double_or_errflg() {
+    insta::assert_snapshot!(crate::table(
+        r"
+        impact -5e-161 0 0 1 2 1 1e-160 2
+        impact -2.5e-161 0 0 1 2 1 1e-160 2
+        impact -1e-300 0 0 1 0.5 0 1 2
+        impact -1e-300 0 0 1 0.5 0 1 1
+        impact -5e-201 0 0 1 2 1 1e-200 1
+        impact -5e-201 0 0 1 2 1 1e-200 0
+        impact -5e-301 1 0 1 2 1 1e-300 1
+        impact -1e-300 0 0 1e12 0.1 0 1e-9 2
+        step 5e-201 0 0 1e-200 1 0
+        step 5e-201 0 0 1e-200 1 1
+        step 5e-201 0 0 1e-200 1 2
+        step 2.5e-201 0 0 1e-200 1 2
+        step 5e-301 0 0 1e-300 1 1
+        step 0.5 0 -1e308 1 1e308 0
+        step 0.5 0 -1e308 1 1e308 1
+        step 0.25 0 -1e308 1 1e308 0
+        step 0.5 0 -1e308 1e10 1e308 1
+        step 0.5 -1e308 0 1e308 1 1
+        step 2.5e-301 0 0 1e-300 1e308 0
+        step 2.5e-301 0 0 1e-300 1e308 1
+        bistop 12 -1e307 -10 10 1e308 3 100 0.1 0
+        bistop 12 -7e306 -10 10 1e308 3 100 0.1 0
+        bistop 12 -7e306 -10 10 1e308 3 100 0.1 1
+        bistop 12 -1e306 -10 10 1e308 3 100 0.1 0
+        bistop 12 -1e306 -10 10 1e308 3 100 0.1 2
+        bistop -1e200 0 -1 1 1e12 3 0 1e-9 0
+        bistop 1e200 0 -1 1 1e-300 1.5 0 1e-9 0
+        bistop 1e200 0 -1 1 1e-300 1.5 0 1e-9 1
+        bistop 1e10 0 -1 1 1e280 3 0 1e-9 1
+        bistop 1e300 1e300 -1 1 1e12 0.1 1e6 1e-9 0
+        bistop -1e300 -1e300 -1 1 1e12 0.1 1e6 1e-9 0
+        ",
+        call
+    ));
 }
 
 #[test]
@@ -220,4 +374,191 @@ proptest! {
             prop_assert_eq!([curvatures[0], curvatures[1]], [hessian[(0, 0)] + 0.0, hessian[(0, 1)] + 0.0]);
         }
     }
+}
+
+/// A seeded stream of arguments for the utilities: doubles of every
+/// magnitude from 1e-300 to 1e308 of either sign, moderate ones, zeros and
+/// the extremes (xorshift64*, so that a failure can be replayed).
+struct Arguments(u64);
+
+impl Arguments {
+    fn bits(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        (self.bits() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn any(&mut self) -> f64 {
+        let sign = if self.bits() & 1 == 0 { 1.0 } else { -1.0 };
+        let magnitude = match self.bits() % 10 {
+            0..=4 => 10f64.powf(-300.0 + 608.0 * self.unit()),
+            5..=7 => 10.0 * self.unit(),
+            8 => 0.0,
+            _ => [f64::MAX, 1e308, 5e-324, 1e-300, f64::MIN_POSITIVE][(self.bits() % 5) as usize],
+        };
+        sign * magnitude
+    }
+
+    /// A positive double of any magnitude.
+    fn positive(&mut self) -> f64 {
+        match self.any().abs() {
+            0.0 => 1.0,
+            value => value,
+        }
+    }
+
+    /// An ordered pair (`x1 < x2`), distinct.
+    fn ordered(&mut self) -> (f64, f64) {
+        let (a, b) = (self.any(), self.any());
+        match a.partial_cmp(&b) {
+            Some(std::cmp::Ordering::Less) => (a, b),
+            Some(std::cmp::Ordering::Greater) => (b, a),
+            _ if a == -f64::MAX => (a, a.next_up()),
+            _ => (a.next_down(), a),
+        }
+    }
+}
+
+/// `ln(e^a + e^b)`: the logarithm of a sum of two magnitudes given as logarithms.
+fn log_sum(a: f64, b: f64) -> f64 {
+    let (big, small) = (a.max(b), a.min(b));
+    if big == f64::NEG_INFINITY {
+        big
+    } else {
+        big + (small - big).exp().ln_1p()
+    }
+}
+
+/// Upper bounds (as logarithms) of `|F|, |dF/dx|, |dF/dx'|, |d2F/dx2|,
+/// |d2F/dx dx'|` for penetration `p`: `k p^e` and its slopes plus the
+/// damping, whose ramp is at most 1 and has slope at most `1.5/d` and
+/// curvature at most `6/d^2`.
+fn contact_bounds(p: f64, v: f64, k: f64, e: f64, cmax: f64, d: f64) -> [f64; 5] {
+    let (ln_p, ln_v, ln_c, ln_d) = (p.ln(), v.abs().ln(), cmax.ln(), d.ln());
+    let stiffness = |power: f64, factor: f64| k.ln() + factor.abs().ln() + power * ln_p;
+    [
+        log_sum(stiffness(e, 1.0), ln_c + ln_v),
+        log_sum(stiffness(e - 1.0, e), ln_c + 1.5f64.ln() - ln_d + ln_v),
+        ln_c,
+        log_sum(
+            stiffness(e - 2.0, e * (e - 1.0)),
+            ln_c + 6f64.ln() - 2.0 * ln_d + ln_v,
+        ),
+        ln_c + 1.5f64.ln() - ln_d,
+    ]
+}
+
+/// Issue 17.6: a million argument sets per routine and IORD, across every
+/// magnitude. No call returns NaN or an infinity; a call fails only on a
+/// broken rule or an entry that may truly be beyond the range of a double
+/// (its bound is); the force never pulls. (About 5 s in the test profile.)
+#[test]
+fn a_million_argument_sets_per_routine_and_order() {
+    const SETS: usize = 1_000_000;
+    let limit = f64::MAX.ln();
+    let mut arguments = Arguments(0x9e37_79b9_7f4a_7c15);
+    let mut failures = Vec::new();
+    let mut counts = [0usize; 3];
+    for set in 0..SETS {
+        let (x, v) = (arguments.any(), arguments.any());
+        let (x1, x2) = arguments.ordered();
+        let (k, cmax) = (arguments.any().abs(), arguments.any().abs());
+        let (e, d) = (arguments.positive(), arguments.positive());
+        for iord in 0..=2 {
+            let entries: [usize; 2] = [[0, 0], [1, 2], [3, 4]][iord as usize];
+            for (routine, result) in [
+                ("bistop", utility::bistop(x, v, x1, x2, k, e, cmax, d, iord)),
+                ("impact", utility::impact(x, v, x1, k, e, cmax, d, iord)),
+            ] {
+                let (below, above) = (x < x1, routine == "bistop" && x > x2);
+                let p = if below { x1 - x } else { x - x2 };
+                let bounds = contact_bounds(p, v, k, e, cmax, d);
+                let case = || {
+                    format!(
+                        "{routine}({x:e}, {v:e}, {x1:e}, {x2:e}, {k:e}, {e:e}, {cmax:e}, {d:e}, {iord})"
+                    )
+                };
+                match result {
+                    Ok(vector) => {
+                        counts[0] += 1;
+                        if !vector.iter().all(|entry| entry.is_finite()) {
+                            failures.push(format!("{}: {vector:?}", case()));
+                        }
+                        let pulls = (below && vector[0] < 0.0) || (above && vector[0] > 0.0);
+                        if iord == 0 && (pulls || (!below && !above && vector[0] != 0.0)) {
+                            failures.push(format!("{}: force {}", case(), vector[0]));
+                        }
+                    }
+                    Err(utility::UtilityError::BeyondRange { quantity, .. }) => {
+                        counts[1] += 1;
+                        let entry = if quantity.ends_with('\'') {
+                            entries[1]
+                        } else {
+                            entries[0]
+                        };
+                        if !(p.is_finite() && bounds[entry] < limit - 1e-6) || p.is_infinite() {
+                            continue;
+                        }
+                        failures.push(format!(
+                            "{}: ERRFLG ({quantity}) where its bound is e^{}",
+                            case(),
+                            bounds[entry]
+                        ));
+                    }
+                    Err(error) => failures.push(format!("{}: {error}", case())),
+                }
+            }
+            let (x0, step_x1) = arguments.ordered();
+            let (h0, h1) = (arguments.any(), arguments.any());
+            // Half the points inside the ramp.
+            let at = if set % 2 == 0 {
+                let t = arguments.unit();
+                x0 * (1.0 - t) + step_x1 * t
+            } else {
+                x
+            };
+            match utility::step(at, x0, h0, step_x1, h1, iord) {
+                Ok(value) if value.is_finite() => counts[0] += 1,
+                Ok(value) => failures.push(format!(
+                    "step({at:e}, {x0:e}, {h0:e}, {step_x1:e}, {h1:e}, {iord}): {value}"
+                )),
+                Err(utility::UtilityError::BeyondRange { .. }) => {
+                    counts[2] += 1;
+                    // |h1 - h0| times at most 1.5/L or 6/L^2 (L in halves where it overflows).
+                    let (rise, length) = (
+                        (h1 * 0.5 - h0 * 0.5).abs().ln() + 2f64.ln(),
+                        (step_x1 * 0.5 - x0 * 0.5).ln() + 2f64.ln(),
+                    );
+                    let bound = match iord {
+                        0 => h0.abs().max(h1.abs()).ln(),
+                        1 => rise + 1.5f64.ln() - length,
+                        _ => rise + 6f64.ln() - 2.0 * length,
+                    };
+                    if bound < limit - 1e-6 {
+                        failures.push(format!("step({at:e}, {x0:e}, {h0:e}, {step_x1:e}, {h1:e}, {iord}): ERRFLG where its bound is e^{bound}"));
+                    }
+                }
+                Err(error) => failures.push(format!(
+                    "step({at:e}, {x0:e}, {h0:e}, {step_x1:e}, {h1:e}, {iord}): {error}"
+                )),
+            }
+        }
+        if failures.len() > 20 {
+            break;
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failures (results {counts:?}):\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    // The sets reach every branch: results, and errors beyond the range.
+    assert!(counts.iter().all(|count| *count > 1000), "{counts:?}");
 }

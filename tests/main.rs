@@ -11,6 +11,7 @@ mod eval;
 mod ffi;
 mod integrate;
 mod integrate_problems;
+mod magnitudes;
 mod model;
 mod numerics;
 mod parse;

@@ -128,6 +128,12 @@ fn errors_inside_continued_expressions_point_at_their_line() {
     insta::assert_snapshot!(check(adm, FileKind::Adm));
 }
 
+#[test]
+fn numbers_in_messages_are_short() {
+    let adm = "numbers\nPART/1, GROUND\nMARKER/1, PART = 1\nSFORCE/1, I = 1, J = 1, FUNCTION = IMPACT(DX(1), VX(1), 0, 1E300, 1.5, 10, -1E-300)\n";
+    insta::assert_snapshot!(check(adm, FileKind::Adm));
+}
+
 /// The real models in `../shared/corpus/models` (read in place, never copied).
 fn corpus_models() -> Vec<(String, String)> {
     let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/models");

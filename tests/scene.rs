@@ -491,3 +491,41 @@ fn angles_stay_continuous_over_a_run() {
         assert_eq!(continued.gradient, principal.gradient);
     }
 }
+
+/// A body's rotation state of any size turns its markers: 1e-160 gives what
+/// 0 gives (its angle's square, a subnormal, met the square root's
+/// curvature: NaN), and the series below an angle of 1e-3 meets Rodrigues'
+/// formula above it.
+#[test]
+fn rotation_states_of_every_size() {
+    let scene = two_bodies();
+    let text = "DY(ai, gk, gk) + AX(ai, gk)";
+    let checked = check_tree(&parse(text).unwrap()).unwrap();
+    let mut inputs = scene.input_names();
+    inputs.push("a.rx".to_string());
+    let program = compile_in_scene(&checked, &inputs, &scene).unwrap();
+    let mut values = scene.values(program.inputs()).unwrap();
+    let rx = program.input_index("a.rx").unwrap();
+    let mut at = |angle: f64| {
+        values[rx] = angle;
+        program.evaluate(&values, &[rx], Order::Hessian).unwrap()
+    };
+    let close = |a: &mbexpr::Evaluation, b: &mbexpr::Evaluation, tolerance: f64| {
+        let entries = |e: &mbexpr::Evaluation| {
+            let mut all = vec![e.value];
+            all.extend(e.gradient.iter().flatten());
+            all.extend(e.hessian.iter().flatten());
+            all
+        };
+        entries(a)
+            .iter()
+            .zip(entries(b))
+            .all(|(a, b)| (a - b).abs() <= tolerance * (1.0 + b.abs()))
+    };
+    let zero = at(0.0);
+    assert!(close(&at(1e-200), &zero, 1e-15));
+    assert!(close(&at(-1e-300), &zero, 1e-15));
+    assert!(close(&at(1e-160), &zero, 1e-15));
+    let (below, above) = (at(1e-3 * (1.0 - 1e-12)), at(1e-3 * (1.0 + 1e-12)));
+    assert!(close(&below, &above, 1e-9), "{below:?} vs {above:?}");
+}

@@ -168,6 +168,16 @@ fn bad_points_are_refused() {
             false,
         ),
         SplineData::new(vec![0.0, 1.0, 2.0, 3.0], vec![], false),
+        SplineData::new(
+            vec![0.0, 1e300, 2e300, 1e300],
+            vec![(0.0, vec![0.0; 4])],
+            false,
+        ),
+        SplineData::new(
+            vec![0.0, 1.0, 2.0, 3.0],
+            vec![(1e-300, vec![0.0; 4]), (-1e-300, vec![0.0; 4])],
+            false,
+        ),
     ];
     let messages: Vec<String> = cases
         .into_iter()

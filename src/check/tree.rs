@@ -5,6 +5,7 @@ use std::fmt;
 
 use compact_str::CompactString;
 
+use crate::Shown;
 use crate::catalog::{Constant, Function, SystemVariable};
 use crate::span::Span;
 use crate::syntax::ast::{BinaryOp, write_chain};
@@ -90,10 +91,7 @@ impl fmt::Display for Reference {
 impl fmt::Display for Node {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.kind {
-            NodeKind::Number(value) if *value != 0.0 && !(1e-4..1e16).contains(&value.abs()) => {
-                write!(f, "{value:e}")
-            }
-            NodeKind::Number(value) => write!(f, "{value}"),
+            NodeKind::Number(value) => write!(f, "{}", Shown(*value)),
             NodeKind::Constant(constant) => f.write_str(constant.name()),
             NodeKind::System(variable) => f.write_str(variable.name()),
             NodeKind::Variable(name) => write!(f, "${name}"),

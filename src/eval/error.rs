@@ -2,6 +2,7 @@
 
 use thiserror::Error;
 
+use crate::Shown;
 use crate::laws::LawError;
 use crate::span::Span;
 
@@ -19,7 +20,7 @@ pub enum EvalError {
         span: Span,
     },
     /// The value of an operation is not a finite number (an overflow).
-    #[error("{operation} gives {value}: the value is beyond the range of a double")]
+    #[error("{operation} gives {}: the value is beyond the range of a double", Shown(*value))]
     NotFinite {
         /// The function or operator.
         operation: String,
@@ -39,7 +40,7 @@ pub enum EvalError {
         span: Span,
     },
     /// An input value that is NaN or infinite.
-    #[error("the value of {name} is not a finite number ({value})")]
+    #[error("the value of {name} is not a finite number ({})", Shown(*value))]
     InputNotFinite {
         /// The input's name.
         name: String,

@@ -3,6 +3,7 @@
 //! size (Hairer's `hinit`).
 
 use super::{AbsoluteTolerance, IntegrateError, Options, Rejection, Stats, System};
+use crate::Shown;
 
 /// A step may overshoot the end time by this factor before it is stretched
 /// to land on it (rather than leave a sliver of a step).
@@ -74,19 +75,28 @@ impl Core {
             }
         };
         if !(options.rtol > 0.0 && options.rtol.is_finite()) {
-            return invalid(format!("rtol must be positive, not {}", options.rtol));
+            return invalid(format!(
+                "rtol must be positive, not {}",
+                Shown(options.rtol)
+            ));
         }
         if let Some(atol) = atol.iter().find(|atol| !(**atol > 0.0 && atol.is_finite())) {
-            return invalid(format!("atol must be positive, not {atol}"));
+            return invalid(format!("atol must be positive, not {}", Shown(*atol)));
         }
         if !positive(options.h_max) {
-            return invalid(format!("h_max must be positive, not {}", options.h_max));
+            return invalid(format!(
+                "h_max must be positive, not {}",
+                Shown(options.h_max)
+            ));
         }
         if let Some(h) = options.h_init.filter(|h| !(*h > 0.0 && h.is_finite())) {
-            return invalid(format!("h_init must be positive, not {h}"));
+            return invalid(format!("h_init must be positive, not {}", Shown(h)));
         }
         if !t0.is_finite() {
-            return invalid(format!("the initial time must be finite, not {t0}"));
+            return invalid(format!(
+                "the initial time must be finite, not {}",
+                Shown(t0)
+            ));
         }
         Ok(Core {
             t: t0,
@@ -141,7 +151,7 @@ impl Core {
         if !positive(self.h_max) {
             return Err(IntegrateError::Settings(format!(
                 "h_max must be positive, not {}",
-                self.h_max
+                Shown(self.h_max)
             )));
         }
         let h = self.h.min(self.h_max);

@@ -1,5 +1,6 @@
 //! Why an integration stops, and why a trial step was rejected.
 
+use crate::Shown;
 use thiserror::Error;
 
 /// Why an integration cannot go on. `E` is the system's error.
@@ -9,7 +10,7 @@ pub enum IntegrateError<E> {
     #[error("invalid integration settings: {0}")]
     Settings(String),
     /// The right-hand side fails at the initial state (or at a restart).
-    #[error("cannot start at t = {t}: {cause}")]
+    #[error("cannot start at t = {}: {cause}", Shown(*t))]
     Start {
         /// The time of the initial state.
         t: f64,
@@ -18,7 +19,7 @@ pub enum IntegrateError<E> {
     },
     /// Trial steps kept being rejected until the step size fell below
     /// [`smallest_step`](super::smallest_step).
-    #[error("step size too small at t = {t} (h = {h:e}): {cause}")]
+    #[error("step size too small at t = {} (h = {}): {cause}", Shown(*t), Shown(*h))]
     StepSizeTooSmall {
         /// The time of the last accepted state.
         t: f64,
@@ -29,7 +30,7 @@ pub enum IntegrateError<E> {
     },
     /// [`Options::max_steps`](super::Options::max_steps) steps have been
     /// tried.
-    #[error("too many steps: {max_steps} tried by t = {t}")]
+    #[error("too many steps: {max_steps} tried by t = {}", Shown(*t))]
     TooManySteps {
         /// The time of the last accepted state.
         t: f64,
@@ -37,7 +38,7 @@ pub enum IntegrateError<E> {
         max_steps: usize,
     },
     /// The system's Jacobian fails at an accepted state.
-    #[error("the jacobian fails at t = {t}: {error}")]
+    #[error("the jacobian fails at t = {}: {error}", Shown(*t))]
     Jacobian {
         /// The time of the state.
         t: f64,
@@ -46,14 +47,14 @@ pub enum IntegrateError<E> {
     },
     /// The system's Jacobian has an infinite or NaN entry at an accepted
     /// state.
-    #[error("the jacobian is not finite at t = {t}")]
+    #[error("the jacobian is not finite at t = {}", Shown(*t))]
     JacobianNotFinite {
         /// The time of the state.
         t: f64,
     },
     /// [`Stepper::step_to`](super::Stepper::step_to) was asked to end at
     /// or before the current time.
-    #[error("the end time {t_end} is not after t = {t}")]
+    #[error("the end time {} is not after t = {}", Shown(*t_end), Shown(*t))]
     EndNotAhead {
         /// The current time.
         t: f64,

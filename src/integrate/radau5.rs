@@ -9,6 +9,7 @@ use nalgebra::{Complex, DMatrix, DVector, Dyn, LU};
 
 use super::core::{Core, evaluate, rms};
 use super::{IntegrateError, Options, Rejection, System};
+use crate::Shown;
 
 /// The order the first step size is chosen for (the error estimate's).
 pub(super) const ORDER: i32 = 4;
@@ -143,7 +144,8 @@ impl Radau5 {
             Some(tolerance) if tolerance > 0.0 && tolerance.is_finite() => tolerance,
             Some(tolerance) => {
                 return Err(IntegrateError::Settings(format!(
-                    "newton_tolerance must be positive, not {tolerance}"
+                    "newton_tolerance must be positive, not {}",
+                    Shown(tolerance)
                 )));
             }
         };

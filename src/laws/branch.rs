@@ -19,6 +19,7 @@
 use super::contact::{self, ContactBranch};
 use super::steps::{self, Shape, StepBranch};
 use super::{LawError, domain};
+use crate::Shown;
 use crate::catalog::Function;
 use crate::number::Number;
 
@@ -224,7 +225,7 @@ pub fn held<T: Number>(function: Function, args: &[&T], held: Code) -> Result<T,
             if arg(1).value() == 0.0 {
                 return domain(
                     "MOD",
-                    format!("the divisor is 0 (MOD({}, 0))", arg(0).value()),
+                    format!("the divisor is 0 (MOD({}, 0))", Shown(arg(0).value())),
                 );
             }
             arg(0).clone() - arg(1).clone() * (held as f64)

@@ -13,9 +13,21 @@
 //!   force and all its derivatives are 0 (a tie is the clamped branch).
 //! - `e < 1`: `dF/dx` grows without bound as `p -> 0+`; `1 < e < 2`: the
 //!   second derivative does. Where a derivative passes the largest double it
-//!   is an infinity, which the evaluator reports as an error.
+//!   is an infinity, which the evaluator reports as an error (and the
+//!   utility subroutines with ERRFLG).
+//!
+//! Beyond the range of a double (see [`beyond_range`]): the clamp's branch
+//! is decided on the terms as they are, never on a sum that overflowed to
+//! NaN or a stiffness that underflowed to 0; where a term passes the range,
+//! the force is summed at a power-of-two scale, so that `k p^e` and the
+//! damping, each beyond 1.8e308, still give their difference when that is a
+//! double, and an infinity (an error) when it is not.
 
-use super::power::{as_integer, constant_power};
+use std::f64::consts::LN_2;
+
+use super::power::{as_integer, scaled_power};
+use super::range::{moderate, product, quotient, scale};
+use crate::Shown;
 use crate::number::Number;
 
 /// A parameter of a contact law: a plain `f64` when the expression gives a
@@ -34,24 +46,30 @@ trait Parameter<T: Number> {
     fn is_constant(&self) -> bool {
         true
     }
-    /// `self * t`.
-    fn times(&self, t: T) -> T {
-        t * self.value()
+    /// The stiffness term `self * p^e * 2^-shift` (`self` is `k`).
+    fn stiffness(&self, e: &Self, p: &T, shift: i32) -> T {
+        let e = e.value();
+        scaled_power(self.value(), p, e, as_integer(e), shift)
     }
-    /// `t / self`.
-    fn divides(&self, t: T) -> T {
-        t / self.value()
+    /// Whether it is [`moderate`] (0, or a magnitude from `2^-120` to
+    /// `2^120`).
+    fn is_moderate(&self) -> bool {
+        moderate(&[self.value()])
     }
-    /// `base^self` for `base > 0`.
-    fn power_of(&self, base: &T) -> T {
-        constant_power(base, self.value(), as_integer(self.value()))
+    /// The damping term `self * s(p/d) * rate * 2^-shift` (`self` is
+    /// `cmax`) on `piece` of the ramp, as one function of `p` and `rate`
+    /// with its partial derivatives.
+    fn damping(&self, d: &Self, p: &T, rate: &T, piece: Piece, shift: i32) -> T {
+        let cmax = scale(self.value(), -shift);
+        let moderate = shift == 0 && self.is_moderate() && d.is_moderate();
+        constant_damping(cmax, d.value(), d.reciprocal(), moderate, piece, p, rate)
     }
     /// `self - t`.
     fn minus(&self, t: &T) -> T {
         -(t.clone() - self.value())
     }
     /// `t - self`.
-    fn from(&self, t: &T) -> T {
+    fn subtracted_from(&self, t: &T) -> T {
         t.clone() - self.value()
     }
 }
@@ -64,12 +82,14 @@ impl<T: Number> Parameter<T> for f64 {
 
 /// A constant parameter of a program, with what the law would otherwise
 /// work out from it at every call: whether it is a whole number (an
-/// exponent then takes integer powers) and its reciprocal (the ramp's `1/d`).
+/// exponent then takes integer powers), its reciprocal (the ramp's `1/d`)
+/// and whether it is [`moderate`].
 #[derive(Clone, Copy, Debug)]
 struct Constant {
     value: f64,
     whole: Option<i32>,
     reciprocal: f64,
+    moderate: bool,
 }
 
 impl Constant {
@@ -78,6 +98,7 @@ impl Constant {
             value,
             whole: as_integer(value),
             reciprocal: value.recip(),
+            moderate: moderate(&[value]),
         }
     }
 }
@@ -89,9 +110,12 @@ impl<T: Number> Parameter<T> for Constant {
     fn reciprocal(&self) -> f64 {
         self.reciprocal
     }
+    fn is_moderate(&self) -> bool {
+        self.moderate
+    }
     #[inline]
-    fn power_of(&self, base: &T) -> T {
-        constant_power(base, self.value, self.whole)
+    fn stiffness(&self, e: &Self, p: &T, shift: i32) -> T {
+        scaled_power(self.value, p, e.value, e.whole, shift)
     }
 }
 
@@ -105,22 +129,29 @@ impl<T: Number> Parameter<T> for Varying<'_, T> {
     fn is_constant(&self) -> bool {
         self.0.is_constant()
     }
-    fn times(&self, t: T) -> T {
-        self.0.clone() * t
-    }
-    fn divides(&self, t: T) -> T {
-        t / self.0.clone()
-    }
-    fn power_of(&self, base: &T) -> T {
-        if self.0.is_constant() {
-            return self.0.value().power_of(base);
+    fn stiffness(&self, e: &Self, p: &T, shift: i32) -> T {
+        if self.is_constant() && e.is_constant() {
+            return self.value().stiffness(&e.value(), p, shift);
         }
-        (base.ln() * self.0.clone()).exp()
+        let power = if e.is_constant() {
+            let e = e.value();
+            scaled_power(1.0, p, e, as_integer(e), shift)
+        } else {
+            (p.ln() * e.0.clone() - f64::from(shift) * LN_2).exp()
+        };
+        self.0.clone() * power
+    }
+    fn damping(&self, d: &Self, p: &T, rate: &T, piece: Piece, shift: i32) -> T {
+        if self.is_constant() && d.is_constant() {
+            return self.value().damping(&d.value(), p, rate, piece, shift);
+        }
+        let rate = scale(rate.clone(), -shift);
+        self.0.clone() * ramp(p, d.0, piece) * rate
     }
     fn minus(&self, t: &T) -> T {
         self.0.clone() - t.clone()
     }
-    fn from(&self, t: &T) -> T {
+    fn subtracted_from(&self, t: &T) -> T {
         t.clone() - self.0.clone()
     }
 }
@@ -142,48 +173,106 @@ impl Piece {
     }
 }
 
-/// The damping ramp `s(w) = w^2 (3 - 2w)` of `w = p/d` on `piece` (1 on
-/// [`Piece::Full`]; the cubic continues past `[0, d]` when held there).
+/// `cmax * s(p/d) * rate` for constant `cmax` and `d`, with the ramp
+/// `s(w) = w^2 (3 - 2w)` (1 on [`Piece::Full`]): one function of `p` and `rate`
+/// whose value and partial derivatives are each one [`product`] of their
+/// factors (`cmax 6 (1 - 2w) rate / d^2`, ...), so that no partial product
+/// overflows or underflows where the whole does not, and a zero rate or
+/// slope contributes nothing (no `0 * inf`). `per_d` is `1/d`; `moderate`
+/// says that `cmax` and `d` are. On [`Piece::Ramp`] the cubic continues
+/// past `[0, d]` when the simulator holds it there.
 #[inline]
-fn ramp<T: Number, P: Parameter<T>>(p: &T, d: &P, piece: Piece) -> T {
+fn constant_damping<T: Number>(
+    cmax: f64,
+    d: f64,
+    per_d: f64,
+    moderate: bool,
+    piece: Piece,
+    p: &T,
+    rate: &T,
+) -> T {
+    let (p0, rate0) = (p.value(), rate.value());
+    if piece == Piece::Full {
+        return rate.chain(cmax * rate0, || (cmax, 0.0));
+    }
+    // s(w) = w^2 (1 + 2r) with w = p/d and r = (d - p)/d, so that
+    // s'(p) = 6 r p / d^2 and s''(p) = 6 (d - 2p) / d^3.
+    let over_d = |t: f64| {
+        if per_d.is_normal() { t * per_d } else { t / d }
+    };
+    let r = over_d(d - p0);
+    // Moderate inputs (the usual case) make every factor moderate too (r
+    // and 1 - 2w are 0 or at least 2^-53): plain products.
+    let checked = !(moderate && self::moderate(&[p0, rate0]));
+    let product = |factors: &[f64]| product(factors, d, per_d, 2, checked);
+    p.chain2(
+        rate,
+        product(&[cmax, 1.0 + 2.0 * r, rate0, p0, p0]),
+        || {
+            [
+                product(&[cmax, 6.0 * r, rate0, p0]),
+                product(&[cmax, 1.0 + 2.0 * r, p0, p0]),
+            ]
+        },
+        || {
+            let curvature = 6.0 * over_d(d - p0 - p0);
+            [
+                product(&[cmax, curvature, rate0]),
+                product(&[cmax, 6.0 * r, p0]),
+                0.0,
+            ]
+        },
+    )
+}
+
+/// The damping ramp `s(w) = w^2 (3 - 2w)` of `w = p/d` when `d` carries
+/// derivative parts, 1 on [`Piece::Full`].
+fn ramp<T: Number>(p: &T, d: &T, piece: Piece) -> T {
     if piece == Piece::Full {
         return T::one();
     }
-    let (p0, d0) = (p.value(), d.value());
-    // One division: p/d and (d - p)/d each round once more, harmlessly.
-    let per_d = d.reciprocal();
-    let w0 = p0 * per_d;
-    let r0 = (d0 - p0) * per_d;
-    let w = d.divides(p.clone());
-    w.chain(w0 * w0 * (1.0 + 2.0 * r0), || {
-        (6.0 * w0 * r0, 6.0 * (d0 - 2.0 * p0) * per_d)
+    let w = quotient(p, d);
+    let w0 = w.value();
+    w.chain(w0 * w0 * (3.0 - 2.0 * w0), || {
+        (6.0 * w0 * (1.0 - w0), 6.0 - 12.0 * w0)
     })
 }
 
-/// The unclamped force of one stop, `k p^e + c(p) * rate`, with the ramp
-/// on `piece`. A constant zero `k` or `cmax` leaves its term out (no
-/// `0 * inf` from a steep power). A negative `p` (a stop held by the
-/// simulator past its contact) takes the odd continuation `-k |p|^e` of a
-/// real power, so the force stays smooth through contact.
+/// The stiffness and damping terms of one stop at the scale `2^-shift`,
+/// the damping on `piece` of its ramp. A constant zero `k` or `cmax` leaves
+/// its term out (no `0 * inf` from a steep power or ramp). A negative `p`
+/// (a stop held by the simulator past its contact) takes the odd
+/// continuation `-k |p|^e` of a real power, so the force stays smooth
+/// through contact.
 #[inline]
-fn unclamped<T: Number, P: Parameter<T>>(
+fn terms<T: Number, P: Parameter<T>>(
     p: &T,
-    rate: T,
+    rate: &T,
     [k, e, cmax, d]: [&P; 4],
     piece: Piece,
-) -> T {
+    shift: i32,
+) -> (T, T) {
     let stiffness = if k.value() == 0.0 && k.is_constant() {
         T::zero()
-    } else if p.value() < 0.0 && super::power::as_integer(e.value()).is_none() {
-        -k.times(e.power_of(&-p.clone()))
+    } else if p.value() < 0.0 && as_integer(e.value()).is_none() {
+        -k.stiffness(e, &-p.clone(), shift)
     } else {
-        k.times(e.power_of(p))
+        k.stiffness(e, p, shift)
     };
-    if cmax.value() == 0.0 && cmax.is_constant() {
-        stiffness
+    let damping = if cmax.value() == 0.0 && cmax.is_constant() {
+        T::zero()
     } else {
-        stiffness + cmax.times(ramp(p, d, piece) * rate)
-    }
+        cmax.damping(d, p, rate, piece, shift)
+    };
+    (stiffness, damping)
+}
+
+/// The unclamped force of one stop, `k p^e + c(p) * rate`, with the ramp
+/// on `piece` (what the simulator evaluates on a held branch).
+#[inline]
+fn unclamped<T: Number, P: Parameter<T>>(p: &T, rate: T, parameters: [&P; 4], piece: Piece) -> T {
+    let (stiffness, damping) = terms(p, &rate, parameters, piece, 0);
+    stiffness + damping
 }
 
 /// One stop: `max(k p^e + c(p) * rate, 0)` for penetration `p > 0` growing
@@ -191,8 +280,70 @@ fn unclamped<T: Number, P: Parameter<T>>(
 #[inline]
 fn stop<T: Number, P: Parameter<T>>(p: &T, rate: T, parameters: [&P; 4]) -> Option<T> {
     let piece = Piece::of(p.value(), parameters[3].value());
-    let raw = unclamped(p, rate, parameters, piece);
-    (raw.value() > 0.0).then_some(raw)
+    stop_on(p, rate, parameters, piece)
+}
+
+/// [`stop`] with the ramp on `piece`. The branch is decided by the sign of
+/// the sum where that sum can be trusted, by [`beyond_range`] where a term
+/// passed the range of a double.
+#[inline]
+fn stop_on<T: Number, P: Parameter<T>>(
+    p: &T,
+    rate: T,
+    parameters: [&P; 4],
+    piece: Piece,
+) -> Option<T> {
+    let (stiffness, damping) = terms(p, &rate, parameters, piece, 0);
+    let (s, m) = (stiffness.value(), damping.value());
+    // A stiffness that underflowed (to 0, or to a subnormal with lost
+    // digits) against a damping that does not push: the sum's sign says
+    // nothing of k p^e's.
+    let underflowed =
+        parameters[0].value() != 0.0 && !s.is_normal() && (m < 0.0 || (m == 0.0 && s == 0.0));
+    if s.is_finite() && m.is_finite() && !underflowed {
+        let raw = stiffness + damping;
+        return (raw.value() > 0.0).then_some(raw);
+    }
+    beyond_range(p, &rate, parameters, piece, stiffness + damping)
+}
+
+/// The stop where a term is beyond the range of a double or underflowed:
+/// both terms are formed again in plain doubles at a power-of-two scale
+/// that brings the larger near `2^64` (the stiffness through logarithms),
+/// and the sign of their sum decides the branch. Where the terms were
+/// doubles, `unscaled` (their sum) is the force; where one passed the
+/// range, the force is the sum at that scale, scaled back: a double when
+/// the true difference is one, an infinity (an error) when it is not.
+#[cold]
+fn beyond_range<T: Number, P: Parameter<T>>(
+    p: &T,
+    rate: &T,
+    parameters: [&P; 4],
+    piece: Piece,
+    unscaled: T,
+) -> Option<T> {
+    let [k, e, cmax, d] = parameters.map(|parameter| parameter.value());
+    let (p0, rate0) = (p.value(), rate.value());
+    // log2 of |k p^e| and of |cmax s(w) rate|.
+    let log_stiffness = k.log2() + e * p0.log2();
+    let w = if piece == Piece::Full { 1.0 } else { p0 / d };
+    let log_damping = cmax.log2() + 2.0 * w.log2() + (3.0 - 2.0 * w).log2() + rate0.abs().log2();
+    let larger = log_stiffness.max(log_damping);
+    if larger.is_nan() || larger == f64::NEG_INFINITY {
+        return None;
+    }
+    // Terms beyond 2^±3000 are infinite or zero at any scale a double has.
+    let shift = larger.floor().clamp(-3000.0, 3000.0) as i32 - 64;
+    let (stiffness, damping) = terms(&p0, &rate0, [&k, &e, &cmax, &d], piece, shift);
+    // A NaN sum (no term in range even at this scale) is no push either.
+    if (stiffness + damping).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    if shift <= 0 {
+        return Some(unscaled);
+    }
+    let (stiffness, damping) = terms(p, rate, parameters, piece, shift);
+    Some(scale(stiffness + damping, shift))
 }
 
 /// The lower stop (`x < x1`, penetration `x1 - x`) or the upper one
@@ -211,7 +362,8 @@ fn stops<T: Number, P: Parameter<T>>(
     if let Some(x2) = x2
         && x.value() > x2.value()
     {
-        return stop(&x2.from(x), v.clone(), parameters).map_or_else(T::zero, |force| -force);
+        return stop(&x2.subtracted_from(x), v.clone(), parameters)
+            .map_or_else(T::zero, |force| -force);
     }
     T::zero()
 }
@@ -323,16 +475,27 @@ fn contact_switching<P: Parameter<f64>>(
             value
         }
     };
+    // The clamp as the evaluation decides it: by the unclamped force's sign
+    // where that is a normal double, by `stop_on` where it is not (a term
+    // beyond the range of a double, or a stiffness that underflowed).
+    let mut pushes = |upper_side: bool, side: (f64, f64), piece: Piece| {
+        let force = raw(upper_side, side, piece);
+        if force.is_normal() {
+            force > 0.0
+        } else {
+            stop_on(&side.0, side.1, parameters, piece).is_some()
+        }
+    };
     let natural = if x < x1.value() {
         let piece = piece_of(lower.0);
-        if raw(false, lower, piece) > 0.0 {
+        if pushes(false, lower, piece) {
             ContactBranch::Lower(piece)
         } else {
             ContactBranch::LowerClamped
         }
     } else if let Some(side) = upper.filter(|&(p, _)| p > 0.0) {
         let piece = piece_of(side.0);
-        if raw(true, side, piece) > 0.0 {
+        if pushes(true, side, piece) {
             ContactBranch::Upper(piece)
         } else {
             ContactBranch::UpperClamped
@@ -413,7 +576,7 @@ fn contact_held<T: Number, P: Parameter<T>>(
     match (held, x2) {
         (ContactBranch::Lower(piece), _) => unclamped(&x1.minus(x), -v.clone(), parameters, piece),
         (ContactBranch::Upper(piece), Some(x2)) => {
-            -unclamped(&x2.from(x), v.clone(), parameters, piece)
+            -unclamped(&x2.subtracted_from(x), v.clone(), parameters, piece)
         }
         _ => T::zero(),
     }
@@ -505,10 +668,11 @@ impl PartialEq for Stops {
 impl std::fmt::Display for Stops {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (lower, upper, [k, e, cmax, d]) = self.values();
-        write!(f, "x1 {lower}")?;
+        write!(f, "x1 {}", Shown(lower))?;
         if let Some(upper) = upper {
-            write!(f, ", x2 {upper}")?;
+            write!(f, ", x2 {}", Shown(upper))?;
         }
+        let [k, e, cmax, d] = [k, e, cmax, d].map(Shown);
         write!(f, ", k {k}, e {e}, cmax {cmax}, d {d}")
     }
 }

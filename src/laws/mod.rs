@@ -8,6 +8,7 @@ pub mod branch;
 pub mod contact;
 pub mod intrinsics;
 pub mod power;
+pub(crate) mod range;
 pub mod series;
 pub mod spline;
 pub mod steps;

@@ -16,6 +16,8 @@
 
 use thiserror::Error;
 
+use super::range::{fraction, interpolate, ratio};
+use crate::Shown;
 use crate::number::Number;
 
 /// The fitting method of a spline function.
@@ -34,7 +36,11 @@ pub enum SplineDataError {
     #[error("a spline needs at least four x values; found {0}")]
     TooFewPoints(usize),
     /// The x values do not increase.
-    #[error("x values must increase: x{position} = {value} follows {previous}")]
+    #[error(
+        "x values must increase: x{position} = {} follows {}",
+        Shown(*value),
+        Shown(*previous)
+    )]
     XNotIncreasing {
         /// Position of the offending value, from 1.
         position: usize,
@@ -44,7 +50,11 @@ pub enum SplineDataError {
         previous: f64,
     },
     /// The z values of a family do not increase.
-    #[error("the z values of the curves must increase: {value} follows {previous}")]
+    #[error(
+        "the z values of the curves must increase: {} follows {}",
+        Shown(*value),
+        Shown(*previous)
+    )]
     ZNotIncreasing {
         /// The offending z.
         value: f64,
@@ -136,12 +146,19 @@ impl SplineData {
     }
 }
 
-/// One curve fitted through its points: a cubic per interval.
+/// One curve fitted through its points: a cubic per interval, in the
+/// interval's own coordinate `s = (x - x[i]) / (x[i+1] - x[i])`.
+///
+/// The fit works on the points scaled to about unit size (x by half the
+/// span, y by the largest |y|, each rounded to a power of two), and each piece keeps its coefficients in units of y
+/// over `s` in `[0, 1]`: so points 1e300 or 1e-300 apart give the same
+/// curve, scaled, as points 1 apart (coefficients per unit of x, with
+/// `1/h^2` for the cubic term, underflowed to 0 for such points).
 #[derive(Clone, Debug, PartialEq)]
 struct Curve {
     /// The x values (the pieces' left ends, and the last point).
     x: Vec<f64>,
-    /// `[a, b, c, d]` of `a + b t + c t^2 + d t^3`, `t = x - x[i]`, per interval.
+    /// `[a, b, c, d]` of `a + b s + c s^2 + d s^3` per interval.
     pieces: Vec<[f64; 4]>,
     /// The y of the last point, exactly.
     end_value: f64,
@@ -150,45 +167,62 @@ struct Curve {
 
 impl Curve {
     fn fit(method: Method, x: &[f64], y: &[f64], linear_extrapolation: bool) -> Curve {
-        let slopes: Vec<f64> = (0..x.len() - 1)
-            .map(|i| (y[i + 1] - y[i]) / (x[i + 1] - x[i]))
+        let n = x.len();
+        // Units of x and y: powers of two near half the span (finite for
+        // any finite x) and the largest |y|, so that scaling by them is exact
+        // and the fit rounds as it would on the points as given.
+        let unit_x = power_of_two_near(x[n - 1] * 0.5 - x[0] * 0.5);
+        let height = power_of_two_near(y.iter().fold(0.0f64, |largest, y| largest.max(y.abs())));
+        // Widths in units of x (halved: exact, and finite), rises in units of y.
+        let widths: Vec<f64> = x
+            .windows(2)
+            .map(|pair| (pair[1] * 0.5 - pair[0] * 0.5) / unit_x)
             .collect();
-        let pieces = match method {
+        let rises: Vec<f64> = y
+            .windows(2)
+            .map(|pair| pair[1] / height - pair[0] / height)
+            .collect();
+        let slopes: Vec<f64> = rises.iter().zip(&widths).map(|(r, w)| r / w).collect();
+        // Each piece in units of the height: [rise part b, c, d] over s.
+        let unit_pieces: Vec<[f64; 3]> = match method {
             Method::Akima => {
                 let tangents = akima_tangents(&slopes);
                 (0..slopes.len())
                     .map(|i| {
-                        let h = x[i + 1] - x[i];
-                        let (t0, t1, m) = (tangents[i], tangents[i + 1], slopes[i]);
+                        // In slopes, then times the width: a line stays exact.
+                        let (t0, t1, m, h) = (tangents[i], tangents[i + 1], slopes[i], widths[i]);
                         [
-                            y[i],
-                            t0,
-                            (3.0 * m - 2.0 * t0 - t1) / h,
-                            (t0 + t1 - 2.0 * m) / (h * h),
+                            t0 * h,
+                            (3.0 * m - 2.0 * t0 - t1) * h,
+                            (t0 + t1 - 2.0 * m) * h,
                         ]
                     })
                     .collect()
             }
             Method::Cubic => {
-                let curvatures = natural_curvatures(x, &slopes);
+                let curvatures = natural_curvatures(&widths, &slopes);
                 (0..slopes.len())
                     .map(|i| {
-                        let h = x[i + 1] - x[i];
+                        let h = widths[i];
                         let (m0, m1) = (curvatures[i], curvatures[i + 1]);
                         [
-                            y[i],
-                            slopes[i] - h * (2.0 * m0 + m1) / 6.0,
-                            m0 / 2.0,
-                            (m1 - m0) / (6.0 * h),
+                            (slopes[i] - h * (2.0 * m0 + m1) / 6.0) * h,
+                            m0 * h * h / 2.0,
+                            (m1 - m0) * h * h / 6.0,
                         ]
                     })
                     .collect()
             }
         };
+        let pieces = unit_pieces
+            .iter()
+            .zip(y)
+            .map(|([b, c, d], &a)| [a, b * height, c * height, d * height])
+            .collect();
         Curve {
             x: x.to_vec(),
             pieces,
-            end_value: y[y.len() - 1],
+            end_value: y[n - 1],
             linear_extrapolation,
         }
     }
@@ -198,32 +232,57 @@ impl Curve {
         let last = self.pieces.len() - 1;
         let piece = self.x.partition_point(|&knot| knot <= x).saturating_sub(1);
         let piece = piece.min(last);
-        let cubic = |piece: usize, t: f64| {
+        // The cubic of `piece` at x, and its derivatives in x (1/h per order).
+        let cubic = |piece: usize, x: f64| {
             let [a, b, c, d] = self.pieces[piece];
+            let (left, right) = (self.x[piece], self.x[piece + 1]);
+            let s = ratio(x, left, right, left);
+            let width = right - left;
             [
-                a + t * (b + t * (c + t * d)),
-                b + t * (2.0 * c + t * 3.0 * d),
-                2.0 * c + 6.0 * d * t,
-                6.0 * d,
+                a + s * (b + s * (c + s * d)),
+                (b + s * (2.0 * c + s * 3.0 * d)) / width,
+                (2.0 * c + 6.0 * d * s) / width / width,
+                6.0 * d / width / width / width,
                 0.0,
             ]
         };
         let (first, end) = (self.x[0], self.x[last + 1]);
         if self.linear_extrapolation && (x < first || x > end) {
-            let (anchor, piece, t_end) = if x < first {
-                (first, 0, 0.0)
+            // The end point's value and slope per unit of s (s = 0 on the
+            // first piece, 1 on the last), times the distance in widths: no
+            // slope per unit of x (which underflows for points 1e300 apart
+            // of heights 1e-300) meets a distance in x.
+            let (piece, anchor) = if x < first { (0, first) } else { (last, end) };
+            let [a, b, c, d] = self.pieces[piece];
+            let (value, slope) = if x < first {
+                (a, b)
             } else {
-                (end, last, end - self.x[last])
+                (self.end_value, b + 2.0 * c + 3.0 * d)
             };
-            let [value, slope, ..] = cubic(piece, t_end);
-            let value = if x > end { self.end_value } else { value };
-            return [value + slope * (x - anchor), slope, 0.0, 0.0, 0.0];
+            let (left, right) = (self.x[piece], self.x[piece + 1]);
+            let widths = ratio(x, anchor, right, left);
+            return [
+                value + slope * widths,
+                slope / (right - left),
+                0.0,
+                0.0,
+                0.0,
+            ];
         }
-        let mut derivatives = cubic(piece, x - self.x[piece]);
+        let mut derivatives = cubic(piece, x);
         if x == end {
             derivatives[0] = self.end_value;
         }
         derivatives
+    }
+}
+
+/// The power of two at or below `value` (1 for 0).
+fn power_of_two_near(value: f64) -> f64 {
+    if value == 0.0 {
+        1.0
+    } else {
+        2f64.powi(value.log2().floor() as i32)
     }
 }
 
@@ -260,15 +319,15 @@ fn akima_tangents(slopes: &[f64]) -> Vec<f64> {
 }
 
 /// The second derivatives at the points of the natural cubic spline
-/// (zero at both ends), by the tridiagonal (Thomas) solve.
-fn natural_curvatures(x: &[f64], slopes: &[f64]) -> Vec<f64> {
-    let n = x.len();
+/// (zero at both ends) for interval widths `h`, by the tridiagonal (Thomas)
+/// solve.
+fn natural_curvatures(h: &[f64], slopes: &[f64]) -> Vec<f64> {
+    let n = h.len() + 1;
     let mut curvatures = vec![0.0; n];
     if n < 3 {
         return curvatures;
     }
     // Rows 1..n-1: h[i-1] M[i-1] + 2 (h[i-1] + h[i]) M[i] + h[i] M[i+1] = 6 (m[i] - m[i-1]).
-    let h: Vec<f64> = x.windows(2).map(|pair| pair[1] - pair[0]).collect();
     let mut diagonal = vec![0.0; n];
     let mut right = vec![0.0; n];
     for i in 1..n - 1 {
@@ -325,8 +384,7 @@ impl Spline {
             .saturating_sub(1)
             .min(self.curves.len() - 2);
         let (z0, z1) = (self.z[below], self.z[below + 1]);
-        let fraction = (z.clone() - z0) / (z1 - z0);
-        let lower = curve(below);
-        lower.clone() + (curve(below + 1) - lower) * fraction
+        let fraction = fraction(z, &T::from(z0), &T::from(z1));
+        interpolate(&curve(below), &curve(below + 1), fraction)
     }
 }

@@ -1,6 +1,9 @@
 //! `STEP`, `STEP5` and `HAVSIN` (SPEC 3.2): `h0` for `x <= x0`, `h1` for
 //! `x >= x1`, a smooth ramp between. The rule `x0 < x1` is checked by the caller.
 
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use super::range::{difference, fraction, interpolate, product, ratio};
 use crate::catalog::Function;
 use crate::number::Number;
 
@@ -50,14 +53,25 @@ impl StepBranch {
     }
 }
 
-/// `STEP(x, x0, h0, x1, h1)` and its siblings.
+/// `STEP(x, x0, h0, x1, h1)` and its siblings: the branch from the real
+/// part of `x` (SPEC 5), then [`step_on`] that branch.
 pub fn step<T: Number>(shape: Shape, x: &T, x0: &T, h0: &T, x1: &T, h1: &T) -> T {
     let branch = StepBranch::of(x.value(), x0.value(), x1.value());
     step_on(branch, shape, x, x0, h0, x1, h1)
 }
 
-/// The step on `branch`; the ramp's polynomial (or cosine) continues past
-/// `[x0, x1]` when the simulator holds it there.
+/// The step on `branch`: `h0`, `h1`, or on the ramp `h0 + (h1 - h0) s(u)`
+/// with `u = (x - x0)/(x1 - x0)`, whose polynomial (or cosine) continues
+/// past `[x0, x1]` when the simulator holds it there.
+///
+/// `u` and the rise are taken in halves where `x1 - x0` or `h1 - h0` passes
+/// the range of a double, and the shape `s(u)` has its own derivatives (in
+/// `1 - u` computed from `x1`, so that they keep their digits near `x1`).
+/// With constant ends and heights (the usual case, and the utility's) the
+/// step is one function of `x` whose slopes `(h1 - h0) s'(u) / L` and
+/// `(h1 - h0) s''(u) / L^2` are each one [`product`], so a ramp
+/// 1e-300 wide or 1e308 high gives every value and derivative that is a
+/// double (and a zero rise contributes nothing however steep the ramp).
 pub fn step_on<T: Number>(
     branch: StepBranch,
     shape: Shape,
@@ -72,17 +86,69 @@ pub fn step_on<T: Number>(
         StepBranch::After => return h1.clone(),
         StepBranch::Ramp => {}
     }
-    let u = (x.clone() - x0.clone()) / (x1.clone() - x0.clone());
-    let rise = h1.clone() - h0.clone();
-    match shape {
-        Shape::Cubic => h0.clone() + rise * u.clone() * u.clone() * (-u * 2.0 + 3.0),
-        Shape::Quintic => {
-            let cube = u.clone() * u.clone() * u.clone();
-            h0.clone() + rise * cube * ((u.clone() * 6.0 - 15.0) * u + 10.0)
+    let [x_, x0_, h0_, x1_, h1_] = [x, x0, h0, x1, h1].map(Number::value);
+    let rest = || ratio(x1_, x_, x1_, x0_);
+    if [x0, h0, x1, h1].iter().all(|end| end.is_constant()) {
+        let u = ratio(x_, x0_, x1_, x0_);
+        return x.chain(interpolate(&h0_, &h1_, shape.value(u)), || {
+            let (slope, curvature) = shape.slopes(u, rest());
+            // (h1 - h0) and L, each as (a finite part, the factor it stands for).
+            let (rise, rise_factor) = match difference(&h1_, &h0_) {
+                (rise, false) => (rise, 1.0),
+                (half, true) => (half, 2.0),
+            };
+            let (length, length_factor) = match difference(&x1_, &x0_) {
+                (length, false) => (length, 1.0),
+                (half, true) => (half, 0.5),
+            };
+            let per_length = 1.0 / length;
+            let factor = rise_factor * length_factor;
+            (
+                product(&[rise, slope, factor], length, per_length, 1, true),
+                product(
+                    &[rise, curvature, factor * length_factor],
+                    length,
+                    per_length,
+                    2,
+                    true,
+                ),
+            )
+        });
+    }
+    let u = fraction(x, x0, x1);
+    let u0 = u.value();
+    let shape = u.chain(shape.value(u0), || shape.slopes(u0, rest()));
+    interpolate(h0, h1, shape)
+}
+
+impl Shape {
+    /// `s(u)`.
+    fn value(self, u: f64) -> f64 {
+        match self {
+            Shape::Cubic => u * u * (3.0 - 2.0 * u),
+            Shape::Quintic => u * u * u * ((6.0 * u - 15.0) * u + 10.0),
+            Shape::Haversine => {
+                let half = (FRAC_PI_2 * u).sin();
+                half * half
+            }
         }
-        Shape::Haversine => {
-            let mean = (h0.clone() + h1.clone()) * 0.5;
-            mean - rise * 0.5 * (u * std::f64::consts::PI).cos()
+    }
+
+    /// `s'(u)` and `s''(u)`, with `r = 1 - u` computed on its own.
+    fn slopes(self, u: f64, r: f64) -> (f64, f64) {
+        match self {
+            Shape::Cubic => (6.0 * u * r, 6.0 * (r - u)),
+            Shape::Quintic => (30.0 * u * u * r * r, 60.0 * u * r * (r - u)),
+            Shape::Haversine => {
+                // sin(pi u) = sin(pi (1 - u)): from the nearer end.
+                let sine = (PI * u.min(r)).sin();
+                let cosine = if u <= r {
+                    (PI * u).cos()
+                } else {
+                    -(PI * r).cos()
+                };
+                (FRAC_PI_2 * sine, FRAC_PI_2 * PI * cosine)
+            }
         }
     }
 }

@@ -5,9 +5,10 @@
 use nalgebra::{Matrix3, SMatrix, Vector3};
 use num_dual::DualNum;
 
+use crate::Shown;
 use crate::catalog::Function;
 use crate::laws::intrinsics::atan2;
-use crate::laws::{LawError, domain};
+use crate::laws::{LawError, domain, range};
 use crate::number::Number;
 
 /// What a program keeps of one marker: the constants of its body and of its
@@ -103,14 +104,20 @@ fn times_constant<T: Number, const C: usize>(
     })
 }
 
-/// The rotation by the rotation vector `r` (Rodrigues); at `r = 0`,
-/// `I + S + S²/2`, exact to second order in the derivative parts.
+/// The rotation by the rotation vector `r` (Rodrigues). Below an angle of
+/// 1e-3, `I + a S + b S²` with `a = sin t / t` and `b = (1 - cos t) / t²`
+/// as series in `t² = r.r` (to `t⁴`, exact to rounding there): no square
+/// root, whose slope is infinite at `r = 0`, and no `t²` that underflows
+/// to a subnormal beneath a division (an angle of 1e-160 gave NaN).
 fn rotation<T: Number>(r: &Vector3<T>) -> Matrix3<T> {
     let s = skew(r);
     let s2 = &s * &s;
     let angle = r.map(|component| component.value()).norm();
-    if angle == 0.0 {
-        return Matrix3::identity() + s + s2 * T::from(0.5);
+    if angle < 1e-3 {
+        let t2 = r.dot(r);
+        let a = T::one() - t2.clone() * (1.0 / 6.0) + t2.clone() * t2.clone() * (1.0 / 120.0);
+        let b = T::from(0.5) - t2.clone() * (1.0 / 24.0) + t2.clone() * t2 * (1.0 / 720.0);
+        return Matrix3::identity() + s * a + s2 * b;
     }
     let theta = DualNum::sqrt(&r.dot(r));
     let a = DualNum::sin(&theta) / theta.clone();
@@ -194,9 +201,10 @@ impl<T: Number> Frame<T> {
     }
 }
 
-/// `|v|`, an error where the derivative of the length is not defined.
+/// `|v|` (its derivative is infinite where `v` is 0, which the evaluator
+/// reports), with no overflow of the squares for components beyond 1e154.
 fn length<T: Number>(v: &Vector3<T>) -> T {
-    DualNum::sqrt(&v.dot(v))
+    range::length(v.as_slice())
 }
 
 /// The value of `measure` for frames `i, j, k, l` as its signature orders
@@ -230,7 +238,7 @@ pub fn measure<T: Number>(function: Function, frames: &[Frame<T>]) -> Result<T, 
                     "the markers coincide: the radial direction is not defined".to_string(),
                 );
             }
-            d.dot(&rate_in(&frames[2])) / distance
+            range::quotient(&d.dot(&rate_in(&frames[2])), &distance)
         }
         F::Accx | F::Accy | F::Accz => {
             acceleration_in(&frames[3]).dot(&frames[2].axis(axis_of(function)))
@@ -284,7 +292,10 @@ pub fn measure<T: Number>(function: Function, frames: &[Frame<T>]) -> Result<T, 
 fn within_unit<T: Number>(name: &'static str, value: T) -> Result<T, LawError> {
     let v = value.value();
     if v.abs() > 1.0 + 1e-12 {
-        return domain(name, format!("the orientation is not a rotation ({v})"));
+        return domain(
+            name,
+            format!("the orientation is not a rotation ({})", Shown(v)),
+        );
     }
     if v.abs() > 1.0 {
         return Ok(T::from(v.signum()));

@@ -11,6 +11,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use super::error::SimulateError;
 use super::model::{Diff, Expression, Force, MassProperties, Model, Output};
+use crate::Shown;
 use crate::check::Reference;
 use crate::model::initial::{number, numbers};
 use crate::model::{Dataset, ModelCheck, Statement, Value, initial_scene, is_kind};
@@ -251,7 +252,8 @@ impl Reader<'_> {
             fail(
                 &mut self.errors,
                 format!(
-                    "{label}: MASS must be a positive number, not {mass} (a part without mass cannot move under forces)"
+                    "{label}: MASS must be a positive number, not {} (a part without mass cannot move under forces)",
+                    Shown(mass)
                 ),
             );
         }

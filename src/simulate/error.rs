@@ -2,6 +2,7 @@
 
 use thiserror::Error;
 
+use crate::Shown;
 use crate::compile::CompileError;
 use crate::eval::EvalError;
 use crate::span::Span;
@@ -83,7 +84,7 @@ pub enum SimulateError {
         span: Option<Span>,
     },
     /// An expression cannot be evaluated at an accepted state.
-    #[error("the run stops at t = {time}: {error}")]
+    #[error("the run stops at t = {}: {error}", Shown(*time))]
     Evaluation {
         /// The time of the state.
         time: f64,
@@ -94,7 +95,7 @@ pub enum SimulateError {
     },
     /// The integrator cannot go on (its step size fell below the smallest
     /// it takes, or the step budget is spent).
-    #[error("the run stops at t = {time}: {message}")]
+    #[error("the run stops at t = {}: {message}", Shown(*time))]
     Integration {
         /// The time of the last accepted state.
         time: f64,
@@ -107,7 +108,9 @@ pub enum SimulateError {
     /// A piecewise function switches branch over and over in a vanishing
     /// interval (a sliding contact, a force that balances on a kink).
     #[error(
-        "the run stops at t = {time}: {function} switches branch {count} times within {window:e} s (chattering); loosen the model at this kink (a damping ramp, a smooth STEP) or end the run before it"
+        "the run stops at t = {}: {function} switches branch {count} times within {} s (chattering); loosen the model at this kink (a damping ramp, a smooth STEP) or end the run before it",
+        Shown(*time),
+        Shown(*window)
     )]
     Chattering {
         /// The time of the last switch.

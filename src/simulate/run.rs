@@ -11,6 +11,7 @@ use super::error::SimulateError;
 use super::mechanics::{BODY_STATES, Mechanics, body_offset};
 use super::switch::{Held, Switch, find_switch, switching_slope};
 use super::{Model, Simulation};
+use crate::Shown;
 use crate::compile::{Program, SiteKind};
 use crate::eval::OutputError;
 use crate::integrate::{
@@ -54,24 +55,24 @@ impl Settings {
         let problem = if !(self.end > 0.0 && self.end.is_finite()) {
             Some(format!(
                 "the end time must be a positive number, not {}",
-                self.end
+                Shown(self.end)
             ))
         } else if self.steps == 0 {
             Some("the number of output steps must be at least 1".to_string())
         } else if !(self.rtol > 0.0 && self.rtol < 1.0) {
             Some(format!(
                 "the relative tolerance must be between 0 and 1, not {}",
-                self.rtol
+                Shown(self.rtol)
             ))
         } else if !(self.atol > 0.0 && self.atol.is_finite()) {
             Some(format!(
                 "the absolute tolerance must be a positive number, not {}",
-                self.atol
+                Shown(self.atol)
             ))
         } else if self.h_max.is_nan() || self.h_max <= 0.0 {
             Some(format!(
                 "the largest step must be positive, not {}",
-                self.h_max
+                Shown(self.h_max)
             ))
         } else {
             None

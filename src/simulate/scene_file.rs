@@ -11,6 +11,7 @@ use toml::Spanned;
 
 use super::error::SimulateError;
 use super::model::{Diff, Expression, Force, MassProperties, Model, Output};
+use crate::Shown;
 use crate::check::Reference;
 use crate::model::Embedded;
 use crate::scene::{DiffData, Scene, Target};
@@ -107,7 +108,7 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         notes.push((
             format!(
                 "time = {} is the scene's time for eval; a simulation starts at 0",
-                reader.scene.time
+                Shown(reader.scene.time)
             ),
             Span::default(),
         ));
@@ -220,7 +221,7 @@ impl Reader<'_> {
                 if !(mass > 0.0 && mass.is_finite()) {
                     let at = body.mass.as_ref().map_or(span, span_of);
                     self.fail(
-                        format!("body {name}: mass must be a positive number (it is {mass}): give mass = ... to simulate it"),
+                        format!("body {name}: mass must be a positive number (it is {}): give mass = ... to simulate it", Shown(mass)),
                         at,
                     );
                 }

@@ -50,6 +50,34 @@ int main(void) {
     double value;
     c_step(0.25, 1.0, 0.0, 1.0, 10.0, 0, &value, &errflg);
     printf("c_step(x0 = x1) = %.12g errflg=%d\n", value, errflg);
+
+    /* Extreme but legal arguments (issues 17.6 and 18.2): the double where
+     * the result is one, errflg where it is beyond the range, never NaN or
+     * an infinity with errflg 0. */
+    c_impact(-5e-161, 0.0, 0.0, 1.0, 2.0, 1.0, 1e-160, 2, vector, &errflg);
+    printf("c_impact(x=-5e-161, d=1e-160, iord=2) = [%.12g, %.12g, %.12g] errflg=%d\n",
+           vector[0], vector[1], vector[2], errflg);
+    c_impact(-1e-300, 0.0, 0.0, 1.0, 0.5, 0.0, 1.0, 2, vector, &errflg);
+    printf("c_impact(x=-1e-300, e=0.5, iord=2) = [%.12g, %.12g, %.12g] errflg=%d\n",
+           vector[0], vector[1], vector[2], errflg);
+    c_impact(-5e-201, 0.0, 0.0, 1.0, 2.0, 1.0, 1e-200, 1, vector, &errflg);
+    printf("c_impact(x=-5e-201, d=1e-200, iord=1) = [%.12g, %.12g, %.12g] errflg=%d\n",
+           vector[0], vector[1], vector[2], errflg);
+    for (int iord = 0; iord <= 2; iord++) {
+        c_step(5e-201, 0.0, 0.0, 1e-200, 1.0, iord, &value, &errflg);
+        printf("c_step(5e-201, 0, 0, 1e-200, 1, iord=%d) = %.12g errflg=%d\n", iord, value, errflg);
+    }
+    for (int iord = 0; iord <= 1; iord++) {
+        c_step(0.5, 0.0, -1e308, 1.0, 1e308, iord, &value, &errflg);
+        printf("c_step(0.5, 0, -1e308, 1, 1e308, iord=%d) = %.12g errflg=%d\n", iord, value, errflg);
+    }
+    const double rates[] = {-1e307, -7e306, -1e306};
+    for (unsigned i = 0; i < sizeof rates / sizeof rates[0]; i++) {
+        c_bistop(12.0, rates[i], -10.0, 10.0, 1e308, 3.0, 100.0, 0.1, 0, vector, &errflg);
+        printf("c_bistop(x=12, xd=%g, k=1e308, e=3, iord=0) = [%.12g, %.12g, %.12g] errflg=%d\n",
+               rates[i], vector[0], vector[1], vector[2], errflg);
+    }
+
     c_bistop(10.05, 0.7, -10.0, 10.0, 1e5, 2.2, 100.0, 0.1, 0, 0, 0); /* null outputs: no crash */
     printf("null outputs: no crash\n");
     return 0;

@@ -1,21 +1,7 @@
 ! A FORTRAN user subroutine's use of the utility subroutines, printed for a
 ! snapshot: first with implicit interfaces, as old user subroutines call
-! them, then through the interface module.
-SUBROUTINE OLDSTYLE
-  IMPLICIT NONE
-  DOUBLE PRECISION VECTOR(3), VALUE
-  LOGICAL ERRFLG
-  INTEGER IORD
-  DO IORD = 0, 2
-    CALL BISTOP(10.05D0, 0.7D0, -10.0D0, 10.0D0, 1.0D5, 2.2D0, 100.0D0, 0.1D0, IORD, VECTOR, ERRFLG)
-    WRITE (*, '(A, I1, A, 3ES22.13, A, L1)') 'BISTOP IORD=', IORD, ':', VECTOR, ' ERRFLG=', ERRFLG
-  END DO
-  CALL IMPACT(0.95D0, -1.0D0, 1.0D0, 1.0D4, 1.5D0, 10.0D0, 0.1D0, 2, VECTOR, ERRFLG)
-  WRITE (*, '(A, 3ES22.13, A, L1)') 'IMPACT IORD=2:', VECTOR, ' ERRFLG=', ERRFLG
-  CALL STEP(0.25D0, 0.0D0, 0.0D0, 1.0D0, 10.0D0, 1, VALUE, ERRFLG)
-  WRITE (*, '(A, ES22.13, A, L1)') 'STEP IORD=1:', VALUE, ' ERRFLG=', ERRFLG
-END SUBROUTINE OLDSTYLE
-
+! them (OLDSTYLE, in the fixed-form old_style.f), then through the
+! interface module.
 PROGRAM USERSUB
   USE mbexpr
   IMPLICIT NONE
@@ -26,4 +12,7 @@ PROGRAM USERSUB
   WRITE (*, '(A, 3ES22.13, A, L1)') 'BISTOP X1>=X2:', VECTOR, ' ERRFLG=', ERRFLG
   CALL BISTOP(10.05D0, -100.0D0, -10.0D0, 10.0D0, 1.0D5, 2.2D0, 100.0D0, 0.1D0, 1, VECTOR, ERRFLG)
   WRITE (*, '(A, 3ES22.13, A, L1)') 'BISTOP CLAMPED:', VECTOR, ' ERRFLG=', ERRFLG
+  ! A force beyond the range of a double: ERRFLG, never an infinity.
+  CALL BISTOP(12.0D0, -1.0D306, -10.0D0, 10.0D0, 1.0D308, 3.0D0, 100.0D0, 0.1D0, 0, VECTOR, ERRFLG)
+  WRITE (*, '(A, 3ES22.13, A, L1)') 'BISTOP OVERFLOW:', VECTOR, ' ERRFLG=', ERRFLG
 END PROGRAM USERSUB

@@ -6,11 +6,11 @@ use std::io::Write;
 use clap::ValueEnum;
 use std::collections::HashSet;
 
-use mbexpr::{Evaluation, Order, Program, Scene};
+use mbexpr::{Evaluation, Order, Program, Scene, Shown, ShownBuffer};
 use serde_json::Value;
 
 use crate::points::{PointsFile, count};
-use crate::record::{Problem, Record, tidy};
+use crate::record::{Problem, Record};
 
 use crate::sweep::Sweep;
 use crate::{Fatal, Outcome};
@@ -89,46 +89,21 @@ pub fn parse_assignment(assignment: &str) -> Result<(String, f64), Fatal> {
     Ok((name.trim().to_string(), value))
 }
 
-/// A number as text: the shortest digits that read back to the same
-/// double (zmij), `-0` as `0`, no `.0` on a whole number, in exponent form
-/// (`1e16`, `1.5e-7`) when very large or very small.
+/// A number as text, as the library's messages show numbers
+/// ([`mbexpr::Shown`]).
 pub fn show(value: f64) -> String {
-    let mut text = String::new();
-    push_shown(&mut text, value);
-    text
-}
-
-/// Appends [`show`]'s text of `value` to `text`.
-pub fn push_shown(text: &mut String, value: f64) {
-    for piece in shown(&mut zmij::Buffer::new(), value) {
-        text.push_str(piece);
-    }
+    Shown(value).to_string()
 }
 
 /// Appends [`show`]'s text of `value`, right-aligned in `width` bytes.
 pub fn push_aligned(out: &mut Vec<u8>, value: f64, width: usize) {
     const BLANKS: [u8; 32] = [b' '; 32];
-    let mut buffer = zmij::Buffer::new();
-    let pieces = shown(&mut buffer, value);
+    let mut buffer = ShownBuffer::new();
+    let pieces = Shown(value).pieces(&mut buffer);
     let length: usize = pieces.iter().map(|piece| piece.len()).sum();
     out.extend_from_slice(&BLANKS[..width.saturating_sub(length).min(BLANKS.len())]);
     for piece in pieces {
         out.extend_from_slice(piece.as_bytes());
-    }
-}
-
-/// [`show`]'s text in pieces: the digits, then `e` and the exponent or
-/// nothing (zmij writes `1e+16` and `100.0`; show writes `1e16` and `100`).
-fn shown(buffer: &mut zmij::Buffer, value: f64) -> [&str; 3] {
-    let printed = buffer.format(tidy(value));
-    let printed = printed.strip_suffix(".0").unwrap_or(printed);
-    match printed.bytes().position(|byte| byte == b'e') {
-        Some(at) => [
-            &printed[..at],
-            "e",
-            printed[at + 1..].trim_start_matches('+'),
-        ],
-        None => [printed, "", ""],
     }
 }
 

@@ -154,10 +154,12 @@ pub fn curves(request: &PlotRequest<'_>) -> Result<Plot, String> {
     if curves[0].points().next().is_none() {
         let reason = plot
             .first_failure
-            .map(|(x, message)| format!(" (at {} = {x}: {message})", request.over))
+            .map(|(x, message)| format!(" (at {} = {}: {message})", request.over, mbexpr::Shown(x)))
             .unwrap_or_default();
         return Err(format!(
-            "the expression could not be evaluated anywhere in {low}..{high}{reason}"
+            "the expression could not be evaluated anywhere in {}..{}{reason}",
+            mbexpr::Shown(low),
+            mbexpr::Shown(high)
         ));
     }
     for curve in &mut curves {
@@ -391,6 +393,7 @@ pub fn parse_range(text: &str) -> Result<(String, f64, f64), String> {
         ));
     }
     if start >= end {
+        let (start, end) = (mbexpr::Shown(start), mbexpr::Shown(end));
         return Err(format!(
             "the range {start}..{end} is empty: A must be less than B"
         ));

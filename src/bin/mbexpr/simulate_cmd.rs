@@ -8,6 +8,7 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use clap::ValueEnum;
+use mbexpr::Shown;
 use mbexpr::integrate::Method;
 use mbexpr::model::{self, FileKind};
 use mbexpr::simulate::{self, Model, Place, Settings, SimulateError, Simulation};
@@ -293,7 +294,7 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
             let _ = writeln!(
                 stderr,
                 "event t = {}: {} at {}:{}:{} ({}): {} -> {}",
-                event.time,
+                Shown(event.time),
                 event.function,
                 source.path,
                 at.line,
@@ -307,8 +308,9 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let stats = summary.stats;
     let _ = writeln!(
         stderr,
-        "{}: t = 0 .. {end}, {}: {} steps ({} rejected), {} right-hand sides, {} jacobians, {} lu decompositions, {} events, {:.6} s",
+        "{}: t = 0 .. {}, {}: {} steps ({} rejected), {} right-hand sides, {} jacobians, {} lu decompositions, {} events, {:.6} s",
         source.path,
+        Shown(end),
         settings.method,
         stats.steps,
         stats.rejected,
@@ -352,16 +354,16 @@ impl<'c> Rows<'c> {
     fn row(&self, out: &mut impl Write, time: f64, values: &[f64]) -> std::io::Result<()> {
         match self.format {
             RowFormat::Csv => {
-                write!(out, "{time}")?;
+                write!(out, "{}", Shown(time))?;
                 for value in values {
-                    write!(out, ",{value}")?;
+                    write!(out, ",{}", Shown(*value))?;
                 }
                 writeln!(out)
             }
             RowFormat::Text => {
-                write!(out, "{time:>24}")?;
+                write!(out, "{:>24}", Shown(time))?;
                 for value in values {
-                    write!(out, "{value:>24}")?;
+                    write!(out, "{:>24}", Shown(*value))?;
                 }
                 writeln!(out)
             }
