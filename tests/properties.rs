@@ -13,7 +13,10 @@ pub(crate) fn run_everything(text: &str) {
         Ok(tree) => tree,
         Err(error) => {
             assert!(in_text(error.span()), "{error:?} in {text:?}");
-            assert!(!error.to_string().is_empty() && !error.to_string().ends_with('.'), "{error} in {text:?}");
+            assert!(
+                !error.to_string().is_empty() && !error.to_string().ends_with('.'),
+                "{error} in {text:?}"
+            );
             return;
         }
     };
