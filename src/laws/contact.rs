@@ -16,7 +16,7 @@
 //!   is an infinity, which the evaluator reports as an error (and the
 //!   utility subroutines with ERRFLG).
 //!
-//! Beyond the range of a double (see [`beyond_range`]): the clamp's branch
+//! Beyond the range of a double (see `beyond_range`): the clamp's branch
 //! is decided on the terms as they are, never on a sum that overflowed to
 //! NaN or a stiffness that underflowed to 0; where a term passes the range,
 //! the force is summed at a power-of-two scale, so that `k p^e` and the

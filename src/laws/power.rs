@@ -36,10 +36,10 @@ fn integer_power(x: f64, n: i32) -> f64 {
 /// `c x^e` for a constant `c` and `e`, with `whole` = [`as_integer`]`(e)`
 /// worked out by the caller (once, when `e` is a constant of the program):
 /// integer powers for a whole `e` (any sign of `x`), else the real power
-/// (`x >= 0`). Where `c` and `x` are [`moderate`] and `|e| <= 8` (the usual
+/// (`x >= 0`). Where `c` and `x` are `moderate` and `|e| <= 8` (the usual
 /// case: every power and product is then a normal double), plain products;
 /// otherwise the value and both derivatives are formed by
-/// [`power_product`], so `c` small and `x^e` beyond the range of a double
+/// `power_product`, so `c` small and `x^e` beyond the range of a double
 /// (or the reverse) still give their representable product.
 #[inline]
 pub fn scaled_power<T: Number>(c: f64, x: &T, e: f64, whole: Option<i32>, shift: i32) -> T {

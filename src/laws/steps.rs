@@ -69,7 +69,7 @@ pub fn step<T: Number>(shape: Shape, x: &T, x0: &T, h0: &T, x1: &T, h1: &T) -> T
 /// `1 - u` computed from `x1`, so that they keep their digits near `x1`).
 /// With constant ends and heights (the usual case, and the utility's) the
 /// step is one function of `x` whose slopes `(h1 - h0) s'(u) / L` and
-/// `(h1 - h0) s''(u) / L^2` are each one [`product`], so a ramp
+/// `(h1 - h0) s''(u) / L^2` are each one `product`, so a ramp
 /// 1e-300 wide or 1e308 high gives every value and derivative that is a
 /// double (and a zero rise contributes nothing however steep the ramp).
 pub fn step_on<T: Number>(
