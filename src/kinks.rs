@@ -30,7 +30,8 @@ pub fn breakpoints(program: &Program, inputs: &[f64], along: usize, samples: &[f
     // shows the sites before the failure).
     let mut at = |x: f64| -> Vec<Option<Code>> {
         point[along] = x;
-        let _ = evaluator.observe(&point, None, &mut natural, &mut switching, &mut outputs);
+        let branches = (&mut natural[..], &mut switching[..]);
+        let _ = evaluator.observe(&point, None, branches, &mut outputs, 0.0);
         natural.clone()
     };
     let mut found = Vec::new();

@@ -109,6 +109,8 @@ struct Observe<'o> {
     switching: &'o mut [f64],
     /// The least step limit of the sites that ran.
     step_limit: f64,
+    /// The absolute error in a displacement that the step limits allow.
+    tolerance: f64,
     /// A call's argument values (kept to spare an allocation per call).
     arguments: Vec<f64>,
 }
@@ -142,7 +144,9 @@ impl Branching<f64> for Observe<'_> {
                 let seen = stops.switching(x, v, held.map(ContactBranch::from_code));
                 out.copy_from_slice(&seen.values);
                 let on = held.map_or(seen.natural, ContactBranch::from_code);
-                self.step_limit = self.step_limit.min(stops.step_limit(x, v, on));
+                self.step_limit = self
+                    .step_limit
+                    .min(stops.step_limit(x, v, on, self.tolerance));
                 self.natural[site_index as usize] = Some(seen.natural.code());
                 // The force on the held branch comes with the switching values.
                 return Some(Ok(seen.force));
@@ -153,9 +157,9 @@ impl Branching<f64> for Observe<'_> {
                 values.extend(args.iter().map(|&arg| slot(arg)));
                 let natural = branch::switching(*function, values, held, out);
                 let on = held.unwrap_or(natural);
-                self.step_limit = self
-                    .step_limit
-                    .min(branch::step_limit(*function, values, on));
+                self.step_limit =
+                    self.step_limit
+                        .min(branch::step_limit(*function, values, on, self.tolerance));
                 natural
             }
             _ => return None,
@@ -239,15 +243,16 @@ impl Evaluator<'_, f64> {
     /// the site did not run) and its switching values for the branch it was
     /// evaluated on (in `switching`, [`Program::switch_count`] entries;
     /// 1, which is no switch, for sites that did not run). Returns the
-    /// largest step the sites allow a simulator (see
-    /// [`branch::step_limit`]; infinity for none).
+    /// largest step the sites allow a simulator that accepts an absolute
+    /// error `tolerance` in a displacement (see [`branch::step_limit`];
+    /// infinity for none).
     pub fn observe(
         &mut self,
         inputs: &[f64],
         held: Option<&[Option<Code>]>,
-        natural: &mut [Option<Code>],
-        switching: &mut [f64],
+        (natural, switching): (&mut [Option<Code>], &mut [f64]),
         outputs: &mut [f64],
+        tolerance: f64,
     ) -> Result<f64, OutputError> {
         natural.fill(None);
         switching.fill(1.0);
@@ -258,6 +263,7 @@ impl Evaluator<'_, f64> {
             natural,
             switching,
             step_limit: f64::INFINITY,
+            tolerance,
             arguments: Vec::new(),
         };
         let last = self.run_with(&mut observer);

@@ -150,14 +150,21 @@ pub fn switching(function: Function, args: &[f64], held: Option<Code>, out: &mut
 }
 
 /// The largest step a simulator should take with a call of `function` at
-/// `args` held on `held` (see [`contact::step_limit`]); unbounded for all
-/// but the softening contact laws.
-pub fn step_limit(function: Function, args: &[f64], held: Code) -> f64 {
+/// `args` held on `held`, for an absolute error `tolerance` in the
+/// displacement (see [`contact::step_limit`]); unbounded for all but the
+/// softening contact laws.
+pub fn step_limit(function: Function, args: &[f64], held: Code, tolerance: f64) -> f64 {
     let branch = ContactBranch::from_code(held);
     match function {
-        Function::Impact => contact::step_limit(args[0], args[1], args[2], None, args[4], branch),
+        Function::Impact => {
+            let stiffness = [args[3], args[4]];
+            contact::step_limit(
+                args[0], args[1], args[2], None, stiffness, branch, tolerance,
+            )
+        }
         Function::Bistop => {
-            contact::step_limit(args[0], args[1], args[2], Some(args[3]), args[5], branch)
+            let (x2, stiffness) = (Some(args[3]), [args[4], args[5]]);
+            contact::step_limit(args[0], args[1], args[2], x2, stiffness, branch, tolerance)
         }
         _ => f64::INFINITY,
     }

@@ -287,14 +287,14 @@ impl<'m> Mechanics<'m> {
 
     /// The natural branch of every site and their switching values at
     /// `(t, y)`, with the sites held on `held`, and the largest step they
-    /// allow (see [`Evaluator::observe`]).
+    /// allow for an absolute error `tolerance` (see [`Evaluator::observe`]).
     pub(crate) fn observe(
         &mut self,
         t: f64,
         y: &[f64],
         held: Option<&[Option<Code>]>,
-        natural: &mut [Option<Code>],
-        switching: &mut [f64],
+        branches: (&mut [Option<Code>], &mut [f64]),
+        tolerance: f64,
     ) -> Result<f64, OutputError> {
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
@@ -304,9 +304,9 @@ impl<'m> Mechanics<'m> {
         self.values.observe(
             &buffers.inputs,
             held,
-            natural,
-            switching,
+            branches,
             &mut buffers.outputs,
+            tolerance,
         )
     }
 

@@ -257,6 +257,7 @@ impl Simulation<'_> {
         let mut system = Held {
             mechanics: Mechanics::new(model, program, &self.computed),
             held: vec![None; program.sites().len()],
+            tolerance: settings.atol,
         };
         let mut rows = Rows {
             model,
@@ -273,7 +274,13 @@ impl Simulation<'_> {
         let mut switching = vec![0.0; program.switch_count()];
         let limit = system
             .mechanics
-            .observe(0.0, &y0, None, &mut natural, &mut switching)
+            .observe(
+                0.0,
+                &y0,
+                None,
+                (&mut natural, &mut switching),
+                settings.atol,
+            )
             .map_err(|error| fail(0.0, error))?;
         system.held.clone_from(&natural);
         let options = |limit: f64| Options {
@@ -362,7 +369,13 @@ impl Simulation<'_> {
             dense.copy_from_slice(&state);
             system
                 .mechanics
-                .observe(right, &dense, None, &mut natural, &mut switching)
+                .observe(
+                    right,
+                    &dense,
+                    None,
+                    (&mut natural, &mut switching),
+                    settings.atol,
+                )
                 .map_err(|error| fail(right, error))?;
             for (site, (held, now)) in program.sites().iter().zip(system.held.iter().zip(&natural))
             {

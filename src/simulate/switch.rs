@@ -29,6 +29,9 @@ const LOOKS_CROWDING: usize = 14;
 pub(super) struct Held<'m> {
     pub(super) mechanics: Mechanics<'m>,
     pub(super) held: Vec<Option<Code>>,
+    /// The absolute error in a state the run accepts (its `atol`), which
+    /// bounds how far the sites' step limits shrink.
+    pub(super) tolerance: f64,
 }
 
 impl System for Held<'_> {
@@ -64,7 +67,7 @@ impl Held<'_> {
         switching: &mut [f64],
     ) -> Result<f64, OutputError> {
         self.mechanics
-            .observe(t, y, Some(&self.held), natural, switching)
+            .observe(t, y, Some(&self.held), (natural, switching), self.tolerance)
     }
 }
 
