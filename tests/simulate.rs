@@ -579,8 +579,12 @@ fn the_coupled_bodies_keep_unit_quaternions_and_run_both_methods_alike() {
 /// |x - x_ref| allowed at each over the 200 output times; the bounds are
 /// about three times what the run gives, and the last shows the accuracy
 /// the method reaches on the scene.
+/// Scene, end time, method, and (rtol, largest error allowed) from loose
+/// to tight.
+type Convergence = (&'static str, f64, Method, [(f64, f64); 3]);
+
 #[rustfmt::skip]
-const CONVERGENCE: &[(&str, f64, Method, [(f64, f64); 3])] = &[
+const CONVERGENCE: &[Convergence] = &[
     ("a1_ball", 10.0, Method::Dop853, [(1e-5, 1e-3), (1e-8, 1e-4), (1e-12, 2e-10)]),
     ("a1_ball", 10.0, Method::Radau5, [(1e-5, 5e-5), (1e-8, 1.2e-6), (1e-13, 1e-9)]),
     ("a2_stiff_ball", 10.0, Method::Dop853, [(1e-5, 1e-5), (1e-8, 1e-8), (1e-12, 1e-9)]),
