@@ -577,8 +577,9 @@ fn contact_step_limit<P: Parameter<f64>>(
         return f64::INFINITY;
     }
     let graded = 0.5 * p.max(0.0) / speed;
-    let resolved = (RESOLUTION_MARGIN * tolerance * (e + 1.0) * (e + 2.0) / (stiffness.value() * speed.powf(e)))
-        .powf(1.0 / (e + 2.0));
+    let resolved = (RESOLUTION_MARGIN * tolerance * (e + 1.0) * (e + 2.0)
+        / (stiffness.value() * speed.powf(e)))
+    .powf(1.0 / (e + 2.0));
     if resolved.is_nan() {
         graded
     } else {
