@@ -381,21 +381,8 @@ impl Reader<'_> {
                     continue;
                 };
                 let action_only = statement.argument("ACTIONONLY", 3).is_some();
-                forces.push(if statement.argument("ROTATIONAL", 3).is_some() {
-                    Force::Rotational {
-                        i,
-                        j,
-                        magnitude,
-                        action_only,
-                    }
-                } else {
-                    Force::Translational {
-                        i,
-                        j,
-                        magnitude,
-                        action_only,
-                    }
-                });
+                let rotational = statement.argument("ROTATIONAL", 3).is_some();
+                forces.push(Force::single(rotational, i, j, magnitude, action_only));
                 continue;
             }
             let reaction = match statement.argument("JFLOAT", 2) {

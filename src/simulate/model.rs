@@ -109,6 +109,34 @@ pub enum Force {
     },
 }
 
+impl Force {
+    /// An `SFORCE` of one component: a torque about J's z axis when
+    /// `rotational`, a force along the line from J to I otherwise.
+    pub(crate) fn single(
+        rotational: bool,
+        i: Target,
+        j: Target,
+        magnitude: usize,
+        action_only: bool,
+    ) -> Force {
+        if rotational {
+            Force::Rotational {
+                i,
+                j,
+                magnitude,
+                action_only,
+            }
+        } else {
+            Force::Translational {
+                i,
+                j,
+                magnitude,
+                action_only,
+            }
+        }
+    }
+}
+
 /// An expression of the model, with its text and how to find it in the file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Expression {

@@ -302,22 +302,8 @@ impl Reader<'_> {
                     else {
                         continue;
                     };
-                    let action_only = force.action_only;
-                    read.push(if kind == "rotational" {
-                        Force::Rotational {
-                            i,
-                            j,
-                            magnitude,
-                            action_only,
-                        }
-                    } else {
-                        Force::Translational {
-                            i,
-                            j,
-                            magnitude,
-                            action_only,
-                        }
-                    });
+                    let rotational = kind == "rotational";
+                    read.push(Force::single(rotational, i, j, magnitude, force.action_only));
                 }
                 "vector" | "torque" | "general" => {
                     let axes = match &force.axes {
