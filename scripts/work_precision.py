@@ -124,7 +124,9 @@ def run_process(kind, method, scene, rtol, atol, budget=BUDGET):
     if done.returncode != 0:
         message = done.stderr.strip().splitlines()
         raise RuntimeError(message[0] if message else f"exit {done.returncode}")
-    return read_rows(done.stdout), parse_stats(done.stderr.strip().splitlines()[-1])
+    # The statistics line; a warning (a stiff run) may follow it.
+    stats = next(line for line in reversed(done.stderr.splitlines()) if "right-hand sides" in line)
+    return read_rows(done.stdout), parse_stats(stats)
 
 
 # ---------------------------------------------------------------- scipy

@@ -742,6 +742,16 @@ fn simulate_rows_show_large_and_small_numbers_short() {
     insta::assert_snapshot!(run("csv") + &run("text"));
 }
 
+/// A stiff run with DOP853: the run goes on, and says so at the end.
+#[test]
+fn simulate_warns_of_a_stiff_run() {
+    let dropped = include_str!("../examples/simulate/a4_dropped_ball.adm");
+    let args = [
+        "simulate", "-", "--end", "0.6", "--steps", "2", "--method", "dop853",
+    ];
+    insta::assert_snapshot!(check_run(&args, dropped));
+}
+
 #[test]
 fn simulate_refuses_what_it_cannot_run() {
     let joint = "joint\nPART/1, GROUND\nMARKER/1, PART = 1\nPART/2, MASS = 1, CM = 3, IP = 1, 1, 1\nMARKER/3, PART = 2\nJOINT/1, REVOLUTE, I = 3, J = 1\n";

@@ -318,3 +318,31 @@ fn the_finite_difference_jacobian_holds_half_the_digits() {
     finite_difference_jacobian(system, 0.0, &y, &dy, &mut approximate).unwrap();
     assert!((exact - approximate).amax() < 1e-7);
 }
+
+#[test]
+fn dop853_tells_a_stiff_problem() {
+    // Problem, tolerance, and whether Hairer's stiffness test fires before
+    // the problem's end (or 100 000 steps).
+    let cases = [
+        ("van-der-pol", 1e-6, true),
+        ("robertson", 1e-6, true),
+        ("arenstorf", 1e-8, false),
+        ("limit-cycle", 1e-8, false),
+    ];
+    for (name, tolerance, stiff) in cases {
+        let mut problem = problem(name);
+        let t_end = problem.t_end;
+        let (mut stepper, system) = start(&mut problem, Method::Dop853, tolerance);
+        while stepper.t() < t_end && stepper.stiff_from().is_none() {
+            if stepper.step_to(system, t_end).is_err() {
+                break;
+            }
+        }
+        assert_eq!(
+            stepper.stiff_from().is_some(),
+            stiff,
+            "{name}: {}",
+            stepper.stats()
+        );
+    }
+}

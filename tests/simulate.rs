@@ -101,7 +101,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 12] = [
+    let cases: [(&str, &str, Settings); 14] = [
         (
             "a joint and a motion need a constraint solver",
             "joint
@@ -187,6 +187,23 @@ DIFF/1, IC = 1, FUNCTION = DIF(1)**2
 DIFF/1, IC = 1, FUNCTION = -SIGN(1, DIF(1))
 ",
             settings(2.0, 4, 1e-6),
+        ),
+        (
+            "a step budget spent",
+            BALL,
+            Settings {
+                max_steps: 50,
+                ..short.clone()
+            },
+        ),
+        (
+            "a stiff run past its step budget with DOP853",
+            include_str!("../examples/simulate/a4_dropped_ball.adm"),
+            Settings {
+                method: Method::Dop853,
+                max_steps: 20_000,
+                ..short.clone()
+            },
         ),
         (
             "a solver's result has no value in a simulation",

@@ -21,6 +21,19 @@ const GROW_MOST: f64 = 1.0 / 6.0;
 /// Step factor after a trial state the system refuses.
 const FAILURE_SHRINK: f64 = 0.5;
 
+/// Hairer's stiffness test (`dop853.f`, `NSTIFF`): every this many
+/// accepted steps, and at every step while the last test found `h |λ|`
+/// beyond [`STABILITY_EDGE`].
+const STIFFNESS_TEST_EVERY: usize = 1000;
+/// `h |λ|` near the edge of DOP853's stability region along the negative
+/// real axis (Hairer's 6.1).
+const STABILITY_EDGE: f64 = 6.1;
+/// Tests beyond the edge, with fewer than [`NONSTIFF_RESET`] tests within
+/// it between them, that make a problem stiff (Hairer's 15).
+const STIFF_TESTS: u32 = 15;
+/// Tests within the edge in a row that forget the ones beyond it (6).
+const NONSTIFF_RESET: u32 = 6;
+
 /// A stage: its node and its coefficients on earlier stages (stage, a).
 struct Stage {
     c: f64,
@@ -292,6 +305,44 @@ pub(super) struct Dop853 {
     /// The last trial step was rejected: the next accepted one may not
     /// propose a larger step.
     after_rejection: bool,
+    /// Hairer's stiffness test over the accepted steps.
+    stiffness: Stiffness,
+}
+
+/// The state of Hairer's stiffness test: `h |λ|` estimated on the last
+/// stage and the step's end, `h |f(t+h, y_new) - f(t+h, y_12)| / |y_new -
+/// y_12|`, counted against the edge of the stability region.
+#[derive(Default)]
+struct Stiffness {
+    /// The estimate of the step being finished, when a test is due.
+    pending: Option<f64>,
+    /// Tests beyond the edge since the last run of tests within it.
+    beyond: u32,
+    /// Tests within the edge in a row.
+    within: u32,
+    /// The start of the step at which the test found the problem stiff.
+    found_at: Option<f64>,
+}
+
+impl Stiffness {
+    /// Counts the estimate of the step from `t` that was just accepted.
+    fn count(&mut self, t: f64) {
+        let Some(h_lambda) = self.pending.take() else {
+            return;
+        };
+        if h_lambda > STABILITY_EDGE {
+            self.within = 0;
+            self.beyond += 1;
+            if self.beyond == STIFF_TESTS && self.found_at.is_none() {
+                self.found_at = Some(t);
+            }
+        } else {
+            self.within += 1;
+            if self.within == NONSTIFF_RESET {
+                self.beyond = 0;
+            }
+        }
+    }
 }
 
 impl Dop853 {
@@ -305,7 +356,17 @@ impl Dop853 {
             dense: vec![0.0; 8 * n],
             h_dense: 0.0,
             after_rejection: false,
+            stiffness: Stiffness::default(),
         }
+    }
+
+    /// The start of the step at which Hairer's stiffness test first found
+    /// the problem stiff: `h |λ|` beyond the edge of DOP853's stability
+    /// region (6.1) in 15 tests, with fewer than 6 within it in a row
+    /// between them. The steps are then held to that edge by stability,
+    /// not accuracy.
+    pub fn stiff_from(&self) -> Option<f64> {
+        self.stiffness.found_at
     }
 
     /// Forgets the last step.
@@ -354,6 +415,7 @@ impl Dop853 {
             // A step shortened to land keeps the longer step it replaced.
             core.h = if lands { h_new.max(core.h) } else { h_new };
             self.h_dense = h;
+            self.stiffness.count(core.t);
             std::mem::swap(&mut core.y, &mut self.y_new);
             core.dy.copy_from_slice(&self.k[12 * self.n..13 * self.n]);
             core.advance(h, lands, t_end);
@@ -415,6 +477,10 @@ impl Dop853 {
             &self.y_new,
             &mut self.k[12 * n..13 * n],
         )?;
+        let accepted = core.stats.steps + 1;
+        self.stiffness.pending = (accepted.is_multiple_of(STIFFNESS_TEST_EVERY)
+            || self.stiffness.beyond > 0)
+            .then(|| self.stiffness_estimate(h));
         for (index, stage) in DENSE_STAGES.iter().enumerate() {
             self.evaluate_stage(core, system, h, index + 13, stage)?;
         }
@@ -435,6 +501,22 @@ impl Dop853 {
             }
         }
         Ok(())
+    }
+
+    /// `h |λ|` of the step of size `h` being finished: the last stage (at
+    /// `t + h`, its argument still in `stage_y`) against the step's end.
+    fn stiffness_estimate(&self, h: f64) -> f64 {
+        let n = self.n;
+        let (last_rate, end_rate) = (&self.k[11 * n..12 * n], &self.k[12 * n..13 * n]);
+        let squares =
+            |a: &[f64], b: &[f64]| -> f64 { a.iter().zip(b).map(|(a, b)| (a - b) * (a - b)).sum() };
+        let rates = squares(end_rate, last_rate);
+        let states = squares(&self.y_new, &self.stage_y);
+        if states > 0.0 {
+            h * (rates / states).sqrt()
+        } else {
+            0.0
+        }
     }
 
     /// Evaluates stage `index` of a step of size `h` from `core.y`.

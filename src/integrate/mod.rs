@@ -447,6 +447,17 @@ impl Stepper {
         self.core.stats
     }
 
+    /// DOP853: the time from which Hairer's stiffness test finds the
+    /// problem stiff (its steps held to the edge of the stability region,
+    /// not by accuracy: a stiff method would take far fewer). Radau5:
+    /// `None`.
+    pub fn stiff_from(&self) -> Option<f64> {
+        match &self.scheme {
+            Scheme::Radau5(_) => None,
+            Scheme::Dop853(dop) => dop.stiff_from(),
+        }
+    }
+
     /// The method.
     pub fn method(&self) -> Method {
         match self.scheme {

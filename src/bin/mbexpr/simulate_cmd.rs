@@ -65,6 +65,9 @@ pub struct Args {
     /// The largest step.
     #[arg(long, allow_hyphen_values = true)]
     hmax: Option<f64>,
+    /// The most integration steps, accepted and rejected; past them the run stops with an error.
+    #[arg(long, default_value_t = simulate::DEFAULT_MAX_STEPS)]
+    max_steps: usize,
     /// Row format (default: csv on a pipe, text on a terminal).
     #[arg(long, value_enum)]
     format: Option<RowFormat>,
@@ -245,6 +248,7 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         rtol: args.rtol,
         atol: args.atol.unwrap_or(args.rtol * 1e-3),
         h_max: args.hmax.unwrap_or(f64::INFINITY),
+        max_steps: args.max_steps,
     };
     let mut stderr = std::io::stderr();
     for (note, span) in &model.notes {
@@ -320,6 +324,13 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         summary.events.len(),
         summary.wall_time.as_secs_f64()
     );
+    if let Some(from) = summary.stiff_from {
+        let _ = writeln!(
+            stderr,
+            "warning: the run is stiff from t = {}: DOP853's steps are held there by stability, not accuracy; --method radau takes far fewer",
+            Shown(from)
+        );
+    }
     if let Some(path) = &args.plot {
         plot_states(path, &columns, &kept, &summary)
             .map_err(|message| Fatal::input(format!("error: --plot {path}: {message}\n")))?;
