@@ -342,6 +342,21 @@ SFORCE/3, I = 1, J = 1, FUNCTION = VARVAL(7)
     insta::assert_snapshot!(check(acf, FileKind::Acf));
 }
 
+/// What `eval --model` and the simulator refuse in the statements' data is
+/// an error of `check` too, at its statement.
+#[test]
+fn statement_data_that_makes_no_configuration() {
+    let adm = r"configuration
+PART/1, GROUND
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1, QG = 1, 2
+MARKER/3, PART = 2
+MARKER/4, PART = 7
+MARKER/5, PART = 1, QP = 1, 2
+SPLINE/1, X = 1, 2, Y = 1, 2
+";
+    insta::assert_snapshot!(check(adm, FileKind::Adm));
+}
+
 /// A long chain of VARIABLEs and a loop inside a larger group: each loop
 /// once, from its smallest id (issue 19.2: the search is linear).
 #[test]

@@ -445,10 +445,12 @@ fn scene_files_read_and_refuse_with_reasons() {
     .iter()
     .map(|text| match Scene::from_toml(text) {
         Ok(_) => format!("{text:?}\n  => accepted\n"),
-        Err(error) => format!(
-            "{text:?}\n  => {}\n",
-            error.to_string().replace('\n', "\n     ")
-        ),
+        Err(error) => {
+            let at = error.file_span().map_or(String::new(), |span| {
+                format!("{}: ", mbexpr::Location::of(text, span.start))
+            });
+            format!("{text:?}\n  => {at}{error}\n")
+        }
     })
     .collect();
     insta::assert_snapshot!(refusals);

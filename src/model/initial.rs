@@ -19,7 +19,7 @@ use crate::span::Span;
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum ConfigurationError {
     /// A value list that is not the numbers it should be.
-    #[error("{statement}: {keyword} needs {count} numbers")]
+    #[error("{statement}: {keyword} needs {count} number{}", if *count == 1 { "" } else { "s" })]
     Numbers {
         /// `PART/3`.
         statement: String,
@@ -189,13 +189,14 @@ pub fn initial_scene(
             );
             number(statement, "CM", 0.0)
         })();
-        match read {
-            Ok(cm) => {
-                parts.insert(id, (scene.bodies.len(), cm as u64));
-                scene.bodies.push(body);
-            }
-            Err(error) => errors.push(error),
-        }
+        // A part whose data has an error still exists for its markers (no
+        // second error at each of them).
+        let cm = read.unwrap_or_else(|error| {
+            errors.push(error);
+            0.0
+        });
+        parts.insert(id, (scene.bodies.len(), cm as u64));
+        scene.bodies.push(body);
     }
     for statement in dataset
         .statements

@@ -9,6 +9,7 @@ use std::collections::{HashMap, HashSet};
 use compact_str::CompactString;
 use thiserror::Error;
 
+use super::initial::ConfigurationError;
 use super::variables::Reads;
 use super::{Dataset, Embedded, FileKind, ReadError, Statement, Value, is_kind, vocabulary};
 use crate::ParseError;
@@ -135,6 +136,14 @@ pub enum ModelError {
         /// The reference that closes the loop.
         span: Span,
     },
+    /// Statement data that makes no configuration: a value list of the
+    /// wrong length, a PART that does not exist, a spline that cannot be
+    /// fitted (what `eval --model` and the simulator would refuse).
+    #[error("{error}")]
+    Configuration {
+        /// What the configuration's reader said.
+        error: ConfigurationError,
+    },
 }
 
 impl ModelError {
@@ -142,6 +151,7 @@ impl ModelError {
     pub fn span(&self) -> Span {
         match self {
             ModelError::Read { error } => error.span(),
+            ModelError::Configuration { error } => error.span(),
             ModelError::Expression { span, .. }
             | ModelError::UnknownMarker { span, .. }
             | ModelError::MissingStatement { span, .. }
@@ -319,12 +329,25 @@ pub fn check_model(text: &str, dataset: &Dataset) -> ModelCheck {
             found.checked = tree;
         }
     }
-    let mut problems = findings.problems;
-    problems.sort_by_key(|problem| problem.error.span().start);
-    ModelCheck {
+    let mut check = ModelCheck {
         expressions,
-        problems,
+        problems: findings.problems,
+    };
+    // The statements' data, read as `eval --model` and the simulator read
+    // it into the initial configuration.
+    if solver_file && let Err(errors) = super::initial_scene(dataset, &check) {
+        check
+            .problems
+            .extend(errors.into_iter().map(|error| Problem {
+                error: ModelError::Configuration { error },
+                statement: None,
+                expression: None,
+            }));
     }
+    check
+        .problems
+        .sort_by_key(|problem| problem.error.span().start);
+    check
 }
 
 /// The names a dataset expression may use bare.

@@ -8,21 +8,32 @@ use serde::Deserialize;
 
 use super::{Body, Marker, Scene, SceneError, SceneKind};
 use crate::catalog::SystemVariable;
+use crate::span::Span;
+
+use toml::Spanned;
+
+/// A scene file error at `span` (a byte range of the file).
+fn file_error(message: String, span: std::ops::Range<usize>) -> SceneError {
+    SceneError::File {
+        message,
+        span: Some(Span::from(span)),
+    }
+}
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
     #[serde(default)]
     time: f64,
-    mode: Option<toml::Spanned<f64>>,
+    mode: Option<Spanned<f64>>,
     #[serde(default)]
     variables: toml::Table,
     #[serde(default)]
     expressions: toml::Table,
     #[serde(default, rename = "body")]
-    bodies: Vec<BodyFile>,
+    bodies: Vec<Spanned<BodyFile>>,
     #[serde(default, rename = "marker")]
-    markers: Vec<MarkerFile>,
+    markers: Vec<Spanned<MarkerFile>>,
     /// What a simulation reads ([`crate::simulate::from_scene`]): allowed
     /// here, read there.
     #[serde(default, rename = "force")]
@@ -92,27 +103,35 @@ pub fn euler_313(psi: f64, theta: f64, phi: f64) -> UnitQuaternion<f64> {
 }
 
 impl OrientationFile {
-    fn read(&self, owner: &str) -> Result<UnitQuaternion<f64>, SceneError> {
+    /// The orientation of `owner`, whose table is at `span` in the file.
+    fn read(
+        &self,
+        owner: &str,
+        span: std::ops::Range<usize>,
+    ) -> Result<UnitQuaternion<f64>, SceneError> {
         let scale = match self.angles.as_deref() {
             None | Some("radians") => 1.0,
             Some("degrees") => PI / 180.0,
             Some(other) => {
-                return Err(SceneError::File(format!(
-                    "{owner}: angles = \"{other}\": write \"radians\" or \"degrees\""
-                )));
+                return Err(file_error(
+                    format!("{owner}: angles = \"{other}\": write \"radians\" or \"degrees\""),
+                    span,
+                ));
             }
         };
         match (self.quaternion, self.euler) {
-            (Some(_), Some(_)) => Err(SceneError::File(format!(
-                "{owner}: give either quaternion or euler, not both"
-            ))),
+            (Some(_), Some(_)) => Err(file_error(
+                format!("{owner}: give either quaternion or euler, not both"),
+                span,
+            )),
             (Some([w, x, y, z]), None) => {
                 let quaternion = Quaternion::new(w, x, y, z);
                 let length = quaternion.norm();
                 if length == 0.0 || !length.is_finite() {
-                    return Err(SceneError::File(format!(
-                        "{owner}: the quaternion must have a finite, nonzero length"
-                    )));
+                    return Err(file_error(
+                        format!("{owner}: the quaternion must have a finite, nonzero length"),
+                        span,
+                    ));
                 }
                 Ok(UnitQuaternion::from_quaternion(quaternion))
             }
@@ -124,15 +143,37 @@ impl OrientationFile {
     }
 }
 
-fn number_table(table: &toml::Table, what: &str) -> Result<Vec<(String, f64)>, SceneError> {
+/// The numbers of the table `what` of the file `text`.
+fn number_table(
+    text: &str,
+    table: &toml::Table,
+    what: &str,
+) -> Result<Vec<(String, f64)>, SceneError> {
     table
         .iter()
         .map(|(name, value)| match value {
             toml::Value::Float(number) => Ok((name.clone(), *number)),
             toml::Value::Integer(number) => Ok((name.clone(), *number as f64)),
-            _ => Err(SceneError::File(format!("{what}.{name} must be a number"))),
+            _ => Err(entry_error(
+                text,
+                [what, name],
+                format!("{what}.{name} must be a number"),
+            )),
         })
         .collect()
+}
+
+/// A scene file error at the value of `table.key` in `text` (the file as a
+/// whole when it cannot be found).
+fn entry_error(text: &str, [table, key]: [&str; 2], message: String) -> SceneError {
+    let span = toml::de::DeTable::parse(text).ok().and_then(|root| {
+        let table = root.get_ref().get(table)?;
+        let toml::de::DeValue::Table(entries) = table.get_ref() else {
+            return None;
+        };
+        entries.get(key).map(|value| Span::from(value.span()))
+    });
+    SceneError::File { message, span }
 }
 
 /// The first number of the file that is not finite (TOML writes `nan` and
@@ -160,10 +201,9 @@ fn refuse_non_finite(text: &str) -> Result<(), SceneError> {
                 let written = float.as_str();
                 let number: f64 = written.replace('_', "").parse().unwrap_or(f64::NAN);
                 if !number.is_finite() {
-                    return Err(at_line(
-                        text,
-                        value.span().start,
-                        &format!("{path} = {written}: every number of a scene must be finite"),
+                    return Err(file_error(
+                        format!("{path} = {written}: every number of a scene must be finite"),
+                        value.span(),
                     ));
                 }
             }
@@ -189,32 +229,30 @@ fn join(prefix: &str, key: &str) -> String {
     }
 }
 
-/// `message` as a scene error at the line of byte `offset` of `text`.
-fn at_line(text: &str, offset: usize, message: &str) -> SceneError {
-    let line = crate::span::Location::of(text, offset).line;
-    SceneError::File(format!("line {line}: {message}"))
-}
-
 impl Scene {
     /// Reads a scene from the text of a TOML file.
     pub fn from_toml(text: &str) -> Result<Scene, SceneError> {
-        let file: SceneFile =
-            toml::from_str(text).map_err(|error| SceneError::File(error.to_string()))?;
+        let file: SceneFile = toml::from_str(text).map_err(|error| SceneError::File {
+            message: error.message().trim_end().to_string(),
+            span: error.span().map(Span::from),
+        })?;
         refuse_non_finite(text)?;
         if let Some(mode) = &file.mode
             && let Some(message) = SystemVariable::mode_error(*mode.get_ref())
         {
-            return Err(at_line(text, mode.span().start, &message));
+            return Err(file_error(message, mode.span()));
         }
-        let variables = number_table(&file.variables, "variables")?;
+        let variables = number_table(text, &file.variables, "variables")?;
         let expressions = file
             .expressions
             .iter()
             .map(|(name, value)| match value {
-                toml::Value::String(text) => Ok((name.clone(), text.clone())),
-                _ => Err(SceneError::File(format!(
-                    "expressions.{name} must be a string holding an expression"
-                ))),
+                toml::Value::String(expression) => Ok((name.clone(), expression.clone())),
+                _ => Err(entry_error(
+                    text,
+                    ["expressions", name],
+                    format!("expressions.{name} must be a string holding an expression"),
+                )),
             })
             .collect::<Result<Vec<_>, _>>()?;
         let mut scene = Scene {
@@ -227,43 +265,49 @@ impl Scene {
             kind: SceneKind::Scene,
             ..Scene::default()
         };
-        for body in &file.bodies {
+        for spanned in &file.bodies {
+            let (body, span) = (spanned.get_ref(), spanned.span());
             if scene.find_body(&body.name).is_some() || body.name.eq_ignore_ascii_case("ground") {
-                return Err(SceneError::File(format!(
-                    "body {} is defined twice",
-                    body.name
-                )));
+                return Err(file_error(
+                    format!("body {} is defined twice", body.name),
+                    span,
+                ));
             }
             scene.bodies.push(Body {
                 name: body.name.clone(),
                 position: body.position.into(),
-                orientation: body.orientation.read(&format!("body {}", body.name))?,
+                orientation: body
+                    .orientation
+                    .read(&format!("body {}", body.name), span)?,
                 velocity: body.velocity.into(),
                 angular_velocity: body.angular_velocity.into(),
                 acceleration: body.acceleration.map(Into::into),
                 angular_acceleration: body.angular_acceleration.map(Into::into),
             });
         }
-        for marker in &file.markers {
+        for spanned in &file.markers {
+            let (marker, span) = (spanned.get_ref(), spanned.span());
             let owner = match (&marker.name, marker.id) {
                 (Some(name), _) => format!("marker {name}"),
                 (None, Some(id)) => format!("marker {id}"),
                 (None, None) => {
-                    return Err(SceneError::File(
+                    return Err(file_error(
                         "a marker needs a name or an id".to_string(),
+                        span,
                     ));
                 }
             };
             if marker.id == Some(0) {
-                return Err(SceneError::File(format!(
-                    "{owner}: id 0 is the ground frame"
-                )));
+                return Err(file_error(
+                    format!("{owner}: id 0 is the ground frame"),
+                    span,
+                ));
             }
             let body = match marker.body.as_deref() {
                 None => None,
                 Some(name) if name.eq_ignore_ascii_case("ground") => None,
                 Some(name) => Some(scene.find_body(name).ok_or_else(|| {
-                    SceneError::File(format!("{owner}: there is no body {name}"))
+                    file_error(format!("{owner}: there is no body {name}"), span.clone())
                 })?),
             };
             scene.markers.push(Marker {
@@ -271,7 +315,7 @@ impl Scene {
                 name: marker.name.clone(),
                 body,
                 position: marker.position.into(),
-                orientation: marker.orientation.read(&owner)?,
+                orientation: marker.orientation.read(&owner, span.clone())?,
             });
         }
         scene.index();

@@ -21,6 +21,7 @@ use thiserror::Error;
 use crate::catalog::{SystemVariable, closest, did_you_mean};
 use crate::check::{Checked, Reference};
 use crate::laws::spline::SplineData;
+use crate::span::Span;
 
 /// A rigid body and its state at the scene's time.
 #[derive(Clone, Debug, PartialEq)]
@@ -166,8 +167,23 @@ pub enum SceneError {
         suggestions: String,
     },
     /// A scene file that cannot be read or understood.
-    #[error("{0}")]
-    File(String),
+    #[error("{message}")]
+    File {
+        /// What is wrong, and what to write instead.
+        message: String,
+        /// Where in the file (`None`: the file as a whole).
+        span: Option<Span>,
+    },
+}
+
+impl SceneError {
+    /// The place in the scene file of an error in reading it.
+    pub fn file_span(&self) -> Option<Span> {
+        match self {
+            SceneError::File { span, .. } => *span,
+            _ => None,
+        }
+    }
 }
 
 /// Ground, bodies, markers, time, mode, variables and named expressions.

@@ -90,7 +90,7 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
     let scene = Scene::from_toml(text).map_err(|error| {
         vec![SimulateError::Model {
             message: error.to_string(),
-            span: Span::default(),
+            span: error.file_span().unwrap_or_default(),
         }]
     })?;
     let file: DynamicsFile = toml::from_str(text).map_err(file_error)?;

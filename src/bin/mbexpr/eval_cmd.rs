@@ -11,6 +11,7 @@ use serde_json::Value;
 
 use crate::points::{PointsFile, count};
 use crate::record::{Problem, Record};
+use crate::render::diagnostic;
 
 use crate::sweep::Sweep;
 use crate::{Fatal, Outcome};
@@ -157,7 +158,10 @@ fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
 pub fn read_scene(path: &str) -> Result<Scene, Fatal> {
     let text = std::fs::read_to_string(path)
         .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
-    Scene::from_toml(&text).map_err(|error| Fatal::usage(format!("error: {path}: {error}")))
+    Scene::from_toml(&text).map_err(|error| match error.file_span() {
+        Some(span) => Fatal::usage(diagnostic(path, &text, span, &error.to_string())),
+        None => Fatal::usage(format!("error: {path}: {error}")),
+    })
 }
 
 /// The result of one evaluation as a JSON object, its derivatives named.
