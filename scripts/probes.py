@@ -2,7 +2,8 @@
 """Hostile-input probes of the mbexpr binary (issue 17): random bytes, token
 soup and corpus mutations through `check -` and `parse`; deep nesting of
 parentheses, signs and powers; long argument lists; a 50 MB line; mangled
-scene files; garbage in REPL batch mode.
+scene files; mangled simulation models through `simulate`; garbage in REPL
+batch mode.
 
 Each run counts as a panic (exit 101 or "panicked" on standard error), a
 hang (killed after --timeout seconds), or a NaN output ("NaN", "nan" or "inf"
@@ -94,7 +95,9 @@ def run(tally, binary, args, stdin=b"", timeout=20.0):
     if code == 101 or crashed or (code is not None and (code < 0 or code >= 128)):
         tally.panics += 1
         tally.examples.append(("panic", args, stdin[:200], stderr[:300]))
-    if NAN.search(stdout):
+    # `check` and `parse` print no values, only messages (which may say
+    # that an operation "gives inf").
+    if args[0] not in ("check", "parse") and NAN.search(stdout):
         tally.nans += 1
         tally.examples.append(("nan", args, stdin[:200], stdout[:200]))
 
@@ -234,6 +237,36 @@ def main():
                 file.write("\n".join(lines))
             run(tally, binary, ["eval", "--scene", path])
             run(tally, binary, ["eval", "DX(ball, wall) + TIME", "--scene", path, "--wrt", "ball.x", "--order", "2"])
+
+    # The simulator on mangled models: numbers swapped for extreme ones
+    # (a gravity of 1e15, k = -1e308, IC = nan), lines cut and garbage in.
+    models = [os.path.join(ROOT, "examples", "simulate", name)
+              for name in sorted(os.listdir(os.path.join(ROOT, "examples", "simulate")))]
+    models += [os.path.join(ROOT, "examples", "scenes", name)
+               for name in ("ball_simulation.toml", "slider_simulation.toml")]
+    extremes = ["0", "-0", "1e308", "-1e308", "1e-308", "5e-324", "nan", "inf", "-1", "1e30",
+                "-1e-30", "1e15", "1E400", "3"]
+    number = re.compile(r"(?<![A-Za-z_/])-?\d+(\.\d*)?([eE][-+]?\d+)?")
+    tally = probe("mangled simulation models: `simulate`")
+    with tempfile.TemporaryDirectory() as folder:
+        for index in range(n(200)):
+            source = rng.choice(models)
+            with open(source, encoding="utf-8") as file:
+                text = file.read()
+            for _ in range(rng.randint(1, 3)):
+                found = list(number.finditer(text))
+                if found and rng.random() < 0.6:
+                    match = rng.choice(found)
+                    text = text[: match.start()] + rng.choice(extremes) + text[match.end():]
+                else:
+                    text = mutate(rng, text)
+            path = os.path.join(folder, f"model{index}{os.path.splitext(source)[1]}")
+            with open(path, "w", encoding="utf-8") as file:
+                file.write(text)
+            # Within the time limit: a step budget a tenth of the default.
+            run(tally, binary, ["simulate", path, "--end", rng.choice(["0.5", "1", "10"]),
+                                "--steps", "10", "--method", rng.choice(["radau", "dop853"]),
+                                "--max-steps", "1000000", "--format", "csv"])
 
     tally = probe("REPL batch garbage: `repl` < lines")
     commands = [":set x = ", ":wrt ", ":order ", ":scene ", ":help ", ":plot ", ":vars", ":q", ":"]
