@@ -1,7 +1,8 @@
 //! The cheap ones of the hostile-input probes (`scripts/probes.py` runs
 //! them all against the binary; `docs/reliability.md` has the counts): deep
 //! nesting of every kind, mutations of the real corpus, mangled scene
-//! files and garbage in REPL batch mode. None may panic, hang, or give NaN.
+//! files, mangled simulation datasets and garbage in REPL batch mode. None
+//! may panic, hang, or give NaN.
 
 use mbexpr::{Order, Scene};
 use proptest::prelude::*;
@@ -107,8 +108,14 @@ proptest! {
                 lines.push(String::new());
             }
         }
-        let Ok(scene) = Scene::from_toml(&lines.join("\n")) else {
-            return Ok(());
+        let text = lines.join("\n");
+        let scene = match Scene::from_toml(&text) {
+            Ok(scene) => scene,
+            Err(error) => {
+                // A reading error is at a place inside the file.
+                prop_assert!(error.file_span().is_none_or(|span| span.end <= text.len()), "{error:?}");
+                return Ok(());
+            }
         };
         for (_, text) in &scene.expressions {
             let Ok(tree) = mbexpr::parse(text) else { continue };
@@ -135,5 +142,56 @@ proptest! {
         prop_assert!(!stdout.split_whitespace().any(|word| matches!(word, "NaN" | "inf" | "-inf")), "{stdout}");
         // Every error names its input line.
         prop_assert!(stderr.lines().filter(|line| line.starts_with("line ")).count() <= lines.len());
+    }
+}
+
+/// The study's ball, whose numbers the simulation probe swaps.
+const DROPPED_BALL: &str = include_str!("../examples/simulate/a4_dropped_ball.adm");
+
+/// Numbers a careless or hostile dataset may hold.
+const EXTREMES: [&str; 12] = [
+    "0", "-1", "1e308", "-1e308", "1e-308", "5e-324", "1e15", "-1e-30", "1E400", "nan", "3", "1e30",
+];
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// A dataset with its numbers swapped for extreme ones is simulated
+    /// (every row finite) or refused with an error, within a step budget.
+    #[test]
+    fn mangled_simulation_datasets_run_or_stop_with_an_error(swaps in prop::collection::vec((any::<prop::sample::Index>(), 0usize..12), 1..4), dop853 in any::<bool>()) {
+        use mbexpr::simulate::{self, Settings, Simulation};
+        let mut text = DROPPED_BALL.to_string();
+        for (which, extreme) in &swaps {
+            let numbers: Vec<(usize, usize)> = text
+                .match_indices(|c: char| c.is_ascii_digit())
+                .map(|(at, _)| {
+                    let end = text[at..].find(|c: char| !(c.is_ascii_alphanumeric() || c == '.')).map_or(text.len(), |n| at + n);
+                    (at, end)
+                })
+                .collect();
+            let (start, end) = numbers[which.index(numbers.len())];
+            text.replace_range(start..end, EXTREMES[*extreme]);
+        }
+        let dataset = mbexpr::model::read(&text, mbexpr::model::FileKind::Adm);
+        let report = mbexpr::model::check_model(&text, &dataset);
+        if !report.problems.is_empty() {
+            return Ok(());
+        }
+        let Ok(model) = simulate::from_dataset(&dataset, &report) else { return Ok(()) };
+        let Ok(simulation) = Simulation::new(&model) else { return Ok(()) };
+        let settings = Settings {
+            end: 0.5,
+            steps: 5,
+            max_steps: 20_000,
+            method: if dop853 { mbexpr::integrate::Method::Dop853 } else { mbexpr::integrate::Method::Radau5 },
+            ..Settings::default()
+        };
+        let mut finite = true;
+        let _ = simulation.run(&settings, |time, row| {
+            finite &= time.is_finite() && row.iter().all(|value| value.is_finite());
+            true
+        });
+        prop_assert!(finite, "{text}");
     }
 }
