@@ -159,8 +159,23 @@ pub enum ParseError {
 }
 
 impl ParseError {
+    /// The error with its places moved `offset` bytes on (an error in a
+    /// piece of a longer text, placed in that text).
+    pub(crate) fn shifted(mut self, offset: usize) -> ParseError {
+        if let ParseError::Unclosed { opened, .. } = &mut self {
+            *opened = opened.shifted(offset);
+        }
+        let span = self.span_mut();
+        *span = span.shifted(offset);
+        self
+    }
+
     /// The place in the text the error speaks of.
     pub fn span(&self) -> Span {
+        *self.clone().span_mut()
+    }
+
+    fn span_mut(&mut self) -> &mut Span {
         match self {
             ParseError::Empty { span }
             | ParseError::ExpectedOperand { span, .. }
@@ -177,7 +192,7 @@ impl ParseError {
             | ParseError::IfWithoutColon { span }
             | ParseError::IfArity { span, .. }
             | ParseError::MisplacedColon { span, .. }
-            | ParseError::TooDeep { span, .. } => *span,
+            | ParseError::TooDeep { span, .. } => span,
         }
     }
 }

@@ -1,6 +1,7 @@
 //! Text to syntax tree, with pest and its Pratt parser. No pest type leaves
 //! this file.
 
+use std::ops::Range;
 use std::sync::LazyLock;
 
 use compact_str::CompactString;
@@ -11,7 +12,7 @@ use pest_derive::Parser;
 
 use super::ast::{BinaryOp, Call, Expr, ExprKind, If, Number, UnaryOp};
 use super::error::ParseError;
-use super::scan::{diagnose, precheck};
+use super::scan::{additive_cuts, diagnose, precheck};
 use crate::span::Span;
 
 #[derive(Parser)]
@@ -36,18 +37,105 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
 /// ```
 pub fn parse(text: &str) -> Result<Expr, ParseError> {
     precheck(text)?;
-    let pairs = ExpressionParser::parse(Rule::expression, text).map_err(|error| {
+    if text.len() <= PIECE_BYTES {
+        return parse_piece(text, 0..text.len());
+    }
+    // pest's queue takes about 80 bytes per byte of a flat sum: a long
+    // expression is parsed a piece at a time, cut at its loosest operators.
+    let cuts = additive_cuts(text, PIECE_BYTES);
+    let ends = cuts.iter().copied().chain([text.len()]);
+    let mut tree = parse_piece(text, 0..ends.clone().next().unwrap_or(text.len()))?;
+    for (cut, end) in cuts.iter().zip(ends.skip(1)) {
+        let op = if text.as_bytes()[*cut] == b'+' {
+            BinaryOp::Add
+        } else {
+            BinaryOp::Sub
+        };
+        tree = append_terms(tree, op, parse_piece(text, cut + 1..end)?);
+    }
+    Ok(tree)
+}
+
+/// Expressions longer than this are parsed in pieces of about this size.
+const PIECE_BYTES: usize = 1 << 16;
+
+/// The tree of `text[range]`, a whole expression, with its spans in `text`.
+fn parse_piece(text: &str, range: Range<usize>) -> Result<Expr, ParseError> {
+    let piece = &text[range.clone()];
+    let pairs = ExpressionParser::parse(Rule::expression, piece).map_err(|error| {
         let offset = match error.location {
             pest::error::InputLocation::Pos(offset) => offset,
             pest::error::InputLocation::Span((start, _)) => start,
         };
-        diagnose(text, offset)
+        diagnose(text, range.start + offset)
     })?;
     let expr = { pairs }
         .next()
         .and_then(|expression| expression.into_inner().next())
         .expect("the grammar's top rule holds one `expr`");
-    build_expr(expr.into_inner())
+    let mut tree = build_expr(expr.into_inner()).map_err(|error| error.shifted(range.start))?;
+    if range.start > 0 {
+        shift(&mut tree, range.start);
+    }
+    Ok(tree)
+}
+
+/// `tree op piece`, where `piece` (a sum's next terms) is chained onto
+/// `tree` term by term: the tree one parse of the whole text would give.
+fn append_terms(tree: Expr, op: BinaryOp, piece: Expr) -> Expr {
+    let additive = |op: BinaryOp| matches!(op, BinaryOp::Add | BinaryOp::Sub);
+    match piece.kind {
+        ExprKind::Chain(first, rest) if additive(rest[0].0) => {
+            let mut tree = chained(tree, op, *first);
+            for (op, term) in rest {
+                tree = chained(tree, op, term);
+            }
+            tree
+        }
+        kind => chained(
+            tree,
+            op,
+            Expr {
+                kind,
+                span: piece.span,
+            },
+        ),
+    }
+}
+
+/// Moves every span of `tree` `offset` bytes on.
+fn shift(tree: &mut Expr, offset: usize) {
+    tree.span = tree.span.shifted(offset);
+    match &mut tree.kind {
+        ExprKind::Number(_) | ExprKind::Name(_) => {}
+        ExprKind::Unary(_, operand) => shift(operand, offset),
+        ExprKind::Chain(first, rest) => {
+            shift(first, offset);
+            for (_, term) in rest {
+                shift(term, offset);
+            }
+        }
+        ExprKind::Power(base, exponent) => {
+            shift(base, offset);
+            shift(exponent, offset);
+        }
+        ExprKind::Call(call) => {
+            call.name_span = call.name_span.shifted(offset);
+            for arg in &mut call.args {
+                shift(arg, offset);
+            }
+        }
+        ExprKind::If(branches) => {
+            for branch in [
+                &mut branches.condition,
+                &mut branches.negative,
+                &mut branches.zero,
+                &mut branches.positive,
+            ] {
+                shift(branch, offset);
+            }
+        }
+    }
 }
 
 fn span_of(pair: &Pair<'_, Rule>) -> Span {
@@ -257,4 +345,61 @@ fn build_named(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
         kind: ExprKind::If(Box::new(branches)),
         span,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A long expression of `terms` terms from a fixed list, joined by the
+    /// four operators in turn, with signs, exponents and brackets where the
+    /// cutting must not cut.
+    fn long_expression(terms: usize) -> String {
+        const TERMS: [&str; 8] = [
+            "x",
+            "1E-3",
+            "-y",
+            "STEP(TIME, 0, -1, 1E+2, 2)",
+            "(a - b + c)",
+            "2.5D",
+            "x**-2",
+            "IF(x - 1: -1, 0, +1)",
+        ];
+        const OPERATORS: [&str; 6] = [" + ", "-", " * ", "+", "/", " - "];
+        let mut text = String::new();
+        for index in 0..terms {
+            if index > 0 {
+                text.push_str(OPERATORS[index % OPERATORS.len()]);
+            }
+            text.push_str(TERMS[(index * 7) % TERMS.len()]);
+        }
+        text
+    }
+
+    #[test]
+    fn a_long_expression_parsed_in_pieces_is_the_tree_of_one_parse() {
+        for terms in [40_000, 60_001] {
+            let text = long_expression(terms);
+            assert!(text.len() > 4 * PIECE_BYTES);
+            assert!(additive_cuts(&text, PIECE_BYTES).len() >= 4);
+            let whole = parse_piece(&text, 0..text.len()).unwrap();
+            assert!(parse(&text).unwrap() == whole, "{terms} terms");
+        }
+    }
+
+    #[test]
+    fn an_error_in_a_later_piece_is_placed_in_the_whole_text() {
+        let mut text = long_expression(20_000);
+        text.push_str(" + 1E999 - x");
+        let error = parse(&text).unwrap_err();
+        let whole = parse_piece(&text, 0..text.len()).unwrap_err();
+        assert_eq!(error, whole);
+        assert_eq!(&text[error.span().range()], "1E999");
+        let mut text = long_expression(20_000);
+        text.push_str(" + * x");
+        assert_eq!(
+            parse(&text).unwrap_err(),
+            parse_piece(&text, 0..text.len()).unwrap_err()
+        );
+    }
 }

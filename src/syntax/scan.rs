@@ -142,6 +142,43 @@ fn ends_operand(kind: Option<Kind>) -> bool {
     matches!(kind, Some(Kind::Number | Kind::Name | Kind::Close))
 }
 
+/// The binary `+` and `-` outside any parenthesis of `text` (each after
+/// an operand, and before a number or a name) at which a long expression
+/// is cut into pieces of at least `piece` bytes: the loosest operators, so
+/// the pieces' terms chained in order are the whole expression. A piece
+/// never starts with a bracket, whose sum the parser would run on into
+/// the terms after it. Their offsets.
+pub(super) fn additive_cuts(text: &str, piece: usize) -> Vec<usize> {
+    let mut cuts = Vec::new();
+    let (mut depth, mut previous, mut piece_start) = (0usize, None, 0);
+    // A cut that waits to see the token after its operator.
+    let mut pending = None;
+    for token in Tokens::new(text) {
+        if let Some(cut) = pending.take()
+            && matches!(token.kind, Kind::Number | Kind::Name)
+        {
+            cuts.push(cut);
+            piece_start = cut;
+        }
+        match token.kind {
+            Kind::Open => depth += 1,
+            Kind::Close => depth = depth.saturating_sub(1),
+            Kind::Operator
+                if depth == 0
+                    && token.span.len() == 1
+                    && matches!(text.as_bytes()[token.span.start], b'+' | b'-')
+                    && ends_operand(previous)
+                    && token.span.start - piece_start >= piece =>
+            {
+                pending = Some(token.span.start);
+            }
+            _ => {}
+        }
+        previous = Some(token.kind);
+    }
+    cuts
+}
+
 /// `line` without its trailing comment: a `!` and all after it, as in model
 /// files (`STEP(TIME, 0, 0, 1, 1) ! ramp`). A `!` directly before `=` is
 /// not a comment but the comparison `!=`, which the parser refuses with its
