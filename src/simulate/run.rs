@@ -309,10 +309,9 @@ impl Simulation<'_> {
                 .max(1),
             ..Options::default()
         };
-        let spent = Stats::default();
         let mut stepper = Stepper::new(
             settings.method,
-            options(limit, spent),
+            options(limit, Stats::default()),
             0.0,
             &y0,
             &mut system,
