@@ -101,7 +101,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 14] = [
+    let cases: [(&str, &str, Settings); 15] = [
         (
             "a joint and a motion need a constraint solver",
             "joint
@@ -167,6 +167,11 @@ DIFF/1, IC = 0, IMPLICIT, FUNCTION = DIF1(1) - 1
             settings(0.0, 10, 1e-6),
         ),
         ("no output step", BALL, settings(1.0, 0, 1e-6)),
+        (
+            "a relative tolerance below rounding",
+            BALL,
+            settings(1.0, 10, 1e-300),
+        ),
         (
             "a domain error the run cannot step around",
             "sqrt: SQRT(1 - TIME) has no value after t = 1

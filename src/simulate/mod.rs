@@ -57,7 +57,7 @@ mod switch;
 pub use dataset::{from_dataset, run_settings};
 pub use error::{Place, SimulateError};
 pub use model::{Diff, Expression, Force, MassProperties, Model, Output};
-pub use run::{DEFAULT_MAX_STEPS, Equations, Event, Settings, Summary};
+pub use run::{DEFAULT_MAX_STEPS, Equations, Event, SMALLEST_RTOL, Settings, Summary};
 pub use scene_file::from_scene;
 
 use crate::compile::{Program, compile_outputs};

@@ -59,6 +59,10 @@ impl Default for Settings {
 /// simulation study takes with it at rtol 1e-12.
 pub const DEFAULT_MAX_STEPS: usize = 10_000_000;
 
+/// The least [`Settings::rtol`]: ten rounding units of a double, as in
+/// Hairer's codes.
+pub const SMALLEST_RTOL: f64 = 10.0 * f64::EPSILON;
+
 impl Settings {
     fn check(&self) -> Result<(), SimulateError> {
         let problem = if !(self.end > 0.0 && self.end.is_finite()) {
@@ -68,9 +72,10 @@ impl Settings {
             ))
         } else if self.steps == 0 {
             Some("the number of output steps must be at least 1".to_string())
-        } else if !(self.rtol > 0.0 && self.rtol < 1.0) {
+        } else if !(self.rtol >= SMALLEST_RTOL && self.rtol < 1.0) {
             Some(format!(
-                "the relative tolerance must be between 0 and 1, not {}",
+                "the relative tolerance must be at least {} (ten rounding units: below it a step's error cannot be told from rounding) and less than 1, not {}",
+                Shown(SMALLEST_RTOL),
                 Shown(self.rtol)
             ))
         } else if !(self.atol > 0.0 && self.atol.is_finite()) {
