@@ -34,8 +34,9 @@ pub enum ExprKind {
     Chain(Box<Expr>, Vec<(BinaryOp, Expr)>),
     /// `base ** exponent`; right-associative, so `a**b**c` nests.
     Power(Box<Expr>, Box<Expr>),
-    /// A function call `NAME(arg, ...)` (never `IF`).
-    Call(Call),
+    /// A function call `NAME(arg, ...)` (never `IF`), boxed so that a
+    /// node is no larger than a number's.
+    Call(Box<Call>),
     /// The arithmetic `IF(condition: negative, zero, positive)`.
     If(Box<If>),
 }

@@ -303,7 +303,7 @@ fn build_named(pair: Pair<'_, Rule>) -> Result<Expr, ParseError> {
             args,
         };
         return Ok(Expr {
-            kind: ExprKind::Call(call),
+            kind: ExprKind::Call(Box::new(call)),
             span,
         });
     }
