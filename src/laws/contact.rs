@@ -533,6 +533,14 @@ fn contact_switching<P: Parameter<f64>>(
     }
 }
 
+/// The part of a simulator's absolute tolerance that the displacement no
+/// polynomial follows may take at each touch and release of a softening
+/// stop. On the softening ball of the simulation study (92 touches and
+/// releases) DOP853 needs half the right-hand sides of steps graded all
+/// the way down, at the same error; with the whole tolerance it needs a
+/// quarter fewer again but stalls near 2e-9 (BENCHMARKS.md).
+const RESOLUTION_MARGIN: f64 = 1e-3;
+
 /// The largest step a simulator should take with a law held on `held` at
 /// `x`, `v`: for a softening stop (`e < 1`, whose slope is unbounded at
 /// first touch) half the time the penetration takes to double or vanish
@@ -543,14 +551,6 @@ fn contact_switching<P: Parameter<f64>>(
 /// adds near touch, which goes as `|t - t_touch|^(e + 2)`), stays below
 /// [`RESOLUTION_MARGIN`] times `tolerance`, the absolute error the caller
 /// accepts in `x`.
-/// The part of a simulator's absolute tolerance that the displacement no
-/// polynomial follows may take at each touch and release of a softening
-/// stop. On the softening ball of the simulation study (92 touches and
-/// releases) DOP853 needs half the right-hand sides of steps graded all
-/// the way down, at the same error; with the whole tolerance it needs a
-/// quarter fewer again but stalls near 2e-9 (BENCHMARKS.md).
-const RESOLUTION_MARGIN: f64 = 1e-3;
-
 fn contact_step_limit<P: Parameter<f64>>(
     x: f64,
     v: f64,
@@ -765,8 +765,8 @@ pub fn held<T: Number>(
 /// `BISTOP` held on `held`: for a softening stop (`e < 1`, whose slope is
 /// unbounded at first touch) half the time the penetration takes to double
 /// or vanish at its current rate, but no less than the step over which the
-/// displacement no polynomial follows stays below `tolerance`; unbounded
-/// otherwise.
+/// displacement no polynomial follows stays below a thousandth of
+/// `tolerance`; unbounded otherwise.
 pub fn step_limit(
     x: f64,
     v: f64,
