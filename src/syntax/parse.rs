@@ -43,9 +43,10 @@ pub fn parse(text: &str) -> Result<Expr, ParseError> {
     // pest's queue takes about 80 bytes per byte of a flat sum: a long
     // expression is parsed a piece at a time, cut at its loosest operators.
     let cuts = additive_cuts(text, PIECE_BYTES);
-    let ends = cuts.iter().copied().chain([text.len()]);
-    let mut tree = parse_piece(text, 0..ends.clone().next().unwrap_or(text.len()))?;
-    for (cut, end) in cuts.iter().zip(ends.skip(1)) {
+    let first_end = cuts.first().copied().unwrap_or(text.len());
+    let mut tree = parse_piece(text, 0..first_end)?;
+    let ends = cuts.iter().skip(1).copied().chain([text.len()]);
+    for (cut, end) in cuts.iter().zip(ends) {
         let op = if text.as_bytes()[*cut] == b'+' {
             BinaryOp::Add
         } else {
@@ -83,7 +84,6 @@ fn parse_piece(text: &str, range: Range<usize>) -> Result<Expr, ParseError> {
 /// `tree op piece`, where `piece` (a sum's next terms) is chained onto
 /// `tree` term by term: the tree one parse of the whole text would give.
 fn append_terms(tree: Expr, op: BinaryOp, piece: Expr) -> Expr {
-    let additive = |op: BinaryOp| matches!(op, BinaryOp::Add | BinaryOp::Sub);
     match piece.kind {
         ExprKind::Chain(first, rest) if additive(rest[0].0) => {
             let mut tree = chained(tree, op, *first);
@@ -171,12 +171,16 @@ fn build_expr(mut pairs: Pairs<'_, Rule>) -> Result<Expr, ParseError> {
         .parse(pairs)
 }
 
+/// Whether `op` is of the loosest level, `+ -`.
+fn additive(op: BinaryOp) -> bool {
+    matches!(op, BinaryOp::Add | BinaryOp::Sub)
+}
+
 /// `lhs op rhs`, added to the end of `lhs` when it is a chain of the same
 /// precedence level (the Pratt parser folds from the left, so a flat run
 /// arrives one operator at a time).
 fn chained(lhs: Expr, op: BinaryOp, rhs: Expr) -> Expr {
     let span = lhs.span.to(rhs.span);
-    let additive = |op: BinaryOp| matches!(op, BinaryOp::Add | BinaryOp::Sub);
     match lhs.kind {
         ExprKind::Chain(first, mut rest) if additive(rest[0].0) == additive(op) => {
             rest.push((op, rhs));
