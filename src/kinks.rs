@@ -31,7 +31,7 @@ pub fn breakpoints(program: &Program, inputs: &[f64], along: usize, samples: &[f
     let mut at = |x: f64| -> Vec<Option<Code>> {
         point[along] = x;
         let branches = (&mut natural[..], &mut switching[..]);
-        let _ = evaluator.observe(&point, None, branches, &mut outputs, 0.0);
+        let _ = evaluator.observe(&point, None, branches, &mut outputs, None);
         natural.clone()
     };
     let mut found = Vec::new();

@@ -109,8 +109,9 @@ struct Observe<'o> {
     switching: &'o mut [f64],
     /// The least step limit of the sites that ran.
     step_limit: f64,
-    /// The absolute error in a displacement that the step limits allow.
-    tolerance: f64,
+    /// The absolute error in a displacement that the step limits allow;
+    /// `None`: no step limit is worked out.
+    tolerance: Option<f64>,
     /// A call's argument values (kept to spare an allocation per call).
     arguments: Vec<f64>,
 }
@@ -143,10 +144,10 @@ impl Branching<f64> for Observe<'_> {
                 let (x, v) = (slot(*x), slot(*v));
                 let seen = stops.switching(x, v, held.map(ContactBranch::from_code));
                 out.copy_from_slice(&seen.values);
-                let on = held.map_or(seen.natural, ContactBranch::from_code);
-                self.step_limit = self
-                    .step_limit
-                    .min(stops.step_limit(x, v, on, self.tolerance));
+                if let Some(tolerance) = self.tolerance {
+                    let on = held.map_or(seen.natural, ContactBranch::from_code);
+                    self.step_limit = self.step_limit.min(stops.step_limit(x, v, on, tolerance));
+                }
                 self.natural[site_index as usize] = Some(seen.natural.code());
                 // The force on the held branch comes with the switching values.
                 return Some(Ok(seen.force));
@@ -156,10 +157,11 @@ impl Branching<f64> for Observe<'_> {
                 values.clear();
                 values.extend(args.iter().map(|&arg| slot(arg)));
                 let natural = branch::switching(*function, values, held, out);
-                let on = held.unwrap_or(natural);
-                self.step_limit =
-                    self.step_limit
-                        .min(branch::step_limit(*function, values, on, self.tolerance));
+                if let Some(tolerance) = self.tolerance {
+                    let on = held.unwrap_or(natural);
+                    let limit = branch::step_limit(*function, values, on, tolerance);
+                    self.step_limit = self.step_limit.min(limit);
+                }
                 natural
             }
             _ => return None,
@@ -245,14 +247,15 @@ impl Evaluator<'_, f64> {
     /// 1, which is no switch, for sites that did not run). Returns the
     /// largest step the sites allow a simulator that accepts an absolute
     /// error `tolerance` in a displacement (see [`branch::step_limit`];
-    /// infinity for none).
+    /// infinity for none, and when `tolerance` is `None`: then no limit is
+    /// worked out).
     pub fn observe(
         &mut self,
         inputs: &[f64],
         held: Option<&[Option<Code>]>,
         (natural, switching): (&mut [Option<Code>], &mut [f64]),
         outputs: &mut [f64],
-        tolerance: f64,
+        tolerance: Option<f64>,
     ) -> Result<f64, OutputError> {
         natural.fill(None);
         switching.fill(1.0);

@@ -287,14 +287,15 @@ impl<'m> Mechanics<'m> {
 
     /// The natural branch of every site and their switching values at
     /// `(t, y)`, with the sites held on `held`, and the largest step they
-    /// allow for an absolute error `tolerance` (see [`Evaluator::observe`]).
+    /// allow for an absolute error `tolerance` (infinity when `None`; see
+    /// [`Evaluator::observe`]).
     pub(crate) fn observe(
         &mut self,
         t: f64,
         y: &[f64],
         held: Option<&[Option<Code>]>,
         branches: (&mut [Option<Code>], &mut [f64]),
-        tolerance: f64,
+        tolerance: Option<f64>,
     ) -> Result<f64, OutputError> {
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);

@@ -299,7 +299,7 @@ impl Simulation<'_> {
                 &y0,
                 None,
                 (&mut natural, &mut switching),
-                settings.atol,
+                Some(settings.atol),
             )
             .map_err(|error| fail(0.0, error))?;
         system.held.clone_from(&natural);
@@ -402,13 +402,7 @@ impl Simulation<'_> {
             dense.copy_from_slice(&state);
             system
                 .mechanics
-                .observe(
-                    right,
-                    &dense,
-                    None,
-                    (&mut natural, &mut switching),
-                    settings.atol,
-                )
+                .observe(right, &dense, None, (&mut natural, &mut switching), None)
                 .map_err(|error| fail(right, error))?;
             for (site, (held, now)) in program.sites().iter().zip(system.held.iter().zip(&natural))
             {
@@ -422,7 +416,7 @@ impl Simulation<'_> {
             }
             system.held.clone_from(&natural);
             let limit = system
-                .look(right, &dense, &mut natural, &mut start_values)
+                .look_and_limit(right, &dense, &mut natural, &mut start_values)
                 .map_err(|error| fail(right, error))?;
             recent.push_back(right);
             if recent.len() > CHATTER_COUNT {

@@ -58,16 +58,30 @@ impl System for Held<'_> {
 
 impl Held<'_> {
     /// The switching values at `(t, y)` for the held branches, and the
-    /// natural branches into `natural`; the largest step the sites allow.
+    /// natural branches into `natural`.
     pub(super) fn look(
         &mut self,
         t: f64,
         y: &[f64],
         natural: &mut [Option<Code>],
         switching: &mut [f64],
-    ) -> Result<f64, OutputError> {
+    ) -> Result<(), OutputError> {
         self.mechanics
-            .observe(t, y, Some(&self.held), (natural, switching), self.tolerance)
+            .observe(t, y, Some(&self.held), (natural, switching), None)
+            .map(|_| ())
+    }
+
+    /// [`Held::look`], and the largest step the sites allow from `t`.
+    pub(super) fn look_and_limit(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        natural: &mut [Option<Code>],
+        switching: &mut [f64],
+    ) -> Result<f64, OutputError> {
+        let tolerance = Some(self.tolerance);
+        self.mechanics
+            .observe(t, y, Some(&self.held), (natural, switching), tolerance)
     }
 }
 
@@ -103,15 +117,20 @@ pub(super) fn find_switch(
     );
     let mut state = vec![0.0; stepper.y().len()];
     let mut limit = f64::INFINITY;
+    // The step limit is worked out only at the step's end, the one place
+    // it is read.
     let mut look = |time: f64, switching: &mut [f64]| -> Result<bool, (f64, OutputError)> {
         if time == t1 {
             state.copy_from_slice(stepper.y());
+            limit = system
+                .look_and_limit(time, &state, natural, switching)
+                .map_err(|error| (time, error))?;
         } else {
             stepper.dense(time, &mut state);
+            system
+                .look(time, &state, natural, switching)
+                .map_err(|error| (time, error))?;
         }
-        limit = system
-            .look(time, &state, natural, switching)
-            .map_err(|error| (time, error))?;
         Ok(crossed(&armed.borrow(), switching).next().is_some())
     };
     // The first look at `times` with a negative switching value, and the
