@@ -2,8 +2,9 @@
 
 use thiserror::Error;
 
+use crate::Shown;
 use crate::catalog::RuleViolation;
-use crate::eval::EvalError;
+use crate::laws::LawError;
 use crate::span::Span;
 
 /// A name, arity or argument problem found before any evaluation.
@@ -85,10 +86,12 @@ pub enum CheckError {
     },
     /// A part made of constants that fails whenever it is evaluated: a
     /// domain error (`LOG(0)`, `1/0`) or an overflow, as evaluation says it.
-    #[error("{error}")]
+    #[error("{failure}")]
     ConstantFails {
         /// What evaluation would report.
-        error: EvalError,
+        failure: ConstantFailure,
+        /// The failing operation.
+        span: Span,
     },
     /// Constant arguments that break a rule of the function (SPEC 3.3).
     #[error("{violation}")]
@@ -111,8 +114,25 @@ impl CheckError {
             | CheckError::MarkerExpected { span, .. }
             | CheckError::ObjectExpected { span, .. }
             | CheckError::FlagExpected { span, .. }
-            | CheckError::RuleBroken { span, .. } => *span,
-            CheckError::ConstantFails { error } => error.span(),
+            | CheckError::RuleBroken { span, .. }
+            | CheckError::ConstantFails { span, .. } => *span,
         }
     }
+}
+
+/// Why an operation on constants fails, in the words evaluation uses for
+/// the same failure at run time.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ConstantFailure {
+    /// A function or operator outside its domain, or a broken argument rule.
+    #[error("{0}")]
+    Law(LawError),
+    /// The value is not a finite number (an overflow).
+    #[error("{operation} gives {}: the value is beyond the range of a double", Shown(*value))]
+    NotFinite {
+        /// The function or operator.
+        operation: String,
+        /// The value computed.
+        value: f64,
+    },
 }

@@ -5,16 +5,15 @@
 mod error;
 mod tree;
 
-pub use error::CheckError;
+pub use error::{CheckError, ConstantFailure};
 pub use tree::{Argument, Node, NodeKind, Reference};
 
 use crate::catalog::{
     self, ArgKind, Constant, Family, Function, SystemVariable, check_rules_with, closest,
     did_you_mean,
 };
-use crate::compile::{Op, Slot, Tables};
 use crate::errors::Errors;
-use crate::eval::{EvalError, execute};
+use crate::ops::{Op, Slot, Tables, execute};
 use crate::span::Span;
 use crate::syntax::ast::{BinaryOp, Call, Expr, ExprKind, If, UnaryOp};
 
@@ -239,17 +238,17 @@ impl Checker {
     /// computed as the compiler folds it: a domain error or an overflow is
     /// reported here, where a run would fail every time.
     fn fold(&mut self, op: Op, values: &[f64], span: Span) -> Option<f64> {
-        let error = match execute(&op, values, &Tables::default()) {
+        let failure = match execute(&op, values, &Tables::default()) {
             Ok(value) if value.is_finite() => return Some(value),
-            Ok(value) => EvalError::NotFinite {
+            Ok(value) => ConstantFailure::NotFinite {
                 operation: op.name(),
                 value,
-                span,
             },
-            Err(error) => EvalError::Law { error, span },
+            Err(error) => ConstantFailure::Law(error),
         };
         if self.unsure == 0 {
-            self.errors.push(CheckError::ConstantFails { error });
+            self.errors
+                .push(CheckError::ConstantFails { failure, span });
         }
         None
     }

@@ -7,18 +7,20 @@ mod program;
 
 use std::collections::{HashMap, HashSet};
 
+pub(crate) use crate::ops::Tables;
+pub use crate::ops::{FrameArg, Op, Slot};
 pub use error::CompileError;
-pub use program::{FrameArg, InputSlot, Instruction, Op, Program, Site, SiteKind, Slot};
-pub(crate) use program::{InputNames, NO_SITE, Tables};
+pub(crate) use program::{InputNames, NO_SITE};
+pub use program::{InputSlot, Instruction, Program, Site, SiteKind};
 
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
 use crate::errors::Errors;
-use crate::eval::execute;
+use crate::kinematics::FrameData;
 use crate::laws::contact::Stops;
 use crate::laws::power::as_integer;
 use crate::laws::spline::{Method, Spline};
-use crate::scene::kinematics::FrameData;
+use crate::ops::execute;
 use crate::scene::{Scene, SceneKind, StateComponent, Target};
 use crate::span::Span;
 use crate::syntax::ast::BinaryOp;

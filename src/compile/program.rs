@@ -5,88 +5,8 @@ use std::collections::HashMap;
 use std::fmt;
 
 use crate::catalog::Function;
-use crate::laws::contact::Stops;
-use crate::laws::spline::Spline;
-use crate::scene::kinematics::FrameData;
+use crate::ops::{Op, Slot, Tables};
 use crate::span::Span;
-
-/// The index of a slot: an input, a constant or an instruction's result.
-pub type Slot = u32;
-
-/// A computation of one value from slots.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
-pub enum Op {
-    /// `-a`
-    Neg(Slot),
-    /// `a + b`
-    Add(Slot, Slot),
-    /// `a - b`
-    Sub(Slot, Slot),
-    /// `a * b`
-    Mul(Slot, Slot),
-    /// `a / b`
-    Div(Slot, Slot),
-    /// `a ** n` for a constant whole `n`.
-    PowInt(Slot, i32),
-    /// `a ** e` for a constant real `e`, kept as its bits so ops can be hashed.
-    PowReal(Slot, u64),
-    /// `a ** b` for a varying `b`.
-    Pow(Slot, Slot),
-    /// A kinematic measure between marker frames (SPEC 4), in a scene.
-    Measure {
-        /// The measure.
-        function: Function,
-        /// One frame per marker of the signature, omitted ones as ground.
-        frames: Box<[FrameArg]>,
-    },
-    /// `AKISPL` or `CUBSPL`: the derivative of order `order` in `x` of a
-    /// fitted spline of the program's table at `(x, z)`.
-    Spline {
-        /// The function, for messages.
-        function: Function,
-        /// Index into the program's spline table.
-        table: u32,
-        /// The slot of `x`.
-        x: Slot,
-        /// The slot of `z`.
-        z: Slot,
-        /// 0, 1 or 2.
-        order: u8,
-    },
-    /// `IMPACT` or `BISTOP` with constant stops and parameters, which
-    /// passed the law's rules when the program was compiled.
-    Contact {
-        /// The function, for messages.
-        function: Function,
-        /// Index into the program's table of stops.
-        table: u32,
-        /// The slot of `x`.
-        x: Slot,
-        /// The slot of `x'`.
-        v: Slot,
-    },
-    /// A function of the intrinsic, step, contact or series family.
-    Call {
-        /// The function.
-        function: Function,
-        /// Its argument slots.
-        args: Box<[Slot]>,
-        /// Whether the function's argument rules must be checked at run time
-        /// (some of the arguments they speak of are not constants).
-        check_rules: bool,
-    },
-}
-
-/// A marker frame as a measure's argument: the constants of the marker (an
-/// index into the program's frame table) and, for a marker on a body, the
-/// slots of the body's twelve state inputs (`x y z rx ry rz vx vy vz wx wy wz`).
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
-pub struct FrameArg {
-    /// Index into the program's frame table.
-    pub data: u32,
-    /// The body's state slots; `None` for a marker on ground.
-    pub state: Option<[Slot; 12]>,
-}
 
 /// An input the program uses, placed in its slot before the first instruction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -130,19 +50,6 @@ impl std::ops::Deref for InputNames {
     fn deref(&self) -> &[String] {
         &self.names
     }
-}
-
-/// The data instructions refer to by index: the constants of the marker
-/// frames the measures use, the splines fitted for `AKISPL`/`CUBSPL`, and
-/// the constant stops of contact laws.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub(crate) struct Tables {
-    /// Marker frames, for [`Op::Measure`].
-    pub(crate) frames: Vec<FrameData>,
-    /// Fitted splines, for [`Op::Spline`].
-    pub(crate) splines: Vec<Spline>,
-    /// Stops and parameters, for [`Op::Contact`].
-    pub(crate) contacts: Vec<Stops>,
 }
 
 /// One step of a program. The four operations that cannot fail are
@@ -453,67 +360,5 @@ impl fmt::Display for Program {
             "results"
         };
         write!(f, "{label} {}", results.join(", "))
-    }
-}
-
-impl fmt::Display for Op {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Op::Neg(a) => write!(f, "-s{a}"),
-            Op::Add(a, b) => write!(f, "s{a} + s{b}"),
-            Op::Sub(a, b) => write!(f, "s{a} - s{b}"),
-            Op::Mul(a, b) => write!(f, "s{a} * s{b}"),
-            Op::Div(a, b) => write!(f, "s{a} / s{b}"),
-            Op::PowInt(a, n) => write!(f, "s{a} ** {n}"),
-            Op::PowReal(a, bits) => write!(f, "s{a} ** {}", f64::from_bits(*bits)),
-            Op::Pow(a, b) => write!(f, "s{a} ** s{b}"),
-            Op::Call { function, args, .. } => {
-                let args: Vec<String> = args.iter().map(|slot| format!("s{slot}")).collect();
-                write!(f, "{function}({})", args.join(", "))
-            }
-            Op::Spline {
-                function,
-                table,
-                x,
-                z,
-                order,
-            } => write!(f, "{function}(s{x}, s{z}, spline{table}, {order})"),
-            Op::Contact {
-                function,
-                table,
-                x,
-                v,
-            } => write!(f, "{function}(s{x}, s{v}, stops{table})"),
-            Op::Measure { function, frames } => {
-                let frames: Vec<String> = frames
-                    .iter()
-                    .map(|frame| match frame.state {
-                        Some(state) => {
-                            format!("frame{}[s{}..s{}]", frame.data, state[0], state[11])
-                        }
-                        None => format!("frame{}", frame.data),
-                    })
-                    .collect();
-                write!(f, "{function}({})", frames.join(", "))
-            }
-        }
-    }
-}
-
-impl Op {
-    /// The operation's name in messages: `STEP`, `` `*` ``.
-    pub fn name(&self) -> String {
-        match self {
-            Op::Neg(_) => "`-`".to_string(),
-            Op::Add(..) => "`+`".to_string(),
-            Op::Sub(..) => "`-`".to_string(),
-            Op::Mul(..) => "`*`".to_string(),
-            Op::Div(..) => "`/`".to_string(),
-            Op::PowInt(..) | Op::PowReal(..) | Op::Pow(..) => "`**`".to_string(),
-            Op::Call { function, .. }
-            | Op::Measure { function, .. }
-            | Op::Spline { function, .. }
-            | Op::Contact { function, .. } => function.name().to_string(),
-        }
     }
 }

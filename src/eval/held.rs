@@ -4,12 +4,13 @@
 //! its boundary), and after the step its switching values tell whether and
 //! where it must switch (see [`crate::laws::branch`]).
 
-use super::{EvalError, Evaluator, with_arguments};
-use crate::compile::{NO_SITE, Op, Program, Tables};
+use super::{EvalError, Evaluator};
+use crate::compile::{NO_SITE, Program};
 use crate::laws::LawError;
 use crate::laws::branch::{self, Code};
 use crate::laws::contact::ContactBranch;
 use crate::number::Number;
+use crate::ops::{Op, Tables, execute, with_arguments};
 
 /// How the piecewise instructions of a run choose their branch.
 pub(super) trait Branching<T> {
@@ -97,7 +98,7 @@ fn compute_held<T: Number>(
         } => with_arguments(*function, args, *check_rules, slots, |values| {
             branch::held(*function, values, code)
         })?,
-        _ => super::execute(op, slots, tables),
+        _ => execute(op, slots, tables),
     }
 }
 

@@ -16,11 +16,9 @@ use held::{Branching, Natural};
 use nalgebra::{DMatrix, DVector};
 use num_dual::{Dual2DVec64, Dual2SVec64, DualDVec64, DualSVec64};
 
-use crate::catalog::check_rules_with;
-use crate::compile::{Instruction, Op, Program, Slot, Tables};
-use crate::laws::{self, LawError, power};
+use crate::compile::{Instruction, Program, Slot};
 use crate::number::{Directional, Number};
-use crate::scene::kinematics::{self, Frame};
+use crate::ops::{Op, Tables, execute};
 
 /// How many orders of derivatives to compute.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -55,84 +53,6 @@ pub struct Evaluation {
     pub gradient: Option<DVector<f64>>,
     /// Second derivatives, for [`Order::Hessian`].
     pub hessian: Option<DMatrix<f64>>,
-}
-
-/// Computes `op` from the slots. The compiler folds constants with it, the
-/// evaluator runs every [`Instruction::Compute`] through it.
-#[inline]
-pub(crate) fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Result<T, LawError> {
-    let slot = |index: Slot| &slots[index as usize];
-    Ok(match op {
-        Op::Neg(a) => -slot(*a).clone(),
-        Op::Add(a, b) => slot(*a).clone() + slot(*b).clone(),
-        Op::Sub(a, b) => slot(*a).clone() - slot(*b).clone(),
-        Op::Mul(a, b) => slot(*a).clone() * slot(*b).clone(),
-        Op::Div(a, b) => power::divide(slot(*a), slot(*b))?,
-        Op::PowInt(a, n) => power::powi(slot(*a), *n)?,
-        Op::PowReal(a, bits) => power::powf(slot(*a), f64::from_bits(*bits))?,
-        Op::Pow(a, b) => power::pow(slot(*a), slot(*b))?,
-        Op::Measure {
-            function,
-            frames: args,
-        } => {
-            let frames: Vec<Frame<T>> = args
-                .iter()
-                .map(|arg| {
-                    let data = &tables.frames[arg.data as usize];
-                    match &arg.state {
-                        Some(state) => Frame::on_body(data, state.map(&slot)),
-                        None => Frame::fixed(data),
-                    }
-                })
-                .collect();
-            kinematics::measure(*function, &frames)?
-        }
-        Op::Spline {
-            table, x, z, order, ..
-        } => tables.splines[*table as usize].at(slot(*x), slot(*z), usize::from(*order)),
-        Op::Contact { table, x, v, .. } => {
-            tables.contacts[*table as usize].force(slot(*x), slot(*v))
-        }
-        Op::Call {
-            function,
-            args,
-            check_rules,
-        } => with_arguments(*function, args, *check_rules, slots, |values| {
-            laws::apply(*function, values)
-        })??,
-    })
-}
-
-/// Runs `body` on the values of a call's argument slots, after checking the
-/// function's argument rules when `check_rules` says they are not known to
-/// hold.
-#[inline]
-fn with_arguments<T: Number, R>(
-    function: crate::catalog::Function,
-    args: &[Slot],
-    check_rules: bool,
-    slots: &[T],
-    body: impl FnOnce(&[&T]) -> R,
-) -> Result<R, LawError> {
-    let slot = |index: Slot| &slots[index as usize];
-    if check_rules {
-        check_rules_with(function, |position| {
-            args.get(position).map(|&index| slot(index).value())
-        })
-        .map_err(LawError::Rule)?;
-    }
-    // Up to eight arguments (all but the longest series) stay on the stack.
-    const INLINE: usize = 8;
-    Ok(if let [arg] = *args {
-        body(&[slot(arg)])
-    } else if args.len() <= INLINE {
-        let values: [&T; INLINE] =
-            std::array::from_fn(|position| slot(args[position.min(args.len() - 1)]));
-        body(&values[..args.len()])
-    } else {
-        let values: Vec<&T> = args.iter().map(|&index| slot(index)).collect();
-        body(&values)
-    })
 }
 
 /// Evaluates one program over one number type, reusing its buffers from

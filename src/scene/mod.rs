@@ -9,7 +9,6 @@
 //! `BODY.x` ... `BODY.wz` that can be derivative directions.
 
 mod file;
-pub mod kinematics;
 
 pub use file::euler_313;
 

@@ -1,0 +1,245 @@
+//! The operations of a compiled program on plain slots, and how each is
+//! computed over any [`Number`]: the one place an operation's meaning is
+//! written. The checker folds constants with [`execute`], the compiler
+//! folds them and emits [`Op`]s, and the evaluator runs them, so all three
+//! agree by construction.
+
+use std::fmt;
+
+use crate::catalog::{Function, check_rules_with};
+use crate::kinematics::{self, Frame, FrameData};
+use crate::laws::contact::Stops;
+use crate::laws::spline::Spline;
+use crate::laws::{self, LawError, power};
+use crate::number::Number;
+
+/// The index of a slot: an input, a constant or an instruction's result.
+pub type Slot = u32;
+
+/// A computation of one value from slots.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Op {
+    /// `-a`
+    Neg(Slot),
+    /// `a + b`
+    Add(Slot, Slot),
+    /// `a - b`
+    Sub(Slot, Slot),
+    /// `a * b`
+    Mul(Slot, Slot),
+    /// `a / b`
+    Div(Slot, Slot),
+    /// `a ** n` for a constant whole `n`.
+    PowInt(Slot, i32),
+    /// `a ** e` for a constant real `e`, kept as its bits so ops can be hashed.
+    PowReal(Slot, u64),
+    /// `a ** b` for a varying `b`.
+    Pow(Slot, Slot),
+    /// A kinematic measure between marker frames (SPEC 4), in a scene.
+    Measure {
+        /// The measure.
+        function: Function,
+        /// One frame per marker of the signature, omitted ones as ground.
+        frames: Box<[FrameArg]>,
+    },
+    /// `AKISPL` or `CUBSPL`: the derivative of order `order` in `x` of a
+    /// fitted spline of the program's table at `(x, z)`.
+    Spline {
+        /// The function, for messages.
+        function: Function,
+        /// Index into the program's spline table.
+        table: u32,
+        /// The slot of `x`.
+        x: Slot,
+        /// The slot of `z`.
+        z: Slot,
+        /// 0, 1 or 2.
+        order: u8,
+    },
+    /// `IMPACT` or `BISTOP` with constant stops and parameters, which
+    /// passed the law's rules when the program was compiled.
+    Contact {
+        /// The function, for messages.
+        function: Function,
+        /// Index into the program's table of stops.
+        table: u32,
+        /// The slot of `x`.
+        x: Slot,
+        /// The slot of `x'`.
+        v: Slot,
+    },
+    /// A function of the intrinsic, step, contact or series family.
+    Call {
+        /// The function.
+        function: Function,
+        /// Its argument slots.
+        args: Box<[Slot]>,
+        /// Whether the function's argument rules must be checked at run time
+        /// (some of the arguments they speak of are not constants).
+        check_rules: bool,
+    },
+}
+
+/// A marker frame as a measure's argument: the constants of the marker (an
+/// index into the program's frame table) and, for a marker on a body, the
+/// slots of the body's twelve state inputs (`x y z rx ry rz vx vy vz wx wy wz`).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct FrameArg {
+    /// Index into the program's frame table.
+    pub data: u32,
+    /// The body's state slots; `None` for a marker on ground.
+    pub state: Option<[Slot; 12]>,
+}
+
+/// The data instructions refer to by index: the constants of the marker
+/// frames the measures use, the splines fitted for `AKISPL`/`CUBSPL`, and
+/// the constant stops of contact laws.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Tables {
+    /// Marker frames, for [`Op::Measure`].
+    pub frames: Vec<FrameData>,
+    /// Fitted splines, for [`Op::Spline`].
+    pub splines: Vec<Spline>,
+    /// Stops and parameters, for [`Op::Contact`].
+    pub contacts: Vec<Stops>,
+}
+
+/// Computes `op` from the slots. The checker and the compiler fold constants with
+/// it, the evaluator runs every computing instruction through it.
+#[inline]
+pub fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Result<T, LawError> {
+    let slot = |index: Slot| &slots[index as usize];
+    Ok(match op {
+        Op::Neg(a) => -slot(*a).clone(),
+        Op::Add(a, b) => slot(*a).clone() + slot(*b).clone(),
+        Op::Sub(a, b) => slot(*a).clone() - slot(*b).clone(),
+        Op::Mul(a, b) => slot(*a).clone() * slot(*b).clone(),
+        Op::Div(a, b) => power::divide(slot(*a), slot(*b))?,
+        Op::PowInt(a, n) => power::powi(slot(*a), *n)?,
+        Op::PowReal(a, bits) => power::powf(slot(*a), f64::from_bits(*bits))?,
+        Op::Pow(a, b) => power::pow(slot(*a), slot(*b))?,
+        Op::Measure {
+            function,
+            frames: args,
+        } => {
+            let frames: Vec<Frame<T>> = args
+                .iter()
+                .map(|arg| {
+                    let data = &tables.frames[arg.data as usize];
+                    match &arg.state {
+                        Some(state) => Frame::on_body(data, state.map(&slot)),
+                        None => Frame::fixed(data),
+                    }
+                })
+                .collect();
+            kinematics::measure(*function, &frames)?
+        }
+        Op::Spline {
+            table, x, z, order, ..
+        } => tables.splines[*table as usize].at(slot(*x), slot(*z), usize::from(*order)),
+        Op::Contact { table, x, v, .. } => {
+            tables.contacts[*table as usize].force(slot(*x), slot(*v))
+        }
+        Op::Call {
+            function,
+            args,
+            check_rules,
+        } => with_arguments(*function, args, *check_rules, slots, |values| {
+            laws::apply(*function, values)
+        })??,
+    })
+}
+
+/// Runs `body` on the values of a call's argument slots, after checking the
+/// function's argument rules when `check_rules` says they are not known to
+/// hold.
+#[inline]
+pub fn with_arguments<T: Number, R>(
+    function: Function,
+    args: &[Slot],
+    check_rules: bool,
+    slots: &[T],
+    body: impl FnOnce(&[&T]) -> R,
+) -> Result<R, LawError> {
+    let slot = |index: Slot| &slots[index as usize];
+    if check_rules {
+        check_rules_with(function, |position| {
+            args.get(position).map(|&index| slot(index).value())
+        })
+        .map_err(LawError::Rule)?;
+    }
+    // Up to eight arguments (all but the longest series) stay on the stack.
+    const INLINE: usize = 8;
+    Ok(if let [arg] = *args {
+        body(&[slot(arg)])
+    } else if args.len() <= INLINE {
+        let values: [&T; INLINE] =
+            std::array::from_fn(|position| slot(args[position.min(args.len() - 1)]));
+        body(&values[..args.len()])
+    } else {
+        let values: Vec<&T> = args.iter().map(|&index| slot(index)).collect();
+        body(&values)
+    })
+}
+
+impl fmt::Display for Op {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Op::Neg(a) => write!(f, "-s{a}"),
+            Op::Add(a, b) => write!(f, "s{a} + s{b}"),
+            Op::Sub(a, b) => write!(f, "s{a} - s{b}"),
+            Op::Mul(a, b) => write!(f, "s{a} * s{b}"),
+            Op::Div(a, b) => write!(f, "s{a} / s{b}"),
+            Op::PowInt(a, n) => write!(f, "s{a} ** {n}"),
+            Op::PowReal(a, bits) => write!(f, "s{a} ** {}", f64::from_bits(*bits)),
+            Op::Pow(a, b) => write!(f, "s{a} ** s{b}"),
+            Op::Call { function, args, .. } => {
+                let args: Vec<String> = args.iter().map(|slot| format!("s{slot}")).collect();
+                write!(f, "{function}({})", args.join(", "))
+            }
+            Op::Spline {
+                function,
+                table,
+                x,
+                z,
+                order,
+            } => write!(f, "{function}(s{x}, s{z}, spline{table}, {order})"),
+            Op::Contact {
+                function,
+                table,
+                x,
+                v,
+            } => write!(f, "{function}(s{x}, s{v}, stops{table})"),
+            Op::Measure { function, frames } => {
+                let frames: Vec<String> = frames
+                    .iter()
+                    .map(|frame| match frame.state {
+                        Some(state) => {
+                            format!("frame{}[s{}..s{}]", frame.data, state[0], state[11])
+                        }
+                        None => format!("frame{}", frame.data),
+                    })
+                    .collect();
+                write!(f, "{function}({})", frames.join(", "))
+            }
+        }
+    }
+}
+
+impl Op {
+    /// The operation's name in messages: `STEP`, `` `*` ``.
+    pub fn name(&self) -> String {
+        match self {
+            Op::Neg(_) => "`-`".to_string(),
+            Op::Add(..) => "`+`".to_string(),
+            Op::Sub(..) => "`-`".to_string(),
+            Op::Mul(..) => "`*`".to_string(),
+            Op::Div(..) => "`/`".to_string(),
+            Op::PowInt(..) | Op::PowReal(..) | Op::Pow(..) => "`**`".to_string(),
+            Op::Call { function, .. }
+            | Op::Measure { function, .. }
+            | Op::Spline { function, .. }
+            | Op::Contact { function, .. } => function.name().to_string(),
+        }
+    }
+}

@@ -1,0 +1,188 @@
+//! The library's modules import only the rooms below them: the pipeline
+//! flows one way (ARCHITECTURE.md, "Layers"). This reads `src/**/*.rs` and
+//! reports every `crate::` path that runs back up.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// The library's top-level modules from the bottom up: each may import
+/// only those before it. `integrate` comes right after how numbers are
+/// shown in messages, because it may import nothing else of the crate (it
+/// knows `f64` slices, nalgebra and its `System` trait); the ground floor
+/// follows (numbers, the vocabulary, the laws, marker kinematics, the
+/// operations), then the stages in pipeline order, then what stands on the
+/// whole pipeline.
+const LAYERS: &[&str] = &[
+    "span",
+    "shown",
+    "integrate",
+    "errors",
+    "number",
+    "catalog",
+    "laws",
+    "kinematics",
+    "ops",
+    "utility",
+    "syntax",
+    "check",
+    "scene",
+    "compile",
+    "eval",
+    "kinks",
+    "model",
+    "simulate",
+    "ffi",
+];
+
+fn source_files(folder: &Path, files: &mut Vec<PathBuf>) {
+    for entry in fs::read_dir(folder).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            files.push(path.clone());
+            source_files(&path, files);
+        } else if path.extension().is_some_and(|extension| extension == "rs") {
+            files.push(path);
+        }
+    }
+}
+
+/// The text of `source` without its comments (doc links name modules a
+/// file does not import).
+fn code_of(source: &str) -> String {
+    source
+        .lines()
+        .map(|line| match line.find("//") {
+            Some(start) => &line[..start],
+            None => line,
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The names `lib.rs` re-exports at the crate root, each with the module
+/// it comes from (`Shown` from `shown`, `Program` from `compile`).
+fn root_exports(lib: &str) -> BTreeMap<String, String> {
+    let mut exports = BTreeMap::new();
+    for statement in code_of(lib).split(';') {
+        let Some(path) = statement.trim().strip_prefix("pub use ") else {
+            continue;
+        };
+        let (module, names) = path.split_once("::").unwrap();
+        for name in names.trim_matches(|c| c == '{' || c == '}').split(',') {
+            let name = name.trim();
+            let name = name.rsplit(" as ").next().unwrap();
+            exports.insert(name.to_string(), module.to_string());
+        }
+    }
+    exports
+}
+
+/// Every module `code` names through `crate::`, in a path
+/// (`crate::laws::power`) or in a group (`use crate::{laws, span::Span}`).
+fn imported_modules(code: &str, exports: &BTreeMap<String, String>) -> Vec<String> {
+    let mut modules = Vec::new();
+    let mut rest = code;
+    while let Some(start) = rest.find("crate::") {
+        rest = &rest[start + "crate::".len()..];
+        let heads: Vec<&str> = if let Some(group) = rest.strip_prefix('{') {
+            let end = group.find('}').unwrap_or(group.len());
+            group[..end]
+                .split(',')
+                .map(|item| item.trim().split("::").next().unwrap())
+                .collect()
+        } else {
+            let end = rest
+                .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .unwrap_or(rest.len());
+            vec![&rest[..end]]
+        };
+        for head in heads.into_iter().filter(|head| !head.is_empty()) {
+            let module = exports.get(head).map_or(head, String::as_str);
+            modules.push(module.to_string());
+        }
+    }
+    modules
+}
+
+/// One line per import that runs back up, or per module missing from
+/// [`LAYERS`].
+fn violations(source_root: &Path) -> String {
+    let lib = fs::read_to_string(source_root.join("lib.rs")).unwrap();
+    let exports = root_exports(&lib);
+    let rank = |module: &str| LAYERS.iter().position(|layer| *layer == module);
+    let mut files = Vec::new();
+    source_files(source_root, &mut files);
+    files.sort();
+    let mut report = String::new();
+    for file in files {
+        let relative = file.strip_prefix(source_root).unwrap();
+        let top = relative.components().next().unwrap().as_os_str();
+        let top = Path::new(top).file_stem().unwrap().to_str().unwrap();
+        if top == "bin" || top == "lib" {
+            continue;
+        }
+        let Some(own) = rank(top) else {
+            report.push_str(&format!(
+                "{}: module `{top}` is in no layer of tests/architecture.rs\n",
+                relative.display()
+            ));
+            continue;
+        };
+        if file.is_dir() {
+            continue;
+        }
+        let code = code_of(&fs::read_to_string(&file).unwrap());
+        for module in imported_modules(&code, &exports) {
+            match rank(&module) {
+                Some(theirs) if theirs < own || module == top => {}
+                Some(_) => report.push_str(&format!(
+                    "{}: `{top}` imports `{module}`, which is above it\n",
+                    relative.display()
+                )),
+                None => {}
+            }
+        }
+    }
+    report
+}
+
+#[test]
+fn the_pipeline_flows_one_way() {
+    let source_root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let report = violations(&source_root);
+    assert!(report.is_empty(), "imports that run back up:\n{report}");
+}
+
+#[test]
+fn an_import_that_runs_back_up_is_found() {
+    let root = std::env::temp_dir().join(format!("mbexpr-layers-{}", std::process::id()));
+    let files = [
+        (
+            "lib.rs",
+            "pub use compile::{CompileError, Program as Compiled};\n",
+        ),
+        (
+            "check/mod.rs",
+            "use crate::{laws::power, span::Span};\n// crate::model\n",
+        ),
+        (
+            "check/fold.rs",
+            "use crate::eval::execute;\nfn f(_: crate::Compiled) {}\n",
+        ),
+        ("eval.rs", "use crate::{check, ops::Op};\n"),
+        ("gadget.rs", "\n"),
+    ];
+    for (path, text) in files {
+        let path = root.join(path);
+        fs::create_dir_all(path.parent().unwrap()).unwrap();
+        fs::write(path, text).unwrap();
+    }
+    let report = violations(&root);
+    fs::remove_dir_all(&root).unwrap();
+    insta::assert_snapshot!(report, @r"
+    check/fold.rs: `check` imports `eval`, which is above it
+    check/fold.rs: `check` imports `compile`, which is above it
+    gadget.rs: module `gadget` is in no layer of tests/architecture.rs
+    ");
+}
