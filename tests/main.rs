@@ -7,6 +7,7 @@ mod checker;
 mod cli;
 mod corpus;
 mod diagnostics;
+mod documents;
 mod eval;
 mod ffi;
 mod integrate;
