@@ -31,10 +31,7 @@ fn same_or_update(path: &Path, text: &str) {
         .lines()
         .zip(text.lines())
         .position(|(old, new)| old != new)
-        .map_or_else(
-            || written.lines().count().min(text.lines().count()),
-            |index| index,
-        );
+        .unwrap_or_else(|| written.lines().count().min(text.lines().count()));
     panic!(
         "{} differs from what the program says, from line {}:\n  written: {:?}\n  program: {:?}\n(MBEXPR_UPDATE_DOCS=1 cargo test documents:: rewrites it)",
         path.display(),
