@@ -42,6 +42,7 @@ pub mod compile;
 mod errors;
 pub mod eval;
 pub mod ffi;
+pub mod help;
 pub mod integrate;
 pub mod kinematics;
 pub mod kinks;

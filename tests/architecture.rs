@@ -29,6 +29,7 @@ const LAYERS: &[&str] = &[
     "scene",
     "compile",
     "eval",
+    "help",
     "kinks",
     "model",
     "simulate",

@@ -810,3 +810,130 @@ fn simulate_reads_scene_files_and_plots() {
     assert!(drawing.starts_with("<svg") && drawing.contains("DIF(1)"));
     std::fs::remove_dir_all(&folder).ok();
 }
+
+/// Every command, its standard output a pipe already closed (`mbexpr ... |
+/// (exec 0<&-; true)`), ends quietly with exit 0: no panic, no message
+/// (issue 27.4). `ARGS` split at ` | `.
+#[test]
+fn every_command_ends_quietly_on_a_closed_pipe() {
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/ball_between_walls.toml"
+    );
+    let model = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/simulate/a1_ball.adm");
+    let cases = format!(
+        "
+        completions | bash
+        completions | zsh
+        completions | fish
+        man
+        man | simulate
+        --help
+        --version
+        parse | STEP(TIME, 0, 0, 1, 10)
+        check | -
+        eval | SIN(x) | --set | x=1 | --wrt | x
+        eval | DX(ball, wall) | --scene | {scene}
+        eval | --model | {model}
+        simulate | {model} | --end | 0.1 | --steps | 2
+        repl
+        "
+    );
+    insta::assert_snapshot!(
+        crate::table(&cases, |case| {
+            let args: Vec<&str> = case.split(" | ").collect();
+            let (reader, writer) = std::io::pipe().unwrap();
+            drop(reader);
+            let output = Command::new(env!("CARGO_BIN_EXE_mbexpr"))
+                .args(&args)
+                .stdin(Stdio::null())
+                .stdout(writer)
+                .stderr(Stdio::piped())
+                .output()
+                .unwrap();
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            format!("[exit {:?}] {}", output.status.code(), stderr.trim())
+                .trim_end()
+                .to_string()
+        })
+        .replace(env!("CARGO_MANIFEST_DIR"), ".")
+    );
+}
+
+/// A `--set` value is a constant expression of the language, as `:set`
+/// takes it in the REPL (issue 27.5); what is no constant is an error with
+/// its place.
+#[test]
+fn set_takes_a_constant_expression() {
+    insta::assert_snapshot!(crate::table(
+        r"
+        x=30D
+        x=1D3
+        x=2*PI
+        x = -1.5e-3
+        x=STEP(0.5, 0, 0, 1, 1)
+        x=RTOD*0.1
+        x=2*y
+        x=LOG(0)
+        x=1/0
+        x=
+        x=SIN(
+        x
+        ",
+        |case| {
+            let (stdout, stderr, code) = mbexpr(&["eval", "x", "--set", case], "");
+            format!("[exit {code}] {}{}", stdout, stderr)
+                .trim_end()
+                .to_string()
+        }
+    ));
+}
+
+/// A binary file (a library, NUL bytes, mostly control bytes) is one error,
+/// "not a text file", not a message per line it happens to have (issue
+/// 27.6), for `check`, `eval --model` and `simulate` alike.
+#[test]
+fn a_binary_file_is_one_error() {
+    let dir = std::env::temp_dir().join(format!("mbexpr-binary-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut library = b"\x7fELF\x02\x01\x01\0\0\0\0\0\0\0\0\0".to_vec();
+    for index in 0..20_000u32 {
+        library.extend_from_slice(&index.to_le_bytes());
+        library.extend_from_slice(b"PART/1, MASS = 1\n");
+    }
+    let controls: Vec<u8> = (0..4000u32).map(|index| (index % 32) as u8 | 1).collect();
+    let latin = "Titel: Gr\u{f6}\u{df}e\nPART/1, GROUND\n"
+        .as_bytes()
+        .to_vec();
+    let files = [
+        ("library.so", library),
+        ("controls.adm", controls),
+        ("text.adm", latin),
+    ];
+    for (name, bytes) in &files {
+        std::fs::write(dir.join(name), bytes).unwrap();
+    }
+    let cases = "
+        check | library.so
+        check | controls.adm
+        check | text.adm
+        eval | --model | library.so
+        simulate | library.so
+    ";
+    let report = crate::table(cases, |case| {
+        let args: Vec<String> = case
+            .split(" | ")
+            .map(|arg| match dir.join(arg) {
+                path if path.exists() => path.display().to_string(),
+                _ => arg.to_string(),
+            })
+            .collect();
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (stdout, stderr, code) = mbexpr(&args, "");
+        format!("[exit {code}] {stdout}{stderr}")
+            .trim_end()
+            .to_string()
+    });
+    std::fs::remove_dir_all(&dir).unwrap();
+    insta::assert_snapshot!(report.replace(&dir.display().to_string(), "DIR"));
+}

@@ -562,3 +562,63 @@ fn a_million_argument_sets_per_routine_and_order() {
     // The sets reach every branch: results, and errors beyond the range.
     assert!(counts.iter().all(|count| *count > 1000), "{counts:?}");
 }
+
+/// Issue 27.12: the compile commands of `docs/contact.md` (its `sh` blocks)
+/// work as printed: each is run line by line in a folder laid out as the
+/// repository (`include/`, `tests/docs/`, `target/release/libmbexpr.a`,
+/// the last the library this test run built, so `cargo build --release`
+/// is the one line not run), with the C or FORTRAN block above it saved as
+/// the file the commands name (`my_sub.c`, `my_sub.f`).
+#[test]
+fn the_compile_commands_of_the_docs_work_as_printed() {
+    let markdown = std::fs::read_to_string(file("docs/contact.md")).unwrap();
+    let mut report = String::new();
+    let mut source: Option<(String, String)> = None;
+    for (language, text) in fenced_blocks(&markdown) {
+        if language != "sh" {
+            source = Some((language, text));
+            continue;
+        }
+        let Some((source_language, source_text)) = &source else {
+            continue;
+        };
+        let (compiler, name) = match source_language.as_str() {
+            "c" => ("cc", "my_sub.c"),
+            "fortran" => ("gfortran", "my_sub.f"),
+            _ => continue,
+        };
+        assert!(text.contains(name), "the commands name {name}:\n{text}");
+        if Command::new(compiler).arg("--version").output().is_err() {
+            eprintln!(
+                "note: {compiler} is not installed; the commands of docs/contact.md are not run (.ci/run installs it)"
+            );
+            continue;
+        }
+        let folder = scratch(compiler);
+        std::fs::write(folder.join(name), source_text).unwrap();
+        std::fs::create_dir_all(folder.join("target/release")).unwrap();
+        std::fs::create_dir_all(folder.join("tests")).unwrap();
+        std::os::unix::fs::symlink(file("include"), folder.join("include")).unwrap();
+        std::os::unix::fs::symlink(file("tests/docs"), folder.join("tests/docs")).unwrap();
+        std::os::unix::fs::symlink(
+            build_dir().join("deps/libmbexpr.a"),
+            folder.join("target/release/libmbexpr.a"),
+        )
+        .unwrap();
+        for line in text.lines().filter(|line| !line.starts_with("cargo ")) {
+            let output = Command::new("sh")
+                .args(["-c", line])
+                .current_dir(&folder)
+                .output()
+                .unwrap();
+            assert!(
+                output.status.success(),
+                "`{line}` failed:\n{}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+            report += &format!("$ {line}\n{}", String::from_utf8_lossy(&output.stdout));
+        }
+        std::fs::remove_dir_all(&folder).unwrap();
+    }
+    insta::assert_snapshot!(report);
+}

@@ -8,6 +8,7 @@ mod checker;
 mod cli;
 mod corpus;
 mod diagnostics;
+mod documents;
 mod eval;
 mod ffi;
 mod integrate;

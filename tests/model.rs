@@ -457,3 +457,83 @@ fn files_that_are_not_utf8_are_read() {
         .collect();
     insta::assert_snapshot!(report);
 }
+
+/// The vocabulary errors (unknown statements and keywords) of a dataset.
+fn vocabulary_errors(adm: &str) -> Vec<String> {
+    let dataset = model::read(adm, FileKind::Adm);
+    model::check_model(adm, &dataset)
+        .problems
+        .iter()
+        .map(|problem| problem.error.to_string())
+        .filter(|message| {
+            message.contains("is not a keyword") || message.contains("not a statement")
+        })
+        .collect()
+}
+
+/// Every statement of the reference, with each of its keywords (one line a
+/// statement, every keyword given a value), is read without a word of
+/// vocabulary refused: the vocabulary is the solver's, not the corpus's
+/// (issue 27.1).
+#[test]
+fn every_statement_takes_each_of_its_keywords() {
+    // The statements of the Adams Solver reference (TITLE is the dataset's
+    // first line, taken whole): each is a statement of the vocabulary.
+    const REFERENCE: &str = "ACCGRAV ARRAY BEAM BUSHING CLEARANCE CONTACT COUPLER CURVE CVCV DEBUG DIFF END ENVIRONMENT EQUILIBRIUM FEMDATA FIELD FLEX_BODY FRICTION GCON GEAR GFORCE GRAPHICS GSE IC INTEGRATOR JOINT JPRIM KINEMATICS LIST LSE LSOLVER MARKER MATRIX MFORCE MOTION NFORCE NOLIST OUTPUT PART PINPUT POINT_MASS POUTPUT PREFERENCES PTCV REQUEST RESULTS SENSOR SFORCE SPLINE SPRINGDAMPER STRING SURFACE TFSISO UCON UNITS VARIABLE VFORCE VTORQUE";
+    for name in REFERENCE.split(' ') {
+        assert!(
+            model::vocabulary::STATEMENTS
+                .iter()
+                .any(|(known, _)| *known == name),
+            "{name} is not in the vocabulary"
+        );
+        let adm = format!("reference\n{name}/1\n");
+        assert_eq!(vocabulary_errors(&adm), Vec::<String>::new(), "{name}");
+    }
+    for (name, keywords) in model::vocabulary::STATEMENTS {
+        let Some(keywords) = keywords else { continue };
+        let mut adm = format!("every keyword of {name}\n{name}/1");
+        for keyword in *keywords {
+            adm += &format!("\n, {keyword} = 1");
+        }
+        assert_eq!(
+            vocabulary_errors(&(adm + "\n")),
+            Vec::<String>::new(),
+            "{name}"
+        );
+    }
+}
+
+/// What Adams View writes is read without a false error, abbreviations
+/// included; a keyword of another statement, or none at all, is refused
+/// with the close names of its own statement (issue 27.1).
+#[test]
+fn statements_as_adams_view_writes_them() {
+    insta::assert_snapshot!(crate::table(
+        r"
+        JOINT/03, RACKPIN, I = 1, J = 2, PD = 0.1
+        JOINT/4, SCREW, I = 1, J = 2, PITCH = 0.01
+        JOINT/5, CONVEL, I = 1, J = 2, IC = 0, 0
+        GRAPHICS/204, SPDP, I = 1, J = 2, COILS = 8, DA = 1, DB = 2, DC = 3, LA = 1, LB = 1, LC = 4, LD = 4
+        GRAPHICS/205, OUTLINE = 1, 2, 3
+        GRAPHICS/206, FORCE, ETYPE = SFORCE, EID = 1, EMARKER = 2
+        CONTACT/1, TYPE = SOLID_TO_SOLID, IGEOM = 1, JGEOM = 2, POISSON, PENALTY = 1E5, RESTITUTION_COEFFICIENT = 0.5
+        FRICTION/1, JOINT = 3, MU_STATIC = 0.3, MU_DYNAMIC = 0.2, PIN_RADIUS = 1, BALL_RADIUS = 1
+        MARK/1, PAR = 1, QP = 0, 0, 0
+        SFOR/1, TRANS, I = 1, J = 2, FUNC = 1
+        REQUEST/1, F2 = 1, C = comment
+        MARKER/1, PD = 0.1
+        JOINT/6, RACKPINE, I = 1, J = 2
+        SFORCE/2, I = 1, J = 2, FUNCTON = 1
+        MATERIAL/1, ANYTHING = 1
+        ",
+        |line| {
+            let errors = vocabulary_errors(&format!("view\n{line}\n"));
+            if errors.is_empty() {
+                "read".to_string()
+            } else {
+                errors.join("; ")
+            }
+        }
+    ));
+}

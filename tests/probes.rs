@@ -111,9 +111,11 @@ proptest! {
         let text = lines.join("\n");
         let scene = match Scene::from_toml(&text) {
             Ok(scene) => scene,
-            Err(error) => {
-                // A reading error is at a place inside the file.
-                prop_assert!(error.file_span().is_none_or(|span| span.end <= text.len()), "{error:?}");
+            Err(errors) => {
+                // Every reading error is at a place inside the file.
+                for error in &errors {
+                    prop_assert!(error.file_span().is_none_or(|span| span.end <= text.len()), "{error:?}");
+                }
                 return Ok(());
             }
         };

@@ -441,15 +441,21 @@ fn scene_files_read_and_refuse_with_reasons() {
         "mode = 1.5",
         "mode = 2",
         "mode = 7\n[variables]\nk = 1_000.5",
+        "[[body]]\nname = \"ball\"\n[[marker]]\nname = \"m\"\nbody = \"bal\"\n[[marker]]\nid = 0\n[variables]\nk = \"stiff\"\nc = inf",
+        "[expressions]\ngap = \"DX(m, 0) - \"\nforce = \"STPE(TIME, 0, 0, 1, 1) + LOG(0)\"",
     ]
     .iter()
     .map(|text| match Scene::from_toml(text) {
         Ok(_) => format!("{text:?}\n  => accepted\n"),
-        Err(error) => {
-            let at = error.file_span().map_or(String::new(), |span| {
-                format!("{}: ", mbexpr::Location::of(text, span.start))
-            });
-            format!("{text:?}\n  => {at}{error}\n")
+        Err(errors) => {
+            let mut found = format!("{text:?}\n");
+            for error in &errors {
+                let at = error.file_span().map_or(String::new(), |span| {
+                    format!("{}: ", mbexpr::Location::of(text, span.start))
+                });
+                found += &format!("  => {at}{error}\n");
+            }
+            found
         }
     })
     .collect();

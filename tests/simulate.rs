@@ -101,7 +101,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 15] = [
+    let cases: [(&str, &str, Settings); 17] = [
         (
             "a joint and a motion need a constraint solver",
             "joint
@@ -209,6 +209,42 @@ DIFF/1, IC = 1, FUNCTION = -SIGN(1, DIF(1))
                 max_steps: 20_000,
                 ..short.clone()
             },
+        ),
+        (
+            "a scene file's problems, all at once (issue 27.9)",
+            "# scene
+[[body]]
+name = \"ball\"
+[[body]]
+name = \"wall\"
+mass = -1
+inertia = [1, 1, 1]
+[[marker]]
+name = \"m\"
+body = \"bal\"
+[expressions]
+gap = \"DX(m, 0) +\"
+",
+            short.clone(),
+        ),
+        (
+            "an expression of a scene file's force, at its place in the file",
+            "# scene
+[[body]]
+name = \"ball\"
+mass = 1
+inertia = [1, 1, 1]
+[[marker]]
+name = \"m\"
+body = \"ball\"
+[[force]]
+name = \"push\"
+kind = \"translational\"
+i = \"m\"
+j = \"wal\"
+function = \"STEP(TIME, 0, 0, 1, 1) * LOG(0)\"
+",
+            short.clone(),
         ),
         (
             "a solver's result has no value in a simulation",

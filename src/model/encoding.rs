@@ -3,7 +3,10 @@
 //! code page of models saved on Windows, in which every byte is a character
 //! (`è`, `°`, `’` in a comment, a title or an `adams_view_name`). Each
 //! character stays one column, so places in messages stay right. A UTF-8
-//! byte-order mark is dropped. (`docs/encoding.md` gives the rule.)
+//! byte-order mark is dropped. A text holding a NUL, or more than one
+//! control character in `BINARY_SHARE` of its start, is no text file at
+//! all (a library, an image): [`is_binary`]. (`docs/encoding.md` gives the
+//! rule.)
 
 use std::borrow::Cow;
 
@@ -56,4 +59,30 @@ pub fn decode(bytes: &[u8]) -> Decoded<'_> {
             }
         }
     }
+}
+
+/// A text is binary when more than one character in this many of its start
+/// is a control character other than a blank.
+const BINARY_SHARE: usize = 20;
+
+/// Characters of a text's start that [`is_binary`] looks at.
+const BINARY_WINDOW: usize = 64 * 1024;
+
+/// Whether the decoded `text` is the content of a binary file rather than
+/// text: it holds a NUL character, or more than one character in
+/// `BINARY_SHARE` of its first 64 Ki characters is a control character
+/// other than tab, line feed, carriage return, form feed and the DOS end
+/// of file (`^Z`).
+pub fn is_binary(text: &str) -> bool {
+    if text.contains('\0') {
+        return true;
+    }
+    let (mut characters, mut controls) = (0usize, 0usize);
+    for character in text.chars().take(BINARY_WINDOW) {
+        characters += 1;
+        if character.is_control() && !matches!(character, '\t' | '\n' | '\r' | '\x0c' | '\x1a') {
+            controls += 1;
+        }
+    }
+    controls * BINARY_SHARE > characters
 }

@@ -16,7 +16,7 @@ pub mod vocabulary;
 use compact_str::CompactString;
 use thiserror::Error;
 
-pub use encoding::{Decoded, decode, decode_owned};
+pub use encoding::{Decoded, decode, decode_owned, is_binary};
 pub use initial::{ConfigurationError, initial_scene};
 pub use references::{FoundExpression, ModelCheck, ModelError, Problem, check_model};
 pub use text::Embedded;
@@ -70,7 +70,7 @@ impl FileKind {
         let first = lines
             .map(str::trim)
             .find(|line| !line.is_empty() && !line.starts_with('!'))?;
-        is_statement_line(first, vocabulary::DATASET_STATEMENTS).then_some(FileKind::Adm)
+        is_statement_line(first, &vocabulary::DATASET_STATEMENTS).then_some(FileKind::Adm)
     }
 }
 

@@ -92,7 +92,8 @@ pub enum ModelError {
         /// The name in the file.
         span: Span,
     },
-    /// A keyword no dataset statement has (an expression after it is not read).
+    /// A keyword its dataset statement does not have (an expression after it
+    /// is not read).
     #[error("{keyword} is not a keyword of {statement}{suggestions}")]
     UnknownKeyword {
         /// The keyword as written, upper case.
@@ -357,7 +358,7 @@ const DATASET_NAMES: &[&str] = &["TIME", "MODE", "PI", "DTOR", "RTOD"];
 fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
     let (known, file) = match dataset.kind {
         FileKind::Acf => (vocabulary::COMMANDS, "command file"),
-        _ => (vocabulary::DATASET_STATEMENTS, "dataset"),
+        _ => (vocabulary::DATASET_STATEMENTS.as_slice(), "dataset"),
     };
     for (index, statement) in dataset.statements.iter().enumerate() {
         // A command file starts with the names of its dataset and output
@@ -387,16 +388,16 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
         if dataset.kind != FileKind::Adm {
             continue;
         }
+        let Some(keywords) = vocabulary::keywords_of(&statement.name) else {
+            continue;
+        };
         for argument in &statement.arguments {
-            if !vocabulary::is_keyword(&argument.keyword) {
+            if !vocabulary::is_keyword(&argument.keyword, keywords) {
                 findings.push(
                     ModelError::UnknownKeyword {
                         keyword: argument.keyword.to_string(),
                         statement: statement.label(),
-                        suggestions: vocabulary::suggestions(
-                            &argument.keyword,
-                            vocabulary::KEYWORDS,
-                        ),
+                        suggestions: vocabulary::suggestions(&argument.keyword, keywords),
                         span: argument.keyword_span,
                     },
                     Some(index),
@@ -622,7 +623,7 @@ fn array_size(statement: &Statement) -> Option<usize> {
 /// A statement name as the vocabulary spells it (an abbreviation in full),
 /// or as written when the vocabulary does not know it.
 fn canonical(name: &str) -> String {
-    vocabulary::statement_name(name, vocabulary::DATASET_STATEMENTS)
+    vocabulary::statement_name(name, &vocabulary::DATASET_STATEMENTS)
         .or_else(|| vocabulary::statement_name(name, vocabulary::COMMANDS))
         .map_or_else(|| name.to_string(), str::to_string)
 }

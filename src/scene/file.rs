@@ -6,8 +6,11 @@ use std::f64::consts::PI;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use serde::Deserialize;
 
+use std::collections::HashMap;
+
 use super::{Body, Marker, Scene, SceneError, SceneKind};
-use crate::catalog::SystemVariable;
+use crate::Errors;
+use crate::catalog::{SystemVariable, closest, did_you_mean};
 use crate::span::Span;
 
 use toml::Spanned;
@@ -86,7 +89,7 @@ struct BodyFile {
 struct MarkerFile {
     name: Option<String>,
     id: Option<u64>,
-    body: Option<String>,
+    body: Option<Spanned<String>>,
     #[serde(default)]
     position: [f64; 3],
     #[serde(flatten)]
@@ -143,22 +146,27 @@ impl OrientationFile {
     }
 }
 
-/// The numbers of the table `what` of the file `text`.
+/// The numbers of the table `what` of the file `text`; an entry that is no
+/// number is an error in `errors`.
 fn number_table(
     text: &str,
     table: &toml::Table,
     what: &str,
-) -> Result<Vec<(String, f64)>, SceneError> {
+    errors: &mut Vec<SceneError>,
+) -> Vec<(String, f64)> {
     table
         .iter()
-        .map(|(name, value)| match value {
-            toml::Value::Float(number) => Ok((name.clone(), *number)),
-            toml::Value::Integer(number) => Ok((name.clone(), *number as f64)),
-            _ => Err(entry_error(
-                text,
-                [what, name],
-                format!("{what}.{name} must be a number"),
-            )),
+        .filter_map(|(name, value)| match value {
+            toml::Value::Float(number) => Some((name.clone(), *number)),
+            toml::Value::Integer(number) => Some((name.clone(), *number as f64)),
+            _ => {
+                errors.push(entry_error(
+                    text,
+                    [what, name],
+                    format!("{what}.{name} must be a number"),
+                ));
+                None
+            }
         })
         .collect()
 }
@@ -176,16 +184,17 @@ fn entry_error(text: &str, [table, key]: [&str; 2], message: String) -> SceneErr
     SceneError::File { message, span }
 }
 
-/// The first number of the file that is not finite (TOML writes `nan` and
-/// `inf`), as an error at its line: no scene value may be one.
-fn refuse_non_finite(text: &str) -> Result<(), SceneError> {
+/// Every number of the file that is not finite (TOML writes `nan` and
+/// `inf`), as an error at its place, in file order: no scene value may be
+/// one.
+fn refuse_non_finite(text: &str, errors: &mut Vec<SceneError>) {
     use toml::de::{DeTable, DeValue};
     type Entry<'a, 'i> = (String, &'a toml::Spanned<DeValue<'i>>);
     let Ok(root) = DeTable::parse(text) else {
         // The reader proper explains a file that does not parse.
-        return Ok(());
+        return;
     };
-    // Depth first, in file order: the first bad number is reported.
+    // Depth first, in file order.
     fn entries<'a, 'i>(prefix: &str, table: &'a DeTable<'i>) -> Vec<Entry<'a, 'i>> {
         let mut entries: Vec<_> = table
             .iter()
@@ -201,7 +210,7 @@ fn refuse_non_finite(text: &str) -> Result<(), SceneError> {
                 let written = float.as_str();
                 let number: f64 = written.replace('_', "").parse().unwrap_or(f64::NAN);
                 if !number.is_finite() {
-                    return Err(file_error(
+                    errors.push(file_error(
                         format!("{path} = {written}: every number of a scene must be finite"),
                         value.span(),
                     ));
@@ -218,7 +227,51 @@ fn refuse_non_finite(text: &str) -> Result<(), SceneError> {
             _ => {}
         }
     }
-    Ok(())
+}
+
+/// Where the text of the named expression `name` starts in the file `text`
+/// (one byte after the quote of a plain string; the string's start when it
+/// is written another way), and the errors of its parse and check there.
+fn expression_in_file(text: &str, name: &str, expression: &str) -> (usize, Vec<SceneError>) {
+    let span = toml::de::DeTable::parse(text).ok().and_then(|root| {
+        let table = root.get_ref().get("expressions")?;
+        let toml::de::DeValue::Table(entries) = table.get_ref() else {
+            return None;
+        };
+        entries.get(name).map(|value| value.span())
+    });
+    let Some(span) = span else {
+        return (0, Vec::new());
+    };
+    let written = text.get(span.clone()).unwrap_or("");
+    let start = if written.len() > expression.len()
+        && written.get(1..=expression.len()) == Some(expression)
+    {
+        span.start + 1
+    } else {
+        span.start
+    };
+    let placed = |at: Span| {
+        if start == span.start {
+            Span::from(span.clone())
+        } else {
+            at.shifted(start)
+        }
+    };
+    let error = |at: Span, message: String| {
+        file_error(format!("expression {name}: {message}"), placed(at).range())
+    };
+    let errors = match crate::parse(expression) {
+        Err(parse) => vec![error(parse.span(), parse.to_string())],
+        Ok(tree) => match crate::check(&tree) {
+            Err(checks) => checks
+                .iter()
+                .map(|check| error(check.span(), check.to_string()))
+                .collect(),
+            Ok(_) => Vec::new(),
+        },
+    };
+    (start, errors)
 }
 
 fn join(prefix: &str, key: &str) -> String {
@@ -230,36 +283,47 @@ fn join(prefix: &str, key: &str) -> String {
 }
 
 impl Scene {
-    /// Reads a scene from the text of a TOML file.
-    pub fn from_toml(text: &str) -> Result<Scene, SceneError> {
-        let file: SceneFile = toml::from_str(text).map_err(|error| SceneError::File {
-            message: error.message().trim_end().to_string(),
-            span: error.span().map(Span::from),
+    /// Reads a scene from the text of a TOML file: every problem at its
+    /// place in the file, all of them at once (a file TOML cannot read is
+    /// one), named expressions parsed and checked with the rest.
+    pub fn from_toml(text: &str) -> Result<Scene, Errors<SceneError>> {
+        let file: SceneFile = toml::from_str(text).map_err(|error| {
+            Errors(vec![SceneError::File {
+                message: error.message().trim_end().to_string(),
+                span: error.span().map(Span::from),
+            }])
         })?;
-        refuse_non_finite(text)?;
+        let mut errors = Vec::new();
+        refuse_non_finite(text, &mut errors);
         if let Some(mode) = &file.mode
             && let Some(message) = SystemVariable::mode_error(*mode.get_ref())
         {
-            return Err(file_error(message, mode.span()));
+            errors.push(file_error(message, mode.span()));
         }
-        let variables = number_table(text, &file.variables, "variables")?;
-        let expressions = file
-            .expressions
-            .iter()
-            .map(|(name, value)| match value {
-                toml::Value::String(expression) => Ok((name.clone(), expression.clone())),
-                _ => Err(entry_error(
+        let variables = number_table(text, &file.variables, "variables", &mut errors);
+        let mut expressions = Vec::new();
+        let mut expression_starts = HashMap::new();
+        for (name, value) in &file.expressions {
+            match value {
+                toml::Value::String(expression) => {
+                    let (start, problems) = expression_in_file(text, name, expression);
+                    errors.extend(problems);
+                    expression_starts.insert(name.clone(), start);
+                    expressions.push((name.clone(), expression.clone()));
+                }
+                _ => errors.push(entry_error(
                     text,
                     ["expressions", name],
                     format!("expressions.{name} must be a string holding an expression"),
                 )),
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+            }
+        }
         let mut scene = Scene {
             time: file.time,
             mode: file.mode.map(toml::Spanned::into_inner),
             variables,
             expressions,
+            expression_starts,
             bodies: Vec::new(),
             markers: Vec::new(),
             kind: SceneKind::Scene,
@@ -268,17 +332,22 @@ impl Scene {
         for spanned in &file.bodies {
             let (body, span) = (spanned.get_ref(), spanned.span());
             if scene.find_body(&body.name).is_some() || body.name.eq_ignore_ascii_case("ground") {
-                return Err(file_error(
+                errors.push(file_error(
                     format!("body {} is defined twice", body.name),
-                    span,
+                    span.clone(),
                 ));
             }
+            let orientation = body
+                .orientation
+                .read(&format!("body {}", body.name), span)
+                .unwrap_or_else(|error| {
+                    errors.push(error);
+                    UnitQuaternion::identity()
+                });
             scene.bodies.push(Body {
                 name: body.name.clone(),
                 position: body.position.into(),
-                orientation: body
-                    .orientation
-                    .read(&format!("body {}", body.name), span)?,
+                orientation,
                 velocity: body.velocity.into(),
                 angular_velocity: body.angular_velocity.into(),
                 acceleration: body.acceleration.map(Into::into),
@@ -291,34 +360,72 @@ impl Scene {
                 (Some(name), _) => format!("marker {name}"),
                 (None, Some(id)) => format!("marker {id}"),
                 (None, None) => {
-                    return Err(file_error(
+                    errors.push(file_error(
                         "a marker needs a name or an id".to_string(),
                         span,
                     ));
+                    continue;
                 }
             };
             if marker.id == Some(0) {
-                return Err(file_error(
+                errors.push(file_error(
                     format!("{owner}: id 0 is the ground frame"),
-                    span,
+                    span.clone(),
                 ));
             }
-            let body = match marker.body.as_deref() {
+            let body = match &marker.body {
                 None => None,
-                Some(name) if name.eq_ignore_ascii_case("ground") => None,
-                Some(name) => Some(scene.find_body(name).ok_or_else(|| {
-                    file_error(format!("{owner}: there is no body {name}"), span.clone())
-                })?),
+                Some(name) if name.get_ref().eq_ignore_ascii_case("ground") => None,
+                Some(name) => {
+                    let body = scene.find_body(name.get_ref());
+                    if body.is_none() {
+                        errors.push(file_error(
+                            format!(
+                                "{owner}: there is no body {}{}",
+                                name.get_ref(),
+                                body_suggestions(&scene, name.get_ref())
+                            ),
+                            name.span(),
+                        ));
+                    }
+                    body
+                }
             };
+            let orientation = marker
+                .orientation
+                .read(&owner, span)
+                .unwrap_or_else(|error| {
+                    errors.push(error);
+                    UnitQuaternion::identity()
+                });
             scene.markers.push(Marker {
                 id: marker.id,
                 name: marker.name.clone(),
                 body,
                 position: marker.position.into(),
-                orientation: marker.orientation.read(&owner, span.clone())?,
+                orientation,
             });
+        }
+        if !errors.is_empty() {
+            errors.sort_by_key(|error| error.file_span().map_or(0, |span| span.start));
+            return Err(Errors(errors));
         }
         scene.index();
         Ok(scene)
     }
+
+    /// Where the text of the named expression `name` starts in the scene
+    /// file it was read from (`None`: not read from a file, or no such
+    /// expression): its messages point into the file with it.
+    pub fn expression_start(&self, name: &str) -> Option<usize> {
+        self.expression_starts.get(name).copied()
+    }
+}
+
+/// " (did you mean ...?)" among the bodies of `scene`, or nothing.
+fn body_suggestions(scene: &Scene, name: &str) -> String {
+    did_you_mean(&closest(
+        name,
+        scene.bodies.iter().map(|body| body.name.as_str()),
+    ))
 }

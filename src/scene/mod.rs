@@ -196,6 +196,9 @@ pub struct Scene {
     pub variables: Vec<(String, f64)>,
     /// Named expressions, in the order given.
     pub expressions: Vec<(String, String)>,
+    /// Where the text of each named expression starts in the scene file
+    /// ([`Scene::expression_start`]).
+    pub expression_starts: HashMap<String, usize>,
     /// The rigid bodies (ground is implicit).
     pub bodies: Vec<Body>,
     /// The markers.

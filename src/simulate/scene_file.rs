@@ -11,10 +11,11 @@ use toml::Spanned;
 
 use super::error::SimulateError;
 use super::model::{Diff, Expression, Force, MassProperties, Model, Output};
+use crate::Errors;
 use crate::Shown;
 use crate::check::Reference;
 use crate::model::Embedded;
-use crate::scene::{DiffData, Scene, Target};
+use crate::scene::{DiffData, Scene, SceneError, Target};
 use crate::span::Span;
 
 #[derive(Deserialize)]
@@ -87,13 +88,27 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
                 .map_or_else(Span::default, |span| Span::new(span.start, span.end)),
         }]
     };
-    let scene = Scene::from_toml(text).map_err(|error| {
-        vec![SimulateError::Model {
-            message: error.to_string(),
-            span: error.file_span().unwrap_or_default(),
-        }]
-    })?;
+    let scene = Scene::from_toml(text);
     let file: DynamicsFile = toml::from_str(text).map_err(file_error)?;
+    let scene = match scene {
+        Ok(scene) => scene,
+        // The scene's problems, and those of the masses, which need no
+        // scene: all at once (forces and DIFFs name the scene's markers).
+        Err(errors) => {
+            let mut reader = Reader {
+                text,
+                scene: Scene::default(),
+                expressions: Vec::new(),
+                errors: scene_errors(errors),
+            };
+            reader.masses(&file.bodies);
+            reader.errors.sort_by_key(|error| match error {
+                SimulateError::Model { span, .. } => span.start,
+                _ => 0,
+            });
+            return Err(reader.errors);
+        }
+    };
     let mut reader = Reader {
         text,
         scene,
@@ -141,6 +156,17 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         notes,
         run,
     })
+}
+
+/// The errors of reading a scene, as the simulation's.
+fn scene_errors(errors: Errors<SceneError>) -> Vec<SimulateError> {
+    errors
+        .into_iter()
+        .map(|error| SimulateError::Model {
+            message: error.to_string(),
+            span: error.file_span().unwrap_or_default(),
+        })
+        .collect()
 }
 
 struct Reader<'t> {
@@ -217,14 +243,25 @@ impl Reader<'_> {
             .map(|body| {
                 let name = body.name.get_ref();
                 let span = span_of(&body.name);
-                let mass = body.mass.as_ref().map_or(f64::NAN, |mass| *mass.get_ref());
-                if !(mass > 0.0 && mass.is_finite()) {
-                    let at = body.mass.as_ref().map_or(span, span_of);
-                    self.fail(
-                        format!("body {name}: mass must be a positive number (it is {}): give mass = ... to simulate it", Shown(mass)),
-                        at,
-                    );
-                }
+                let mass = match &body.mass {
+                    None => {
+                        self.fail(
+                            format!("body {name} has no mass: give mass = ... (a positive number) to simulate it"),
+                            span,
+                        );
+                        f64::NAN
+                    }
+                    Some(mass) => {
+                        let value = *mass.get_ref();
+                        if !(value > 0.0 && value.is_finite()) {
+                            self.fail(
+                                format!("body {name}: mass must be a positive number (it is {}): give mass = ... to simulate it", Shown(value)),
+                                span_of(mass),
+                            );
+                        }
+                        value
+                    }
+                };
                 let inertia = match body.inertia.as_ref().map(|inertia| inertia.get_ref().as_slice()) {
                     Some(&[xx, yy, zz]) => Matrix3::from_diagonal(&Vector3::new(xx, yy, zz)),
                     Some(&[xx, yy, zz, xy, xz, yz]) => {
@@ -276,9 +313,9 @@ impl Reader<'_> {
         let mut read = Vec::new();
         for force in forces {
             let owner = format!("force {}", force.name);
-            let Some(i) = self.marker(&owner, &force.i) else {
-                continue;
-            };
+            // Every part of a force is read, so that all its problems are
+            // reported at once; it is kept when all are right.
+            let i = self.marker(&owner, &force.i);
             let component =
                 |reader: &mut Reader<'_>, key: &str, value: &Option<Spanned<String>>| {
                     value
@@ -295,11 +332,9 @@ impl Reader<'_> {
                         );
                         continue;
                     };
-                    let Some(j) = self.marker(&owner, j) else {
-                        continue;
-                    };
-                    let Some(magnitude) = self.expression(format!("{owner} function"), function)
-                    else {
+                    let j = self.marker(&owner, j);
+                    let magnitude = self.expression(format!("{owner} function"), function);
+                    let (Some(i), Some(j), Some(magnitude)) = (i, j, magnitude) else {
                         continue;
                     };
                     let rotational = kind == "rotational";
@@ -307,23 +342,20 @@ impl Reader<'_> {
                 }
                 "vector" | "torque" | "general" => {
                     let axes = match &force.axes {
-                        Some(axes) => match self.marker(&owner, axes) {
-                            Some(axes) => axes,
-                            None => continue,
-                        },
-                        None => Target::Ground,
+                        Some(axes) => self.marker(&owner, axes),
+                        None => Some(Target::Ground),
                     };
                     let reaction = match &force.reaction {
-                        None => None,
-                        Some(name) if name.get_ref().eq_ignore_ascii_case("ground") => None,
+                        None => Some(None),
+                        Some(name) if name.get_ref().eq_ignore_ascii_case("ground") => Some(None),
                         Some(name) => match self.scene.find_body(name.get_ref()) {
-                            Some(body) => Some(body),
+                            Some(body) => Some(Some(body)),
                             None => {
                                 self.fail(
                                     format!("{owner}: there is no body {}", name.get_ref()),
                                     span_of(name),
                                 );
-                                continue;
+                                None
                             }
                         },
                     };
@@ -341,9 +373,15 @@ impl Reader<'_> {
                         ("tz", pick(torque_part, &force.tz)),
                     ];
                     let mut indices = [None; 6];
+                    let mut read_all = true;
                     for (slot, (key, value)) in indices.iter_mut().zip(&sources) {
                         *slot = component(self, key, value);
+                        read_all &= value.is_none() || slot.is_some();
                     }
+                    let (Some(i), Some(axes), Some(reaction), true) = (i, axes, reaction, read_all)
+                    else {
+                        continue;
+                    };
                     read.push(Force::Vector {
                         i,
                         reaction,

@@ -118,7 +118,8 @@ fn problems(expression: &str, names: Option<&[String]>, unbound: &mut Unbound) -
     found
 }
 
-/// The text of `file`, decoded (`-` is standard input; docs/encoding.md).
+/// The text of `file`, decoded (`-` is standard input; docs/encoding.md),
+/// or why there is none: it cannot be read, or it is binary.
 pub(crate) fn read(file: &str) -> Result<String, String> {
     let mut bytes = Vec::new();
     if file == "-" {
@@ -129,6 +130,12 @@ pub(crate) fn read(file: &str) -> Result<String, String> {
         bytes = std::fs::read(file).map_err(|error| format!("cannot read {file}: {error}"))?;
     }
     let (text, encoding) = model::decode_owned(bytes);
+    if model::is_binary(&text) {
+        let name = if file == "-" { "standard input" } else { file };
+        return Err(format!(
+            "{name}: not a text file (it holds NUL or other control bytes): give a model file or a file of expressions"
+        ));
+    }
     if encoding != "UTF-8" {
         eprintln!("note: {file} is not UTF-8: read as {encoding}");
     }

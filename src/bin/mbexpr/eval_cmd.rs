@@ -11,7 +11,6 @@ use serde_json::Value;
 
 use crate::points::{PointsFile, count};
 use crate::record::{Problem, Record};
-use crate::render::diagnostic;
 
 use crate::sweep::Sweep;
 use crate::{Fatal, Outcome};
@@ -71,23 +70,27 @@ fn direction_name(text: &str) -> Result<String, String> {
     }
 }
 
-/// `NAME=VALUE` to its parts.
+/// `NAME=VALUE` to its parts, VALUE a constant expression of the language
+/// (`30D`, `1D3`, `2*PI`), as `:set` takes it in the REPL.
 pub fn parse_assignment(assignment: &str) -> Result<(String, f64), Fatal> {
     let (name, value) = assignment
         .split_once('=')
         .ok_or_else(|| Fatal::usage(format!("error: --set {assignment}: write NAME=VALUE")))?;
-    let value: f64 = value.trim().parse().map_err(|_| {
+    let value = constant_value(value).map_err(|message| {
         Fatal::usage(format!(
-            "error: --set {assignment}: `{}` is not a number",
-            value.trim()
+            "error: --set {assignment}: {message} (a --set value is a constant expression)"
         ))
     })?;
-    if !value.is_finite() {
-        return Err(Fatal::usage(format!(
-            "error: --set {assignment}: the value must be finite"
-        )));
-    }
     Ok((name.trim().to_string(), value))
+}
+
+/// The value of the constant expression `text`, or the first reason it has
+/// none.
+fn constant_value(text: &str) -> Result<f64, String> {
+    let tree = mbexpr::parse(text).map_err(|error| error.to_string())?;
+    let checked = mbexpr::check(&tree).map_err(|errors| errors[0].to_string())?;
+    let program = mbexpr::compile::<&str>(&checked, &[]).map_err(|errors| errors[0].to_string())?;
+    program.value(&[]).map_err(|error| error.to_string())
 }
 
 /// A number as text, as the library's messages show numbers
@@ -155,13 +158,52 @@ fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
     text
 }
 
+/// The scene of the file `path`, or every problem of it at its place.
 pub fn read_scene(path: &str) -> Result<Scene, Fatal> {
+    read_scene_file(path).map(|file| file.scene)
+}
+
+/// A scene and the file it was read from, whose text its messages quote.
+struct SceneFile {
+    path: String,
+    text: String,
+    scene: Scene,
+}
+
+impl SceneFile {
+    /// `problems` of the scene's named expression `name` (spans into its
+    /// text), rendered at their places in the file.
+    fn render(&self, name: &str, problems: &[Problem]) -> Option<String> {
+        let start = self.scene.expression_start(name)?;
+        let placed = problems.iter().filter_map(|problem| {
+            problem
+                .span
+                .map(|span| (span.shifted(start), problem.message.clone()))
+        });
+        Some(crate::render::diagnostics(&self.path, &self.text, placed))
+    }
+}
+
+fn read_scene_file(path: &str) -> Result<SceneFile, Fatal> {
     let text = std::fs::read_to_string(path)
         .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
-    Scene::from_toml(&text).map_err(|error| match error.file_span() {
-        Some(span) => Fatal::usage(diagnostic(path, &text, span, &error.to_string())),
-        None => Fatal::usage(format!("error: {path}: {error}")),
-    })
+    match Scene::from_toml(&text) {
+        Ok(scene) => Ok(SceneFile {
+            path: path.to_string(),
+            text,
+            scene,
+        }),
+        Err(errors) => {
+            let placed = errors
+                .iter()
+                .filter_map(|error| error.file_span().map(|span| (span, error.to_string())));
+            let mut message = crate::render::diagnostics(path, &text, placed);
+            for error in errors.iter().filter(|error| error.file_span().is_none()) {
+                message += &format!("error: {path}: {error}\n");
+            }
+            Err(Fatal::usage(message))
+        }
+    }
 }
 
 /// The result of one evaluation as a JSON object, its derivatives named.
@@ -222,8 +264,9 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
 }
 
 fn run_expressions(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
-    let scene = args.scene.as_deref().map(read_scene).transpose()?;
-    let expressions: Vec<(Option<String>, String)> = match (&args.expression, &scene) {
+    let scene_file = args.scene.as_deref().map(read_scene_file).transpose()?;
+    let scene = scene_file.as_ref().map(|file| &file.scene);
+    let expressions: Vec<(Option<String>, String)> = match (&args.expression, scene) {
         (Some(text), _) => vec![(None, text.clone())],
         (None, Some(scene)) if !scene.expressions.is_empty() => scene
             .expressions
@@ -243,7 +286,7 @@ fn run_expressions(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> 
     };
     let context = Context {
         args,
-        scene: scene.as_ref(),
+        scene,
         assignments: args
             .set
             .iter()
@@ -310,11 +353,18 @@ fn run_expressions(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> 
                 out.flush()?;
                 let origin = label.as_deref().unwrap_or_default();
                 // Those with a place once each, with their count (linear in
-                // the number of problems); those without after them.
-                let placed = problems
-                    .iter()
-                    .filter_map(|problem| problem.span.map(|span| (span, problem.message.clone())));
-                let mut rendered = crate::render::diagnostics(origin, text, placed);
+                // the number of problems); those without after them. A
+                // scene's named expression is quoted from the scene file.
+                let in_file = label
+                    .as_deref()
+                    .zip(scene_file.as_ref())
+                    .and_then(|(name, file)| file.render(name, &problems));
+                let mut rendered = in_file.unwrap_or_else(|| {
+                    let placed = problems.iter().filter_map(|problem| {
+                        problem.span.map(|span| (span, problem.message.clone()))
+                    });
+                    crate::render::diagnostics(origin, text, placed)
+                });
                 for problem in problems.iter().filter(|problem| problem.span.is_none()) {
                     rendered += &format!("error: {}\n", problem.message);
                 }

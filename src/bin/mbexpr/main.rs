@@ -145,7 +145,11 @@ fn run(cli: Cli) -> Result<Outcome, Fatal> {
         Command::Plot(args) => plot::run(&args, &mut out)?,
         Command::Repl(args) => repl::run(&args, &mut out)?,
         Command::Completions { shell } => {
-            clap_complete::generate(shell, &mut Cli::command(), "mbexpr", &mut out);
+            // clap_complete panics when its writer fails: it writes to
+            // memory, and a closed pipe is met here, as an error.
+            let mut script = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "mbexpr", &mut script);
+            out.write_all(&script)?;
             Outcome::Success
         }
         Command::Man { command } => {

@@ -376,28 +376,19 @@ fn reserved(name: &str) -> Option<String> {
     })
 }
 
-/// `:help NAME`: signature and meaning; `:help` alone: the commands.
+/// `:help NAME`: the function's (constant's, system variable's) entry of
+/// the language reference (`docs/language.md`); `:help` alone: the commands.
 fn help(name: &str) -> String {
     if name.is_empty() {
         return HELP.to_string();
     }
-    if let Some(function) = Function::lookup(name) {
-        return format!("{}\n  {}", function.usage(), function.signature().summary);
-    }
-    if let Some(constant) = Constant::lookup(name) {
-        return format!("{} = {}", constant.name(), show(constant.value()));
-    }
-    match SystemVariable::lookup(name) {
-        Some(SystemVariable::Time) => "TIME: the current time, a variable like any other".to_string(),
-        Some(SystemVariable::Mode) => "MODE: the analysis mode (1 kinematics, 3 initial conditions, 4 dynamics, 5 statics, 6 quasi-statics, 7 linear); 4 unless set".to_string(),
-        None => {
-            let known = Function::ALL.iter().map(|function| function.name());
-            format!(
-                "no function, constant or system variable {name}{}",
-                mbexpr::catalog::did_you_mean(&mbexpr::catalog::closest(name, known))
-            )
-        }
-    }
+    mbexpr::help::topic(name).unwrap_or_else(|| {
+        let known = Function::ALL.iter().map(|function| function.name());
+        format!(
+            "no function, constant or system variable {name}{}",
+            mbexpr::catalog::did_you_mean(&mbexpr::catalog::closest(name, known))
+        )
+    })
 }
 
 /// The value and labelled derivatives: on one line (`compact`) or as a table.
@@ -568,10 +559,14 @@ fn interactive(session: Session) -> Result<Outcome, Fatal> {
         // A missing history file is the first run, not an error.
         let _ = editor.load_history(path);
     }
-    println!(
+    // Written through a handle, not `println!`, so that a closed standard
+    // output ends the session quietly rather than in a panic.
+    let mut stdout = io::stdout();
+    writeln!(
+        stdout,
         "mbexpr {} — :help for commands, :quit to leave",
         env!("CARGO_PKG_VERSION")
-    );
+    )?;
     'session: loop {
         let text = match editor.readline("mbexpr> ") {
             Ok(text) => text,
@@ -591,7 +586,7 @@ fn interactive(session: Session) -> Result<Outcome, Fatal> {
             match reply {
                 Ok(Reply::Quit) => break 'session,
                 Ok(Reply::Text(text)) if text.is_empty() => {}
-                Ok(Reply::Text(text)) => println!("{text}"),
+                Ok(Reply::Text(text)) => writeln!(stdout, "{text}")?,
                 Err(message) => eprint!(
                     "{}",
                     if message.ends_with('\n') {
