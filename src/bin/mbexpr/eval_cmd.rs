@@ -9,7 +9,7 @@ use std::collections::HashSet;
 use mbexpr::{Evaluation, Order, Program, Scene, Shown, ShownBuffer};
 use serde_json::Value;
 
-use crate::points::{PointsFile, count};
+use crate::points::PointsFile;
 use crate::record::{Problem, Record};
 use crate::render::diagnostic;
 
@@ -42,8 +42,9 @@ pub struct Args {
     pub scene: Option<String>,
     /// A solver dataset: evaluate every expression in it (or the expression
     /// given) at its initial configuration, at TIME = 0 or --set TIME=...;
-    /// --wrt names TIME or part states such as PART/3.x.
-    #[arg(long, value_name = "FILE.adm", conflicts_with = "points")]
+    /// --wrt names TIME or part states such as PART/3.x; --points gives
+    /// TIME, DIF(id) or part states (PART/3.x) a value per row.
+    #[arg(long, value_name = "FILE.adm")]
     model: Option<String>,
     /// A variable's value, NAME=VALUE (repeatable; names are case-insensitive; TIME too).
     #[arg(long = "set", value_name = "NAME=VALUE")]
@@ -510,7 +511,11 @@ fn evaluate_expression(
     }
     if args.format == Format::Text {
         out.flush()?;
-        eprintln!("{}: {} failed", points.path, count(failures, "row"));
+        eprintln!(
+            "{}: {} failed",
+            points.path,
+            mbexpr::Counted(failures, "row")
+        );
     }
     Ok(Outcome::Failure)
 }
