@@ -276,15 +276,17 @@ fn draw<B: DrawingBackend>(backend: B, over: &str, plot: &Plot) -> Result<(), St
     // One width of the y labels for every panel, so that the x axes of
     // the stacked panels line up.
     let label_area = y_axes.iter().map(Axis::label_area).max().unwrap_or(0);
-    let x_desc = match &plot.note {
-        Some(note) => format!("{over} ({note})"),
-        None => over.to_string(),
-    };
-    for ((panel, (curve, y_axis)), color) in panels
+    for (index, ((panel, (curve, y_axis)), color)) in panels
         .iter()
         .zip(curves.iter().zip(&y_axes))
         .zip(colors.into_iter().cycle())
+        .enumerate()
     {
+        // The note once, under the last panel.
+        let x_desc = match &plot.note {
+            Some(note) if index + 1 == curves.len() => format!("{over} ({note})"),
+            _ => over.to_string(),
+        };
         let (x_low, x_high) = (x_axis.scaled(x_axis.low), x_axis.scaled(x_axis.high));
         let (y_low, y_high) = (y_axis.scaled(y_axis.low), y_axis.scaled(y_axis.high));
         // A point beyond the axis is drawn at its edge, where it leaves.

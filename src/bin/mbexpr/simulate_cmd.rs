@@ -394,7 +394,7 @@ impl<'c> Rows<'c> {
 }
 
 /// Up to how many rows a plot of a run draws each row as a dot.
-const MAX_DOTTED_ROWS: usize = 200;
+const MAX_DOTTED_ROWS: usize = 250;
 
 /// The states that change over the run, one panel each, with the switches
 /// marked.
