@@ -276,6 +276,17 @@ fn check_and_eval_a_model_file() {
         + &check(&["eval", "--model", small, "--wrt", "x"], "")
         + &check(&["eval", "--model", small, "ORIENT(1, 1, 10, 20)"], "")
         + &check(
+            &[
+                "eval",
+                "--model",
+                small,
+                "--set",
+                "PART/2.x=3",
+                "DX(10, 20)",
+            ],
+            "",
+        )
+        + &check(
             &["eval", "--model", small, "--points", "-", "DX(10, 20)"],
             "TIME,PART/2.x,PART/2.rz\n0,1,0\n1,3,0.5\n2,x,0\n",
         )

@@ -41,9 +41,9 @@ pub struct Args {
     #[arg(long, value_name = "FILE.toml", conflicts_with = "model")]
     pub scene: Option<String>,
     /// A solver dataset: evaluate every expression in it (or the expression
-    /// given) at its initial configuration, at TIME = 0 or --set TIME=...;
-    /// --wrt names TIME or part states such as PART/3.x; --points gives
-    /// TIME, DIF(id) or part states (PART/3.x) a value per row.
+    /// given) at its initial configuration, at TIME = 0 unless --set gives
+    /// TIME, DIF(id) or a part's state (PART/3.x) another value; --wrt
+    /// names TIME or part states; --points gives them a value per row.
     #[arg(long, value_name = "FILE.adm")]
     model: Option<String>,
     /// A variable's value, NAME=VALUE (repeatable; names are case-insensitive; TIME too).

@@ -231,7 +231,8 @@ fn read_model(path: &str) -> Result<(String, model::Dataset), Fatal> {
 }
 
 /// A model read for evaluation: its text, statements, check report and
-/// the scene of its initial configuration, with TIME and MODE from `sets`.
+/// the scene of its initial configuration, with the inputs `sets` gives
+/// (TIME, MODE, `DIF(id)`, a part's state) set.
 struct Model {
     text: String,
     dataset: model::Dataset,
@@ -248,15 +249,8 @@ fn read_in(path: &str, sets: &[String]) -> Result<Model, Fatal> {
     })?;
     for assignment in sets {
         let (name, value) = parse_assignment(assignment)?;
-        match mbexpr::catalog::SystemVariable::lookup(&name) {
-            Some(mbexpr::catalog::SystemVariable::Time) => scene.time = value,
-            Some(mbexpr::catalog::SystemVariable::Mode) => scene.mode = Some(value),
-            None => {
-                return Err(Fatal::usage(format!(
-                    "error: --set {assignment}: a model's expressions read only TIME and MODE (its states are PART/id.x ..., set by its statements)"
-                )));
-            }
-        }
+        set_input(&mut scene, &name, value)
+            .map_err(|message| Fatal::usage(format!("error: --set {assignment}: {message}")))?;
     }
     Ok(Model {
         text,

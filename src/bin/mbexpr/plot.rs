@@ -615,8 +615,8 @@ pub struct Args {
     #[arg(long, value_name = "FILE.toml", conflicts_with = "model")]
     scene: Option<String>,
     /// A solver dataset the expression is evaluated in, at its initial
-    /// configuration; --over names TIME, DIF(id) or a part's state
-    /// (PART/3.x), --set TIME or MODE.
+    /// configuration; --over and --set name TIME, DIF(id) or a part's
+    /// state (PART/3.x).
     #[arg(long, value_name = "FILE.adm")]
     model: Option<String>,
     /// Also plot the first and second derivative in the plotted variable.
