@@ -680,6 +680,10 @@ fn model_files_as_an_engineer_meets_them() {
     );
     let report = check(&["eval", "--model", dat, "--set", "TIME=1.5"], "")
         + &check(
+            &["eval", "--model", dat, "--wrt", "DIF(3)", "DIF(3)**2"],
+            "",
+        )
+        + &check(
             &[
                 "eval",
                 "--model",

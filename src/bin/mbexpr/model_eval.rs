@@ -280,13 +280,9 @@ fn set_input(scene: &mut Scene, name: &str, value: f64) -> Result<(), String> {
                 diff.initial = value;
                 return Ok(());
             }
-            let (index, component) = scene.parse_state_name(name).ok_or_else(|| {
-                if name.contains('.') {
-                    not_a_state(scene, name)
-                } else {
-                    "name TIME, MODE, a DIFF's state DIF(id) or a part's state component, such as PART/3.x".to_string()
-                }
-            })?;
+            let (index, component) = scene
+                .parse_state_name(name)
+                .ok_or_else(|| not_a_state(scene, name))?;
             let body = &mut scene.bodies[index];
             match component {
                 StateComponent::Position(axis) => body.position[axis] = value,
@@ -313,7 +309,9 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
     let lines = LineIndex::new(&text);
     for name in &args.wrt {
         let state = scene.parse_state_name(name).is_some();
-        if !state && !name.eq_ignore_ascii_case("TIME") {
+        let diff = mbexpr::scene::parse_diff_input(name)
+            .is_some_and(|id| scene.statements.diffs.contains_key(&id));
+        if !state && !diff && !name.eq_ignore_ascii_case("TIME") {
             return Err(Fatal::usage(format!(
                 "error: --wrt {name}: {}",
                 not_a_state(&scene, name)
@@ -628,7 +626,9 @@ fn write_row(
 fn not_a_state(scene: &Scene, name: &str) -> String {
     const COMPONENTS: &str = "x y z rx ry rz vx vy vz wx wy wz";
     let Some((part, component)) = name.rsplit_once('.') else {
-        return format!("name TIME or a part's state component, such as PART/3.x ({COMPONENTS})");
+        return format!(
+            "name TIME, a DIFF's state DIF(id) or a part's state component, such as PART/3.x ({COMPONENTS})"
+        );
     };
     if scene.find_body(part).is_none() {
         let parts = scene.bodies.iter().map(|body| body.name.as_str());
