@@ -27,7 +27,7 @@ fn each_line_is_an_input_unless_it_visibly_continues() {
         :set PI = 3\n:set pi=3\n:set STEP = 3\n:set Step5 = 1\n:set TIME = 1\nPI
         :set MODE = 99\n:set MODE = 2\n:set MODE = 3\nMODE
         :order 1\n2*3\n:wrt x\n:set x = 1\n2*x
-        :scene examples/scenes/ball_between_walls.toml\ngap\ncontact\n:set gap = 2\ngap
+        :scene examples/scenes/ball_between_walls.toml\ngap\ncontact\n2*gap + gap_rate\nDX(ball, wall, wall) - gap\n:set gap = 2\ngap
         :scene examples/scenes/ball_between_walls.toml\n:plot gap --over ball.x=0..1 -o /dev/null --samples 11\n:plot gap over ball.x in 0..1 to /dev/null\n:plot gap --over ball.x=0..1
         ",
         check

@@ -6,6 +6,7 @@
 use std::io::{self, BufRead, IsTerminal, Write};
 
 use mbexpr::catalog::{ArgKind, Constant, Function, SystemVariable};
+use mbexpr::syntax::ast::{Expr, ExprKind};
 use mbexpr::{Counted, Order, Scene};
 use rustyline::completion::{Completer, Pair};
 use rustyline::{Context, Helper, Highlighter, Hinter, Validator};
@@ -34,7 +35,7 @@ expressions: type one, e.g. STEP(TIME, 0, 0, 1, 10) or BISTOP(x, v, -1, 1, 1e4, 
 :vars                 what is bound
 :help NAME            the signature and meaning of a function
 :plot EXPR --over NAME=A..B -o FILE.svg [--derivatives] [--samples N]
-NAME                  a named expression of the scene, evaluated
+NAME                  a named expression of the scene, in any expression
 :quit                 leave (also Ctrl-D)";
 
 /// What the REPL knows between lines.
@@ -176,7 +177,7 @@ impl Session {
             if input.is_empty() {
                 return Ok(Reply::Text(String::new()));
             }
-            return self.evaluate(self.expand(input), compact).map(Reply::Text);
+            return self.evaluate(&self.expand(input), compact).map(Reply::Text);
         };
         let (word, rest) = command
             .split_once(char::is_whitespace)
@@ -249,23 +250,92 @@ impl Session {
         }
     }
 
-    /// The text of the scene's named expression `input` stands for (the
-    /// name alone, as `eval --scene` lists them), unless `:set` gave that
-    /// name a value; any other input as it is.
-    fn expand<'a>(&'a self, input: &'a str) -> &'a str {
-        let bound = self
-            .bindings
-            .iter()
-            .any(|(name, _)| name.eq_ignore_ascii_case(input));
-        let named = self.scene.as_ref().and_then(|scene| {
-            scene
-                .expressions
-                .iter()
-                .find(|(name, _)| name.eq_ignore_ascii_case(input))
-        });
-        match named {
-            Some((_, text)) if !bound => text,
-            _ => input,
+    /// `input` with each name of a scene's named expression (where a value
+    /// goes, and unless `:set` gave that name a value) replaced by the
+    /// expression's text in parentheses: `2*gap` is `2*(DX(ball, wall,
+    /// wall))`. An input that does not parse is left as it is, for its
+    /// error.
+    fn expand<'a>(&self, input: &'a str) -> std::borrow::Cow<'a, str> {
+        let Some(scene) = self
+            .scene
+            .as_ref()
+            .filter(|scene| !scene.expressions.is_empty())
+        else {
+            return input.into();
+        };
+        let Ok(tree) = mbexpr::parse(input) else {
+            return input.into();
+        };
+        let mut places = Vec::new();
+        self.named_places(scene, &tree, &mut places);
+        if places.is_empty() {
+            return input.into();
+        }
+        places.sort_by_key(|(span, _)| span.start);
+        let (mut text, mut done) = (String::new(), 0);
+        for (span, expression) in places {
+            text += &input[done..span.start];
+            text += &format!("({expression})");
+            done = span.end;
+        }
+        text += &input[done..];
+        text.into()
+    }
+
+    /// The places in `expression` where a name stands for one of the
+    /// scene's named expressions, with that expression's text.
+    fn named_places<'s>(
+        &self,
+        scene: &'s Scene,
+        expression: &Expr,
+        places: &mut Vec<(mbexpr::Span, &'s str)>,
+    ) {
+        let mut walk = |inner: &Expr| self.named_places(scene, inner, places);
+        match &expression.kind {
+            ExprKind::Number(_) => {}
+            ExprKind::Name(name) => {
+                let bound = self
+                    .bindings
+                    .iter()
+                    .any(|(known, _)| known.eq_ignore_ascii_case(name));
+                let named = scene
+                    .expressions
+                    .iter()
+                    .find(|(known, _)| known.eq_ignore_ascii_case(name));
+                if let Some((_, text)) = named.filter(|_| !bound) {
+                    places.push((expression.span, text));
+                }
+            }
+            ExprKind::Unary(_, operand) => walk(operand),
+            ExprKind::Chain(first, rest) => {
+                walk(first);
+                rest.iter().for_each(|(_, operand)| walk(operand));
+            }
+            ExprKind::Power(base, exponent) => {
+                walk(base);
+                walk(exponent);
+            }
+            ExprKind::Call(call) => {
+                let function = Function::lookup(&call.name);
+                for (position, argument) in call.args.iter().enumerate() {
+                    // A marker or a statement is named, never computed.
+                    if function.is_none_or(|function| {
+                        function.signature().kind(position) == ArgKind::Value
+                    }) {
+                        walk(argument);
+                    }
+                }
+            }
+            ExprKind::If(branches) => {
+                for branch in [
+                    &branches.condition,
+                    &branches.negative,
+                    &branches.zero,
+                    &branches.positive,
+                ] {
+                    walk(branch);
+                }
+            }
         }
     }
 
@@ -331,7 +401,7 @@ impl Session {
         let command = PlotCommand::parse(rest)?;
         let (over, start, end) = crate::plot::parse_range(&command.range)
             .map_err(|message| format!("error: {message}"))?;
-        let expression = self.expand(command.expression.trim());
+        let expression = &*self.expand(command.expression.trim());
         let file = command.file.as_str();
         let tree = mbexpr::parse(expression)
             .map_err(|error| diagnostic("", expression, error.span(), &error.to_string()))?;
