@@ -72,8 +72,11 @@ fn change_between(mut a: f64, mut b: f64, mut unchanged: impl FnMut(f64) -> bool
     }
 }
 
-/// `count` evenly spaced values from `start` to `end`, with the break points
-/// inside the range added (each once), sorted.
+/// `count` evenly spaced values from `start` to `end`, with each break point
+/// inside the range added together with the double below it (each once),
+/// sorted: a break point of [`breakpoints`] is the first double on the new
+/// branch, the one below it the last on the old, so both sides of every
+/// kink are sampled alike, whichever way the branch changes.
 pub fn samples(start: f64, end: f64, count: usize, breakpoints: &[f64]) -> Vec<f64> {
     let count = count.max(2);
     let step = (end - start) / (count - 1) as f64;
@@ -84,7 +87,7 @@ pub fn samples(start: f64, end: f64, count: usize, breakpoints: &[f64]) -> Vec<f
     values.extend(
         breakpoints
             .iter()
-            .copied()
+            .flat_map(|&point| [point.next_down(), point])
             .filter(|point| (low..=high).contains(point)),
     );
     values.sort_by(f64::total_cmp);

@@ -62,6 +62,6 @@ pub use compile::{CompileError, Program, compile, compile_in_model, compile_in_s
 pub use errors::Errors;
 pub use eval::{EvalError, Evaluation, Evaluator, Order, Run};
 pub use scene::Scene;
-pub use shown::{Shown, ShownBuffer};
+pub use shown::{Counted, Shown, ShownBuffer};
 pub use span::{LineIndex, Location, Span};
 pub use syntax::{ParseError, parse};

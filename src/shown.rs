@@ -70,3 +70,42 @@ impl fmt::Display for Shown {
         Ok(())
     }
 }
+
+/// A count and its noun as every message writes one: the noun in the
+/// plural unless the count is 1 (`1 event`, `2 events`, `0 bodies`,
+/// `3 lu decompositions`; a noun of several words takes the plural on its
+/// last).
+///
+/// ```
+/// use mbexpr::Counted;
+/// assert_eq!(Counted(1, "jacobian").to_string(), "1 jacobian");
+/// assert_eq!(Counted(2, "body").to_string(), "2 bodies");
+/// assert_eq!(Counted(0, "entry").to_string(), "0 entries");
+/// assert_eq!(Counted(4, "day").to_string(), "4 days");
+/// assert_eq!(Counted(2, "right-hand side").to_string(), "2 right-hand sides");
+/// assert_eq!(Counted(3, "match").to_string(), "3 matches");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Counted<'a>(pub usize, pub &'a str);
+
+impl fmt::Display for Counted<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Counted(count, noun) = *self;
+        if count == 1 {
+            return write!(f, "1 {noun}");
+        }
+        let before_last = noun.chars().rev().nth(1).unwrap_or('a');
+        if let Some(stem) = noun.strip_suffix('y')
+            && !"aeiou".contains(before_last)
+        {
+            write!(f, "{count} {stem}ies")
+        } else if ["s", "x", "z", "ch", "sh"]
+            .iter()
+            .any(|ending| noun.ends_with(ending))
+        {
+            write!(f, "{count} {noun}es")
+        } else {
+            write!(f, "{count} {noun}s")
+        }
+    }
+}

@@ -273,7 +273,30 @@ fn check_and_eval_a_model_file() {
             "",
         )
         + &check(&["eval", "--model", small, "--format", "jsonl"], "")
-        + &check(&["eval", "--model", small, "--wrt", "x"], "");
+        + &check(&["eval", "--model", small, "--wrt", "x"], "")
+        + &check(&["eval", "--model", small, "ORIENT(1, 1, 10, 20)"], "")
+        + &check(
+            &[
+                "eval",
+                "--model",
+                small,
+                "--set",
+                "PART/2.x=3",
+                "DX(10, 20)",
+            ],
+            "",
+        )
+        + &check(
+            &["eval", "--model", small, "--points", "-", "DX(10, 20)"],
+            "TIME,PART/2.x,PART/2.rz\n0,1,0\n1,3,0.5\n2,x,0\n",
+        )
+        + &check(
+            &[
+                "eval", "--model", small, "--points", "-", "--format", "jsonl",
+            ],
+            "PART/2.vx\n2\n",
+        )
+        + &check(&["eval", "--model", small, "--points", "-"], "k\n1\n");
     std::fs::remove_dir_all(&dir).unwrap();
     let folder = dir.to_str().unwrap();
     insta::assert_snapshot!(report.replace(folder, "DIR"));
@@ -331,14 +354,15 @@ fn plot_writes_a_well_formed_svg_holding_the_curve() {
         "",
     );
     assert_eq!(code, 0, "{stderr}");
-    // 101 samples and the break points -1.2, -1, 1, 1.2 (one may fall on a sample).
+    // 101 samples and the break points -1.2, -1, 1, 1.2, each with the
+    // double below it (one may fall on a sample).
     let points: usize = stdout
         .split(" (")
         .nth(1)
         .and_then(|rest| rest.split(' ').next())
         .and_then(|count| count.parse().ok())
         .unwrap_or_default();
-    assert!((104..=105).contains(&points), "{stdout}");
+    assert!((108..=109).contains(&points), "{stdout}");
     let text = std::fs::read_to_string(&svg).unwrap();
     let document = roxmltree::Document::parse(&text).expect("well-formed SVG");
     let lines: Vec<_> = document
@@ -655,6 +679,10 @@ fn model_files_as_an_engineer_meets_them() {
         expressions.to_str().unwrap(),
     );
     let report = check(&["eval", "--model", dat, "--set", "TIME=1.5"], "")
+        + &check(
+            &["eval", "--model", dat, "--wrt", "DIF(3)", "DIF(3)**2"],
+            "",
+        )
         + &check(
             &[
                 "eval",

@@ -15,8 +15,11 @@ fn check(case: &str) -> String {
     let mut args: Vec<&str> = vec!["plot"];
     args.extend(case.split('|'));
     let output = file.to_str().unwrap().to_string();
+    if !case.contains("--samples") {
+        args.extend(["--samples", "11"]);
+    }
     if !case.contains("-o|") {
-        args.extend(["--samples", "11", "-o", &output]);
+        args.extend(["-o", &output]);
     }
     let (stdout, stderr, code) = crate::cli::mbexpr(&args, "");
     let mut shown = format!("{stdout}{stderr}[exit {code}]").replace(&output, "FILE.svg");
@@ -52,6 +55,11 @@ fn plots_mark_kinks_along_any_input_and_gaps_where_evaluation_fails() {
         SQRT(x)|--over|x=-1..1|--derivatives
         1/(x-0.5)|--over|x=0..1
         LOG(x)|--over|x=-2..-1
+        BISTOP(x, v, -1, 1, 1e4, 1.5, 50, 0.2)|--over|x=-1.5..1.5|--set|v=0.3|--derivatives|--samples|400
+        1/(x-0.5)|--over|x=0..1|--samples|400
+        BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)|--over|DIF(1)=0.9..1.1|--model|ROOT/examples/simulate/a1_ball.adm|--derivatives
+        DIF(2)*TIME|--over|TIME=0..2|--model|ROOT/examples/simulate/a1_ball.adm
+        DIF(2)|--over|PART/9.x=0..2|--model|ROOT/examples/simulate/a1_ball.adm
         ",
         check
     ));

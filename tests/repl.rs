@@ -27,6 +27,8 @@ fn each_line_is_an_input_unless_it_visibly_continues() {
         :set PI = 3\n:set pi=3\n:set STEP = 3\n:set Step5 = 1\n:set TIME = 1\nPI
         :set MODE = 99\n:set MODE = 2\n:set MODE = 3\nMODE
         :order 1\n2*3\n:wrt x\n:set x = 1\n2*x
+        :scene examples/scenes/ball_between_walls.toml\ngap\ncontact\n2*gap + gap_rate\nDX(ball, wall, wall) - gap\n:set gap = 2\ngap
+        :scene examples/scenes/ball_between_walls.toml\n:plot gap --over ball.x=0..1 -o /dev/null --samples 11\n:plot gap over ball.x in 0..1 to /dev/null\n:plot gap --over ball.x=0..1
         ",
         check
     ));
@@ -72,6 +74,8 @@ fn keys_typed_ahead_and_pasted_blocks_are_each_answered() {
         1+1\n2+2\n3+3\n
         \e[200~1+1\n2+2\nSIN(x\n4+4\e[201~\n
         \e[200~STEP(1,\n0, 0, 2, 10)\n5*5\e[201~\n
+        STEP(1, 0, 0, 2\n, 10)\n
+        SIN(0\n\n7*7\n
         ",
         on_a_terminal
     ));

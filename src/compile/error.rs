@@ -117,7 +117,7 @@ pub enum CompileError {
         span: Span,
     },
     /// `ARYVAL(id, i)` beyond the array.
-    #[error("ARYVAL({id}, {entry}): ARRAY/{id} has {count} entries")]
+    #[error("ARYVAL({id}, {entry}): ARRAY/{id} has {}", crate::Counted(*count, "entry"))]
     ArrayEntry {
         /// The array.
         id: u64,

@@ -50,7 +50,7 @@ pub enum EvalError {
         span: Span,
     },
     /// The caller passed the wrong number of input values (a programming error).
-    #[error("{found} input values were given for {expected} inputs")]
+    #[error("{} were given for {}", crate::Counted(*found, "input value"), crate::Counted(*expected, "input"))]
     InputCount {
         /// The number of inputs the program was compiled for.
         expected: usize,

@@ -407,7 +407,7 @@ impl<T: Directional> Evaluator<'_, T> {
         let count = wrt.len();
         for (position, &direction) in wrt.iter().enumerate() {
             let reason = if direction >= inputs.len() {
-                format!("there are only {} inputs", inputs.len())
+                format!("there are only {}", crate::Counted(inputs.len(), "input"))
             } else if wrt[..position].contains(&direction) {
                 "named twice".to_string()
             } else {

@@ -60,8 +60,8 @@ impl Core {
         }
         if y0.len() != dimension {
             return invalid(format!(
-                "the initial state has {} components, the system {dimension}",
-                y0.len()
+                "the initial state has {}, the system {dimension}",
+                crate::Counted(y0.len(), "component")
             ));
         }
         let atol = match &options.atol {
@@ -69,8 +69,9 @@ impl Core {
             AbsoluteTolerance::Each(atol) if atol.len() == dimension => atol.clone(),
             AbsoluteTolerance::Each(atol) => {
                 return invalid(format!(
-                    "{} absolute tolerances for {dimension} components",
-                    atol.len()
+                    "{} for {}",
+                    crate::Counted(atol.len(), "absolute tolerance"),
+                    crate::Counted(dimension, "component")
                 ));
             }
         };

@@ -95,6 +95,8 @@ use std::str::FromStr;
 
 use nalgebra::DMatrix;
 
+use crate::Counted;
+
 use self::core::Core;
 pub use self::core::smallest_step;
 use self::dop853::Dop853;
@@ -270,13 +272,13 @@ impl fmt::Display for Stats {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{} steps ({} rejected), {} right-hand sides ({} failed), {} jacobians, {} lu decompositions",
-            self.steps,
+            "{} ({} rejected), {} ({} failed), {}, {}",
+            Counted(self.steps, "step"),
             self.rejected,
-            self.rhs_evaluations,
+            Counted(self.rhs_evaluations, "right-hand side"),
             self.rhs_failures,
-            self.jacobian_evaluations,
-            self.lu_decompositions
+            Counted(self.jacobian_evaluations, "jacobian"),
+            Counted(self.lu_decompositions, "lu decomposition")
         )
     }
 }

@@ -62,7 +62,7 @@ pub enum SplineDataError {
         previous: f64,
     },
     /// A curve with another number of y values than there are x values.
-    #[error("curve {curve} has {found} y values for {expected} x values")]
+    #[error("curve {curve} has {} for {}", crate::Counted(*found, "y value"), crate::Counted(*expected, "x value"))]
     CurveLength {
         /// The curve, from 1.
         curve: usize,

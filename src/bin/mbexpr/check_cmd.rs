@@ -7,7 +7,7 @@ use clap::ValueEnum;
 use serde_json::{Value, json};
 
 use mbexpr::model::{self, FileKind};
-use mbexpr::{CompileError, LineIndex, Span};
+use mbexpr::{CompileError, Counted, LineIndex, Span};
 
 use crate::render::{diagnostics, line_diagnostics};
 use crate::{Fatal, Outcome};
@@ -178,9 +178,9 @@ fn check_model_file(
             writeln!(
                 out,
                 "{origin}: {}, {}, {}",
-                plural(dataset.statements.len(), "statement"),
-                plural(report.expressions.len(), "expression"),
-                plural(report.problems.len(), "error")
+                Counted(dataset.statements.len(), "statement"),
+                Counted(report.expressions.len(), "expression"),
+                Counted(report.problems.len(), "error")
             )?;
         }
         Format::Jsonl => {
@@ -281,11 +281,6 @@ fn check_expression_file(
     Ok((expressions, errors))
 }
 
-/// `3 errors`, `1 error`.
-fn plural(count: usize, word: &str) -> String {
-    format!("{count} {word}{}", if count == 1 { "" } else { "s" })
-}
-
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let (mut expressions, mut errors, mut unreadable) = (0usize, 0usize, 0usize);
     let mut models = 0;
@@ -328,11 +323,11 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         if !(models == 1 && args.files.len() == 1) {
             let mut summary = format!(
                 "{}, {}",
-                plural(expressions, "expression"),
-                plural(errors, "error")
+                Counted(expressions, "expression"),
+                Counted(errors, "error")
             );
             if unreadable > 0 {
-                summary += &format!(", {} not read", plural(unreadable, "file"));
+                summary += &format!(", {} not read", Counted(unreadable, "file"));
             }
             writeln!(out, "{summary}")?;
         }
@@ -352,7 +347,7 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         out.flush()?;
         return Err(Fatal::usage(format!(
             "error: {} not read",
-            plural(unreadable, "file")
+            Counted(unreadable, "file")
         )));
     } else if errors == 0 {
         Outcome::Success

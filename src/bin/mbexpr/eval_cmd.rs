@@ -9,7 +9,7 @@ use std::collections::HashSet;
 use mbexpr::{Evaluation, Order, Program, Scene, Shown, ShownBuffer};
 use serde_json::Value;
 
-use crate::points::{PointsFile, count};
+use crate::points::PointsFile;
 use crate::record::{Problem, Record};
 
 use crate::sweep::Sweep;
@@ -40,9 +40,10 @@ pub struct Args {
     #[arg(long, value_name = "FILE.toml", conflicts_with = "model")]
     pub scene: Option<String>,
     /// A solver dataset: evaluate every expression in it (or the expression
-    /// given) at its initial configuration, at TIME = 0 or --set TIME=...;
-    /// --wrt names TIME or part states such as PART/3.x.
-    #[arg(long, value_name = "FILE.adm", conflicts_with = "points")]
+    /// given) at its initial configuration, at TIME = 0 unless --set gives
+    /// TIME, DIF(id) or a part's state (PART/3.x) another value; --wrt
+    /// names TIME or part states; --points gives them a value per row.
+    #[arg(long, value_name = "FILE.adm")]
     model: Option<String>,
     /// A variable's value, NAME=VALUE (repeatable; names are case-insensitive; TIME too).
     #[arg(long = "set", value_name = "NAME=VALUE")]
@@ -560,7 +561,11 @@ fn evaluate_expression(
     }
     if args.format == Format::Text {
         out.flush()?;
-        eprintln!("{}: {} failed", points.path, count(failures, "row"));
+        eprintln!(
+            "{}: {} failed",
+            points.path,
+            mbexpr::Counted(failures, "row")
+        );
     }
     Ok(Outcome::Failure)
 }

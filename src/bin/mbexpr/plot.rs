@@ -2,8 +2,9 @@
 //! its first and second derivatives on request; shared with the REPL's `:plot`.
 
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use mbexpr::{Checked, Order, Scene};
+use mbexpr::{Checked, Counted, Evaluation, Order, Scene};
 
 /// One curve to draw: a name and its points.
 pub struct Curve {
@@ -59,17 +60,23 @@ pub struct Plot {
     pub sampled: usize,
     /// The range of x asked for.
     pub range: (f64, f64),
+    /// What the x axis's title adds after the variable's name: how the
+    /// curves were drawn, when it is not from dense samples.
+    pub note: Option<String>,
+    /// Whether each point is drawn as a dot too (the curves join few points).
+    pub dots: bool,
 }
 
 impl Plot {
     /// `wrote FILE (N points)`, with the failed samples when there were.
     pub fn summary(&self, file: &str, over: &str) -> String {
         let points = self.curves[0].points().count();
-        let mut text = format!("wrote {file} ({points} points");
+        let mut text = format!("wrote {file} ({}", Counted(points, "point"));
         if let Some((x, message)) = &self.first_failure {
             text += &format!(
-                "; {} of {} samples could not be evaluated and are a gap, the first at {over} = {x}: {message}",
-                self.failed, self.sampled
+                "; {} of {} could not be evaluated and are a gap, the first at {over} = {x}: {message}",
+                self.failed,
+                Counted(self.sampled, "sample")
             );
         }
         text + ")"
@@ -98,13 +105,51 @@ pub fn curves(request: &PlotRequest<'_>) -> Result<Plot, String> {
     } else {
         Order::Value
     };
-    let count = if request.derivatives { 3 } else { 1 };
+    // The samples are one run: AX, AY, AZ stay continuous along the curve.
+    let mut run = program.run();
+    let sampling = Sampling {
+        text: request.text,
+        over: request.over,
+        range: request.range,
+        derivatives: request.derivatives,
+    };
+    trace(&sampling, &xs, marks, |x| {
+        values[over] = x;
+        run.evaluate(&values, &[over], order)
+            .map_err(|error| error.to_string())
+    })
+}
+
+/// What a curve is sampled along: the expression's text (the first
+/// curve's name), the variable along the x axis, its range, and whether
+/// the first and second derivatives in it are curves too.
+pub struct Sampling<'a> {
+    /// The expression's text.
+    pub text: &'a str,
+    /// The variable along the x axis.
+    pub over: &'a str,
+    /// Its range.
+    pub range: (f64, f64),
+    /// Whether to add the first and second derivative in `over`.
+    pub derivatives: bool,
+}
+
+/// The plot of `evaluate` (the value at `x`, with the derivatives in `x`
+/// when asked for) at each of `xs`, sorted; a sample where it fails leaves
+/// a gap. `marks` are the break points to draw.
+pub fn trace(
+    sampling: &Sampling<'_>,
+    xs: &[f64],
+    marks: Vec<f64>,
+    mut evaluate: impl FnMut(f64) -> Result<Evaluation, String>,
+) -> Result<Plot, String> {
+    let count = if sampling.derivatives { 3 } else { 1 };
     let mut curves: Vec<Curve> = (0..count)
         .map(|index| Curve {
             label: match index {
-                0 => request.text.to_string(),
-                1 => format!("d/d{}", request.over),
-                _ => format!("d²/d{}²", request.over),
+                0 => sampling.text.to_string(),
+                1 => format!("d/d{}", sampling.over),
+                _ => format!("d²/d{}²", sampling.over),
             },
             segments: vec![Vec::new()],
         })
@@ -116,21 +161,20 @@ pub fn curves(request: &PlotRequest<'_>) -> Result<Plot, String> {
         failed: 0,
         first_failure: None,
         sampled: xs.len(),
-        range: request.range,
+        range: sampling.range,
+        note: None,
+        dots: false,
     };
-    // The samples are one run: AX, AY, AZ stay continuous along the curve.
-    let mut run = program.run();
     let (mut last_good, mut gap_open) = (None, false);
-    for &x in &xs {
-        values[over] = x;
-        let evaluation = match run.evaluate(&values, &[over], order) {
+    for &x in xs {
+        let evaluation = match evaluate(x) {
             Ok(evaluation) => evaluation,
             Err(error) => {
                 plot.failed += 1;
-                plot.first_failure.get_or_insert((x, error.to_string()));
+                plot.first_failure.get_or_insert((x, error));
                 if !gap_open {
                     gap_open = true;
-                    plot.gaps.push((last_good.unwrap_or(x), high));
+                    plot.gaps.push((last_good.unwrap_or(x), sampling.range.1));
                     for curve in &mut curves {
                         curve.segments.push(Vec::new());
                     }
@@ -154,8 +198,11 @@ pub fn curves(request: &PlotRequest<'_>) -> Result<Plot, String> {
     if curves[0].points().next().is_none() {
         let reason = plot
             .first_failure
-            .map(|(x, message)| format!(" (at {} = {}: {message})", request.over, mbexpr::Shown(x)))
+            .map(|(x, message)| {
+                format!(" (at {} = {}: {message})", sampling.over, mbexpr::Shown(x))
+            })
             .unwrap_or_default();
+        let (low, high) = sampling.range;
         return Err(format!(
             "the expression could not be evaluated anywhere in {}..{}{reason}",
             mbexpr::Shown(low),
@@ -204,36 +251,57 @@ fn draw<B: DrawingBackend>(backend: B, over: &str, plot: &Plot) -> Result<(), St
     let root = backend.into_drawing_area();
     root.fill(&WHITE).map_err(error)?;
     let panels = root.split_evenly((curves.len(), 1));
-    let colors = [BLUE, RED, GREEN];
+    let colors = [
+        BLUE,
+        RED,
+        RGBColor(0, 150, 0),
+        MAGENTA,
+        RGBColor(230, 130, 0),
+        CYAN,
+        BLACK,
+        RGBColor(120, 60, 0),
+    ];
     // Plotters ticks an axis only when its width is above 2e-16 and
     // finite: each axis is drawn in units of a power of ten that brings
     // its values near 1, and its labels say the power.
     let x_axis = Axis::new([plot.range.0, plot.range.1].into_iter(), false);
-    for (index, ((panel, curve), color)) in panels
+    let y_axes: Vec<Axis> = curves
         .iter()
-        .zip(curves)
+        .map(|curve| {
+            let ys: Vec<f64> = curve.points().map(|point| point.1).collect();
+            let (low, high) = bulk(&ys);
+            Axis::new(ys.into_iter().filter(|y| (low..=high).contains(y)), true)
+        })
+        .collect();
+    // One width of the y labels for every panel, so that the x axes of
+    // the stacked panels line up.
+    let label_area = y_axes.iter().map(Axis::label_area).max().unwrap_or(0);
+    for (index, ((panel, (curve, y_axis)), color)) in panels
+        .iter()
+        .zip(curves.iter().zip(&y_axes))
         .zip(colors.into_iter().cycle())
         .enumerate()
     {
-        let y_axis = Axis::new(curve.points().map(|point| point.1), true);
-        let at = |(x, y): (f64, f64)| (x_axis.scaled(x), y_axis.scaled(y));
+        // The note once, under the last panel.
+        let x_desc = match &plot.note {
+            Some(note) if index + 1 == curves.len() => format!("{over} ({note})"),
+            _ => over.to_string(),
+        };
         let (x_low, x_high) = (x_axis.scaled(x_axis.low), x_axis.scaled(x_axis.high));
         let (y_low, y_high) = (y_axis.scaled(y_axis.low), y_axis.scaled(y_axis.high));
+        // A point beyond the axis is drawn at its edge, where it leaves.
+        let at = |(x, y): (f64, f64)| (x_axis.scaled(x), y_axis.scaled(y).clamp(y_low, y_high));
         let mut chart = ChartBuilder::on(panel)
             .caption(&curve.label, ("sans-serif", 18))
             .margin(12)
             .x_label_area_size(44)
-            .y_label_area_size(y_axis.label_area())
+            .y_label_area_size(label_area)
             .build_cartesian_2d(x_low..x_high, y_low..y_high)
             .map_err(error)?;
         chart
             .configure_mesh()
-            .x_desc(over)
-            .y_desc(if index == 0 {
-                "value"
-            } else {
-                curve.label.as_str()
-            })
+            .x_desc(x_desc.as_str())
+            .y_desc(axis_title(&curve.label))
             .x_label_formatter(&|x| x_axis.label(*x))
             .y_label_formatter(&|y| y_axis.label(*y))
             .draw()
@@ -257,26 +325,157 @@ fn draw<B: DrawingBackend>(backend: B, over: &str, plot: &Plot) -> Result<(), St
                 ))
                 .map_err(error)?;
         }
-        for (position, segment) in curve.segments.iter().enumerate() {
+        for segment in &curve.segments {
             let points = segment.iter().map(|&point| at(point));
-            let series = chart
+            chart
                 .draw_series(LineSeries::new(points, color.stroke_width(2)))
                 .map_err(error)?;
-            if position == 0 {
-                series.label(&curve.label).legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
+            if plot.dots {
+                let dots = segment
+                    .iter()
+                    .map(|&point| Circle::new(at(point), 2, color.filled()));
+                chart.draw_series(dots).map_err(error)?;
             }
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperMiddle)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(error)?;
+        let middle = (x_low + x_high) / 2.0;
+        for (rank, exit) in exits(curve, y_axis).iter().enumerate() {
+            let (x, y) = at((exit.x, exit.y));
+            // An arrowhead at the edge, pointing the way the curve leaves.
+            let tip = if exit.y > y_axis.high { 1 } else { -1 };
+            let head = Polygon::new(vec![(0, 0), (-5, 9 * tip), (5, 9 * tip)], color.filled());
+            let text = format!("{} at {over} = {}", rounded(exit.y), rounded(exit.x));
+            let anchor = Pos::new(
+                if x > middle { HPos::Right } else { HPos::Left },
+                if tip > 0 { VPos::Top } else { VPos::Bottom },
+            );
+            let style = ("sans-serif", 13).into_font().color(&BLACK).pos(anchor);
+            let shift = if x > middle { -8 } else { 8 };
+            chart
+                .draw_series([EmptyElement::at((x, y)) + head])
+                .map_err(error)?;
+            // The most extreme few are labelled; the others keep their arrowhead.
+            if rank < MAX_EXIT_LABELS {
+                let label = Text::new(text, (shift, 12 * tip), style);
+                chart
+                    .draw_series([EmptyElement::at((x, y)) + label])
+                    .map_err(error)?;
+            }
+        }
     }
     root.present().map_err(error)
+}
+
+/// How many places where a curve leaves its axis are labelled with their value.
+const MAX_EXIT_LABELS: usize = 6;
+
+/// The y axis's title: the curve's name, shortened with an ellipsis when
+/// it is longer than a panel is high (the caption above has it whole).
+fn axis_title(label: &str) -> String {
+    const FITS: usize = 36;
+    if label.chars().count() <= FITS {
+        return label.to_string();
+    }
+    let kept: String = label.chars().take(FITS - 1).collect();
+    kept + "…"
+}
+
+/// `value` to three significant digits, as a tick or a note shows it.
+fn rounded(value: f64) -> String {
+    let magnitude = value.abs();
+    if magnitude == 0.0 || (1e-3..1e5).contains(&magnitude) {
+        let text = format!(
+            "{:.*}",
+            (2 - magnitude.log10().floor() as i32).max(0) as usize,
+            value
+        );
+        if text.contains('.') {
+            text.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            text
+        }
+    } else {
+        let text = format!("{value:.2e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        format!("{mantissa}e{exponent}")
+    }
+}
+
+/// Where a curve leaves its axis: the most extreme point of each run of
+/// points beyond it.
+struct Exit {
+    x: f64,
+    y: f64,
+}
+
+/// The runs of `curve`'s points beyond `axis`, each by its most extreme
+/// point, the most extreme run first.
+fn exits(curve: &Curve, axis: &Axis) -> Vec<Exit> {
+    let beyond = |y: f64| {
+        if y > axis.high {
+            y - axis.high
+        } else if y < axis.low {
+            axis.low - y
+        } else {
+            0.0
+        }
+    };
+    let mut found: Vec<Exit> = Vec::new();
+    for segment in &curve.segments {
+        let mut run: Option<Exit> = None;
+        for &(x, y) in segment {
+            if beyond(y) == 0.0 {
+                found.extend(run.take());
+                continue;
+            }
+            let same_side = run
+                .as_ref()
+                .is_some_and(|exit| (exit.y > axis.high) == (y > axis.high));
+            if !same_side {
+                found.extend(run.take());
+            }
+            match &mut run {
+                Some(exit) if beyond(y) <= beyond(exit.y) => {}
+                _ => run = Some(Exit { x, y }),
+            }
+        }
+        found.extend(run);
+    }
+    found.sort_by(|a, b| beyond(b.y).total_cmp(&beyond(a.y)));
+    found
+}
+
+/// The range of `values` that sets a y axis: all of them, unless a few
+/// lie far beyond the rest (the unbounded second derivative at a contact's
+/// edge, a pole): then the range of those within three times the width of
+/// the middle 98 % beyond it on either side, and the others leave the axis.
+fn bulk(values: &[f64]) -> (f64, f64) {
+    const TAIL: f64 = 0.01;
+    const REACH: f64 = 3.0;
+    let mut sorted: Vec<f64> = values.iter().copied().filter(|y| y.is_finite()).collect();
+    sorted.sort_by(f64::total_cmp);
+    let (Some(&first), Some(&last)) = (sorted.first(), sorted.last()) else {
+        return (f64::NEG_INFINITY, f64::INFINITY);
+    };
+    let tail = ((sorted.len() as f64 * TAIL).ceil() as usize).max(1);
+    if sorted.len() < 20 * tail {
+        return (first, last);
+    }
+    let (low, high) = (sorted[tail], sorted[sorted.len() - 1 - tail]);
+    // A flat bulk: a narrow peak on a constant is the curve's whole story.
+    if low == high {
+        return (first, last);
+    }
+    // Halves, so that no difference leaves the range of a double.
+    let reach = (high / 2.0 - low / 2.0) * 2.0 * REACH;
+    let (floor, ceiling) = (low - reach, high + reach);
+    let within = sorted
+        .iter()
+        .copied()
+        .filter(|y| (floor..=ceiling).contains(y));
+    within.fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), y| {
+        (low.min(y), high.max(y))
+    })
 }
 
 /// An axis: its range, the power of ten it is drawn in, and how its tick
@@ -413,8 +612,13 @@ pub struct Args {
     #[arg(long = "set", value_name = "NAME=VALUE")]
     set: Vec<String>,
     /// A scene (TOML) the expression is evaluated in.
-    #[arg(long, value_name = "FILE.toml")]
+    #[arg(long, value_name = "FILE.toml", conflicts_with = "model")]
     scene: Option<String>,
+    /// A solver dataset the expression is evaluated in, at its initial
+    /// configuration; --over and --set name TIME, DIF(id) or a part's
+    /// state (PART/3.x).
+    #[arg(long, value_name = "FILE.adm")]
+    model: Option<String>,
     /// Also plot the first and second derivative in the plotted variable.
     #[arg(long)]
     derivatives: bool,
@@ -436,6 +640,17 @@ pub fn run(args: &Args, out: &mut impl std::io::Write) -> Result<crate::Outcome,
         mbexpr::check(&tree).map_err(|errors| fail(errors[0].span(), errors[0].to_string()))?;
     let (over, start, end) = parse_range(&args.over)
         .map_err(|message| Fatal::usage(format!("error: --over {message}")))?;
+    if let Some(path) = &args.model {
+        let sampling = Sampling {
+            text: source,
+            over: &over,
+            range: (start, end),
+            derivatives: args.derivatives,
+        };
+        let plot =
+            crate::model_eval::curves(path, &args.set, &checked, &sampling, args.samples as usize)?;
+        return write(args, &over, &plot, out);
+    }
     let bindings = args
         .set
         .iter()
@@ -457,9 +672,19 @@ pub fn run(args: &Args, out: &mut impl std::io::Write) -> Result<crate::Outcome,
         derivatives: args.derivatives,
     };
     let plot = curves(&request).map_err(|message| Fatal::input(format!("error: {message}")))?;
-    render_svg(&args.output, &over, &plot).map_err(|message| {
-        Fatal::usage(format!("error: cannot write {}: {message}", args.output))
+    write(args, &over, &plot, out)
+}
+
+/// Writes the plot to its file and says so.
+fn write(
+    args: &Args,
+    over: &str,
+    plot: &Plot,
+    out: &mut impl std::io::Write,
+) -> Result<crate::Outcome, crate::Fatal> {
+    render_svg(&args.output, over, plot).map_err(|message| {
+        crate::Fatal::usage(format!("error: cannot write {}: {message}", args.output))
     })?;
-    writeln!(out, "{}", plot.summary(&args.output, &over))?;
+    writeln!(out, "{}", plot.summary(&args.output, over))?;
     Ok(crate::Outcome::Success)
 }

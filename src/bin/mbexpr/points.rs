@@ -124,15 +124,6 @@ pub fn some_names<S: AsRef<str>>(names: &[S]) -> String {
     text
 }
 
-/// `1 value`, `2 values`.
-pub fn count(number: usize, thing: &str) -> String {
-    if number == 1 {
-        format!("1 {thing}")
-    } else {
-        format!("{number} {thing}s")
-    }
-}
-
 /// The line a row starts on.
 pub fn line_of(record: &ByteRecord) -> u64 {
     record.position().map_or(0, csv::Position::line)
@@ -223,9 +214,9 @@ pub fn read_values(
         .any(|cell| !cell.trim_ascii().is_empty());
     if row.len() < names.len() || extra {
         return Err(format!(
-            "the row has {} for {} columns",
-            count(row.len(), "value"),
-            names.len()
+            "the row has {} for {}",
+            mbexpr::Counted(row.len(), "value"),
+            mbexpr::Counted(names.len(), "column")
         ));
     }
     for &(column, input) in columns {

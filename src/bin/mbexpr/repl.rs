@@ -5,11 +5,11 @@
 
 use std::io::{self, BufRead, IsTerminal, Write};
 
-use mbexpr::catalog::{Constant, Function, SystemVariable};
-use mbexpr::{Order, Scene};
+use mbexpr::catalog::{ArgKind, Constant, Function, SystemVariable};
+use mbexpr::syntax::ast::{Expr, ExprKind};
+use mbexpr::{Counted, Order, Scene};
 use rustyline::completion::{Completer, Pair};
-use rustyline::validate::{ValidationContext, ValidationResult, Validator};
-use rustyline::{Context, Helper, Highlighter, Hinter};
+use rustyline::{Context, Helper, Highlighter, Hinter, Validator};
 
 use crate::eval_cmd::{read_scene, show};
 use crate::render::{diagnostic, diagnostics};
@@ -34,7 +34,8 @@ expressions: type one, e.g. STEP(TIME, 0, 0, 1, 10) or BISTOP(x, v, -1, 1, 1e4, 
 :scene FILE.toml      evaluate measures in a scene
 :vars                 what is bound
 :help NAME            the signature and meaning of a function
-:plot EXPR over NAME in A..B to FILE.svg
+:plot EXPR --over NAME=A..B -o FILE.svg [--derivatives] [--samples N]
+NAME                  a named expression of the scene, in any expression
 :quit                 leave (also Ctrl-D)";
 
 /// What the REPL knows between lines.
@@ -56,8 +57,9 @@ pub enum Reply {
 
 /// Whether `text` visibly goes on in the next line: it ends (before a
 /// trailing `! comment`) with `(`, `,`, `:` or an operator, where an
-/// expression cannot end. Any other line is a whole input, so one unclosed
-/// parenthesis is an error on its own line, not a hold on the lines after it.
+/// expression cannot end. Any other line is a whole input, so in a batch
+/// or a pasted block one unclosed parenthesis is an error on its own line,
+/// not a hold on the lines after it.
 fn continues(text: &str) -> bool {
     let line = text.lines().last().unwrap_or_default();
     if line.trim_start().starts_with(':') {
@@ -66,6 +68,25 @@ fn continues(text: &str) -> bool {
     mbexpr::syntax::without_comment(line)
         .trim_end()
         .ends_with(['(', ',', ':', '+', '-', '*', '/'])
+}
+
+/// Whether `text` (an expression, not a command) leaves a parenthesis open:
+/// on a terminal, the line typed last then waits for the rest under the
+/// continuation prompt.
+fn unclosed(text: &str) -> bool {
+    if text.trim_start().starts_with(':') {
+        return false;
+    }
+    let depth = text.lines().fold(0i64, |depth, line| {
+        mbexpr::syntax::without_comment(line)
+            .chars()
+            .fold(depth, |depth, c| match c {
+                '(' => depth + 1,
+                ')' => depth - 1,
+                _ => depth,
+            })
+    });
+    depth > 0
 }
 
 /// Gathers lines into inputs: a line is an input of its own unless it
@@ -78,18 +99,27 @@ struct Inputs {
 
 impl Inputs {
     /// Takes line `number`; returns the input it completes, with the
-    /// number of its first line.
-    fn push(&mut self, number: usize, line: &str) -> Option<(usize, String)> {
+    /// number of its first line. When `hold_open` (the last line typed on
+    /// a terminal), an unclosed parenthesis waits for the next line too;
+    /// an empty line ends the input whatever it holds.
+    fn push(&mut self, number: usize, line: &str, hold_open: bool) -> Option<(usize, String)> {
         if self.pending.is_empty() {
             self.first_line = number;
+        } else if line.trim().is_empty() {
+            return Some((self.first_line, std::mem::take(&mut self.pending)));
         } else {
             self.pending.push(' ');
         }
         self.pending.push_str(line);
-        if continues(&self.pending) {
+        if continues(&self.pending) || (hold_open && unclosed(&self.pending)) {
             return None;
         }
         Some((self.first_line, std::mem::take(&mut self.pending)))
+    }
+
+    /// Whether a line has been taken that waits for more.
+    fn waiting(&self) -> bool {
+        !self.pending.is_empty()
     }
 
     /// What is left when the input ends (a line that said it went on).
@@ -147,7 +177,7 @@ impl Session {
             if input.is_empty() {
                 return Ok(Reply::Text(String::new()));
             }
-            return self.evaluate(input, compact).map(Reply::Text);
+            return self.evaluate(&self.expand(input), compact).map(Reply::Text);
         };
         let (word, rest) = command
             .split_once(char::is_whitespace)
@@ -205,10 +235,10 @@ impl Session {
                 let scene =
                     read_scene(rest).map_err(|fatal| fatal.message().trim_end().to_string())?;
                 let summary = format!(
-                    "scene {rest}: {} bodies, {} markers, {} expressions",
-                    scene.bodies.len(),
-                    scene.markers.len(),
-                    scene.expressions.len()
+                    "scene {rest}: {}, {}, {}",
+                    Counted(scene.bodies.len(), "body"),
+                    Counted(scene.markers.len(), "marker"),
+                    Counted(scene.expressions.len(), "expression")
                 );
                 self.scene = Some(scene);
                 Ok(Reply::Text(summary))
@@ -217,6 +247,95 @@ impl Session {
             "help" => Ok(Reply::Text(help(rest))),
             "plot" => self.plot(rest).map(Reply::Text),
             _ => Err(format!("error: unknown command :{word} (try :help)")),
+        }
+    }
+
+    /// `input` with each name of a scene's named expression (where a value
+    /// goes, and unless `:set` gave that name a value) replaced by the
+    /// expression's text in parentheses: `2*gap` is `2*(DX(ball, wall,
+    /// wall))`. An input that does not parse is left as it is, for its
+    /// error.
+    fn expand<'a>(&self, input: &'a str) -> std::borrow::Cow<'a, str> {
+        let Some(scene) = self
+            .scene
+            .as_ref()
+            .filter(|scene| !scene.expressions.is_empty())
+        else {
+            return input.into();
+        };
+        let Ok(tree) = mbexpr::parse(input) else {
+            return input.into();
+        };
+        let mut places = Vec::new();
+        self.named_places(scene, &tree, &mut places);
+        if places.is_empty() {
+            return input.into();
+        }
+        places.sort_by_key(|(span, _)| span.start);
+        let (mut text, mut done) = (String::new(), 0);
+        for (span, expression) in places {
+            text += &input[done..span.start];
+            text += &format!("({expression})");
+            done = span.end;
+        }
+        text += &input[done..];
+        text.into()
+    }
+
+    /// The places in `expression` where a name stands for one of the
+    /// scene's named expressions, with that expression's text.
+    fn named_places<'s>(
+        &self,
+        scene: &'s Scene,
+        expression: &Expr,
+        places: &mut Vec<(mbexpr::Span, &'s str)>,
+    ) {
+        let mut walk = |inner: &Expr| self.named_places(scene, inner, places);
+        match &expression.kind {
+            ExprKind::Number(_) => {}
+            ExprKind::Name(name) => {
+                let bound = self
+                    .bindings
+                    .iter()
+                    .any(|(known, _)| known.eq_ignore_ascii_case(name));
+                let named = scene
+                    .expressions
+                    .iter()
+                    .find(|(known, _)| known.eq_ignore_ascii_case(name));
+                if let Some((_, text)) = named.filter(|_| !bound) {
+                    places.push((expression.span, text));
+                }
+            }
+            ExprKind::Unary(_, operand) => walk(operand),
+            ExprKind::Chain(first, rest) => {
+                walk(first);
+                rest.iter().for_each(|(_, operand)| walk(operand));
+            }
+            ExprKind::Power(base, exponent) => {
+                walk(base);
+                walk(exponent);
+            }
+            ExprKind::Call(call) => {
+                let function = Function::lookup(&call.name);
+                for (position, argument) in call.args.iter().enumerate() {
+                    // A marker or a statement is named, never computed.
+                    if function.is_none_or(|function| {
+                        function.signature().kind(position) == ArgKind::Value
+                    }) {
+                        walk(argument);
+                    }
+                }
+            }
+            ExprKind::If(branches) => {
+                for branch in [
+                    &branches.condition,
+                    &branches.negative,
+                    &branches.zero,
+                    &branches.positive,
+                ] {
+                    walk(branch);
+                }
+            }
         }
     }
 
@@ -275,16 +394,15 @@ impl Session {
         lines.join("\n")
     }
 
-    /// `:plot EXPR over NAME in A..B to FILE.svg`
+    /// `:plot EXPR --over NAME=A..B -o FILE.svg`, as on the command line
+    /// (`--derivatives` and `--samples N` too), or `:plot EXPR over NAME in
+    /// A..B to FILE.svg`.
     fn plot(&self, rest: &str) -> Result<String, String> {
-        let usage = || "error: write :plot EXPR over NAME in A..B to FILE.svg".to_string();
-        let (expression, rest) = rest.rsplit_once(" over ").ok_or_else(usage)?;
-        let (name, rest) = rest.split_once(" in ").ok_or_else(usage)?;
-        let (range, file) = rest.split_once(" to ").ok_or_else(usage)?;
-        let (over, start, end) =
-            crate::plot::parse_range(&format!("{}={}", name.trim(), range.trim()))
-                .map_err(|message| format!("error: {message}"))?;
-        let expression = expression.trim();
+        let command = PlotCommand::parse(rest)?;
+        let (over, start, end) = crate::plot::parse_range(&command.range)
+            .map_err(|message| format!("error: {message}"))?;
+        let expression = &*self.expand(command.expression.trim());
+        let file = command.file.as_str();
         let tree = mbexpr::parse(expression)
             .map_err(|error| diagnostic("", expression, error.span(), &error.to_string()))?;
         let checked = mbexpr::check(&tree).map_err(|errors| {
@@ -297,11 +415,10 @@ impl Session {
             bindings: &self.bindings,
             over: &over,
             range: (start, end),
-            samples: 400,
-            derivatives: self.order() > Order::Value,
+            samples: command.samples,
+            derivatives: command.derivatives || self.order() > Order::Value,
         };
         let plot = crate::plot::curves(&request).map_err(|message| format!("error: {message}"))?;
-        let file = file.trim();
         crate::plot::render_svg(file, &over, &plot)
             .map_err(|message| format!("error: cannot write {file}: {message}"))?;
         Ok(plot.summary(file, &over))
@@ -315,8 +432,21 @@ impl Session {
             .map_or(0, |index| index + 1);
         let prefix = &before[start..];
         let mut words: Vec<String> = Vec::new();
+        if let Some(path) = before.strip_prefix(":scene ") {
+            return (pos - path.trim_start().len(), file_names(path.trim_start()));
+        }
         if start == 0 && prefix.starts_with(':') {
             words.extend(COMMANDS.iter().map(|command| command.to_string()));
+        } else if argument_kind(&before[..start]) == Some(ArgKind::Marker) {
+            // Inside a call, where a marker goes: the scene's markers only.
+            if let Some(scene) = &self.scene {
+                words.extend(
+                    scene
+                        .markers
+                        .iter()
+                        .filter_map(|marker| marker.name.clone()),
+                );
+            }
         } else {
             words.extend(
                 Function::ALL
@@ -338,6 +468,7 @@ impl Session {
                         .iter()
                         .filter_map(|marker| marker.name.clone()),
                 );
+                words.extend(scene.expressions.iter().map(|(name, _)| name.clone()));
                 for (index, _) in scene.bodies.iter().enumerate() {
                     words.extend(
                         mbexpr::scene::StateComponent::ALL
@@ -355,6 +486,146 @@ impl Session {
         matches.dedup();
         (start, matches)
     }
+}
+
+/// What `:plot` was asked for.
+struct PlotCommand {
+    expression: String,
+    /// `NAME=A..B`.
+    range: String,
+    file: String,
+    samples: usize,
+    derivatives: bool,
+}
+
+impl PlotCommand {
+    const USAGE: &str = "error: write :plot EXPR --over NAME=A..B -o FILE.svg [--derivatives] [--samples N] (or :plot EXPR over NAME in A..B to FILE.svg)";
+    const OPTIONS: [&str; 5] = ["--over", "-o", "--output", "--derivatives", "--samples"];
+
+    fn parse(text: &str) -> Result<PlotCommand, String> {
+        let usage = || PlotCommand::USAGE.to_string();
+        // The command line's form: the options follow the expression.
+        let first_option = text
+            .match_indices(" -")
+            .map(|(index, _)| index)
+            .find(|&index| {
+                let word = text[index + 1..]
+                    .split([' ', '='])
+                    .next()
+                    .unwrap_or_default();
+                PlotCommand::OPTIONS.contains(&word)
+            });
+        let Some(first_option) = first_option else {
+            let (expression, rest) = text.rsplit_once(" over ").ok_or_else(usage)?;
+            let (name, rest) = rest.split_once(" in ").ok_or_else(usage)?;
+            let (range, file) = rest.split_once(" to ").ok_or_else(usage)?;
+            return Ok(PlotCommand {
+                expression: expression.to_string(),
+                range: format!("{}={}", name.trim(), range.trim()),
+                file: file.trim().to_string(),
+                samples: 400,
+                derivatives: false,
+            });
+        };
+        let mut command = PlotCommand {
+            expression: text[..first_option].to_string(),
+            range: String::new(),
+            file: String::new(),
+            samples: 400,
+            derivatives: false,
+        };
+        let mut words = text[first_option..].split_whitespace();
+        while let Some(word) = words.next() {
+            let (option, attached) = match word.split_once('=') {
+                Some((option, value)) if option.starts_with("--") && option != "--over" => {
+                    (option, Some(value))
+                }
+                _ => (word, None),
+            };
+            let mut value = || {
+                attached
+                    .map(str::to_string)
+                    .or_else(|| words.next().map(str::to_string))
+                    .ok_or_else(|| format!("error: {option} needs a value"))
+            };
+            match option {
+                "--over" => command.range = value()?,
+                "-o" | "--output" => command.file = value()?,
+                "--derivatives" => command.derivatives = true,
+                "--samples" => {
+                    let text = value()?;
+                    command.samples = text
+                        .parse()
+                        .ok()
+                        .filter(|samples| (2..=1_000_000).contains(samples))
+                        .ok_or_else(|| {
+                            format!(
+                                "error: --samples {text}: give a whole number from 2 to 1000000"
+                            )
+                        })?;
+                }
+                _ => {
+                    return Err(format!(
+                        "error: `{word}` is not an option of :plot (--over, -o, --derivatives, --samples)"
+                    ));
+                }
+            }
+        }
+        if command.range.is_empty() || command.file.is_empty() {
+            return Err(usage());
+        }
+        Ok(command)
+    }
+}
+
+/// The kind of argument that `before` (an input up to the word being
+/// typed) is inside: the innermost call left open, at the argument its
+/// commas have reached; `None` outside a call or in an unknown function.
+fn argument_kind(before: &str) -> Option<ArgKind> {
+    let (mut depth, mut position) = (0usize, 0usize);
+    for (index, c) in before.char_indices().rev() {
+        match c {
+            ')' => depth += 1,
+            '(' if depth > 0 => depth -= 1,
+            '(' => {
+                let name = before[..index].trim_end();
+                let start = name
+                    .rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                    .map_or(0, |at| at + 1);
+                let function = Function::lookup(&name[start..])?;
+                return Some(function.signature().kind(position));
+            }
+            ',' if depth == 0 => position += 1,
+            _ => {}
+        }
+    }
+    None
+}
+
+/// The files and folders that `typed` (a path being typed) may complete
+/// to, folders with a `/`, sorted; files that start with a dot only when
+/// the name typed does.
+fn file_names(typed: &str) -> Vec<String> {
+    let (folder, name) = match typed.rfind('/') {
+        Some(at) => typed.split_at(at + 1),
+        None => ("", typed),
+    };
+    let Ok(entries) = std::fs::read_dir(if folder.is_empty() { "." } else { folder }) else {
+        return Vec::new();
+    };
+    let mut names: Vec<String> = entries
+        .filter_map(Result::ok)
+        .filter_map(|entry| {
+            let file = entry.file_name().into_string().ok()?;
+            if !file.starts_with(name) || (file.starts_with('.') && !name.starts_with('.')) {
+                return None;
+            }
+            let slash = if entry.path().is_dir() { "/" } else { "" };
+            Some(format!("{folder}{file}{slash}"))
+        })
+        .collect();
+    names.sort();
+    names
 }
 
 /// Why `name` cannot be given a value with `:set`: it is a constant or a
@@ -431,8 +702,9 @@ fn format_result(evaluation: &mbexpr::Evaluation, wrt: &[String], compact: bool)
     text
 }
 
-/// rustyline's helper: completion and waiting for closing parentheses.
-#[derive(Helper, Highlighter, Hinter)]
+/// rustyline's helper: completion (an input that goes on is held by the
+/// session's loop, under its own prompt, not by the editor).
+#[derive(Helper, Highlighter, Hinter, Validator)]
 struct Editor {
     session: std::rc::Rc<std::cell::RefCell<Session>>,
 }
@@ -455,16 +727,6 @@ impl Completer for Editor {
             })
             .collect();
         Ok((start, pairs))
-    }
-}
-
-impl Validator for Editor {
-    fn validate(&self, context: &mut ValidationContext<'_>) -> rustyline::Result<ValidationResult> {
-        Ok(if continues(context.input()) {
-            ValidationResult::Incomplete
-        } else {
-            ValidationResult::Valid(None)
-        })
     }
 }
 
@@ -491,7 +753,7 @@ fn batch(mut session: Session, out: &mut impl Write) -> Result<Outcome, Fatal> {
     for (index, line) in io::stdin().lock().lines().enumerate() {
         let line = line
             .map_err(|error| Fatal::usage(format!("error: cannot read standard input: {error}")))?;
-        let Some((first_line, input)) = inputs.push(index + 1, &line) else {
+        let Some((first_line, input)) = inputs.push(index + 1, &line, false) else {
             continue;
         };
         match answer(&mut session, first_line, &input, out)? {
@@ -548,6 +810,8 @@ fn answer(
 }
 
 fn interactive(session: Session) -> Result<Outcome, Fatal> {
+    const PROMPT: &str = "mbexpr> ";
+    const CONTINUATION_PROMPT: &str = "   ...> ";
     let session = std::rc::Rc::new(std::cell::RefCell::new(session));
     let mut editor = rustyline::Editor::<Editor, rustyline::history::DefaultHistory>::new()
         .map_err(|error| Fatal::usage(format!("error: cannot start the line editor: {error}")))?;
@@ -567,21 +831,43 @@ fn interactive(session: Session) -> Result<Outcome, Fatal> {
         "mbexpr {} — :help for commands, :quit to leave",
         env!("CARGO_PKG_VERSION")
     )?;
+    // An input that goes on waits under the continuation prompt; Ctrl-C
+    // drops it, an empty line or Ctrl-D ends it.
+    let mut inputs = Inputs::default();
     'session: loop {
-        let text = match editor.readline("mbexpr> ") {
+        let prompt = if inputs.waiting() {
+            CONTINUATION_PROMPT
+        } else {
+            PROMPT
+        };
+        let read = editor.readline(prompt);
+        let text = match read {
             Ok(text) => text,
-            Err(rustyline::error::ReadlineError::Interrupted) => continue,
+            Err(rustyline::error::ReadlineError::Interrupted) => {
+                inputs = Inputs::default();
+                continue;
+            }
+            Err(rustyline::error::ReadlineError::Eof) if inputs.waiting() => String::new(),
             Err(rustyline::error::ReadlineError::Eof) => break,
             Err(error) => return Err(Fatal::usage(format!("error: {error}"))),
         };
-        let _ = editor.add_history_entry(text.as_str());
+        if !text.trim().is_empty() {
+            let _ = editor.add_history_entry(text.as_str());
+        }
         // A pasted block arrives whole: each of its lines is an input of
-        // its own unless it visibly continues, as in a batch.
-        let mut inputs = Inputs::default();
-        let lines = text.lines().enumerate();
-        let complete = lines.filter_map(|(index, line)| inputs.push(index + 1, line));
-        let complete: Vec<(usize, String)> = complete.collect();
-        for (_, input) in complete.into_iter().chain(inputs.finish()) {
+        // its own unless it visibly continues, as in a batch; its last
+        // line (or the one line typed) may also wait for a parenthesis.
+        let mut complete: Vec<(usize, String)> = Vec::new();
+        let lines: Vec<&str> = if text.is_empty() {
+            vec![""]
+        } else {
+            text.lines().collect()
+        };
+        for (index, line) in lines.iter().enumerate() {
+            let last = index + 1 == lines.len();
+            complete.extend(inputs.push(index + 1, line, last));
+        }
+        for (_, input) in complete {
             let reply = session.borrow_mut().handle(&input, false);
             match reply {
                 Ok(Reply::Quit) => break 'session,
@@ -633,6 +919,23 @@ mod tests {
         .unwrap();
         session.scene = Some(Scene::from_toml(&text).unwrap());
         assert_eq!(names(&session, "DX(wa"), ["wall"]);
+        assert_eq!(names(&session, "DM(ball, w"), ["wall"]);
+        assert_eq!(
+            names(&session, "DM(ball, MAX(w"),
+            [
+                "WDTM", "WDTX", "WDTY", "WDTZ", "WM", "WX", "WY", "WZ", "wall"
+            ]
+        );
+        assert_eq!(names(&session, "2*con"), ["CONTACT", "contact"]);
+        let scenes = ":scene examples/scenes/ball_b";
+        assert_eq!(
+            session.candidates(scenes, scenes.len()),
+            (
+                7,
+                vec!["examples/scenes/ball_between_walls.toml".to_string()]
+            )
+        );
+        assert_eq!(names(&session, ":scene examples/sc"), ["examples/scenes/"]);
         assert_eq!(names(&session, "ball.v"), ["ball.vx", "ball.vy", "ball.vz"]);
         assert_eq!(session.candidates("DX(ba", 5).0, 3);
     }

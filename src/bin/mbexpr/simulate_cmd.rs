@@ -8,10 +8,10 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use clap::ValueEnum;
-use mbexpr::Shown;
 use mbexpr::integrate::Method;
 use mbexpr::model::{self, FileKind};
 use mbexpr::simulate::{self, Model, Place, Settings, SimulateError, Simulation};
+use mbexpr::{Counted, Shown};
 
 use crate::plot::{Curve, Plot, render_svg};
 use crate::render::diagnostic;
@@ -312,16 +312,16 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let stats = summary.stats;
     let _ = writeln!(
         stderr,
-        "{}: t = 0 .. {}, {}: {} steps ({} rejected), {} right-hand sides, {} jacobians, {} lu decompositions, {} events, {:.6} s",
+        "{}: t = 0 .. {}, {}: {} ({} rejected), {}, {}, {}, {}, {:.6} s",
         source.path,
         Shown(end),
         settings.method,
-        stats.steps,
+        Counted(stats.steps, "step"),
         stats.rejected,
-        stats.rhs_evaluations,
-        stats.jacobian_evaluations,
-        stats.lu_decompositions,
-        summary.events.len(),
+        Counted(stats.rhs_evaluations, "right-hand side"),
+        Counted(stats.jacobian_evaluations, "jacobian"),
+        Counted(stats.lu_decompositions, "lu decomposition"),
+        Counted(summary.events.len(), "event"),
         summary.wall_time.as_secs_f64()
     );
     if let Some(from) = summary.stiff_from {
@@ -393,6 +393,9 @@ impl<'c> Rows<'c> {
     }
 }
 
+/// Up to how many rows a plot of a run draws each row as a dot.
+const MAX_DOTTED_ROWS: usize = 250;
+
 /// The states that change over the run, one panel each, with the switches
 /// marked.
 fn plot_states(
@@ -430,6 +433,13 @@ fn plot_states(
         first_failure: None,
         sampled: rows.len(),
         range,
+        // The curves join the output rows only: what happens between two
+        // rows (a contact force's peak) is not drawn, and the axis says so.
+        note: Some(format!(
+            "through the {}; --steps for finer curves",
+            Counted(rows.len(), "output row")
+        )),
+        dots: rows.len() <= MAX_DOTTED_ROWS,
     };
     render_svg(path, "time", &plot)
 }
