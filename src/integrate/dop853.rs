@@ -23,8 +23,9 @@ const FAILURE_SHRINK: f64 = 0.5;
 
 /// Hairer's stiffness test (`dop853.f`, `NSTIFF`): every this many
 /// accepted steps, and at every step while the last test found `h |λ|`
-/// beyond [`STABILITY_EDGE`].
-const STIFFNESS_TEST_EVERY: usize = 1000;
+/// beyond [`STABILITY_EDGE`]. Under [`Method::Auto`](super::Method::Auto),
+/// at every step.
+pub(super) const STIFFNESS_TEST_EVERY: usize = 1000;
 /// `h |λ|` near the edge of DOP853's stability region along the negative
 /// real axis (Hairer's 6.1).
 const STABILITY_EDGE: f64 = 6.1;
@@ -307,6 +308,8 @@ pub(super) struct Dop853 {
     after_rejection: bool,
     /// Hairer's stiffness test over the accepted steps.
     stiffness: Stiffness,
+    /// The stiffness test runs every this many accepted steps.
+    test_every: usize,
 }
 
 /// The state of Hairer's stiffness test: `h |λ|` estimated on the last
@@ -346,8 +349,9 @@ impl Stiffness {
 }
 
 impl Dop853 {
-    /// Working storage for `n` components.
-    pub fn new(n: usize) -> Self {
+    /// Working storage for `n` components, the stiffness test run every
+    /// `test_every` accepted steps.
+    pub fn new(n: usize, test_every: usize) -> Self {
         Dop853 {
             n,
             k: vec![0.0; 16 * n],
@@ -357,6 +361,7 @@ impl Dop853 {
             h_dense: 0.0,
             after_rejection: false,
             stiffness: Stiffness::default(),
+            test_every: test_every.max(1),
         }
     }
 
@@ -478,7 +483,7 @@ impl Dop853 {
             &mut self.k[12 * n..13 * n],
         )?;
         let accepted = core.stats.steps + 1;
-        self.stiffness.pending = (accepted.is_multiple_of(STIFFNESS_TEST_EVERY)
+        self.stiffness.pending = (accepted.is_multiple_of(self.test_every)
             || self.stiffness.beyond > 0)
             .then(|| self.stiffness_estimate(h));
         for (index, stage) in DENSE_STAGES.iter().enumerate() {
