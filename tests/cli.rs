@@ -825,7 +825,7 @@ fn simulate_checks_every_output_before_the_first_step() {
             + &run(&["--plot", "ball.png"])
             + &run(&["--events-file", "/nonexistent/events.jsonl"])
             + &run(&["--rtol", "0"])
-            + &run(&["--steps", "0"])
+            + &run(&["--max-steps", "0"])
             + &run(&["--hmax", "-1"])
     );
 }

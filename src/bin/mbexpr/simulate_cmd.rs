@@ -323,7 +323,7 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     // Every output is checked before the first step.
     settings
         .check()
-        .map_err(|error| Fatal::usage(format!("error: {error}")))?;
+        .map_err(|error| Fatal::input(source.render(Some(&model), &error)))?;
     if let Some(path) = &args.plot {
         check_svg_name(path)
             .map_err(|message| Fatal::usage(format!("error: --plot {path}: {message}")))?;
