@@ -336,7 +336,8 @@ impl Stepper {
     /// A new stepper from `(t, y)` with this one's method (under
     /// [`Method::Auto`], starting with the one in use now), its first step
     /// chosen anew and its counts from zero: a fresh start after the caller
-    /// has changed the system at an event.
+    /// has changed the system at an event. DOP853's stiffness test goes on
+    /// where it stood.
     pub fn fresh_start<S: System + ?Sized>(
         &self,
         options: Options,
@@ -349,7 +350,11 @@ impl Stepper {
         } else {
             self.method()
         };
-        Self::start(choice, self.method(), options, t, y, system)
+        let mut next = Self::start(choice, self.method(), options, t, y, system)?;
+        if let (Scheme::Dop853(old), Scheme::Dop853(new)) = (&self.scheme, &mut next.scheme) {
+            new.continue_stiffness_test(old);
+        }
+        Ok(next)
     }
 
     /// Starts `choice` (a method or Auto) at `(t0, y0)` with `first`.
@@ -404,12 +409,12 @@ impl Stepper {
         Ok(match method {
             Method::Radau5 => Scheme::Radau5(Box::new(Radau5::new(options, &core.atol)?)),
             Method::Dop853 | Method::Auto => {
-                let test_every = if auto {
-                    1
+                let (test_every, edge) = if auto {
+                    (1, auto::STIFF_EDGE)
                 } else {
-                    dop853::STIFFNESS_TEST_EVERY
+                    (dop853::STIFFNESS_TEST_EVERY, dop853::STABILITY_EDGE)
                 };
-                Scheme::Dop853(Box::new(Dop853::new(core.y.len(), test_every)))
+                Scheme::Dop853(Box::new(Dop853::new(core.y.len(), test_every, edge)))
             }
         })
     }
