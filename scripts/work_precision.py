@@ -63,6 +63,7 @@ SCENES = [
 
 # (label, kind, method) in table order.
 TOOLS = [
+    ("mbexpr auto", "mbexpr", "auto"),
     ("mbexpr radau", "mbexpr", "radau"),
     ("mbexpr dop853", "mbexpr", "dop853"),
     ("hand radau", "hand", "radau"),

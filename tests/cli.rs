@@ -965,3 +965,150 @@ fn a_binary_file_is_one_error() {
     std::fs::remove_dir_all(&dir).unwrap();
     insta::assert_snapshot!(report.replace(&dir.display().to_string(), "DIR"));
 }
+
+/// Issue 22.5: every output and option is checked before the first step:
+/// nothing is written, and the run is not started.
+#[test]
+fn simulate_checks_every_output_before_the_first_step() {
+    let run = |extra: &[&str]| {
+        let mut args = vec!["simulate", "-", "--end", "1", "--steps", "2"];
+        args.extend_from_slice(extra);
+        check_run(&args, BALL_DATASET)
+    };
+    insta::assert_snapshot!(
+        run(&["--plot", "/nonexistent/x.svg"])
+            + &run(&["--plot", "ball.png"])
+            + &run(&["--events-file", "/nonexistent/events.jsonl"])
+            + &run(&["--rtol", "0"])
+            + &run(&["--max-steps", "0"])
+            + &run(&["--hmax", "-1"])
+    );
+}
+
+/// Issue 22.6: events as JSON objects (on standard error under `--format
+/// jsonl`, and in `--events-file`), the end statistics as one JSON object.
+#[test]
+fn simulate_writes_events_and_statistics_as_json() {
+    let folder = std::env::temp_dir().join(format!("mbexpr-events-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).expect("a temporary folder");
+    let file = folder.join("events.jsonl");
+    let file = file.to_str().expect("a UTF-8 path");
+    let dropped = include_str!("../examples/simulate/a4_dropped_ball.adm");
+    let (stdout, stderr, code) = mbexpr(
+        &[
+            "simulate",
+            "-",
+            "--end",
+            "1",
+            "--steps",
+            "2",
+            "--format",
+            "jsonl",
+            "--events",
+            "--events-file",
+            file,
+            "--stats",
+            "json",
+        ],
+        dropped,
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let mut objects: Vec<serde_json::Value> = stderr
+        .lines()
+        .map(|line| serde_json::from_str(line).expect(line))
+        .collect();
+    // The statistics: the wall time varies from run to run.
+    let stats = objects.last_mut().expect("the statistics");
+    stats["wall_time"] = serde_json::Value::Null;
+    let written = std::fs::read_to_string(file).expect("the events file");
+    std::fs::remove_dir_all(&folder).ok();
+    let events: Vec<&serde_json::Value> = objects[..objects.len() - 1].iter().collect();
+    let in_file: Vec<serde_json::Value> = written
+        .lines()
+        .map(|line| serde_json::from_str(line).expect(line))
+        .collect();
+    assert_eq!(events, in_file.iter().collect::<Vec<_>>());
+    let report: String = std::iter::once(stdout)
+        .chain(objects.iter().map(|object| format!("{object:#}\n")))
+        .collect();
+    insta::assert_snapshot!(report);
+}
+
+/// Issue 22.5: SIGINT and SIGTERM end a long run at its next step, every
+/// row computed already written (each flushed as it comes), the
+/// statistics printed, exit status 128 + the signal.
+#[cfg(unix)]
+#[test]
+fn a_signal_ends_a_run_with_every_row_written() {
+    use std::io::{BufRead, BufReader, Read};
+    for (signal, status) in [("INT", 130), ("TERM", 143)] {
+        // DOP853 on the stiff stop: millions of steps after t = 0.45.
+        let mut child = Command::new(env!("CARGO_BIN_EXE_mbexpr"))
+            .args([
+                "simulate",
+                concat!(
+                    env!("CARGO_MANIFEST_DIR"),
+                    "/examples/simulate/a4_dropped_ball.adm"
+                ),
+                "--method",
+                "dop853",
+                "--rtol",
+                "1e-12",
+                "--end",
+                "10",
+                "--steps",
+                "100000",
+                "--format",
+                "csv",
+            ])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("the binary runs");
+        let mut rows = BufReader::new(child.stdout.take().expect("piped"));
+        let mut lines = Vec::new();
+        // The header and the rows of the free fall come at once.
+        while lines.len() < 50 {
+            let mut line = String::new();
+            assert!(rows.read_line(&mut line).expect("a row") > 0, "{lines:?}");
+            lines.push(line);
+        }
+        let killed = Command::new("kill")
+            .args([&format!("-{signal}"), &child.id().to_string()])
+            .status()
+            .expect("kill runs");
+        assert!(killed.success());
+        let mut rest = String::new();
+        rows.read_to_string(&mut rest)
+            .expect("the rest of the rows");
+        lines.extend(rest.lines().map(|line| format!("{line}\n")));
+        let mut stderr = String::new();
+        child
+            .stderr
+            .take()
+            .expect("piped")
+            .read_to_string(&mut stderr)
+            .expect("standard error");
+        let code = child.wait().expect("the run ends").code();
+        assert_eq!(code, Some(status), "SIG{signal}: {stderr}");
+        assert_eq!(lines[0], "time,DIF(1),DIF(2)\n");
+        let rows = &lines[1..];
+        for (index, row) in rows.iter().enumerate() {
+            let cells: Vec<f64> = row
+                .trim_end_matches('\n')
+                .split(',')
+                .map(|cell| cell.parse().expect(row))
+                .collect();
+            assert!(row.ends_with('\n') && cells.len() == 3, "{row:?}");
+            assert_eq!(cells[0], 10.0 * index as f64 / 100_000.0, "row {index}");
+        }
+        assert!(
+            stderr.contains(" steps (")
+                && stderr.contains(&format!(
+                    "interrupted by SIG{signal}: {} rows written",
+                    rows.len()
+                )),
+            "{stderr}"
+        );
+    }
+}

@@ -7,13 +7,14 @@
 use mbexpr::Location;
 use mbexpr::integrate::Method;
 use mbexpr::model::{self, FileKind};
-use mbexpr::simulate::{self, Event, Model, Place, Settings, SimulateError, Simulation};
+use mbexpr::simulate::{self, Event, Model, Place, Settings, SimulateError, Simulation, Summary};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
-/// A run's rows (time first) and its events.
+/// A run's rows (time first), its events and what it cost.
 struct Run {
     rows: Vec<Vec<f64>>,
     events: Vec<Event>,
+    summary: Summary,
 }
 
 /// The model of a scene file (text starting with `#` or `[`) or a dataset
@@ -51,7 +52,8 @@ fn run(text: &str, settings: &Settings) -> Result<Run, String> {
         .map_err(|error| render(text, Some(&model), &[error]))?;
     Ok(Run {
         rows,
-        events: summary.events,
+        events: summary.events.clone(),
+        summary,
     })
 }
 
@@ -339,7 +341,10 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 0, 0.01)
             .iter()
             .map(|row| (energy(row[1], row[2]) - 12.5).abs() / 12.5)
             .fold(0.0, f64::max);
-        assert!(drift < 1e-9, "{method}: relative energy drift {drift:e}");
+        // Radau5 works at rtol' = 0.1 rtol^(2/3) = 1e-9, and its rows come
+        // from its collocation polynomial (of order 3 inside a step).
+        let bound = if method == Method::Radau5 { 5e-9 } else { 1e-9 };
+        assert!(drift < bound, "{method}: relative energy drift {drift:e}");
     }
 }
 
@@ -651,7 +656,7 @@ const CONVERGENCE: &[Convergence] = &[
     // Radau5 on A3 gains an order of magnitude per two of rtol: the
     // Jacobian of `p^0.8` is unbounded at first touch (BENCHMARKS.md).
     ("a3_softening_ball", 10.0, Method::Radau5, [(1e-5, 1e-2), (1e-8, 1e-4), (1e-13, 3e-8)]),
-    ("a4_dropped_ball", 10.0, Method::Radau5, [(1e-5, 3e-10), (1e-8, 1e-13), (1e-12, 1e-14)]),
+    ("a4_dropped_ball", 10.0, Method::Radau5, [(1e-5, 6e-8), (1e-8, 4e-10), (1e-12, 1e-12)]),
     ("b_slider", 5.0, Method::Dop853, [(1e-5, 5e-4), (1e-8, 5e-7), (1e-12, 5e-11)]),
     ("b_slider", 5.0, Method::Radau5, [(1e-5, 5e-5), (1e-8, 5e-7), (1e-13, 5e-10)]),
 ];
@@ -711,4 +716,156 @@ fn the_study_scenes_converge_to_their_references() {
         }
     }
     assert!(!failed, "max |x - x_ref| over 200 output times:\n{report}");
+}
+
+/// The text of a study scene, `examples/simulate/NAME.adm`.
+fn scene(name: &str) -> String {
+    let path = format!(
+        "{}/examples/simulate/{name}.adm",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    std::fs::read_to_string(&path).expect(&path)
+}
+
+/// The largest |x - x_ref| of a run's first column against a study
+/// scene's reference at its 200 output times.
+fn error_against_reference(run: &Run, name: &str) -> f64 {
+    let reference = reference(name);
+    assert_eq!(run.rows.len(), reference.len(), "{name}");
+    run.rows
+        .iter()
+        .zip(&reference)
+        .map(|(row, expected)| (row[1] - expected[1]).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Issue 22.4: rows come from each step's continuous output, so the
+/// number of output times changes neither the steps nor the rows (to
+/// rounding: an output time computed as 10 i / 200 or 10 (100 i) / 20000).
+#[test]
+fn the_number_of_output_times_changes_neither_steps_nor_results() {
+    let text = scene("a1_ball");
+    for method in [Method::Radau5, Method::Dop853, Method::Auto] {
+        for rtol in [1e-5, 1e-9] {
+            let with = |steps: usize| {
+                run(
+                    &text,
+                    &Settings {
+                        method,
+                        ..settings(10.0, steps, rtol)
+                    },
+                )
+                .expect("a1_ball runs")
+            };
+            let (few, many) = (with(200), with(20_000));
+            assert_eq!(
+                few.summary.stats, many.summary.stats,
+                "{method} rtol {rtol:e}: the same steps"
+            );
+            assert_eq!(few.events, many.events, "{method} rtol {rtol:e}");
+            for (row, other) in few.rows.iter().zip(many.rows.iter().step_by(100)) {
+                for (value, other) in row.iter().zip(other) {
+                    assert!(
+                        (value - other).abs() <= 1e-13 * value.abs().max(1.0),
+                        "{method} rtol {rtol:e} at t = {}: {value} against {other}",
+                        row[0]
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Van der Pol's oscillator with eps = 1e-6 as two DIFFs (Test Set for IVP
+/// Solvers, VDPOL), stiff from the start; its published state at t = 2.
+const VAN_DER_POL: &str = "Van der Pol, eps = 1e-6
+DIFF/1, IC = 2, FUNCTION = DIF(2)
+DIFF/2, IC = 0, FUNCTION = ((1 - DIF(1)**2)*DIF(2) - DIF(1))/1E-6
+";
+const VAN_DER_POL_AT_2: [f64; 2] = [1.706_167_732_170_483, -0.892_809_701_024_797_5];
+
+/// Issue 22.3: `auto` takes Radau5 where the run is stiff (A4's damped
+/// stop, Van der Pol at eps = 1e-6) and stays with DOP853 where it is not
+/// (A1, B), each answer agreeing with its reference.
+#[test]
+fn auto_chooses_the_stiff_method_only_where_the_run_is_stiff() {
+    let auto = |rtol: f64, end: f64| Settings {
+        method: Method::Auto,
+        ..settings(end, 199, rtol)
+    };
+    let mut report = String::new();
+    for (name, end, stiff, bound) in [
+        ("a4_dropped_ball", 10.0, true, 1e-9),
+        ("a1_ball", 10.0, false, 1e-4),
+        ("b_slider", 5.0, false, 1e-6),
+    ] {
+        let run = run(&scene(name), &auto(1e-8, end)).expect(name);
+        let changes = &run.summary.method_changes;
+        let error = error_against_reference(&run, name);
+        report += &format!("{name}: {changes:?}, error {error:.1e}\n");
+        assert!(error <= bound, "{report}");
+        if stiff {
+            assert_eq!(
+                changes.first().map(|change| change.to),
+                Some(Method::Radau5),
+                "{report}"
+            );
+        } else {
+            assert!(changes.is_empty(), "{report}");
+        }
+    }
+    let run = run(VAN_DER_POL, &auto(1e-8, 2.0)).expect("van der pol");
+    let last = run.rows.last().expect("rows");
+    let changes = &run.summary.method_changes;
+    assert!(
+        changes
+            .first()
+            .is_some_and(|change| change.to == Method::Radau5 && change.time < 1e-3),
+        "{changes:?}"
+    );
+    // DOP853 needs millions of steps here (h |lambda| <= 6.1 with |lambda|
+    // up to 3e6); the stiff method, thousands.
+    assert!(run.summary.stats.steps < 20_000, "{:?}", run.summary.stats);
+    for (value, expected) in last[1..].iter().zip(VAN_DER_POL_AT_2) {
+        assert!(
+            (value - expected).abs() <= 1e-5 * expected.abs(),
+            "{value} against {expected}; {changes:?}"
+        );
+    }
+}
+
+/// Issue 22.7: the error a run estimates for itself, from a run at a
+/// hundredth of its tolerances, is its true error (against the study's
+/// references) within a factor of two, whatever the scene and method.
+#[test]
+fn the_estimated_error_is_the_true_error_within_a_factor() {
+    let mut report = String::new();
+    let mut failed = false;
+    for (name, end, method, rtol) in [
+        ("a1_ball", 10.0, Method::Dop853, 1e-6),
+        ("a1_ball", 10.0, Method::Radau5, 1e-8),
+        ("a3_softening_ball", 10.0, Method::Radau5, 1e-6),
+        ("a4_dropped_ball", 10.0, Method::Auto, 1e-6),
+        ("b_slider", 5.0, Method::Radau5, 1e-10),
+    ] {
+        let text = scene(name);
+        let model = model_of(&text).expect(name);
+        let simulation = Simulation::new(&model)
+            .map_err(|errors| errors[0].clone())
+            .expect(name);
+        let settings = Settings {
+            method,
+            ..settings(end, 199, rtol)
+        };
+        let run = run(&text, &settings).expect(name);
+        let estimate = simulation.estimate_error(&settings, &run.rows).expect(name);
+        let error = error_against_reference(&run, name);
+        let ratio = estimate.largest[0] / error;
+        failed |= !(0.5..=2.0).contains(&ratio);
+        report += &format!(
+            "{name} {method} rtol {rtol:e}: estimated {:.2e}, true {error:.2e}\n",
+            estimate.largest[0]
+        );
+    }
+    assert!(!failed, "{report}");
 }

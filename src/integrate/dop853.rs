@@ -23,11 +23,12 @@ const FAILURE_SHRINK: f64 = 0.5;
 
 /// Hairer's stiffness test (`dop853.f`, `NSTIFF`): every this many
 /// accepted steps, and at every step while the last test found `h |λ|`
-/// beyond [`STABILITY_EDGE`].
-const STIFFNESS_TEST_EVERY: usize = 1000;
+/// beyond [`STABILITY_EDGE`]. Under [`Method::Auto`](super::Method::Auto),
+/// at every step.
+pub(super) const STIFFNESS_TEST_EVERY: usize = 1000;
 /// `h |λ|` near the edge of DOP853's stability region along the negative
 /// real axis (Hairer's 6.1).
-const STABILITY_EDGE: f64 = 6.1;
+pub(super) const STABILITY_EDGE: f64 = 6.1;
 /// Tests beyond the edge, with fewer than [`NONSTIFF_RESET`] tests within
 /// it between them, that make a problem stiff (Hairer's 15).
 const STIFF_TESTS: u32 = 15;
@@ -307,12 +308,16 @@ pub(super) struct Dop853 {
     after_rejection: bool,
     /// Hairer's stiffness test over the accepted steps.
     stiffness: Stiffness,
+    /// The stiffness test runs every this many accepted steps.
+    test_every: usize,
+    /// `h |λ|` beyond which a test counts as stiff.
+    edge: f64,
 }
 
 /// The state of Hairer's stiffness test: `h |λ|` estimated on the last
 /// stage and the step's end, `h |f(t+h, y_new) - f(t+h, y_12)| / |y_new -
 /// y_12|`, counted against the edge of the stability region.
-#[derive(Default)]
+#[derive(Clone, Default)]
 struct Stiffness {
     /// The estimate of the step being finished, when a test is due.
     pending: Option<f64>,
@@ -326,11 +331,11 @@ struct Stiffness {
 
 impl Stiffness {
     /// Counts the estimate of the step from `t` that was just accepted.
-    fn count(&mut self, t: f64) {
+    fn count(&mut self, t: f64, edge: f64) {
         let Some(h_lambda) = self.pending.take() else {
             return;
         };
-        if h_lambda > STABILITY_EDGE {
+        if h_lambda > edge {
             self.within = 0;
             self.beyond += 1;
             if self.beyond == STIFF_TESTS && self.found_at.is_none() {
@@ -346,8 +351,10 @@ impl Stiffness {
 }
 
 impl Dop853 {
-    /// Working storage for `n` components.
-    pub fn new(n: usize) -> Self {
+    /// Working storage for `n` components, the stiffness test run every
+    /// `test_every` accepted steps, counting `h |λ|` beyond `edge` as stiff
+    /// (Hairer's [`STIFFNESS_TEST_EVERY`] and [`STABILITY_EDGE`]).
+    pub fn new(n: usize, test_every: usize, edge: f64) -> Self {
         Dop853 {
             n,
             k: vec![0.0; 16 * n],
@@ -357,6 +364,8 @@ impl Dop853 {
             h_dense: 0.0,
             after_rejection: false,
             stiffness: Stiffness::default(),
+            test_every: test_every.max(1),
+            edge,
         }
     }
 
@@ -367,6 +376,13 @@ impl Dop853 {
     /// not accuracy.
     pub fn stiff_from(&self) -> Option<f64> {
         self.stiffness.found_at
+    }
+
+    /// Takes over `other`'s stiffness test where it stands: a fresh start
+    /// at an event goes on counting (a run whose every step crosses a
+    /// branch boundary is still found stiff).
+    pub fn continue_stiffness_test(&mut self, other: &Dop853) {
+        self.stiffness = other.stiffness.clone();
     }
 
     /// Forgets the last step.
@@ -415,7 +431,7 @@ impl Dop853 {
             // A step shortened to land keeps the longer step it replaced.
             core.h = if lands { h_new.max(core.h) } else { h_new };
             self.h_dense = h;
-            self.stiffness.count(core.t);
+            self.stiffness.count(core.t, self.edge);
             std::mem::swap(&mut core.y, &mut self.y_new);
             core.dy.copy_from_slice(&self.k[12 * self.n..13 * self.n]);
             core.advance(h, lands, t_end);
@@ -478,7 +494,7 @@ impl Dop853 {
             &mut self.k[12 * n..13 * n],
         )?;
         let accepted = core.stats.steps + 1;
-        self.stiffness.pending = (accepted.is_multiple_of(STIFFNESS_TEST_EVERY)
+        self.stiffness.pending = (accepted.is_multiple_of(self.test_every)
             || self.stiffness.beyond > 0)
             .then(|| self.stiffness_estimate(h));
         for (index, stage) in DENSE_STAGES.iter().enumerate() {

@@ -85,6 +85,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod auto;
 mod core;
 mod dop853;
 mod error;
@@ -97,6 +98,7 @@ use nalgebra::DMatrix;
 
 use crate::Counted;
 
+use self::auto::Auto;
 use self::core::Core;
 pub use self::core::smallest_step;
 use self::dop853::Dop853;
@@ -167,12 +169,19 @@ pub enum Method {
     /// Dormand and Prince's explicit pair of order 8 (`dop853.f`) with its
     /// 7th-order dense output.
     Dop853,
+    /// DOP853 while the problem is not stiff, Radau5 while it is (LSODA's
+    /// idea): to Radau5 when DOP853's stiffness test fires, back when the
+    /// step Radau5 takes is within DOP853's stability region again (the
+    /// largest `|λ|` of the Jacobian by power iteration); each change a
+    /// restart from the current state ([`Stepper::method`] says which
+    /// method made the last step).
+    Auto,
 }
 
 impl Method {
-    /// Whether the method asks the system for its Jacobian.
+    /// Whether the method may ask the system for its Jacobian.
     pub fn uses_jacobian(self) -> bool {
-        self == Method::Radau5
+        self != Method::Dop853
     }
 }
 
@@ -181,6 +190,7 @@ impl fmt::Display for Method {
         f.write_str(match self {
             Method::Radau5 => "radau",
             Method::Dop853 => "dop853",
+            Method::Auto => "auto",
         })
     }
 }
@@ -188,11 +198,13 @@ impl fmt::Display for Method {
 impl FromStr for Method {
     type Err = UnknownMethod;
 
-    /// `radau` (or `radau5`) and `dop853`, as the command line spells them.
+    /// `radau` (or `radau5`), `dop853` and `auto`, as the command line
+    /// spells them.
     fn from_str(name: &str) -> Result<Self, UnknownMethod> {
         match name {
             "radau" | "radau5" => Ok(Method::Radau5),
             "dop853" => Ok(Method::Dop853),
+            "auto" => Ok(Method::Auto),
             _ => Err(UnknownMethod(name.to_owned())),
         }
     }
@@ -300,11 +312,15 @@ enum Scheme {
 pub struct Stepper {
     core: Core,
     scheme: Scheme,
+    options: Options,
+    /// Under [`Method::Auto`], the choice between the methods.
+    auto: Option<Auto>,
 }
 
 impl Stepper {
     /// Starts at `(t0, y0)`: checks the options, evaluates `f(t0, y0)` and
     /// chooses the first step size unless `options.h_init` gives it.
+    /// [`Method::Auto`] starts with DOP853.
     pub fn new<S: System + ?Sized>(
         method: Method,
         options: Options,
@@ -312,11 +328,49 @@ impl Stepper {
         y0: &[f64],
         system: &mut S,
     ) -> Result<Self, IntegrateError<S::Error>> {
-        let mut core = Core::new(&options, t0, y0, system.dimension())?;
-        let scheme = match method {
-            Method::Radau5 => Scheme::Radau5(Box::new(Radau5::new(&options, &core.atol)?)),
-            Method::Dop853 => Scheme::Dop853(Box::new(Dop853::new(y0.len()))),
+        let first = match method {
+            Method::Auto => Method::Dop853,
+            fixed => fixed,
         };
+        Self::start(method, first, options, t0, y0, system)
+    }
+
+    /// A new stepper from `(t, y)` with this one's method (under
+    /// [`Method::Auto`], starting with the one in use now), its first step
+    /// chosen anew and its counts from zero: a fresh start after the caller
+    /// has changed the system at an event. DOP853's stiffness test goes on
+    /// where it stood.
+    pub fn fresh_start<S: System + ?Sized>(
+        &self,
+        options: Options,
+        t: f64,
+        y: &[f64],
+        system: &mut S,
+    ) -> Result<Self, IntegrateError<S::Error>> {
+        let choice = if self.auto.is_some() {
+            Method::Auto
+        } else {
+            self.method()
+        };
+        let mut next = Self::start(choice, self.method(), options, t, y, system)?;
+        if let (Scheme::Dop853(old), Scheme::Dop853(new)) = (&self.scheme, &mut next.scheme) {
+            new.continue_stiffness_test(old);
+        }
+        Ok(next)
+    }
+
+    /// Starts `choice` (a method or Auto) at `(t0, y0)` with `first`.
+    fn start<S: System + ?Sized>(
+        choice: Method,
+        first: Method,
+        options: Options,
+        t0: f64,
+        y0: &[f64],
+        system: &mut S,
+    ) -> Result<Self, IntegrateError<S::Error>> {
+        let mut core = Core::new(&options, t0, y0, system.dimension())?;
+        let auto = (choice == Method::Auto).then(|| Auto::new(y0.len()));
+        let scheme = Self::scheme(first, &options, &core, auto.is_some())?;
         core.start(system)?;
         core.h = match options.h_init {
             Some(h) => h,
@@ -338,7 +392,33 @@ impl Stepper {
                 )
             }
         };
-        Ok(Stepper { core, scheme })
+        Ok(Stepper {
+            core,
+            scheme,
+            options,
+            auto,
+        })
+    }
+
+    /// The working state of `method` (Radau5 or DOP853; DOP853 runs its
+    /// stiffness test at every step when `auto` decides on it).
+    fn scheme<E>(
+        method: Method,
+        options: &Options,
+        core: &Core,
+        auto: bool,
+    ) -> Result<Scheme, IntegrateError<E>> {
+        Ok(match method {
+            Method::Radau5 => Scheme::Radau5(Box::new(Radau5::new(options, &core.atol)?)),
+            Method::Dop853 | Method::Auto => {
+                let (test_every, edge) = if auto {
+                    (1, auto::STIFF_EDGE)
+                } else {
+                    (dop853::STIFFNESS_TEST_EVERY, dop853::STABILITY_EDGE)
+                };
+                Scheme::Dop853(Box::new(Dop853::new(core.y.len(), test_every, edge)))
+            }
+        })
     }
 
     /// One accepted step, as long as the method chooses.
@@ -362,13 +442,25 @@ impl Stepper {
                 t_end,
             });
         }
+        if let Some(to) = self.auto.as_mut().and_then(Auto::change) {
+            self.scheme = Self::scheme(to, &self.options, &self.core, true)?;
+            let (t, y) = (self.core.t, self.core.y.clone());
+            self.core.restart(t, &y);
+        }
         if self.core.fresh {
             self.core.start(system)?;
         }
         match &mut self.scheme {
-            Scheme::Radau5(radau) => radau.step(&mut self.core, system, t_end),
-            Scheme::Dop853(dop) => dop.step(&mut self.core, system, t_end),
+            Scheme::Radau5(radau) => radau.step(&mut self.core, system, t_end)?,
+            Scheme::Dop853(dop) => dop.step(&mut self.core, system, t_end)?,
         }
+        if let Some(auto) = &mut self.auto {
+            match &self.scheme {
+                Scheme::Radau5(_) => auto.after_implicit(&mut self.core, system),
+                Scheme::Dop853(dop) => auto.after_explicit(dop.stiff_from().is_some()),
+            }
+        }
+        Ok(())
     }
 
     /// Continues from `(t, y)` afresh, as at a start: the caller has cut the
@@ -451,16 +543,22 @@ impl Stepper {
 
     /// DOP853: the time from which Hairer's stiffness test finds the
     /// problem stiff (its steps held to the edge of the stability region,
-    /// not by accuracy: a stiff method would take far fewer). Radau5:
-    /// `None`.
+    /// not by accuracy: a stiff method would take far fewer). Radau5 and
+    /// Auto (which changes method there): `None`.
     pub fn stiff_from(&self) -> Option<f64> {
         match &self.scheme {
-            Scheme::Radau5(_) => None,
-            Scheme::Dop853(dop) => dop.stiff_from(),
+            Scheme::Dop853(dop) if self.auto.is_none() => dop.stiff_from(),
+            _ => None,
         }
     }
 
-    /// The method.
+    /// Whether the stepper chooses its method ([`Method::Auto`]).
+    pub fn is_auto(&self) -> bool {
+        self.auto.is_some()
+    }
+
+    /// The method that makes the steps: Radau5 or DOP853 (under
+    /// [`Method::Auto`], the one chosen for the last step).
     pub fn method(&self) -> Method {
         match self.scheme {
             Scheme::Radau5(_) => Method::Radau5,

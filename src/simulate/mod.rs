@@ -48,17 +48,21 @@
 
 mod dataset;
 mod error;
+mod estimate;
 mod mechanics;
 mod model;
 mod run;
 mod scene_file;
+mod sink;
 mod switch;
 
 pub use dataset::{from_dataset, run_settings};
 pub use error::{Place, SimulateError};
+pub use estimate::ErrorEstimate;
 pub use model::{Diff, Expression, Force, MassProperties, Model, Output};
 pub use run::{DEFAULT_MAX_STEPS, Equations, Event, SMALLEST_RTOL, Settings, Summary};
 pub use scene_file::from_scene;
+pub use sink::{MethodChange, Sink};
 
 use crate::compile::{Program, compile_outputs};
 use crate::scene::diff_input;

@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 
 use super::error::SimulateError;
 use super::mechanics::{BODY_STATES, Mechanics, body_offset};
+use super::sink::{MethodChange, RowsOnly, Sink};
 use super::switch::{Held, Switch, find_switch, switching_slope};
 use super::{Model, Simulation};
 use crate::Shown;
@@ -22,7 +23,7 @@ use crate::laws::branch::{self, Code};
 /// How to run a simulation.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
-    /// The integration method.
+    /// The integration method ([`Method::Auto`] by default).
     pub method: Method,
     /// The end time (positive); the run starts at 0.
     pub end: f64,
@@ -43,7 +44,7 @@ pub struct Settings {
 impl Default for Settings {
     fn default() -> Self {
         Settings {
-            method: Method::Radau5,
+            method: Method::Auto,
             end: 1.0,
             steps: 100,
             rtol: 1e-6,
@@ -64,7 +65,9 @@ pub const DEFAULT_MAX_STEPS: usize = 10_000_000;
 pub const SMALLEST_RTOL: f64 = 10.0 * f64::EPSILON;
 
 impl Settings {
-    fn check(&self) -> Result<(), SimulateError> {
+    /// Refuses settings a run cannot take (what [`Simulation::run`] checks
+    /// first), so that a caller can check them before anything else.
+    pub fn check(&self) -> Result<(), SimulateError> {
         let problem = if !(self.end > 0.0 && self.end.is_finite()) {
             Some(format!(
                 "the end time must be a positive number, not {}",
@@ -117,6 +120,9 @@ pub struct Event {
     pub from: String,
     /// The branch it takes.
     pub to: String,
+    /// The values of the columns after `time` ([`crate::simulate::columns`])
+    /// at the switch, on the branches it takes.
+    pub values: Vec<f64>,
 }
 
 /// What a run cost and found.
@@ -129,8 +135,11 @@ pub struct Summary {
     pub events: Vec<Event>,
     /// The wall time of the run.
     pub wall_time: Duration,
-    /// Whether the row callback asked to stop before the end.
+    /// Whether the sink stopped the run before the end (its answer to a
+    /// row or an event, or [`Sink::stop_requested`]).
     pub stopped: bool,
+    /// Under [`Method::Auto`], every change of method, in time order.
+    pub method_changes: Vec<MethodChange>,
     /// DOP853: the time from which Hairer's stiffness test found the run
     /// stiff (steps held by stability, not accuracy; Radau5 takes far
     /// fewer there).
@@ -264,11 +273,27 @@ impl Simulation<'_> {
     /// Runs from time 0 to `settings.end`, calling `row` with the time and
     /// the values of the columns after `time` ([`crate::simulate::columns`])
     /// at each output time; `row` returns `false` to stop the run there.
-    /// Rows written before an error stay written.
+    /// [`run_into`](Self::run_into) with a sink of rows only.
     pub fn run(
         &self,
         settings: &Settings,
-        mut row: impl FnMut(f64, &[f64]) -> bool,
+        row: impl FnMut(f64, &[f64]) -> bool,
+    ) -> Result<Summary, SimulateError> {
+        self.run_into(settings, &mut RowsOnly(row))
+    }
+
+    /// Runs from time 0 to `settings.end`, handing `sink` each row (the
+    /// time and the values of the columns after `time`,
+    /// [`crate::simulate::columns`]) at each output time as soon as the
+    /// step that reaches it is taken, each located switch and each change
+    /// of method; the sink may stop the run at any of them or before any
+    /// step. The rows come from each step's continuous output: the steps
+    /// do not depend on the output times. Rows handed over before an error
+    /// stay the caller's.
+    pub fn run_into(
+        &self,
+        settings: &Settings,
+        sink: &mut impl Sink,
     ) -> Result<Summary, SimulateError> {
         settings.check()?;
         let started = Instant::now();
@@ -327,34 +352,44 @@ impl Simulation<'_> {
             events: Vec::new(),
             wall_time: Duration::ZERO,
             stopped: false,
+            method_changes: Vec::new(),
             stiff_from: None,
         };
         let output_time = |index: usize| settings.end * index as f64 / settings.steps as f64;
         let values = rows.at(0.0, &y0).map_err(|error| fail(0.0, error))?;
-        summary.stopped = !row(0.0, values);
+        summary.stopped = sink.row(0.0, values).is_break();
         let mut next_output = 1;
         let mut dense = vec![0.0; y0.len()];
         let mut recent = VecDeque::new();
         // The counts of the steppers before the last restart.
         let mut before = Stats::default();
-        // Radau's continuous output is of order 3 inside a step: its steps
-        // land on the output times instead. DOP853's is of order 7.
-        let land = settings.method == Method::Radau5;
         // The state at the start of the step, and the switching values there.
         let mut step_start = y0.clone();
         let mut start_values = switching.clone();
+        let mut method = stepper.method();
         while !summary.stopped && stepper.t() < settings.end {
+            if sink.stop_requested() {
+                summary.stopped = true;
+                break;
+            }
             step_start.copy_from_slice(stepper.y());
-            let target = if land && next_output <= settings.steps {
-                output_time(next_output).min(settings.end)
-            } else {
-                settings.end
-            };
-            stepper.step_to(&mut system, target).map_err(|error| {
-                let stiff_from = summary.stiff_from.or(stepper.stiff_from());
-                self.step_error(error, settings, stiff_from)
-            })?;
+            stepper
+                .step_to(&mut system, settings.end)
+                .map_err(|error| {
+                    let stiff_from = summary.stiff_from.or(stepper.stiff_from());
+                    self.step_error(error, settings, stiff_from)
+                })?;
             summary.stiff_from = summary.stiff_from.or(stepper.stiff_from());
+            if stepper.method() != method {
+                let change = MethodChange {
+                    time: stepper.t_previous(),
+                    from: method,
+                    to: stepper.method(),
+                };
+                method = change.to;
+                sink.method_changed(&change);
+                summary.method_changes.push(change);
+            }
             let (t0, t1) = (stepper.t_previous(), stepper.t());
             let switch = find_switch(
                 &mut system,
@@ -372,7 +407,7 @@ impl Simulation<'_> {
                 stepper.dense(time, &mut dense);
                 let state = if time == t1 { stepper.y() } else { &dense };
                 let values = rows.at(time, state).map_err(|error| fail(time, error))?;
-                if !row(time, values) {
+                if sink.row(time, values).is_break() {
                     summary.stopped = true;
                     break;
                 }
@@ -404,6 +439,7 @@ impl Simulation<'_> {
                 .mechanics
                 .observe(right, &dense, None, (&mut natural, &mut switching), None)
                 .map_err(|error| fail(right, error))?;
+            let first_event = summary.events.len();
             for (site, (held, now)) in program.sites().iter().zip(system.held.iter().zip(&natural))
             {
                 if let (Some(from), Some(to)) = (held, now)
@@ -415,6 +451,13 @@ impl Simulation<'_> {
                 }
             }
             system.held.clone_from(&natural);
+            let values = rows.at(right, &dense).map_err(|error| fail(right, error))?;
+            for event in &mut summary.events[first_event..] {
+                event.values = values.to_vec();
+                if sink.event(event).is_break() {
+                    summary.stopped = true;
+                }
+            }
             let limit = system
                 .look_and_limit(right, &dense, &mut natural, &mut start_values)
                 .map_err(|error| fail(right, error))?;
@@ -439,14 +482,9 @@ impl Simulation<'_> {
             // A fresh start: the first step is chosen anew for the new
             // branch (a step fit for free flight would cross a contact).
             before = add(before, stepper.stats());
-            stepper = Stepper::new(
-                settings.method,
-                options(limit, before),
-                right,
-                &dense,
-                &mut system,
-            )
-            .map_err(|error| self.integration_error(error))?;
+            stepper = stepper
+                .fresh_start(options(limit, before), right, &dense, &mut system)
+                .map_err(|error| self.integration_error(error))?;
         }
         summary.stats = add(before, stepper.stats());
         summary.wall_time = started.elapsed();
@@ -549,6 +587,7 @@ impl Simulation<'_> {
             span: program.span(index),
             from,
             to,
+            values: Vec::new(),
         }
     }
 

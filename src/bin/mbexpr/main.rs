@@ -88,6 +88,16 @@ impl Fatal {
 }
 
 impl Fatal {
+    /// A run ended early by signal number `signal`, its results so far
+    /// written and reported: exit status 128 + the signal, as a shell
+    /// gives it.
+    pub fn signalled(signal: u8) -> Fatal {
+        Fatal {
+            message: String::new(),
+            code: 128u8.saturating_add(signal),
+        }
+    }
+
     /// Whether the error is in the input (exit status 1) rather than the call.
     pub fn is_input(&self) -> bool {
         self.code == 1

@@ -221,23 +221,27 @@ pub fn trace(
 /// the stretches that could not be evaluated shaded. Only SVG is written:
 /// a name with the extension of another image format is refused.
 pub fn render_svg(path: &str, over: &str, plot: &Plot) -> Result<(), String> {
+    check_svg_name(path)?;
+    let mut svg = String::new();
+    draw(SVGBackend::with_string(&mut svg, size(plot)), over, plot)?;
+    std::fs::write(path, svg).map_err(|error| error.to_string())
+}
+
+/// Refuses a plot file named for another picture format than SVG.
+pub fn check_svg_name(path: &str) -> Result<(), String> {
     const OTHER_FORMATS: [&str; 10] = [
         "png", "jpg", "jpeg", "gif", "bmp", "tif", "tiff", "webp", "pdf", "eps",
     ];
     let extension = std::path::Path::new(path)
         .extension()
         .map(|extension| extension.to_string_lossy().to_ascii_lowercase());
-    if let Some(extension) =
-        extension.filter(|extension| OTHER_FORMATS.contains(&extension.as_str()))
-    {
-        return Err(format!(
+    match extension.filter(|extension| OTHER_FORMATS.contains(&extension.as_str())) {
+        Some(extension) => Err(format!(
             "plots are written as SVG, not {}: name the file FILE.svg (for a PNG, convert it, e.g. rsvg-convert FILE.svg -o FILE.png)",
             extension.to_uppercase()
-        ));
+        )),
+        None => Ok(()),
     }
-    let mut svg = String::new();
-    draw(SVGBackend::with_string(&mut svg, size(plot)), over, plot)?;
-    std::fs::write(path, svg).map_err(|error| error.to_string())
 }
 
 /// The picture's size in pixels: 320 high per panel.

@@ -1,19 +1,27 @@
 //! `mbexpr simulate FILE`: integrate a dataset's (or a scene file's) DIFF
 //! equations and free parts in time, rows of states at equally spaced
-//! times on standard output, statistics (and, on request, every branch
-//! switch) on standard error.
+//! times on standard output, each written and flushed as soon as it is
+//! computed; statistics (and, on request, every branch switch) on standard
+//! error, as text or JSON. SIGINT and SIGTERM end the run at the next
+//! step, every computed row written and the statistics printed.
 
 use std::io::{IsTerminal, Write};
+use std::ops::ControlFlow;
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use clap::ValueEnum;
 use mbexpr::integrate::Method;
 use mbexpr::model::{self, FileKind};
-use mbexpr::simulate::{self, Model, Place, Settings, SimulateError, Simulation};
+use mbexpr::simulate::{
+    self, ErrorEstimate, Event, MethodChange, Model, Place, Settings, SimulateError, Simulation,
+    Sink, Summary,
+};
 use mbexpr::{Counted, Shown};
+use serde_json::json;
 
-use crate::plot::{Curve, Plot, render_svg};
+use crate::plot::{Curve, Plot, check_svg_name, render_svg};
 use crate::render::diagnostic;
 use crate::{Fatal, Outcome};
 
@@ -26,6 +34,15 @@ pub enum RowFormat {
     Jsonl,
     /// Aligned columns, for a terminal.
     Text,
+}
+
+/// How the end statistics are written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum StatsFormat {
+    /// Lines of text.
+    Text,
+    /// One JSON object.
+    Json,
 }
 
 /// What a file to simulate is.
@@ -53,8 +70,8 @@ pub struct Args {
     /// Output steps: STEPS + 1 rows at equally spaced times from 0 to END.
     #[arg(long)]
     steps: Option<usize>,
-    /// The integration method: radau (implicit, exact Jacobian) or dop853 (explicit).
-    #[arg(long, default_value = "radau", value_parser = parse_method)]
+    /// The integration method: auto (dop853 while the run is not stiff, radau while it is), radau (implicit, exact Jacobian) or dop853 (explicit).
+    #[arg(long, default_value = "auto", value_parser = parse_method)]
     method: Method,
     /// Relative tolerance.
     #[arg(long, default_value_t = 1e-6, allow_hyphen_values = true)]
@@ -71,9 +88,18 @@ pub struct Args {
     /// Row format (default: csv on a pipe, text on a terminal).
     #[arg(long, value_enum)]
     format: Option<RowFormat>,
-    /// List every located branch switch on standard error.
+    /// List every located branch switch (and change of method) on standard error, as it is found; with --format jsonl, one JSON object each.
     #[arg(long)]
     events: bool,
+    /// Write every located branch switch (and change of method) into a file, one JSON object per line.
+    #[arg(long, value_name = "FILE.jsonl")]
+    events_file: Option<String>,
+    /// How the end statistics are written on standard error.
+    #[arg(long, value_enum, default_value = "text")]
+    stats: StatsFormat,
+    /// Run again at a hundredth of the tolerances and report, per column, the largest difference: the estimated global error.
+    #[arg(long)]
+    estimate_error: bool,
     /// Draw the states against time into an SVG file.
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<String>,
@@ -227,6 +253,50 @@ impl Progress {
     }
 }
 
+/// The signal that asked the run to end (0: none yet).
+static SIGNALLED: AtomicUsize = AtomicUsize::new(0);
+/// A first signal has come: a second one ends the process at once.
+static ARMED: AtomicBool = AtomicBool::new(false);
+
+/// From now on SIGINT and SIGTERM ask the run to end at its next step
+/// ([`SIGNALLED`]); a second one ends the process with 128 + its number.
+fn catch_signals() -> std::io::Result<()> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    use signal_hook::flag;
+    for signal in [SIGINT, SIGTERM] {
+        // The shutdown first: it acts only once the flag below is set.
+        flag::register_conditional_shutdown(signal, 128 + signal, &ARMED)?;
+        flag::register_usize(signal, &SIGNALLED, signal as usize)?;
+        flag::register(signal, &ARMED)?;
+    }
+    Ok(())
+}
+
+/// The name of a signal `catch_signals` catches.
+fn signal_name(signal: usize) -> &'static str {
+    if signal == signal_hook::consts::SIGTERM as usize {
+        "SIGTERM"
+    } else {
+        "SIGINT"
+    }
+}
+
+/// Refuses an output file that cannot be written, before the run: its
+/// folder must exist and the file be open for writing. A file that did not
+/// exist is not left behind.
+fn check_writable(option: &str, path: &str) -> Result<(), Fatal> {
+    let existed = Path::new(path).exists();
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .map_err(|error| Fatal::usage(format!("error: {option} {path}: {error}")))?;
+    if !existed {
+        let _ = std::fs::remove_file(path);
+    }
+    Ok(())
+}
+
 /// Runs `mbexpr simulate`.
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let (source, model) = read_model(&args.file, args.kind)?;
@@ -250,6 +320,22 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         h_max: args.hmax.unwrap_or(f64::INFINITY),
         max_steps: args.max_steps,
     };
+    // Every output is checked before the first step.
+    settings
+        .check()
+        .map_err(|error| Fatal::input(source.render(Some(&model), &error)))?;
+    if let Some(path) = &args.plot {
+        check_svg_name(path)
+            .map_err(|message| Fatal::usage(format!("error: --plot {path}: {message}")))?;
+        check_writable("--plot", path)?;
+    }
+    let events_file = match &args.events_file {
+        Some(path) => Some(
+            std::fs::File::create(path)
+                .map_err(|error| Fatal::usage(format!("error: --events-file {path}: {error}")))?,
+        ),
+        None => None,
+    };
     let mut stderr = std::io::stderr();
     for (note, span) in &model.notes {
         let _ = write!(
@@ -266,76 +352,289 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     } else {
         RowFormat::Csv
     });
-    let writer = Rows::new(format, &columns);
-    // The header goes with the first row: a run refused before it writes none.
-    let mut written: std::io::Result<()> = Ok(());
-    let mut kept: Vec<Vec<f64>> = Vec::new();
-    let mut progress = Progress::new(end);
-    let result = simulation.run(&settings, |time, values| {
-        progress.at(time);
-        if args.plot.is_some() {
-            let mut row = vec![time];
-            row.extend_from_slice(values);
-            kept.push(row);
+    catch_signals()?;
+    let mut sink = Written {
+        out,
+        rows: Rows::new(format, &columns),
+        written: Ok(()),
+        count: 0,
+        kept: Vec::new(),
+        keep: args.plot.is_some() || args.estimate_error,
+        progress: Progress::new(end),
+        events: Events {
+            source: &source,
+            model: &model,
+            columns: &columns,
+            on_stderr: args.events.then_some(format),
+            file: events_file.map(std::io::BufWriter::new),
+        },
+    };
+    let result = simulation.run_into(&settings, &mut sink);
+    sink.progress.finish();
+    sink.written?;
+    sink.events.finish()?;
+    let summary = result.map_err(|error| Fatal::input(source.render(Some(&model), &error)))?;
+    let signal = SIGNALLED.load(Ordering::SeqCst);
+    let estimate = if args.estimate_error && signal == 0 {
+        Some(
+            simulation
+                .estimate_error(&settings, &sink.kept)
+                .map_err(|error| Fatal::input(source.render(Some(&model), &error)))?,
+        )
+    } else {
+        None
+    };
+    let report = Report {
+        path: &source.path,
+        settings: &settings,
+        summary: &summary,
+        columns: &columns,
+        estimate: estimate.as_ref(),
+        signal,
+        rows: sink.count,
+    };
+    let _ = match args.stats {
+        StatsFormat::Text => write!(stderr, "{}", report.text()),
+        StatsFormat::Json => writeln!(stderr, "{}", report.json()),
+    };
+    if signal != 0 {
+        return Err(Fatal::signalled(signal as u8));
+    }
+    if let Some(path) = &args.plot {
+        plot_states(path, &columns, &sink.kept, &summary)
+            .map_err(|message| Fatal::input(format!("error: --plot {path}: {message}\n")))?;
+    }
+    Ok(Outcome::Success)
+}
+
+/// Where `mbexpr simulate` sends a run's results: each row written and
+/// flushed at once (and kept for a plot or an error estimate), each event
+/// written where asked.
+struct Written<'a, W: Write> {
+    out: &'a mut W,
+    rows: Rows<'a>,
+    /// The first failure to write a row, which stops the run.
+    written: std::io::Result<()>,
+    /// The rows written.
+    count: usize,
+    kept: Vec<Vec<f64>>,
+    keep: bool,
+    progress: Progress,
+    events: Events<'a>,
+}
+
+impl<W: Write> Sink for Written<'_, W> {
+    fn row(&mut self, time: f64, values: &[f64]) -> ControlFlow<()> {
+        self.progress.at(time);
+        if self.keep {
+            self.kept.push([&[time], values].concat());
         }
-        written = if time == 0.0 {
-            writer.header(out)
+        self.written = if time == 0.0 {
+            self.rows.header(self.out)
         } else {
             Ok(())
         }
-        .and_then(|()| writer.row(out, time, values));
-        written.is_ok()
-    });
-    progress.finish();
-    written?;
-    out.flush()?;
-    let summary = result.map_err(|error| Fatal::input(source.render(Some(&model), &error)))?;
-    if args.events {
-        for event in &summary.events {
-            let expression = &model.expressions[event.expression];
-            let span = expression.file_span(event.span);
-            let at = mbexpr::Location::of(&source.text, span.start);
-            let _ = writeln!(
-                stderr,
+        .and_then(|()| self.rows.row(self.out, time, values))
+        .and_then(|()| self.out.flush());
+        if self.written.is_ok() {
+            self.count += 1;
+            ControlFlow::Continue(())
+        } else {
+            ControlFlow::Break(())
+        }
+    }
+
+    fn event(&mut self, event: &Event) -> ControlFlow<()> {
+        self.events.switch(event);
+        ControlFlow::Continue(())
+    }
+
+    fn method_changed(&mut self, change: &MethodChange) {
+        self.events.method(change);
+    }
+
+    fn stop_requested(&mut self) -> bool {
+        SIGNALLED.load(Ordering::Relaxed) != 0
+    }
+}
+
+/// Where events are written: standard error (text, or JSON under
+/// `--format jsonl`) and a JSON-lines file.
+struct Events<'a> {
+    source: &'a Source,
+    model: &'a Model,
+    columns: &'a [String],
+    on_stderr: Option<RowFormat>,
+    file: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+impl Events<'_> {
+    fn switch(&mut self, event: &Event) {
+        let expression = &self.model.expressions[event.expression];
+        let span = expression.file_span(event.span);
+        let at = mbexpr::Location::of(&self.source.text, span.start);
+        let object = || {
+            let state: serde_json::Map<String, serde_json::Value> = self.columns[1..]
+                .iter()
+                .zip(&event.values)
+                .map(|(name, value)| (name.clone(), json!(value)))
+                .collect();
+            json!({
+                "time": event.time,
+                "function": event.function,
+                "file": self.source.path,
+                "line": at.line,
+                "column": at.column,
+                "expression": expression.label,
+                "from": event.from,
+                "to": event.to,
+                "state": state,
+            })
+        };
+        self.write(object, || {
+            format!(
                 "event t = {}: {} at {}:{}:{} ({}): {} -> {}",
                 Shown(event.time),
                 event.function,
-                source.path,
+                self.source.path,
                 at.line,
                 at.column,
                 expression.label,
                 event.from,
                 event.to
-            );
-        }
+            )
+        });
     }
-    let stats = summary.stats;
-    let _ = writeln!(
-        stderr,
-        "{}: t = 0 .. {}, {}: {} ({} rejected), {}, {}, {}, {}, {:.6} s",
-        source.path,
-        Shown(end),
-        settings.method,
-        Counted(stats.steps, "step"),
-        stats.rejected,
-        Counted(stats.rhs_evaluations, "right-hand side"),
-        Counted(stats.jacobian_evaluations, "jacobian"),
-        Counted(stats.lu_decompositions, "lu decomposition"),
-        Counted(summary.events.len(), "event"),
-        summary.wall_time.as_secs_f64()
-    );
-    if let Some(from) = summary.stiff_from {
-        let _ = writeln!(
-            stderr,
-            "warning: the run is stiff from t = {}: DOP853's steps are held there by stability, not accuracy; --method radau takes far fewer",
-            Shown(from)
+
+    fn method(&mut self, change: &MethodChange) {
+        self.write(
+            || json!({"time": change.time, "method": {"from": change.from.to_string(), "to": change.to.to_string()}}),
+            || format!("method t = {}: {} -> {}", Shown(change.time), change.from, change.to),
         );
     }
-    if let Some(path) = &args.plot {
-        plot_states(path, &columns, &kept, &summary)
-            .map_err(|message| Fatal::input(format!("error: --plot {path}: {message}\n")))?;
+
+    /// One event, as JSON to the file and as `--format` says on standard
+    /// error. A file that fails to take it is reported once at the end.
+    fn write(&mut self, object: impl Fn() -> serde_json::Value, text: impl Fn() -> String) {
+        if let Some(file) = &mut self.file {
+            let _ = writeln!(file, "{}", object());
+        }
+        let line = match self.on_stderr {
+            None => return,
+            Some(RowFormat::Jsonl) => object().to_string(),
+            Some(_) => text(),
+        };
+        let _ = writeln!(std::io::stderr(), "{line}");
     }
-    Ok(Outcome::Success)
+
+    fn finish(&mut self) -> std::io::Result<()> {
+        match &mut self.file {
+            Some(file) => file.flush(),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The end statistics of a run.
+struct Report<'a> {
+    path: &'a str,
+    settings: &'a Settings,
+    summary: &'a Summary,
+    columns: &'a [String],
+    estimate: Option<&'a ErrorEstimate>,
+    /// The signal that ended the run (0: none).
+    signal: usize,
+    rows: usize,
+}
+
+impl Report<'_> {
+    fn text(&self) -> String {
+        let (summary, stats) = (self.summary, self.summary.stats);
+        let mut text = format!(
+            "{}: t = 0 .. {}, {}: {} ({} rejected), {}, {}, {}, {}, {:.6} s\n",
+            self.path,
+            Shown(self.settings.end),
+            self.settings.method,
+            Counted(stats.steps, "step"),
+            stats.rejected,
+            Counted(stats.rhs_evaluations, "right-hand side"),
+            Counted(stats.jacobian_evaluations, "jacobian"),
+            Counted(stats.lu_decompositions, "lu decomposition"),
+            Counted(summary.events.len(), "event"),
+            summary.wall_time.as_secs_f64()
+        );
+        if !summary.method_changes.is_empty() {
+            let changes: Vec<String> = summary
+                .method_changes
+                .iter()
+                .map(|change| format!("{} at t = {}", change.to, Shown(change.time)))
+                .collect();
+            text += &format!("method changes: {}\n", changes.join(", "));
+        }
+        if let Some(estimate) = self.estimate {
+            let columns: Vec<String> = self.columns[1..]
+                .iter()
+                .zip(&estimate.largest)
+                .map(|(name, error)| format!("{name} {:.1e}", error))
+                .collect();
+            text += &format!(
+                "estimated error (largest difference from a run at rtol {}): {}\n",
+                Shown(estimate.rtol),
+                columns.join(", ")
+            );
+        }
+        if let Some(from) = summary.stiff_from {
+            text += &format!(
+                "warning: the run is stiff from t = {}: DOP853's steps are held there by stability, not accuracy; --method radau or auto takes far fewer\n",
+                Shown(from)
+            );
+        }
+        if self.signal != 0 {
+            text += &format!(
+                "interrupted by {}: {} rows written\n",
+                signal_name(self.signal),
+                self.rows
+            );
+        }
+        text
+    }
+
+    fn json(&self) -> serde_json::Value {
+        let (summary, stats) = (self.summary, self.summary.stats);
+        let estimate = self.estimate.map(|estimate| {
+            let largest: serde_json::Map<String, serde_json::Value> = self.columns[1..]
+                .iter()
+                .zip(&estimate.largest)
+                .map(|(name, error)| (name.clone(), json!(error)))
+                .collect();
+            json!({"rtol": estimate.rtol, "atol": estimate.atol, "largest": largest})
+        });
+        let changes: Vec<serde_json::Value> = summary
+            .method_changes
+            .iter()
+            .map(|change| json!({"time": change.time, "from": change.from.to_string(), "to": change.to.to_string()}))
+            .collect();
+        json!({
+            "file": self.path,
+            "end": self.settings.end,
+            "method": self.settings.method.to_string(),
+            "rtol": self.settings.rtol,
+            "atol": self.settings.atol,
+            "steps": stats.steps,
+            "rejected": stats.rejected,
+            "rhs_evaluations": stats.rhs_evaluations,
+            "rhs_failures": stats.rhs_failures,
+            "jacobians": stats.jacobian_evaluations,
+            "lu_decompositions": stats.lu_decompositions,
+            "events": summary.events.len(),
+            "method_changes": changes,
+            "stiff_from": summary.stiff_from,
+            "wall_time": summary.wall_time.as_secs_f64(),
+            "stopped": summary.stopped,
+            "interrupted_by": (self.signal != 0).then(|| signal_name(self.signal)),
+            "estimated_error": estimate,
+        })
+    }
 }
 
 /// Writes rows in one of the formats.
@@ -402,7 +701,7 @@ fn plot_states(
     path: &str,
     columns: &[String],
     rows: &[Vec<f64>],
-    summary: &simulate::Summary,
+    summary: &Summary,
 ) -> Result<(), String> {
     let curves: Vec<Curve> = (1..columns.len())
         .filter(|&column| {

@@ -1,0 +1,131 @@
+//! [`Method::Auto`](super::Method::Auto): DOP853 while the problem is not
+//! stiff, Radau5 while it is, as LSODA chooses between Adams and BDF.
+//!
+//! - **To Radau5**: when DOP853's own stiffness test (Hairer's, run at
+//!   every step under Auto) finds its steps near the edge of its stability
+//!   region, `h |λ|` beyond half the edge (6.1 / 2: at a tight tolerance
+//!   the step controller holds DOP853 well inside the edge, A4 at rtol
+//!   1e-11, where Hairer's 6.1 never fires in 2 million steps), in 15 tests with
+//!   fewer than 6 within between them.
+//! - **Back to DOP853**: after each Radau5 step the largest `|λ|` of the
+//!   Jacobian is estimated by power iteration on differences of the
+//!   right-hand side (one more evaluation a step, the vector kept from step
+//!   to step); when the step Radau5 proposes times that estimate is within
+//!   a quarter of the explicit method's edge in [`RETURN_TESTS`] steps in a
+//!   row, DOP853 could take the same steps without being held by
+//!   stability, and it is the cheaper method per step.
+//!
+//! The gap between the two thresholds and the counts on both sides are the
+//! hysteresis that keeps a problem at the border from changing method at
+//! every step. A change is decided at the end of a step and made at the
+//! start of the next, from the current state, as a restart.
+
+use super::core::{Core, evaluate, rms};
+use super::dop853::STABILITY_EDGE;
+use super::{Method, System};
+
+/// DOP853's `h |λ|` beyond which its stiffness test counts a step as stiff
+/// under Auto: half the edge of its stability region.
+pub(super) const STIFF_EDGE: f64 = 0.5 * STABILITY_EDGE;
+
+/// Radau5's `h |λ|` below which a step counts as one DOP853 could take:
+/// a quarter of the edge of DOP853's stability region.
+const RETURN_EDGE: f64 = 0.25 * STABILITY_EDGE;
+
+/// Radau5 steps in a row within the margin that make the problem non-stiff.
+pub(super) const RETURN_TESTS: u32 = 5;
+
+/// The choice between the methods and what it rests on.
+pub(super) struct Auto {
+    /// The change decided at the end of the last step, made at the start
+    /// of the next.
+    pending: Option<Method>,
+    /// Power iteration's vector (not normalised).
+    direction: Vec<f64>,
+    /// A shifted state and its rates, working storage.
+    shifted: Vec<f64>,
+    rates: Vec<f64>,
+    /// Radau5 steps in a row whose `h |λ|` is within the margin.
+    within: u32,
+}
+
+impl Auto {
+    /// A choice for `n` components.
+    pub fn new(n: usize) -> Auto {
+        Auto {
+            pending: None,
+            direction: vec![1.0; n],
+            shifted: vec![0.0; n],
+            rates: vec![0.0; n],
+            within: 0,
+        }
+    }
+
+    /// After an accepted DOP853 step: Radau5 from the next one when the
+    /// stiffness test found the problem stiff.
+    pub fn after_explicit(&mut self, stiff: bool) {
+        if stiff {
+            self.pending = Some(Method::Radau5);
+        }
+    }
+
+    /// After an accepted Radau5 step ending at `core`'s state (its `dy`
+    /// valid): one power iteration for `|λ|`, counted against the step
+    /// Radau5 proposes next. A state the system refuses says nothing.
+    pub fn after_implicit<S: System + ?Sized>(&mut self, core: &mut Core, system: &mut S) {
+        let n = core.y.len();
+        let mut size = rms(self.direction.iter().copied(), n);
+        if !(size > 0.0 && size.is_finite()) {
+            self.direction.copy_from_slice(&core.dy);
+            size = rms(self.direction.iter().copied(), n);
+            if !(size > 0.0 && size.is_finite()) {
+                self.direction.fill(1.0);
+                size = 1.0;
+            }
+        }
+        // A shift of about half the digits of the state.
+        let delta = f64::EPSILON.sqrt() * (1.0 + rms(core.y.iter().copied(), n));
+        for (shifted, (y, direction)) in self
+            .shifted
+            .iter_mut()
+            .zip(core.y.iter().zip(&self.direction))
+        {
+            *shifted = y + delta * direction / size;
+        }
+        if evaluate(
+            system,
+            &mut core.stats,
+            core.t,
+            &self.shifted,
+            &mut self.rates,
+        )
+        .is_err()
+        {
+            self.within = 0;
+            return;
+        }
+        for (direction, (shifted_rate, rate)) in self
+            .direction
+            .iter_mut()
+            .zip(self.rates.iter().zip(&core.dy))
+        {
+            *direction = (shifted_rate - rate) / delta;
+        }
+        let lambda = rms(self.direction.iter().copied(), n);
+        if core.h.min(core.h_max) * lambda <= RETURN_EDGE {
+            self.within += 1;
+        } else {
+            self.within = 0;
+        }
+        if self.within >= RETURN_TESTS {
+            self.pending = Some(Method::Dop853);
+        }
+    }
+
+    /// The change decided, now made: the method to start.
+    pub fn change(&mut self) -> Option<Method> {
+        let to = self.pending.take()?;
+        self.within = 0;
+        Some(to)
+    }
+}

@@ -1,0 +1,60 @@
+//! A run's global error estimated the way a user without a reference
+//! would: the same model run again at a hundredth of the tolerances, over
+//! the same output times, and the rows compared.
+
+use super::run::{SMALLEST_RTOL, Settings};
+use super::{SimulateError, Simulation};
+
+/// How far a run's rows lie from a run at a hundredth of its tolerances
+/// ([`Simulation::estimate_error`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErrorEstimate {
+    /// The relative tolerance of the run compared with (a hundredth of the
+    /// run's, and no less than [`SMALLEST_RTOL`]).
+    pub rtol: f64,
+    /// Its absolute tolerance (a hundredth of the run's, scaled as `rtol`).
+    pub atol: f64,
+    /// Per column after `time`, the largest difference over the rows.
+    pub largest: Vec<f64>,
+}
+
+impl Simulation<'_> {
+    /// The estimated global error of `rows`, the rows a run with
+    /// `settings` gave (time first; fewer than `settings.steps + 1` when it
+    /// stopped early): the model is run again at a hundredth of the
+    /// tolerances over the same output times, and each column's largest
+    /// difference is its estimate. The error of the tighter run is about a
+    /// hundredth of the other's wherever the error follows the tolerance,
+    /// so the difference is the run's own error within a few percent.
+    pub fn estimate_error(
+        &self,
+        settings: &Settings,
+        rows: &[Vec<f64>],
+    ) -> Result<ErrorEstimate, SimulateError> {
+        let rtol = (settings.rtol / 100.0).max(SMALLEST_RTOL);
+        let tighter = Settings {
+            rtol,
+            atol: settings.atol * rtol / settings.rtol,
+            ..settings.clone()
+        };
+        let columns = rows.first().map_or(0, |row| row.len().saturating_sub(1));
+        let mut largest = vec![0.0_f64; columns];
+        let mut compared = 0;
+        self.run(&tighter, |time, values| {
+            let Some(row) = rows.get(compared) else {
+                return false;
+            };
+            debug_assert_eq!(row[0], time, "the same output times");
+            for (largest, (value, tight)) in largest.iter_mut().zip(row[1..].iter().zip(values)) {
+                *largest = largest.max((value - tight).abs());
+            }
+            compared += 1;
+            compared < rows.len()
+        })?;
+        Ok(ErrorEstimate {
+            rtol,
+            atol: tighter.atol,
+            largest,
+        })
+    }
+}
