@@ -259,11 +259,8 @@ fn find_dip(
     switching: &mut [f64],
 ) -> Result<Option<(f64, f64)>, (f64, OutputError)> {
     for at in 1..samples.len().saturating_sub(1) {
-        let [(before, low), (_, middle), (after, high)] = [
-            &samples[at - 1],
-            &samples[at],
-            &samples[at + 1],
-        ];
+        let [(before, low), (_, middle), (after, high)] =
+            [&samples[at - 1], &samples[at], &samples[at + 1]];
         for index in (0..watched.len()).filter(|&index| watched[index]) {
             let value = middle[index];
             if !(value >= 0.0 && low[index] > value && high[index] >= value) {
@@ -271,7 +268,14 @@ fn find_dip(
             }
             let from = before.max(t0);
             let ends = (
-                (from, if *before < t0 { value.max(low[index]) } else { low[index] }),
+                (
+                    from,
+                    if *before < t0 {
+                        value.max(low[index])
+                    } else {
+                        low[index]
+                    },
+                ),
                 (*after, high[index]),
             );
             if let Some(negative) = dip(look, switching, index, ends, (samples[at].0, value))? {
@@ -322,7 +326,11 @@ fn dip(
         }
         let fu = switching[index];
         if fu < fm {
-            settled = if fm - fu <= DIP_SETTLED * fu { settled + 1 } else { 0 };
+            settled = if fm - fu <= DIP_SETTLED * fu {
+                settled + 1
+            } else {
+                0
+            };
             if u < m {
                 (b, fb) = (m, fm);
             } else {
