@@ -24,6 +24,7 @@ mod reference;
 mod repl;
 mod scene;
 mod simulate;
+mod simulate_variants;
 mod span;
 mod spline;
 

@@ -152,7 +152,7 @@ pub fn switching(function: Function, args: &[f64], held: Option<Code>, out: &mut
 /// The largest step a simulator should take with a call of `function` at
 /// `args` held on `held`, for an absolute error `tolerance` in the
 /// displacement (see [`contact::step_limit`]); unbounded for all but the
-/// softening contact laws.
+/// contact laws whose exponent is not a whole number.
 pub fn step_limit(function: Function, args: &[f64], held: Code, tolerance: f64) -> f64 {
     let branch = ContactBranch::from_code(held);
     match function {

@@ -12,7 +12,8 @@
 //! - the clamp: when `k*p^e + damping*rate <= 0` (fast separation) the
 //!   force and all its derivatives are 0 (a tie is the clamped branch).
 //! - `e < 1`: `dF/dx` grows without bound as `p -> 0+`; `1 < e < 2`: the
-//!   second derivative does. Where a derivative passes the largest double it
+//!   second derivative does; for every exponent that is not a whole number
+//!   some derivative does (the simulator's step limit, `step_limit`). Where a derivative passes the largest double it
 //!   is an infinity, which the evaluator reports as an error (and the
 //!   utility subroutines with ERRFLG).
 //!
@@ -534,23 +535,31 @@ fn contact_switching<P: Parameter<f64>>(
 }
 
 /// The part of a simulator's absolute tolerance that the displacement no
-/// polynomial follows may take at each touch and release of a softening
-/// stop. On the softening ball of the simulation study (92 touches and
-/// releases) DOP853 needs half the right-hand sides of steps graded all
+/// polynomial follows may take at each touch and release of a stop whose
+/// exponent is not a whole number. On the softening ball of the simulation
+/// study (92 touches and releases) DOP853 needs half the right-hand sides of steps graded all
 /// the way down, at the same error; with the whole tolerance it needs a
 /// quarter fewer again but stalls near 2e-9 (BENCHMARKS.md).
 const RESOLUTION_MARGIN: f64 = 1e-3;
 
 /// The largest step a simulator should take with a law held on `held` at
-/// `x`, `v`: for a softening stop (`e < 1`, whose slope is unbounded at
-/// first touch) half the time the penetration takes to double or vanish
-/// at its current rate, so that steps grow and shrink geometrically with
-/// the penetration; unbounded otherwise. The steps shrink no further than
-/// `h0`, over which the term no step of polynomial order follows,
+/// `x`, `v`, for every exponent that is not a whole number: the force goes
+/// as `p^e` near touch and release, so the motion goes as
+/// `|t - t_touch|^(e + 2)`, a weak singularity that no step of polynomial
+/// order follows and no embedded error estimate measures (for `e < 1` the
+/// slope is unbounded, for `1 < e < 2` the second derivative, for
+/// `2 < e < 3` the third, ...). The limit is half the time the
+/// penetration takes to double or vanish at its current rate, so that
+/// steps grow and shrink geometrically with the penetration and each step
+/// lies at least its own length from the singularity, where the error
+/// estimate holds; unbounded for whole exponents (a polynomial) and in the
+/// gap. The steps shrink no further than `h0`, over which the term no
+/// step of polynomial order follows,
 /// `k |p'|^e h0^(e + 2) / ((e + 1)(e + 2))` (the displacement the force
-/// adds near touch, which goes as `|t - t_touch|^(e + 2)`), stays below
-/// [`RESOLUTION_MARGIN`] times `tolerance`, the absolute error the caller
-/// accepts in `x`.
+/// adds near touch), stays below [`RESOLUTION_MARGIN`] times `tolerance`,
+/// the absolute error the caller accepts in `x`: the one step that holds
+/// the singularity then makes an error below the tolerance whatever its
+/// estimate says.
 fn contact_step_limit<P: Parameter<f64>>(
     x: f64,
     v: f64,
@@ -561,7 +570,7 @@ fn contact_step_limit<P: Parameter<f64>>(
     tolerance: f64,
 ) -> f64 {
     let e = exponent.value();
-    if e >= 1.0 {
+    if as_integer(e).is_some() {
         return f64::INFINITY;
     }
     let (p, rate) = match held {
@@ -762,11 +771,11 @@ pub fn held<T: Number>(
 }
 
 /// The largest step a simulator should take with `IMPACT` (no `x2`) or
-/// `BISTOP` held on `held`: for a softening stop (`e < 1`, whose slope is
-/// unbounded at first touch) half the time the penetration takes to double
-/// or vanish at its current rate, but no less than the step over which the
-/// displacement no polynomial follows stays below a thousandth of
-/// `tolerance`; unbounded otherwise.
+/// `BISTOP` held on `held`: for an exponent that is not a whole number
+/// (the force `p^e` is then a weak singularity at touch and release) half
+/// the time the penetration takes to double or vanish at its current rate,
+/// but no less than the step over which the displacement no polynomial
+/// follows stays below a thousandth of `tolerance`; unbounded otherwise.
 pub fn step_limit(
     x: f64,
     v: f64,

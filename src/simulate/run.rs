@@ -303,6 +303,7 @@ impl Simulation<'_> {
             mechanics: Mechanics::new(model, program, &self.computed),
             held: vec![None; program.sites().len()],
             tolerance: settings.atol,
+            before_end: None,
         };
         let mut rows = Rows {
             model,

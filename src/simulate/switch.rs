@@ -19,6 +19,17 @@ type Look<'l> = dyn FnMut(f64, &mut [f64]) -> Result<bool, (f64, OutputError)> +
 /// one step is caught when one of them falls between its two roots.
 const LOOKS_PER_STEP: usize = 4;
 
+/// The look near each end of a step, as a part of the spacing of the
+/// looks: it tells whether a switching value falls or rises there.
+const EDGE_LOOK: f64 = 1e-3;
+
+/// The most looks spent seeking one switching value's minimum between
+/// looks, the width (relative to the first) at which the search stops,
+/// and the relative fall of the least value below which it has settled.
+const DIP_LOOKS: usize = 40;
+const DIP_WIDTH: f64 = 1e-9;
+const DIP_SETTLED: f64 = 1e-3;
+
 /// Looks at the stretch of a step before a located switch: evenly spaced,
 /// and crowding towards it.
 const LOOKS_BEFORE_SWITCH: usize = 8;
@@ -32,6 +43,10 @@ pub(super) struct Held<'m> {
     /// The absolute error in a state the run accepts (its `atol`), which
     /// bounds how far the sites' step limits shrink.
     pub(super) tolerance: f64,
+    /// The end of the last step without a switch, the time of the look just
+    /// before it and the switching values there: where the next step
+    /// starts, whether each value was falling or rising.
+    pub(super) before_end: Option<(f64, f64, Vec<f64>)>,
 }
 
 impl System for Held<'_> {
@@ -92,11 +107,17 @@ impl Held<'_> {
 /// switching value negative at `right`.
 ///
 /// The switching values are looked at [`LOOKS_PER_STEP`] times across the
-/// step. Once a crossing is located, the stretch before it is looked at
-/// again, evenly and crowding towards the crossing: a switch and its
-/// return can lie between two looks, and they come most often just before
-/// another switch (a contact's clamp releases just before the body leaves
-/// the stop).
+/// step, and once more a little before its end (and, after a restart, a
+/// little after its start), so that each value's trend at the step's ends
+/// is known. A switching value can cross zero and come back between two
+/// looks (a penetration that passes the end of the damping ramp for a
+/// moment): wherever a value's looks have a least one inside the step,
+/// its minimum there is sought (parabolic and golden-section steps,
+/// [`dip`]) before the step is taken as clean, as event locators do for a
+/// double crossing. Once a crossing is located, the stretch before it is
+/// looked at again, evenly and crowding towards the crossing: a switch and
+/// its return come most often just before another switch (a contact's
+/// clamp releases just before the body leaves the stop).
 pub(super) fn find_switch(
     system: &mut Held<'_>,
     stepper: &Stepper,
@@ -115,6 +136,13 @@ pub(super) fn find_switch(
             .map(|&value| value >= 0.0)
             .collect::<Vec<bool>>(),
     );
+    // The look just before the last step's end, when this step continues
+    // it on the same branches.
+    let carried = system
+        .before_end
+        .take()
+        .filter(|(end, ..)| *end == t0)
+        .map(|(_, time, values)| (time, values));
     let mut state = vec![0.0; stepper.y().len()];
     let mut limit = f64::INFINITY;
     // The step limit is worked out only at the step's end, the one place
@@ -133,37 +161,43 @@ pub(super) fn find_switch(
         }
         Ok(crossed(&armed.borrow(), switching).next().is_some())
     };
-    // The first look at `times` with a negative switching value, and the
-    // time of the look before.
-    let scan = |from: f64,
-                times: &[f64],
-                look: &mut Look<'_>,
-                switching: &mut [f64]|
-     -> Result<(f64, Option<f64>), (f64, OutputError)> {
-        let mut clean = from;
-        for &time in times {
-            if look(time, switching)? {
-                return Ok((clean, Some(time)));
-            }
-            for (armed, &value) in armed.borrow_mut().iter_mut().zip(switching.iter()) {
-                *armed |= value >= 0.0;
-            }
-            clean = time;
+    let spacing = (t1 - t0) / LOOKS_PER_STEP as f64;
+    let edge = EDGE_LOOK * spacing;
+    let mut times: Vec<f64> = Vec::with_capacity(LOOKS_PER_STEP + 2);
+    if carried.is_none() {
+        times.push(t0 + edge);
+    }
+    times.extend((1..LOOKS_PER_STEP).map(|index| t0 + spacing * index as f64));
+    times.extend([t1 - edge, t1]);
+    // Every look so far in time order, the one before the step's start
+    // first when there is one.
+    let mut samples: Vec<(f64, Vec<f64>)> = carried.into_iter().collect();
+    samples.push((t0, start.to_vec()));
+    let mut crossing = None;
+    for time in times {
+        let crossed = look(time, switching)?;
+        samples.push((time, switching.to_vec()));
+        if crossed {
+            crossing = Some(time);
+            break;
         }
-        Ok((clean, None))
-    };
-    let across: Vec<f64> = (1..=LOOKS_PER_STEP)
-        .map(|index| {
-            if index == LOOKS_PER_STEP {
-                t1
-            } else {
-                t0 + (t1 - t0) * index as f64 / LOOKS_PER_STEP as f64
-            }
-        })
-        .collect();
-    let (mut left, crossing) = scan(t0, &across, &mut look, switching)?;
-    let Some(mut right) = crossing else {
-        return Ok(Err(limit));
+        for (armed, &value) in armed.borrow_mut().iter_mut().zip(switching.iter()) {
+            *armed |= value >= 0.0;
+        }
+    }
+    let watched = armed.borrow().clone();
+    let dipped = find_dip(&mut look, &watched, &samples, t0, switching)?;
+    let (mut left, mut right) = match (dipped, crossing) {
+        (Some(bracket), _) => bracket,
+        (None, Some(time)) => (samples[samples.len() - 2].0.max(t0), time),
+        (None, None) => {
+            // The last look was at t1 (or, after a search, is put back).
+            let (_, at_end) = &samples[samples.len() - 1];
+            switching.copy_from_slice(at_end);
+            let (time, values) = &samples[samples.len() - 2];
+            system.before_end = Some((t1, *time, values.clone()));
+            return Ok(Err(limit));
+        }
     };
     loop {
         look(right, switching)?;
@@ -172,10 +206,11 @@ pub(super) fn find_switch(
         if located.left <= left {
             return Ok(Ok(located));
         }
-        let (clean, earlier) = scan(
+        let (clean, earlier) = scan_before(
             left,
             &before_switch(left, located.left),
             &mut look,
+            &armed,
             switching,
         )?;
         match earlier {
@@ -186,6 +221,132 @@ pub(super) fn find_switch(
             None => return Ok(Ok(located)),
         }
     }
+}
+
+/// The first look at `times` with a watched switching value negative, and
+/// the time of the look before (`from` for the first).
+fn scan_before(
+    from: f64,
+    times: &[f64],
+    look: &mut Look<'_>,
+    armed: &std::cell::RefCell<Vec<bool>>,
+    switching: &mut [f64],
+) -> Result<(f64, Option<f64>), (f64, OutputError)> {
+    let mut clean = from;
+    for &time in times {
+        if look(time, switching)? {
+            return Ok((clean, Some(time)));
+        }
+        for (armed, &value) in armed.borrow_mut().iter_mut().zip(switching.iter()) {
+            *armed |= value >= 0.0;
+        }
+        clean = time;
+    }
+    Ok((clean, None))
+}
+
+/// A crossing hidden between the looks `samples` (time order; those at
+/// or after `t0` on the step's continuous output): wherever a watched
+/// switching value is least at a look with a look on either side, its
+/// minimum between those two is sought; the first time found at which a
+/// watched value is negative, with the look before it (where none is),
+/// as a bracket `(left, right)`.
+fn find_dip(
+    look: &mut Look<'_>,
+    watched: &[bool],
+    samples: &[(f64, Vec<f64>)],
+    t0: f64,
+    switching: &mut [f64],
+) -> Result<Option<(f64, f64)>, (f64, OutputError)> {
+    for at in 1..samples.len().saturating_sub(1) {
+        let [(before, low), (_, middle), (after, high)] =
+            [&samples[at - 1], &samples[at], &samples[at + 1]];
+        for index in (0..watched.len()).filter(|&index| watched[index]) {
+            let value = middle[index];
+            if !(value >= 0.0 && low[index] > value && high[index] >= value) {
+                continue;
+            }
+            let from = before.max(t0);
+            let ends = (
+                (
+                    from,
+                    if *before < t0 {
+                        value.max(low[index])
+                    } else {
+                        low[index]
+                    },
+                ),
+                (*after, high[index]),
+            );
+            if let Some(negative) = dip(look, switching, index, ends, (samples[at].0, value))? {
+                return Ok(Some((from, negative)));
+            }
+        }
+    }
+    Ok(None)
+}
+
+/// Seeks the minimum of switching value `index` in `(a, b)` from a look
+/// `middle` below both ends, by parabolic steps through the three best
+/// looks with golden-section steps where a parabola does not help; stops
+/// at the first look with a watched value negative (its time) or when the
+/// minimum has settled above zero (`None`).
+fn dip(
+    look: &mut Look<'_>,
+    switching: &mut [f64],
+    index: usize,
+    ((mut a, mut fa), (mut b, mut fb)): ((f64, f64), (f64, f64)),
+    (mut m, mut fm): (f64, f64),
+) -> Result<Option<f64>, (f64, OutputError)> {
+    const GOLDEN: f64 = 0.381_966_011_250_105_1;
+    let width = b - a;
+    let mut settled = 0;
+    for _ in 0..DIP_LOOKS {
+        if b - a <= DIP_WIDTH * width {
+            break;
+        }
+        let (left, right) = (m - a, b - m);
+        let numerator = left * left * (fm - fb) - right * right * (fm - fa);
+        let denominator = left * (fm - fb) + right * (fm - fa);
+        let parabolic = m - 0.5 * numerator / denominator;
+        let guard = 1e-3 * (b - a);
+        let u = if parabolic.is_finite()
+            && parabolic > a + guard
+            && parabolic < b - guard
+            && (parabolic - m).abs() > guard
+        {
+            parabolic
+        } else if right > left {
+            m + GOLDEN * right
+        } else {
+            m - GOLDEN * left
+        };
+        if look(u, switching)? {
+            return Ok(Some(u));
+        }
+        let fu = switching[index];
+        if fu < fm {
+            settled = if fm - fu <= DIP_SETTLED * fu {
+                settled + 1
+            } else {
+                0
+            };
+            if u < m {
+                (b, fb) = (m, fm);
+            } else {
+                (a, fa) = (m, fm);
+            }
+            (m, fm) = (u, fu);
+        } else if u < m {
+            (a, fa) = (u, fu);
+        } else {
+            (b, fb) = (u, fu);
+        }
+        if settled >= 2 {
+            break;
+        }
+    }
+    Ok(None)
 }
 
 /// Times in `(from, to)` to look at before a switch located at `to`:
