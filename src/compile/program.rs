@@ -405,6 +405,44 @@ impl Program {
         self.spans[index]
     }
 
+    /// The inputs each output reads (indices into [`Program::inputs`],
+    /// increasing), through either branch of every arithmetic IF: where its
+    /// derivatives can be nonzero.
+    pub fn inputs_of_outputs(&self) -> Vec<Vec<usize>> {
+        let mut reads: Vec<Vec<usize>> = vec![Vec::new(); self.slot_count];
+        for load in &self.loads {
+            reads[load.slot as usize] = vec![load.input as usize];
+        }
+        let mut operands = Vec::new();
+        for instruction in &self.code {
+            operands.clear();
+            let dst = match instruction {
+                // An IF's result takes its branches' reads together.
+                Instruction::Copy { dst, src } => {
+                    operands.extend([*src, *dst]);
+                    *dst
+                }
+                Instruction::Branch { .. } | Instruction::Jump { .. } => continue,
+                _ => {
+                    let (dst, op) = instruction.computed().expect("a value");
+                    op.for_each_operand(|slot| operands.push(slot));
+                    dst
+                }
+            };
+            let mut union: Vec<usize> = operands
+                .iter()
+                .flat_map(|&slot| reads[slot as usize].iter().copied())
+                .collect();
+            union.sort_unstable();
+            union.dedup();
+            reads[dst as usize] = union;
+        }
+        self.results
+            .iter()
+            .map(|&slot| reads[slot as usize].clone())
+            .collect()
+    }
+
     /// The output whose text instruction `index` comes from (a subexpression
     /// that several outputs share comes from the first of them).
     pub fn origin(&self, index: usize) -> usize {
@@ -501,6 +539,31 @@ impl fmt::Display for Op {
 }
 
 impl Op {
+    /// Calls `visit` with each slot the operation reads.
+    pub fn for_each_operand(&self, mut visit: impl FnMut(Slot)) {
+        match self {
+            Op::Neg(a) | Op::PowInt(a, _) | Op::PowReal(a, _) => visit(*a),
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Pow(a, b) => {
+                visit(*a);
+                visit(*b);
+            }
+            Op::Call { args, .. } => args.iter().copied().for_each(visit),
+            Op::Spline { x, z, .. } => {
+                visit(*x);
+                visit(*z);
+            }
+            Op::Contact { x, v, .. } => {
+                visit(*x);
+                visit(*v);
+            }
+            Op::Measure { frames, .. } => {
+                for state in frames.iter().filter_map(|frame| frame.state) {
+                    state.into_iter().for_each(&mut visit);
+                }
+            }
+        }
+    }
+
     /// The operation's name in messages: `STEP`, `` `*` ``.
     pub fn name(&self) -> String {
         match self {

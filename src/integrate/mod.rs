@@ -88,6 +88,7 @@
 mod core;
 mod dop853;
 mod error;
+pub mod linalg;
 mod radau5;
 
 use std::fmt;
@@ -99,6 +100,7 @@ use self::core::Core;
 pub use self::core::smallest_step;
 use self::dop853::Dop853;
 pub use self::error::{IntegrateError, Rejection, UnknownMethod};
+use self::linalg::Pattern;
 use self::radau5::Radau5;
 
 /// A system of ordinary differential equations `dy/dt = f(t, y)`.
@@ -128,6 +130,38 @@ pub trait System {
         jac: &mut DMatrix<f64>,
     ) -> Result<(), Self::Error> {
         finite_difference_jacobian(self, t, y, dy, jac)
+    }
+
+    /// Where the Jacobian's entries can be nonzero, when the system knows
+    /// (asked once, when a stepper of the implicit method starts; the
+    /// pattern must hold for every state of the run). With a pattern, the
+    /// integrator asks for [`System::sparse_jacobian`] instead of
+    /// [`System::jacobian`] and may factorise sparse (see [`linalg`]).
+    /// The default, `None`, is a dense Jacobian.
+    fn jacobian_pattern(&mut self) -> Option<Pattern> {
+        None
+    }
+
+    /// The Jacobian's entries on `pattern` (the one
+    /// [`System::jacobian_pattern`] gave), in its storage order, into
+    /// `values` (which arrive zeroed). The default gathers them from
+    /// [`System::jacobian`]; a system with a pattern should fill them
+    /// directly, at a cost that grows with the entries, not with `n²`.
+    fn sparse_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &[f64],
+        pattern: &Pattern,
+        values: &mut [f64],
+    ) -> Result<(), Self::Error> {
+        let n = y.len();
+        let mut dense = DMatrix::zeros(n, n);
+        self.jacobian(t, y, dy, &mut dense)?;
+        for (value, entry) in values.iter_mut().zip(pattern.entries()) {
+            *value = dense[entry];
+        }
+        Ok(())
     }
 }
 
@@ -312,7 +346,10 @@ impl Stepper {
     ) -> Result<Self, IntegrateError<S::Error>> {
         let mut core = Core::new(&options, t0, y0, system.dimension())?;
         let scheme = match method {
-            Method::Radau5 => Scheme::Radau5(Box::new(Radau5::new(&options, &core.atol)?)),
+            Method::Radau5 => {
+                let pattern = system.jacobian_pattern();
+                Scheme::Radau5(Box::new(Radau5::new(&options, &core.atol, pattern)?))
+            }
             Method::Dop853 => Scheme::Dop853(Box::new(Dop853::new(y0.len()))),
         };
         core.start(system)?;

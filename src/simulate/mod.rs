@@ -52,6 +52,7 @@ mod mechanics;
 mod model;
 mod run;
 mod scene_file;
+mod sparsity;
 mod switch;
 
 pub use dataset::{from_dataset, run_settings};
