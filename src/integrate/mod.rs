@@ -25,7 +25,7 @@
 //!   equations are solved by simplified Newton iterations on the system
 //!   transformed by the eigenvectors of the method's matrix, which splits it
 //!   into one real `n×n` system `(γ/h − J)` and one complex `(α + iβ)/h − J`,
-//!   each factorised once per step size. The Jacobian is kept while the
+//!   each factorised once per step size (dense or sparse: [`linalg`]). The Jacobian is kept while the
 //!   Newton contraction `θ` stays below 0.001; the error estimate is
 //!   filtered through `(I − h γ₀ J)⁻¹` (and refined once more at a first or
 //!   rejected step); the step size is chosen by Gustafsson's predictive
@@ -35,7 +35,7 @@
 //!   `rtol' = 0.1 rtol^(2/3)`, `atol' = rtol' atol / rtol`.
 //!
 //! **Architecture Invariant:** this module knows only `f64` slices, nalgebra
-//! matrices and its [`System`] trait; nothing of expressions, models or
+//! matrices, its [`linalg`] patterns and its [`System`] trait; nothing of expressions, models or
 //! scenes.
 //!
 //! # References

@@ -337,11 +337,9 @@ impl Radau5 {
     /// is singular.
     fn factorise(&mut self, h: f64, core: &mut Core) -> bool {
         core.stats.lu_decompositions += 1;
-        let invertible = self.matrices.factorise(
-            &self.jacobian,
-            GAMMA / h,
-            Complex::new(ALPHA / h, BETA / h),
-        );
+        let invertible =
+            self.matrices
+                .factorise(&self.jacobian, GAMMA / h, Complex::new(ALPHA / h, BETA / h));
         self.factorised_for = if invertible { h } else { f64::NAN };
         invertible
     }

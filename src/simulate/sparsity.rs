@@ -133,12 +133,12 @@ impl Sparsity {
         let diff_colours = colour[bodies..].iter().map(|c| c + 1).max().unwrap_or(0);
         let n = model.diffs.len() + BODY_STATES * bodies;
         let mut direction = vec![0; n];
-        for group in 0..groups {
+        for (group, &group_colour) in colour.iter().enumerate() {
             for (index, state) in states_of(group).enumerate() {
                 direction[state] = if group < bodies {
-                    BODY_STATES * colour[group] + index
+                    BODY_STATES * group_colour + index
                 } else {
-                    BODY_STATES * body_colours + colour[group]
+                    BODY_STATES * body_colours + group_colour
                 };
             }
         }

@@ -69,7 +69,9 @@ impl Pattern {
         for (column, mut column_rows) in columns.into_iter().enumerate() {
             column_rows.sort_unstable();
             column_rows.dedup();
-            let at = column_rows.binary_search(&column).expect("the diagonal is in");
+            let at = column_rows
+                .binary_search(&column)
+                .expect("the diagonal is in");
             diagonal.push(rows.len() + at);
             rows.extend(column_rows);
             starts.push(rows.len());
@@ -172,8 +174,12 @@ impl Jacobian {
 pub trait Factorisation {
     /// Factorises both matrices from `jacobian`; false when either is
     /// singular (then nothing may be solved until a factorisation succeeds).
-    fn factorise(&mut self, jacobian: &Jacobian, real_shift: f64, complex_shift: Complex<f64>)
-    -> bool;
+    fn factorise(
+        &mut self,
+        jacobian: &Jacobian,
+        real_shift: f64,
+        complex_shift: Complex<f64>,
+    ) -> bool;
 
     /// Overwrites `rhs` with the solution of the real system.
     fn solve_real(&mut self, rhs: &mut [f64]);
