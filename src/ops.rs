@@ -227,6 +227,31 @@ impl fmt::Display for Op {
 }
 
 impl Op {
+    /// Calls `visit` with each slot the operation reads.
+    pub fn for_each_operand(&self, mut visit: impl FnMut(Slot)) {
+        match self {
+            Op::Neg(a) | Op::PowInt(a, _) | Op::PowReal(a, _) => visit(*a),
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Pow(a, b) => {
+                visit(*a);
+                visit(*b);
+            }
+            Op::Call { args, .. } => args.iter().copied().for_each(visit),
+            Op::Spline { x, z, .. } => {
+                visit(*x);
+                visit(*z);
+            }
+            Op::Contact { x, v, .. } => {
+                visit(*x);
+                visit(*v);
+            }
+            Op::Measure { frames, .. } => {
+                for state in frames.iter().filter_map(|frame| frame.state) {
+                    state.into_iter().for_each(&mut visit);
+                }
+            }
+        }
+    }
+
     /// The operation's name in messages: `STEP`, `` `*` ``.
     pub fn name(&self) -> String {
         match self {

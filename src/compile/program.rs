@@ -312,6 +312,44 @@ impl Program {
         self.spans[index]
     }
 
+    /// The inputs each output reads (indices into [`Program::inputs`],
+    /// increasing), through either branch of every arithmetic IF: where its
+    /// derivatives can be nonzero.
+    pub fn inputs_of_outputs(&self) -> Vec<Vec<usize>> {
+        let mut reads: Vec<Vec<usize>> = vec![Vec::new(); self.slot_count];
+        for load in &self.loads {
+            reads[load.slot as usize] = vec![load.input as usize];
+        }
+        let mut operands = Vec::new();
+        for instruction in &self.code {
+            operands.clear();
+            let dst = match instruction {
+                // An IF's result takes its branches' reads together.
+                Instruction::Copy { dst, src } => {
+                    operands.extend([*src, *dst]);
+                    *dst
+                }
+                Instruction::Branch { .. } | Instruction::Jump { .. } => continue,
+                _ => {
+                    let (dst, op) = instruction.computed().expect("a value");
+                    op.for_each_operand(|slot| operands.push(slot));
+                    dst
+                }
+            };
+            let mut union: Vec<usize> = operands
+                .iter()
+                .flat_map(|&slot| reads[slot as usize].iter().copied())
+                .collect();
+            union.sort_unstable();
+            union.dedup();
+            reads[dst as usize] = union;
+        }
+        self.results
+            .iter()
+            .map(|&slot| reads[slot as usize].clone())
+            .collect()
+    }
+
     /// The output whose text instruction `index` comes from (a subexpression
     /// that several outputs share comes from the first of them).
     pub fn origin(&self, index: usize) -> usize {

@@ -25,7 +25,7 @@
 //!   equations are solved by simplified Newton iterations on the system
 //!   transformed by the eigenvectors of the method's matrix, which splits it
 //!   into one real `n×n` system `(γ/h − J)` and one complex `(α + iβ)/h − J`,
-//!   each factorised once per step size. The Jacobian is kept while the
+//!   each factorised once per step size (dense or sparse: [`linalg`]). The Jacobian is kept while the
 //!   Newton contraction `θ` stays below 0.001; the error estimate is
 //!   filtered through `(I − h γ₀ J)⁻¹` (and refined once more at a first or
 //!   rejected step); the step size is chosen by Gustafsson's predictive
@@ -35,7 +35,7 @@
 //!   `rtol' = 0.1 rtol^(2/3)`, `atol' = rtol' atol / rtol`.
 //!
 //! **Architecture Invariant:** this module knows only `f64` slices, nalgebra
-//! matrices and its [`System`] trait; nothing of expressions, models or
+//! matrices, its [`linalg`] patterns and its [`System`] trait; nothing of expressions, models or
 //! scenes.
 //!
 //! # References
@@ -89,6 +89,7 @@ mod auto;
 mod core;
 mod dop853;
 mod error;
+pub mod linalg;
 mod radau5;
 
 use std::fmt;
@@ -103,6 +104,7 @@ use self::core::Core;
 pub use self::core::smallest_step;
 use self::dop853::Dop853;
 pub use self::error::{IntegrateError, Rejection, UnknownMethod};
+use self::linalg::Pattern;
 use self::radau5::Radau5;
 
 /// A system of ordinary differential equations `dy/dt = f(t, y)`.
@@ -132,6 +134,38 @@ pub trait System {
         jac: &mut DMatrix<f64>,
     ) -> Result<(), Self::Error> {
         finite_difference_jacobian(self, t, y, dy, jac)
+    }
+
+    /// Where the Jacobian's entries can be nonzero, when the system knows
+    /// (asked once, when a stepper of the implicit method starts; the
+    /// pattern must hold for every state of the run). With a pattern, the
+    /// integrator asks for [`System::sparse_jacobian`] instead of
+    /// [`System::jacobian`] and may factorise sparse (see [`linalg`]).
+    /// The default, `None`, is a dense Jacobian.
+    fn jacobian_pattern(&mut self) -> Option<Pattern> {
+        None
+    }
+
+    /// The Jacobian's entries on `pattern` (the one
+    /// [`System::jacobian_pattern`] gave), in its storage order, into
+    /// `values` (which arrive zeroed). The default gathers them from
+    /// [`System::jacobian`]; a system with a pattern should fill them
+    /// directly, at a cost that grows with the entries, not with `n²`.
+    fn sparse_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &[f64],
+        pattern: &Pattern,
+        values: &mut [f64],
+    ) -> Result<(), Self::Error> {
+        let n = y.len();
+        let mut dense = DMatrix::zeros(n, n);
+        self.jacobian(t, y, dy, &mut dense)?;
+        for (value, entry) in values.iter_mut().zip(pattern.entries()) {
+            *value = dense[entry];
+        }
+        Ok(())
     }
 }
 
@@ -370,7 +404,7 @@ impl Stepper {
     ) -> Result<Self, IntegrateError<S::Error>> {
         let mut core = Core::new(&options, t0, y0, system.dimension())?;
         let auto = (choice == Method::Auto).then(|| Auto::new(y0.len()));
-        let scheme = Self::scheme(first, &options, &core, auto.is_some())?;
+        let scheme = Self::scheme(first, &options, &core, auto.is_some(), system)?;
         core.start(system)?;
         core.h = match options.h_init {
             Some(h) => h,
@@ -401,15 +435,20 @@ impl Stepper {
     }
 
     /// The working state of `method` (Radau5 or DOP853; DOP853 runs its
-    /// stiffness test at every step when `auto` decides on it).
-    fn scheme<E>(
+    /// stiffness test at every step when `auto` decides on it). Radau5
+    /// factorises on the system's Jacobian pattern, when it gives one.
+    fn scheme<S: System + ?Sized>(
         method: Method,
         options: &Options,
         core: &Core,
         auto: bool,
-    ) -> Result<Scheme, IntegrateError<E>> {
+        system: &mut S,
+    ) -> Result<Scheme, IntegrateError<S::Error>> {
         Ok(match method {
-            Method::Radau5 => Scheme::Radau5(Box::new(Radau5::new(options, &core.atol)?)),
+            Method::Radau5 => {
+                let pattern = system.jacobian_pattern();
+                Scheme::Radau5(Box::new(Radau5::new(options, &core.atol, pattern)?))
+            }
             Method::Dop853 | Method::Auto => {
                 let (test_every, edge) = if auto {
                     (1, auto::STIFF_EDGE)
@@ -443,7 +482,7 @@ impl Stepper {
             });
         }
         if let Some(to) = self.auto.as_mut().and_then(Auto::change) {
-            self.scheme = Self::scheme(to, &self.options, &self.core, true)?;
+            self.scheme = Self::scheme(to, &self.options, &self.core, true, system)?;
             let (t, y) = (self.core.t, self.core.y.clone());
             self.core.restart(t, &y);
         }

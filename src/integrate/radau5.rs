@@ -5,9 +5,12 @@
 //! `w = (T⁻¹ ⊗ I) z`, a simplified Newton step is one real solve with
 //! `γ/h − J` and one complex solve with `(α + iβ)/h − J`.
 
-use nalgebra::{Complex, DMatrix, DVector, Dyn, LU};
+use std::rc::Rc;
+
+use nalgebra::Complex;
 
 use super::core::{Core, evaluate, rms};
+use super::linalg::{Factorisation, Jacobian, Pattern, factorisation_for};
 use super::{IntegrateError, Options, Rejection, System};
 use crate::Shown;
 
@@ -104,13 +107,15 @@ pub(super) struct Radau5 {
     newton_tolerance: f64,
     /// `atol' + rtol' |y|` at the start of the step.
     scale: Vec<f64>,
-    jacobian: DMatrix<f64>,
+    /// The system's Jacobian: dense, or on the system's pattern.
+    jacobian: Jacobian,
     /// The Jacobian may be used at the current state.
     jacobian_valid: bool,
     /// The Jacobian was evaluated at the current state.
     jacobian_current: bool,
-    real: Option<LU<f64, Dyn, Dyn>>,
-    complex: Option<LU<Complex<f64>, Dyn, Dyn>>,
+    /// The real and the complex iteration matrix, factorised (dense or
+    /// sparse: chosen from the pattern; this code does not know which).
+    matrices: Box<dyn Factorisation>,
     /// The step size the factorisations are for (NaN: none).
     factorised_for: f64,
     /// Stage increments `z`, transformed increments `w`, stage rates.
@@ -118,8 +123,8 @@ pub(super) struct Radau5 {
     w: [Vec<f64>; 3],
     rates: [Vec<f64>; 3],
     stage_y: Vec<f64>,
-    real_rhs: DVector<f64>,
-    complex_rhs: DVector<Complex<f64>>,
+    real_rhs: Vec<f64>,
+    complex_rhs: Vec<Complex<f64>>,
     /// The last step's collocation polynomial about its end (divided
     /// differences), and that step's size.
     polynomial: [Vec<f64>; 3],
@@ -134,8 +139,13 @@ pub(super) struct Radau5 {
 }
 
 impl Radau5 {
-    /// Working storage for the options' tolerances.
-    pub fn new<E>(options: &Options, atol: &[f64]) -> Result<Self, IntegrateError<E>> {
+    /// Working storage for the options' tolerances, for a system whose
+    /// Jacobian has `pattern` (`None`: dense).
+    pub fn new<E>(
+        options: &Options,
+        atol: &[f64],
+        pattern: Option<Pattern>,
+    ) -> Result<Self, IntegrateError<E>> {
         let n = atol.len();
         let rtol = 0.1 * options.rtol.powf(2.0 / 3.0);
         let atol: Vec<f64> = atol.iter().map(|atol| rtol * atol / options.rtol).collect();
@@ -150,24 +160,24 @@ impl Radau5 {
             }
         };
         let zeros = || vec![0.0; n];
+        let matrices = factorisation_for(n, pattern.as_ref());
         Ok(Radau5 {
             n,
             rtol,
             atol,
             newton_tolerance,
             scale: zeros(),
-            jacobian: DMatrix::zeros(n, n),
+            jacobian: Jacobian::zeros(n, pattern.map(Rc::new)),
             jacobian_valid: false,
             jacobian_current: false,
-            real: None,
-            complex: None,
+            matrices,
             factorised_for: f64::NAN,
             z: [zeros(), zeros(), zeros()],
             w: [zeros(), zeros(), zeros()],
             rates: [zeros(), zeros(), zeros()],
             stage_y: zeros(),
-            real_rhs: DVector::zeros(n),
-            complex_rhs: DVector::zeros(n),
+            real_rhs: zeros(),
+            complex_rhs: vec![Complex::new(0.0, 0.0); n],
             polynomial: [zeros(), zeros(), zeros()],
             h_last: 0.0,
             first: true,
@@ -306,11 +316,15 @@ impl Radau5 {
         system: &mut S,
     ) -> Result<(), IntegrateError<S::Error>> {
         core.stats.jacobian_evaluations += 1;
-        self.jacobian.fill(0.0);
-        system
-            .jacobian(core.t, &core.y, &core.dy, &mut self.jacobian)
-            .map_err(|error| IntegrateError::Jacobian { t: core.t, error })?;
-        if !self.jacobian.iter().all(|entry| entry.is_finite()) {
+        self.jacobian.clear();
+        match &mut self.jacobian {
+            Jacobian::Dense(matrix) => system.jacobian(core.t, &core.y, &core.dy, matrix),
+            Jacobian::Sparse { pattern, values } => {
+                system.sparse_jacobian(core.t, &core.y, &core.dy, pattern, values)
+            }
+        }
+        .map_err(|error| IntegrateError::Jacobian { t: core.t, error })?;
+        if !self.jacobian.values().iter().all(|entry| entry.is_finite()) {
             return Err(IntegrateError::JacobianNotFinite { t: core.t });
         }
         self.jacobian_valid = true;
@@ -323,20 +337,9 @@ impl Radau5 {
     /// is singular.
     fn factorise(&mut self, h: f64, core: &mut Core) -> bool {
         core.stats.lu_decompositions += 1;
-        let n = self.n;
-        let jacobian = &self.jacobian;
-        let diagonal = |i: usize, j: usize, value: f64| if i == j { value } else { 0.0 };
-        let real = DMatrix::from_fn(n, n, |i, j| diagonal(i, j, GAMMA / h) - jacobian[(i, j)]);
-        let complex = DMatrix::from_fn(n, n, |i, j| {
-            Complex::new(
-                diagonal(i, j, ALPHA / h) - jacobian[(i, j)],
-                diagonal(i, j, BETA / h),
-            )
-        });
-        let (real, complex) = (real.lu(), complex.lu());
-        let invertible = real.is_invertible() && complex.is_invertible();
-        self.real = Some(real);
-        self.complex = Some(complex);
+        let invertible =
+            self.matrices
+                .factorise(&self.jacobian, GAMMA / h, Complex::new(ALPHA / h, BETA / h));
         self.factorised_for = if invertible { h } else { f64::NAN };
         invertible
     }
@@ -373,10 +376,9 @@ impl Radau5 {
         h: f64,
     ) -> Result<Converged, (f64, Rejection<S::Error>)> {
         self.starting_values(h);
-        let (real, complex) = match (&self.real, &self.complex) {
-            (Some(real), Some(complex)) => (real, complex),
-            _ => return Err((FAILURE_SHRINK, Rejection::Singular)),
-        };
+        if self.factorised_for != h {
+            return Err((FAILURE_SHRINK, Rejection::Singular));
+        }
         let n = self.n;
         let (gamma, alpha, beta) = (GAMMA / h, ALPHA / h, BETA / h);
         self.contraction = self.contraction.max(f64::EPSILON).powf(0.8);
@@ -401,8 +403,8 @@ impl Radau5 {
                     r3 - alpha * w3[i] - beta * w2[i],
                 );
             }
-            real.solve_mut(&mut self.real_rhs);
-            complex.solve_mut(&mut self.complex_rhs);
+            self.matrices.solve_real(&mut self.real_rhs);
+            self.matrices.solve_complex(&mut self.complex_rhs);
             let scaled = (0..n).flat_map(|i| {
                 let (dw1, dw2) = (self.real_rhs[i], self.complex_rhs[i]);
                 [dw1, dw2.re, dw2.im].map(|dw| dw / self.scale[i])
@@ -463,9 +465,9 @@ impl Radau5 {
         system: &mut S,
         h: f64,
     ) -> f64 {
-        let Some(real) = &self.real else {
+        if self.factorised_for != h {
             return f64::INFINITY;
-        };
+        }
         let [z1, z2, z3] = &self.z;
         let [d1, d2, d3] = ERROR_WEIGHTS.map(|d| d / h);
         let (combination, rest) = self.rates.split_at_mut(1);
@@ -474,8 +476,8 @@ impl Radau5 {
             combination[i] = d1 * z1[i] + d2 * z2[i] + d3 * z3[i];
             self.real_rhs[i] = combination[i] + core.dy[i];
         }
-        real.solve_mut(&mut self.real_rhs);
-        let size = |estimate: &DVector<f64>, scale: &[f64]| {
+        self.matrices.solve_real(&mut self.real_rhs);
+        let size = |estimate: &[f64], scale: &[f64]| {
             let err = rms(estimate.iter().zip(scale).map(|(e, s)| e / s), scale.len());
             if err.is_nan() {
                 f64::INFINITY
@@ -501,7 +503,7 @@ impl Radau5 {
         for i in 0..self.n {
             self.real_rhs[i] = refined[i] + combination[i];
         }
-        real.solve_mut(&mut self.real_rhs);
+        self.matrices.solve_real(&mut self.real_rhs);
         size(&self.real_rhs, &self.scale)
     }
 

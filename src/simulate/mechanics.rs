@@ -25,8 +25,10 @@ use nalgebra::{DMatrix, Matrix3, Vector3};
 use num_dual::{DualDVec64, DualSVec64};
 
 use super::model::{Force, Model};
+use super::sparsity::Sparsity;
 use crate::compile::Program;
 use crate::eval::{Evaluator, OutputError};
+use crate::integrate::linalg::Pattern;
 use crate::laws::branch::Code;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, Target, parse_diff_input};
@@ -36,7 +38,7 @@ pub(crate) const BODY_STATES: usize = 13;
 
 /// Where a program input's value comes from.
 #[derive(Clone, Copy, Debug)]
-enum Source {
+pub(crate) enum Source {
     /// `TIME`.
     Time,
     /// A constant (a user variable of the scene).
@@ -61,8 +63,10 @@ struct Kinematics<T: Number> {
     omega: Vector3<T>,
     /// Angular velocity in ground.
     omega_ground: Vector3<T>,
-    /// From the centre of mass to the body frame's origin, in ground.
-    to_origin: Vector3<T>,
+    /// The body frame's origin and its velocity, in ground: the state
+    /// inputs, worked out once per call for every expression that reads them.
+    origin: Vector3<T>,
+    origin_velocity: Vector3<T>,
 }
 
 impl<T: Number> Kinematics<T> {
@@ -98,28 +102,28 @@ impl<T: Number> Kinematics<T> {
         let omega = vector(10);
         let omega_ground = &rotation * &omega;
         let to_origin = -(&rotation * centre_in_body.map(T::from));
+        let (centre, velocity) = (vector(0), vector(7));
+        let origin = &centre + &to_origin;
+        let origin_velocity = &velocity + omega_ground.cross(&to_origin);
         Kinematics {
-            centre: vector(0),
+            centre,
             quaternion,
             rotation,
             turn,
-            velocity: vector(7),
+            velocity,
             omega,
             omega_ground,
-            to_origin,
+            origin,
+            origin_velocity,
         }
     }
 
     /// The value of state input `component` (of the body frame's origin).
     fn input(&self, component: StateComponent) -> T {
         match component {
-            StateComponent::Position(axis) => {
-                self.centre[axis].clone() + self.to_origin[axis].clone()
-            }
+            StateComponent::Position(axis) => self.origin[axis].clone(),
             StateComponent::Rotation(axis) => self.turn[axis].clone(),
-            StateComponent::Velocity(axis) => {
-                self.velocity[axis].clone() + self.omega_ground.cross(&self.to_origin)[axis].clone()
-            }
+            StateComponent::Velocity(axis) => self.origin_velocity[axis].clone(),
             StateComponent::AngularVelocity(axis) => self.omega_ground[axis].clone(),
         }
     }
@@ -183,24 +187,41 @@ impl<T: Number> Loads<T> {
 /// The equations of motion of a model, with its compiled expressions.
 pub(crate) struct Mechanics<'m> {
     equations: Equations<'m>,
-    /// The states that are derivative directions of the Jacobian.
-    directions: Vec<usize>,
-    /// Bodies whose motion nothing couples to the rest (no force acts on
-    /// them, no expression reads them): their Jacobian block is their own.
-    free_bodies: Vec<usize>,
     values: Evaluator<'m, f64>,
     buffers: Buffers<f64>,
-    duals: DualEvaluator<'m>,
+    /// The Jacobian's pattern and evaluator, built when first asked for.
+    jacobian: Option<(Sparsity, DualEvaluator<'m>)>,
 }
 
-/// The evaluator of the Jacobian's dual numbers: static sizes for few
-/// directions, dynamic beyond.
+/// The evaluator of the Jacobian's dual numbers: a size fixed at compile
+/// time for up to 4 directions (DIFFs only) and for one, two and three body
+/// colours (13, 26 and 39: the unused directions of a smaller count stay
+/// zero), so that no dual operation allocates; dynamic beyond.
 enum DualEvaluator<'m> {
     One(Evaluator<'m, DualSVec64<1>>),
     Two(Evaluator<'m, DualSVec64<2>>),
     Three(Evaluator<'m, DualSVec64<3>>),
     Four(Evaluator<'m, DualSVec64<4>>),
+    OneBody(Evaluator<'m, DualSVec64<13>>),
+    TwoBodies(Evaluator<'m, DualSVec64<26>>),
+    ThreeBodies(Evaluator<'m, DualSVec64<39>>),
     Many(Evaluator<'m, DualDVec64>),
+}
+
+impl<'m> DualEvaluator<'m> {
+    /// The evaluator for `directions` directions, and the count it seeds.
+    fn for_directions(program: &'m Program, directions: usize) -> (DualEvaluator<'m>, usize) {
+        match directions {
+            0 | 1 => (DualEvaluator::One(program.evaluator()), 1),
+            2 => (DualEvaluator::Two(program.evaluator()), 2),
+            3 => (DualEvaluator::Three(program.evaluator()), 3),
+            4 => (DualEvaluator::Four(program.evaluator()), 4),
+            5..=13 => (DualEvaluator::OneBody(program.evaluator()), 13),
+            14..=26 => (DualEvaluator::TwoBodies(program.evaluator()), 26),
+            27..=39 => (DualEvaluator::ThreeBodies(program.evaluator()), 39),
+            _ => (DualEvaluator::Many(program.evaluator()), directions),
+        }
+    }
 }
 
 /// The state index of the first component of body `body`.
@@ -242,14 +263,6 @@ impl<'m> Mechanics<'m> {
             .iter()
             .map(|mass| mass.inertia.try_inverse().unwrap_or_else(Matrix3::zeros))
             .collect();
-        let (directions, free_bodies) = couplings(model, program, &sources);
-        let duals = match directions.len() {
-            1 => DualEvaluator::One(program.evaluator()),
-            2 => DualEvaluator::Two(program.evaluator()),
-            3 => DualEvaluator::Three(program.evaluator()),
-            4 => DualEvaluator::Four(program.evaluator()),
-            _ => DualEvaluator::Many(program.evaluator()),
-        };
         Mechanics {
             equations: Equations {
                 model,
@@ -259,11 +272,9 @@ impl<'m> Mechanics<'m> {
                 output_of,
                 inverse_inertia,
             },
-            directions,
-            free_bodies,
             values: program.evaluator(),
             buffers: Buffers::new(program),
-            duals,
+            jacobian: None,
         }
     }
 
@@ -326,7 +337,77 @@ impl<'m> Mechanics<'m> {
         self.values.outputs(inputs, None, outputs)
     }
 
-    /// `d(dy/dt)/dy` at `(t, y)` with the sites on `held`, into `jacobian`.
+    /// Where the Jacobian's entries can be nonzero (the same on every
+    /// branch); worked out on the first call.
+    pub(crate) fn pattern(&mut self) -> &Pattern {
+        &self.sparsity().pattern
+    }
+
+    /// The Jacobian's pattern and its evaluator, built once.
+    fn sparsity(&mut self) -> &Sparsity {
+        let equations = &self.equations;
+        &self
+            .jacobian
+            .get_or_insert_with(|| {
+                let sparsity = Sparsity::new(
+                    equations.model,
+                    equations.program,
+                    &equations.sources,
+                    &equations.output_of,
+                );
+                let (duals, _) =
+                    DualEvaluator::for_directions(equations.program, sparsity.directions);
+                (sparsity, duals)
+            })
+            .0
+    }
+
+    /// `d(dy/dt)/dy` at `(t, y)` with the sites on `held`: the values of
+    /// the [`pattern`](Mechanics::pattern)'s entries, in its order, into
+    /// `values`, from one evaluation over dual numbers.
+    pub(crate) fn sparse_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        values: &mut [f64],
+    ) -> Result<(), OutputError> {
+        self.sparsity();
+        let Some((sparsity, duals)) = &mut self.jacobian else {
+            unreachable!("built above");
+        };
+        let equations = &self.equations;
+        let count = |size: usize| size.max(sparsity.directions);
+        match duals {
+            DualEvaluator::One(evaluator) => {
+                equations.fill(evaluator, t, y, held, sparsity, count(1), values)
+            }
+            DualEvaluator::Two(evaluator) => {
+                equations.fill(evaluator, t, y, held, sparsity, count(2), values)
+            }
+            DualEvaluator::Three(evaluator) => {
+                equations.fill(evaluator, t, y, held, sparsity, count(3), values)
+            }
+            DualEvaluator::Four(evaluator) => {
+                equations.fill(evaluator, t, y, held, sparsity, count(4), values)
+            }
+            DualEvaluator::OneBody(evaluator) => {
+                equations.fill(evaluator, t, y, held, sparsity, count(13), values)
+            }
+            DualEvaluator::TwoBodies(evaluator) => {
+                equations.fill(evaluator, t, y, held, sparsity, count(26), values)
+            }
+            DualEvaluator::ThreeBodies(evaluator) => {
+                equations.fill(evaluator, t, y, held, sparsity, count(39), values)
+            }
+            DualEvaluator::Many(evaluator) => {
+                equations.fill(evaluator, t, y, held, sparsity, count(0), values)
+            }
+        }
+    }
+
+    /// `d(dy/dt)/dy` at `(t, y)` with the sites on `held`, into the dense
+    /// `jacobian` (the entries outside the pattern set to zero).
     pub(crate) fn jacobian(
         &mut self,
         t: f64,
@@ -334,77 +415,14 @@ impl<'m> Mechanics<'m> {
         held: Option<&[Option<Code>]>,
         jacobian: &mut DMatrix<f64>,
     ) -> Result<(), OutputError> {
+        let mut values = vec![0.0; self.pattern().len()];
+        self.sparse_jacobian(t, y, held, &mut values)?;
         jacobian.fill(0.0);
-        let (equations, directions) = (&self.equations, self.directions.as_slice());
-        if !directions.is_empty() {
-            match &mut self.duals {
-                DualEvaluator::One(evaluator) => {
-                    equations.columns(evaluator, t, y, held, directions, jacobian)?;
-                }
-                DualEvaluator::Two(evaluator) => {
-                    equations.columns(evaluator, t, y, held, directions, jacobian)?;
-                }
-                DualEvaluator::Three(evaluator) => {
-                    equations.columns(evaluator, t, y, held, directions, jacobian)?;
-                }
-                DualEvaluator::Four(evaluator) => {
-                    equations.columns(evaluator, t, y, held, directions, jacobian)?;
-                }
-                DualEvaluator::Many(evaluator) => {
-                    equations.columns(evaluator, t, y, held, directions, jacobian)?;
-                }
-            }
-        }
-        for &body in &self.free_bodies {
-            equations.free_body_block(body, y, jacobian);
+        for (entry, value) in self.pattern().entries().zip(values) {
+            jacobian[entry] = value;
         }
         Ok(())
     }
-}
-
-/// The states the Jacobian takes derivatives in (the DIFFs the program
-/// reads, every state of a body that a force acts on or an expression
-/// reads), and the bodies left free of both.
-fn couplings(model: &Model, program: &Program, sources: &[Source]) -> (Vec<usize>, Vec<usize>) {
-    let mut coupled = vec![false; model.scene.bodies.len()];
-    let mut directions = Vec::new();
-    for (input, source) in sources.iter().enumerate() {
-        let used = program.uses_input(input);
-        match *source {
-            Source::State(index) if used => directions.push(index),
-            Source::Body(body, _) if used => coupled[body] = true,
-            _ => {}
-        }
-    }
-    let body_of = |target: &Target| match target {
-        Target::Marker(index) => model.scene.markers[*index].body,
-        Target::Ground => None,
-    };
-    for force in &model.forces {
-        let bodies = match force {
-            Force::Translational { i, j, .. } | Force::Rotational { i, j, .. } => {
-                [body_of(i), body_of(j), None]
-            }
-            Force::Vector {
-                i, reaction, axes, ..
-            } => [body_of(i), body_of(axes), *reaction],
-        };
-        for body in bodies.into_iter().flatten() {
-            coupled[body] = true;
-        }
-    }
-    directions.sort_unstable();
-    directions.dedup();
-    let mut free = Vec::new();
-    for (body, &is_coupled) in coupled.iter().enumerate() {
-        let offset = body_offset(model, body);
-        if is_coupled {
-            directions.extend(offset..offset + BODY_STATES);
-        } else {
-            free.push(body);
-        }
-    }
-    (directions, free)
 }
 
 /// The program input values from the state, into `inputs`.
@@ -666,50 +684,33 @@ impl Equations<'_> {
         }
     }
 
-    /// The Jacobian's columns in `directions`, by one evaluation over dual
-    /// numbers seeded in them.
-    fn columns<T: Directional>(
+    /// The Jacobian's entries into `values`, by one evaluation over dual
+    /// numbers of `count` directions seeded as `sparsity` says.
+    #[allow(clippy::too_many_arguments)]
+    fn fill<T: Directional>(
         &self,
         evaluator: &mut Evaluator<'_, T>,
         t: f64,
         y: &[f64],
         held: Option<&[Option<Code>]>,
-        directions: &[usize],
-        jacobian: &mut DMatrix<f64>,
+        sparsity: &Sparsity,
+        count: usize,
+        values: &mut [f64],
     ) -> Result<(), OutputError> {
-        let count = directions.len();
-        let mut seeded: Vec<T> = y.iter().map(|&value| T::from(value)).collect();
-        for (direction, &state) in directions.iter().enumerate() {
-            seeded[state] = T::variable(y[state], direction, count);
-        }
+        let seeded: Vec<T> = y
+            .iter()
+            .zip(&sparsity.direction)
+            .map(|(&value, &direction)| T::variable(value, direction, count))
+            .collect();
         let mut rates = vec![T::zero(); y.len()];
         let mut buffers = Buffers::new(self.program);
         self.rates(evaluator, t, &seeded, held, &mut rates, &mut buffers)?;
         for (row, rate) in rates.iter().enumerate() {
             let gradient = rate.gradient(count);
-            for (direction, &state) in directions.iter().enumerate() {
-                jacobian[(row, state)] = gradient[direction];
+            for &(position, direction) in sparsity.row(row) {
+                values[position] = gradient[direction];
             }
         }
         Ok(())
-    }
-
-    /// The Jacobian block of a body that moves on its own (gravity and its
-    /// own spin only), over its 13 states.
-    fn free_body_block(&self, body: usize, y: &[f64], jacobian: &mut DMatrix<f64>) {
-        let offset = body_offset(self.model, body);
-        let seeded: Vec<DualDVec64> = (0..BODY_STATES)
-            .map(|index| DualDVec64::variable(y[offset + index], index, BODY_STATES))
-            .collect();
-        let state = Kinematics::of(&seeded, &self.model.masses[body].centre);
-        let mut rates = vec![DualDVec64::from(0.0); BODY_STATES];
-        let zero = Vector3::zeros();
-        self.body_rates(body, &state, &zero, &zero, &mut rates);
-        for (row, rate) in rates.iter().enumerate() {
-            let gradient = rate.gradient(BODY_STATES);
-            for column in 0..BODY_STATES {
-                jacobian[(offset + row, offset + column)] = gradient[column];
-            }
-        }
     }
 }

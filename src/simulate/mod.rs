@@ -54,6 +54,7 @@ mod model;
 mod run;
 mod scene_file;
 mod sink;
+mod sparsity;
 mod switch;
 
 pub use dataset::{from_dataset, run_settings};

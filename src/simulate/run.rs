@@ -252,6 +252,21 @@ impl crate::integrate::System for Equations<'_> {
     ) -> Result<(), OutputError> {
         self.mechanics.jacobian(t, y, None, jacobian)
     }
+
+    fn jacobian_pattern(&mut self) -> Option<crate::integrate::linalg::Pattern> {
+        Some(self.mechanics.pattern().clone())
+    }
+
+    fn sparse_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        _dy: &[f64],
+        _pattern: &crate::integrate::linalg::Pattern,
+        values: &mut [f64],
+    ) -> Result<(), OutputError> {
+        self.mechanics.sparse_jacobian(t, y, None, values)
+    }
 }
 
 impl Simulation<'_> {

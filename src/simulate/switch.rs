@@ -7,6 +7,7 @@ use nalgebra::DMatrix;
 
 use super::mechanics::Mechanics;
 use crate::eval::OutputError;
+use crate::integrate::linalg::Pattern;
 use crate::integrate::{Stepper, System};
 use crate::laws::branch::Code;
 
@@ -68,6 +69,22 @@ impl System for Held<'_> {
         jacobian: &mut DMatrix<f64>,
     ) -> Result<(), OutputError> {
         self.mechanics.jacobian(t, y, Some(&self.held), jacobian)
+    }
+
+    fn jacobian_pattern(&mut self) -> Option<Pattern> {
+        Some(self.mechanics.pattern().clone())
+    }
+
+    fn sparse_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        _dy: &[f64],
+        _pattern: &Pattern,
+        values: &mut [f64],
+    ) -> Result<(), OutputError> {
+        self.mechanics
+            .sparse_jacobian(t, y, Some(&self.held), values)
     }
 }
 

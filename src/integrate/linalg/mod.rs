@@ -1,0 +1,201 @@
+//! The linear algebra of an implicit step, behind one trait: the
+//! integrator asks for the iteration matrices `σ I − J` (one real shift,
+//! one complex) to be factorised and solved with, and does not know
+//! whether they are dense or sparse.
+//!
+//! A system that knows where its Jacobian's nonzero entries can be gives
+//! a [`Pattern`] (compressed sparse columns, every diagonal entry
+//! included) and fills only those entries. The stepper
+//! then chooses the factorisation ([`factorisation_for`]): a dense LU (nalgebra's, partial
+//! pivoting) for small or dense systems, a sparse LU (faer's, a
+//! fill-reducing column ordering and the symbolic analysis computed once
+//! per pattern, only the numbers refactorised) beyond
+//! [`SPARSE_FROM`] states. A system without a pattern gets the dense path.
+//!
+//! Constrained systems (Lagrange multipliers, next to come) fit as they
+//! are: their constraint rows and columns are entries of the pattern, and
+//! an algebraic row's zero diagonal is still an entry of it, so the shift
+//! never asks for an entry the pattern lacks; both LUs pivot, so a zero
+//! diagonal is no breakdown.
+
+mod dense;
+mod sparse;
+
+use std::rc::Rc;
+
+use nalgebra::{Complex, DMatrix};
+
+pub use self::dense::DenseLu;
+pub use self::sparse::SparseLu;
+
+/// From this many states on, a system with a pattern no denser than
+/// [`SPARSE_DENSITY`] is factorised sparse (measured on the stack of balls:
+/// `BENCHMARKS.md`, "Simulation: the sparse core").
+pub const SPARSE_FROM: usize = 60;
+
+/// The largest fraction of nonzero entries a pattern may have and still be
+/// factorised sparse.
+pub const SPARSE_DENSITY: f64 = 0.25;
+
+/// Where the entries of an `n×n` matrix may be nonzero, by columns: the
+/// rows of column `j` are `rows[starts[j]..starts[j + 1]]`, increasing.
+/// Every diagonal entry is in the pattern.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Pattern {
+    n: usize,
+    starts: Vec<usize>,
+    rows: Vec<usize>,
+    /// The position of each diagonal entry among the entries.
+    diagonal: Vec<usize>,
+}
+
+impl Pattern {
+    /// The pattern of an `n×n` matrix with entries at `(row, column)`
+    /// (in any order, repeats allowed) and on the diagonal.
+    ///
+    /// # Panics
+    ///
+    /// When an entry is outside the matrix.
+    pub fn new(n: usize, entries: impl IntoIterator<Item = (usize, usize)>) -> Pattern {
+        let mut columns: Vec<Vec<usize>> = (0..n).map(|column| vec![column]).collect();
+        for (row, column) in entries {
+            assert!(row < n && column < n, "an entry outside the matrix");
+            columns[column].push(row);
+        }
+        let mut starts = Vec::with_capacity(n + 1);
+        let mut rows = Vec::new();
+        let mut diagonal = Vec::with_capacity(n);
+        starts.push(0);
+        for (column, mut column_rows) in columns.into_iter().enumerate() {
+            column_rows.sort_unstable();
+            column_rows.dedup();
+            let at = column_rows
+                .binary_search(&column)
+                .expect("the diagonal is in");
+            diagonal.push(rows.len() + at);
+            rows.extend(column_rows);
+            starts.push(rows.len());
+        }
+        Pattern {
+            n,
+            starts,
+            rows,
+            diagonal,
+        }
+    }
+
+    /// The dimension `n`.
+    pub fn dimension(&self) -> usize {
+        self.n
+    }
+
+    /// The number of entries.
+    pub fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// Whether the pattern has no entry (a `0×0` matrix).
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    /// The position of entry `(row, column)` among the entries, if it is
+    /// in the pattern.
+    pub fn position(&self, row: usize, column: usize) -> Option<usize> {
+        let start = self.starts[column];
+        self.rows[start..self.starts[column + 1]]
+            .binary_search(&row)
+            .ok()
+            .map(|at| start + at)
+    }
+
+    /// The entries `(row, column)` in storage order.
+    pub fn entries(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        (0..self.n).flat_map(move |column| {
+            self.rows[self.starts[column]..self.starts[column + 1]]
+                .iter()
+                .map(move |&row| (row, column))
+        })
+    }
+
+    /// The fraction of the `n²` entries that are in the pattern.
+    pub fn density(&self) -> f64 {
+        self.len() as f64 / (self.n as f64 * self.n as f64).max(1.0)
+    }
+}
+
+/// A system's Jacobian as the integrator holds it: every entry, or the
+/// values of a pattern's entries in its storage order.
+#[derive(Clone, Debug)]
+pub enum Jacobian {
+    /// An `n×n` matrix.
+    Dense(DMatrix<f64>),
+    /// Values on a pattern.
+    Sparse {
+        /// Where the entries are.
+        pattern: Rc<Pattern>,
+        /// One value per entry of the pattern.
+        values: Vec<f64>,
+    },
+}
+
+impl Jacobian {
+    /// Zeros, dense (no pattern) or on `pattern`.
+    pub fn zeros(n: usize, pattern: Option<Rc<Pattern>>) -> Jacobian {
+        match pattern {
+            None => Jacobian::Dense(DMatrix::zeros(n, n)),
+            Some(pattern) => Jacobian::Sparse {
+                values: vec![0.0; pattern.len()],
+                pattern,
+            },
+        }
+    }
+
+    /// Every value held (all `n²` of a dense one).
+    pub fn values(&self) -> &[f64] {
+        match self {
+            Jacobian::Dense(matrix) => matrix.as_slice(),
+            Jacobian::Sparse { values, .. } => values,
+        }
+    }
+
+    /// Sets every value held to zero.
+    pub fn clear(&mut self) {
+        match self {
+            Jacobian::Dense(matrix) => matrix.fill(0.0),
+            Jacobian::Sparse { values, .. } => values.fill(0.0),
+        }
+    }
+}
+
+/// The iteration matrices of an implicit step: `real_shift I − J` and
+/// `complex_shift I − J`, factorised together and then solved with many
+/// times. The integrator sees only this trait.
+pub trait Factorisation {
+    /// Factorises both matrices from `jacobian`; false when either is
+    /// singular (then nothing may be solved until a factorisation succeeds).
+    fn factorise(
+        &mut self,
+        jacobian: &Jacobian,
+        real_shift: f64,
+        complex_shift: Complex<f64>,
+    ) -> bool;
+
+    /// Overwrites `rhs` with the solution of the real system.
+    fn solve_real(&mut self, rhs: &mut [f64]);
+
+    /// Overwrites `rhs` with the solution of the complex system.
+    fn solve_complex(&mut self, rhs: &mut [Complex<f64>]);
+}
+
+/// The factorisation for a system of `n` states whose Jacobian has
+/// `pattern` (`None`: dense): sparse from [`SPARSE_FROM`] states when the
+/// pattern is no denser than [`SPARSE_DENSITY`], dense otherwise.
+pub fn factorisation_for(n: usize, pattern: Option<&Pattern>) -> Box<dyn Factorisation> {
+    match pattern {
+        Some(pattern) if n >= SPARSE_FROM && pattern.density() <= SPARSE_DENSITY => {
+            Box::new(SparseLu::new(pattern))
+        }
+        _ => Box::new(DenseLu::new(n)),
+    }
+}

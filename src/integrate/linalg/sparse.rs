@@ -1,0 +1,136 @@
+//! The sparse path: faer's LU, its fill-reducing ordering and symbolic
+//! analysis computed once per pattern, only the numbers refactorised.
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::sparse::linalg::lu::{NumericLu, SymbolicLu, factorize_symbolic_lu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, MatMut, Par};
+use nalgebra::Complex;
+
+use super::{Factorisation, Jacobian, Pattern};
+
+/// Sparse LU factorisations of the two iteration matrices, on one pattern.
+pub struct SparseLu {
+    n: usize,
+    structure: SymbolicSparseColMat<usize>,
+    /// Where each diagonal entry is among the entries.
+    diagonal: Vec<usize>,
+    symbolic: SymbolicLu<usize>,
+    real: NumericLu<usize, f64>,
+    complex: NumericLu<usize, Complex<f64>>,
+    real_values: Vec<f64>,
+    complex_values: Vec<Complex<f64>>,
+    /// Both matrices factorised without a zero pivot.
+    factorised: bool,
+    scratch: MemBuffer,
+}
+
+impl SparseLu {
+    /// The symbolic analysis of `pattern` (its column ordering and fill).
+    ///
+    /// # Panics
+    ///
+    /// When the analysis runs out of memory.
+    pub fn new(pattern: &Pattern) -> SparseLu {
+        let n = pattern.dimension();
+        let structure = SymbolicSparseColMat::new_checked(
+            n,
+            n,
+            pattern.starts.clone(),
+            None,
+            pattern.rows.clone(),
+        );
+        let symbolic = factorize_symbolic_lu(structure.as_ref(), Default::default())
+            .expect("memory for the symbolic analysis of a sparse LU");
+        let scratch = StackReq::any_of(&[
+            symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
+            symbolic.factorize_numeric_lu_scratch::<Complex<f64>>(Par::Seq, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+            symbolic.solve_in_place_scratch::<Complex<f64>>(1, Par::Seq),
+        ]);
+        SparseLu {
+            n,
+            diagonal: pattern.diagonal.clone(),
+            real_values: vec![0.0; pattern.len()],
+            complex_values: vec![Complex::new(0.0, 0.0); pattern.len()],
+            structure,
+            symbolic,
+            real: NumericLu::new(),
+            complex: NumericLu::new(),
+            factorised: false,
+            scratch: MemBuffer::new(scratch),
+        }
+    }
+}
+
+impl Factorisation for SparseLu {
+    fn factorise(
+        &mut self,
+        jacobian: &Jacobian,
+        real_shift: f64,
+        complex_shift: Complex<f64>,
+    ) -> bool {
+        let Jacobian::Sparse { values, .. } = jacobian else {
+            unreachable!("a sparse factorisation is made only for a pattern");
+        };
+        for ((real, complex), value) in self
+            .real_values
+            .iter_mut()
+            .zip(&mut self.complex_values)
+            .zip(values)
+        {
+            *real = -value;
+            *complex = Complex::new(-value, 0.0);
+        }
+        for &at in &self.diagonal {
+            self.real_values[at] += real_shift;
+            self.complex_values[at] += complex_shift;
+        }
+        let structure = self.structure.as_ref();
+        let stack = MemStack::new(&mut self.scratch);
+        let real = self.symbolic.factorize_numeric_lu(
+            &mut self.real,
+            SparseColMatRef::new(structure, &self.real_values),
+            Par::Seq,
+            stack,
+            Default::default(),
+        );
+        let real_ok = real.is_ok();
+        let stack = MemStack::new(&mut self.scratch);
+        let complex = self.symbolic.factorize_numeric_lu(
+            &mut self.complex,
+            SparseColMatRef::new(structure, &self.complex_values),
+            Par::Seq,
+            stack,
+            Default::default(),
+        );
+        self.factorised = real_ok && complex.is_ok();
+        self.factorised
+    }
+
+    fn solve_real(&mut self, rhs: &mut [f64]) {
+        if !self.factorised {
+            return;
+        }
+        let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&self.symbolic, &self.real);
+        lu.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(rhs, self.n, 1),
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+        );
+    }
+
+    fn solve_complex(&mut self, rhs: &mut [Complex<f64>]) {
+        if !self.factorised {
+            return;
+        }
+        let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&self.symbolic, &self.complex);
+        lu.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(rhs, self.n, 1),
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+        );
+    }
+}

@@ -1,0 +1,207 @@
+//! Where the Jacobian of a model's equations can be nonzero, and how one
+//! evaluation over dual numbers gives all of it.
+//!
+//! The states fall into groups: each DIFF (one state) and each body (its
+//! 13). A DIFF's rate reads the groups its FUNCTION reads; a body's rates
+//! read its own group and the groups every force element acting on it
+//! reads (the bodies of the element's markers and what its expressions
+//! read). That is the pattern, known when the model is compiled and the
+//! same on every branch of every piecewise function (an IF's two branches
+//! are both counted), so it is built once per model.
+//!
+//! Groups that no rate reads together share derivative directions (a
+//! colouring of the groups, greedy, bodies and DIFFs apart): body colour
+//! `c` seeds a body's 13 states in directions `13 c .. 13 c + 13`, DIFF
+//! colour `c` one direction after the bodies'. Each rate then carries the
+//! derivative of every state it reads in a direction of its own, and each
+//! element and DIFF is differentiated only in the states it reads: a stack
+//! or chain of bodies, whose rates read a body and its two neighbours, needs
+//! three body colours (39 directions) whatever its length.
+
+use super::mechanics::{BODY_STATES, Source, body_offset};
+use super::model::{Force, Model};
+use crate::compile::Program;
+use crate::integrate::linalg::Pattern;
+use crate::scene::Target;
+
+/// The pattern of a model's Jacobian and the seeding that fills it.
+pub(crate) struct Sparsity {
+    pub(crate) pattern: Pattern,
+    /// The derivative direction each state is seeded in.
+    pub(crate) direction: Vec<usize>,
+    /// How many directions there are.
+    pub(crate) directions: usize,
+    /// For each row, from `row_starts[row]` to `row_starts[row + 1]`: the
+    /// position of each of its entries among the pattern's, and the
+    /// direction its derivative is read from.
+    row_starts: Vec<usize>,
+    entries: Vec<(usize, usize)>,
+}
+
+impl Sparsity {
+    /// The sparsity of `model`'s equations, whose expression `e` is output
+    /// `output_of[e]` of `program`, the program's inputs coming from
+    /// `sources`.
+    pub(crate) fn new(
+        model: &Model,
+        program: &Program,
+        sources: &[Source],
+        output_of: &[Option<usize>],
+    ) -> Sparsity {
+        let bodies = model.scene.bodies.len();
+        let groups = bodies + model.diffs.len();
+        let states_of = |group: usize| {
+            if group < bodies {
+                let offset = body_offset(model, group);
+                offset..offset + BODY_STATES
+            } else {
+                let diff = group - bodies;
+                diff..diff + 1
+            }
+        };
+        // The groups each output reads.
+        let output_groups: Vec<Vec<usize>> = program
+            .inputs_of_outputs()
+            .iter()
+            .map(|inputs| {
+                let mut read: Vec<usize> = inputs
+                    .iter()
+                    .filter_map(|&input| match sources[input] {
+                        Source::Body(body, _) => Some(body),
+                        Source::State(diff) => Some(bodies + diff),
+                        Source::Time | Source::Constant(_) => None,
+                    })
+                    .collect();
+                read.sort_unstable();
+                read.dedup();
+                read
+            })
+            .collect();
+        let expression_groups = |expression: Option<usize>| {
+            expression
+                .and_then(|expression| output_of[expression])
+                .map_or(&[][..], |output| output_groups[output].as_slice())
+        };
+        // The groups each group's rates read.
+        let mut reads: Vec<Vec<usize>> = (0..groups).map(|group| vec![group]).collect();
+        for (diff, statement) in model.diffs.iter().enumerate() {
+            reads[bodies + diff].extend(expression_groups(Some(statement.function)));
+        }
+        let body_of = |target: &Target| match target {
+            Target::Marker(index) => model.scene.markers[*index].body,
+            Target::Ground => None,
+        };
+        for force in &model.forces {
+            let (touched, expressions): (Vec<usize>, Vec<Option<usize>>) = match force {
+                Force::Translational {
+                    i, j, magnitude, ..
+                }
+                | Force::Rotational {
+                    i, j, magnitude, ..
+                } => (
+                    [body_of(i), body_of(j)].into_iter().flatten().collect(),
+                    vec![Some(*magnitude)],
+                ),
+                Force::Vector {
+                    i,
+                    reaction,
+                    axes,
+                    force,
+                    torque,
+                } => (
+                    [body_of(i), body_of(axes), *reaction]
+                        .into_iter()
+                        .flatten()
+                        .collect(),
+                    force.iter().chain(torque).copied().collect(),
+                ),
+            };
+            let mut read = touched.clone();
+            for &expression in &expressions {
+                read.extend(expression_groups(expression));
+            }
+            for &body in &touched {
+                reads[body].extend(&read);
+            }
+        }
+        for read in &mut reads {
+            read.sort_unstable();
+            read.dedup();
+        }
+        let colour = colouring(&reads, bodies);
+        let body_colours = colour[..bodies].iter().map(|c| c + 1).max().unwrap_or(0);
+        let diff_colours = colour[bodies..].iter().map(|c| c + 1).max().unwrap_or(0);
+        let n = model.diffs.len() + BODY_STATES * bodies;
+        let mut direction = vec![0; n];
+        for (group, &group_colour) in colour.iter().enumerate() {
+            for (index, state) in states_of(group).enumerate() {
+                direction[state] = if group < bodies {
+                    BODY_STATES * group_colour + index
+                } else {
+                    BODY_STATES * body_colours + group_colour
+                };
+            }
+        }
+        let entries_of = |group: usize| {
+            let columns: Vec<usize> = reads[group].iter().flat_map(|&g| states_of(g)).collect();
+            states_of(group).flat_map(move |row| columns.clone().into_iter().map(move |c| (row, c)))
+        };
+        let pattern = Pattern::new(n, (0..groups).flat_map(entries_of));
+        let mut row_entries: Vec<Vec<(usize, usize)>> = vec![Vec::new(); n];
+        for (position, (row, column)) in pattern.entries().enumerate() {
+            row_entries[row].push((position, direction[column]));
+        }
+        let mut row_starts = Vec::with_capacity(n + 1);
+        row_starts.push(0);
+        let mut entries = Vec::with_capacity(pattern.len());
+        for row in row_entries {
+            entries.extend(row);
+            row_starts.push(entries.len());
+        }
+        Sparsity {
+            pattern,
+            direction,
+            directions: BODY_STATES * body_colours + diff_colours,
+            row_starts,
+            entries,
+        }
+    }
+
+    /// The entries of row `row`: each one's position among the pattern's
+    /// entries and the direction its derivative is read from.
+    pub(crate) fn row(&self, row: usize) -> &[(usize, usize)] {
+        &self.entries[self.row_starts[row]..self.row_starts[row + 1]]
+    }
+}
+
+/// A colour for each group such that no two groups read by one group's
+/// rates share one; bodies (the first `bodies` groups) and DIFFs are
+/// coloured apart. Greedy, in group order: the smallest colour free.
+fn colouring(reads: &[Vec<usize>], bodies: usize) -> Vec<usize> {
+    let groups = reads.len();
+    let mut readers: Vec<Vec<usize>> = vec![Vec::new(); groups];
+    for (row, read) in reads.iter().enumerate() {
+        for &group in read {
+            readers[group].push(row);
+        }
+    }
+    let mut colour = vec![usize::MAX; groups];
+    let mut taken = Vec::new();
+    for group in 0..groups {
+        taken.clear();
+        for &row in &readers[group] {
+            for &other in &reads[row] {
+                let same_kind = (other < bodies) == (group < bodies);
+                if same_kind && colour[other] != usize::MAX {
+                    taken.push(colour[other]);
+                }
+            }
+        }
+        taken.sort_unstable();
+        taken.dedup();
+        colour[group] = (0..)
+            .find(|candidate| taken.binary_search(candidate).is_err())
+            .expect("a free colour");
+    }
+    colour
+}
