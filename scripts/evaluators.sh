@@ -28,11 +28,11 @@ else
   echo "note: ExprTk's header is not available; muparser only" >&2
 fi
 
-cargo build --release --lib
+cargo build --release --lib  # into $CARGO_TARGET_DIR when set
 # ExprTk's header takes minutes and over a gigabyte to compile: nice it.
 nice g++ -O2 -std=c++17 "${exprtk[@]}" benches/anchors/evaluators.cpp -I include \
   $(pkg-config --cflags muparser 2>/dev/null || true) \
-  target/release/libmbexpr.a -lmuparser -lpthread -ldl -lm -o "$work/evaluators"
+  "${CARGO_TARGET_DIR:-target}/release/libmbexpr.a" -lmuparser -lpthread -ldl -lm -o "$work/evaluators"
 
 echo "one thread (OMP_NUM_THREADS=1, mbexpr threads = 1):"
 OMP_NUM_THREADS=1 "$work/evaluators" 1

@@ -40,6 +40,20 @@ impl Located {
         }
     }
 
+    /// The first of `errors` (never empty), its message saying how many
+    /// more there are.
+    pub fn first_of(errors: Vec<Located>) -> Located {
+        let more = errors.len().saturating_sub(1);
+        let mut first = errors
+            .into_iter()
+            .next()
+            .unwrap_or_else(|| Located::nowhere("no error".to_string()));
+        if more > 0 {
+            first.message += &format!(" (and {more} more)");
+        }
+        first
+    }
+
     /// `message` with no place.
     pub fn nowhere(message: String) -> Located {
         Located {
@@ -78,18 +92,32 @@ impl Expression {
     /// first problem in source order is the error (with how many more there
     /// are).
     pub fn compile<S: AsRef<str>>(text: &str, inputs: &[S]) -> Result<Expression, Located> {
-        let first = |span: Span, message: String, more: usize| {
-            let message = match more {
-                0 => message,
-                more => format!("{message} (and {more} more)"),
-            };
-            Located::at(text, span, message)
+        let tree = crate::parse(text)
+            .map_err(|error| Located::at(text, error.span(), error.to_string()))?;
+        let placed = |errors: Vec<(Span, String)>| {
+            Located::first_of(
+                errors
+                    .into_iter()
+                    .map(|(span, message)| Located::at(text, span, message))
+                    .collect(),
+            )
         };
-        let tree = crate::parse(text).map_err(|error| first(error.span(), error.to_string(), 0))?;
-        let checked = crate::check(&tree)
-            .map_err(|errors| first(errors[0].span(), errors[0].to_string(), errors.len() - 1))?;
-        let program = crate::compile(&checked, inputs)
-            .map_err(|errors| first(errors[0].span(), errors[0].to_string(), errors.len() - 1))?;
+        let checked = crate::check(&tree).map_err(|errors| {
+            placed(
+                errors
+                    .iter()
+                    .map(|error| (error.span(), error.to_string()))
+                    .collect(),
+            )
+        })?;
+        let program = crate::compile(&checked, inputs).map_err(|errors| {
+            placed(
+                errors
+                    .iter()
+                    .map(|error| (error.span(), error.to_string()))
+                    .collect(),
+            )
+        })?;
         Ok(Expression {
             text: text.to_string(),
             program,
@@ -610,11 +638,12 @@ impl LoadedModel {
     ) -> Result<Ran, Located> {
         let settings = self.settings(options)?;
         let simulation = Simulation::new(&self.model).map_err(|errors| {
-            let mut first = locate(&self.text, Some(&self.model), &errors[0]);
-            if errors.len() > 1 {
-                first.message += &format!(" (and {} more)", errors.len() - 1);
-            }
-            first
+            Located::first_of(
+                errors
+                    .iter()
+                    .map(|error| locate(&self.text, Some(&self.model), error))
+                    .collect(),
+            )
         })?;
         let summary = simulation
             .run(&settings, row)

@@ -260,14 +260,7 @@ fn simulate<'py>(
         } else {
             LoadedModel::from_text(source, format)
         };
-        let loaded = loaded.map_err(|mut errors| {
-            let more = errors.len() - 1;
-            let mut first = errors.swap_remove(0);
-            if more > 0 {
-                first.message += &format!(" (and {more} more)");
-            }
-            first
-        })?;
+        let loaded = loaded.map_err(Located::first_of)?;
         let mut rows = Vec::new();
         let ran = loaded.simulate(&options, |time, values| {
             rows.push(time);

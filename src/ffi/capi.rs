@@ -229,6 +229,31 @@ unsafe fn put<T>(out: *mut T, value: T, what: &str) -> Result<(), Located> {
     Ok(())
 }
 
+/// Boxes `value` and writes the pointer to `*out` (C frees it with the
+/// object's `_free`).
+///
+/// # Safety
+/// `out` is null or writable.
+unsafe fn hand_out<T>(value: T, out: *mut *mut T, what: &str) -> Result<(), Located> {
+    if out.is_null() {
+        return Err(null(what));
+    }
+    // SAFETY: from this function's contract.
+    unsafe { out.write(Box::into_raw(Box::new(value))) };
+    Ok(())
+}
+
+/// Frees an object handed out by [`hand_out`] (NULL is ignored).
+///
+/// # Safety
+/// `pointer` is null or came from [`hand_out`] and is not used again.
+unsafe fn free<T>(pointer: *mut T) {
+    if !pointer.is_null() {
+        // SAFETY: from this function's contract.
+        drop(unsafe { Box::from_raw(pointer) });
+    }
+}
+
 /// A borrowed reference to an opaque object.
 ///
 /// # Safety
@@ -296,12 +321,9 @@ pub unsafe extern "C" fn mbexpr_compile(
             .iter()
             .map(|name| c_string(name))
             .collect();
-        let compiled = Box::into_raw(Box::new(CProgram { expression, inputs }));
+        let compiled = CProgram { expression, inputs };
         // SAFETY: from this function's contract.
-        unsafe { put(program, compiled, "the program pointer") }.inspect_err(|_| {
-            // SAFETY: just made by `Box::into_raw`.
-            drop(unsafe { Box::from_raw(compiled) });
-        })
+        unsafe { hand_out(compiled, program, "the program pointer") }
     })
 }
 
@@ -311,10 +333,8 @@ pub unsafe extern "C" fn mbexpr_compile(
 /// `program` is null or came from [`mbexpr_compile`] and is not used again.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn mbexpr_program_free(program: *mut CProgram) {
-    if !program.is_null() {
-        // SAFETY: from this function's contract.
-        drop(unsafe { Box::from_raw(program) });
-    }
+    // SAFETY: from this function's contract.
+    unsafe { free(program) }
 }
 
 /// `size_t mbexpr_program_input_count(const mbexpr_program *program)`: the
@@ -657,12 +677,14 @@ pub unsafe extern "C" fn mbexpr_check_model(
             .into_iter()
             .map(|found| (c_string(&found.message), found.line, found.column))
             .collect();
-        let found = Box::into_raw(Box::new(Diagnostics { entries }));
         // SAFETY: from this function's contract.
-        unsafe { put(diagnostics, found, "the diagnostics pointer") }.inspect_err(|_| {
-            // SAFETY: just made by `Box::into_raw`.
-            drop(unsafe { Box::from_raw(found) });
-        })
+        unsafe {
+            hand_out(
+                Diagnostics { entries },
+                diagnostics,
+                "the diagnostics pointer",
+            )
+        }
     })
 }
 
@@ -711,10 +733,8 @@ pub unsafe extern "C" fn mbexpr_diagnostic(
 /// used again.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn mbexpr_diagnostics_free(diagnostics: *mut Diagnostics) {
-    if !diagnostics.is_null() {
-        // SAFETY: from this function's contract.
-        drop(unsafe { Box::from_raw(diagnostics) });
-    }
+    // SAFETY: from this function's contract.
+    unsafe { free(diagnostics) }
 }
 
 /// Hands a loaded model to C.
@@ -725,21 +745,10 @@ unsafe fn hand_over(
     loaded: Result<LoadedModel, Vec<Located>>,
     out: *mut *mut CModel,
 ) -> Result<(), Located> {
-    let model = loaded.map_err(|mut errors| {
-        let more = errors.len() - 1;
-        let mut first = errors.swap_remove(0);
-        if more > 0 {
-            first.message += &format!(" (and {more} more)");
-        }
-        first
-    })?;
+    let model = loaded.map_err(Located::first_of)?;
     let columns = model.columns().iter().map(|name| c_string(name)).collect();
-    let model = Box::into_raw(Box::new(CModel { model, columns }));
     // SAFETY: from this function's contract.
-    unsafe { put(out, model, "the model pointer") }.inspect_err(|_| {
-        // SAFETY: just made by `Box::into_raw`.
-        drop(unsafe { Box::from_raw(model) });
-    })
+    unsafe { hand_out(CModel { model, columns }, out, "the model pointer") }
 }
 
 /// `int mbexpr_model_load(const char *path, mbexpr_model **model,
@@ -827,10 +836,8 @@ pub unsafe extern "C" fn mbexpr_model_column(model: *const CModel, index: usize)
 /// [`mbexpr_model_from_text`] and is not used again.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn mbexpr_model_free(model: *mut CModel) {
-    if !model.is_null() {
-        // SAFETY: from this function's contract.
-        drop(unsafe { Box::from_raw(model) });
-    }
+    // SAFETY: from this function's contract.
+    unsafe { free(model) }
 }
 
 /// `mbexpr_settings mbexpr_settings_default(void)`: Radau5 and zeros (the
