@@ -11,7 +11,8 @@ prefix=${1:-/usr/local}
 cargo build --release --lib
 version=$(sed -n 's/^version = "\(.*\)"/\1/p' Cargo.toml | head -1)
 mkdir -p "$prefix/lib/pkgconfig" "$prefix/include"
-cp target/release/libmbexpr.a target/release/libmbexpr.so "$prefix/lib/"
+release="${CARGO_TARGET_DIR:-target}/release"
+cp "$release/libmbexpr.a" "$release/libmbexpr.so" "$prefix/lib/"
 cp include/mbexpr.h include/mbexpr.hpp include/mbexpr.f90 include/mbexpr_c.f90 "$prefix/include/"
 sed -e "s|@PREFIX@|$prefix|" -e "s|@VERSION@|$version|" include/mbexpr.pc.in \
   >"$prefix/lib/pkgconfig/mbexpr.pc"
