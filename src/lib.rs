@@ -39,6 +39,7 @@
 pub mod catalog;
 pub mod check;
 pub mod compile;
+pub mod embed;
 mod errors;
 pub mod eval;
 pub mod ffi;

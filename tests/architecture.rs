@@ -33,6 +33,7 @@ const LAYERS: &[&str] = &[
     "kinks",
     "model",
     "simulate",
+    "embed",
     "ffi",
 ];
 

@@ -99,6 +99,36 @@ fn a_fortran_user_subroutine_calls_the_library() {
     }
 }
 
+#[test]
+fn the_c_api_from_c() {
+    if let Some(output) = compile_and_run(
+        "cc",
+        &[file("tests/c/capi.c")],
+        &["-Wall", "-Werror", "-std=c11"],
+    ) {
+        insta::assert_snapshot!(output);
+    }
+}
+
+#[test]
+fn the_c_api_from_cpp_through_its_raii_header() {
+    if let Some(output) = compile_and_run(
+        "c++",
+        &[file("tests/cpp/capi.cpp")],
+        &["-Wall", "-Werror", "-std=c++17"],
+    ) {
+        insta::assert_snapshot!(output);
+    }
+}
+
+#[test]
+fn the_c_api_from_fortran_through_iso_c_binding() {
+    let sources = ["include/mbexpr_c.f90", "tests/fortran/capi.f90"].map(file);
+    if let Some(output) = compile_and_run("gfortran", &sources, &["-Wall", "-Werror"]) {
+        insta::assert_snapshot!(output);
+    }
+}
+
 /// A fenced code block of a Markdown file: its language and text.
 fn fenced_blocks(markdown: &str) -> Vec<(String, String)> {
     let mut blocks = Vec::new();
@@ -152,6 +182,7 @@ fn every_c_and_fortran_block_of_the_docs_compiles_and_runs() {
         for (index, (language, text)) in fenced_blocks(&markdown).into_iter().enumerate() {
             let (compiler, extension, main) = match language.as_str() {
                 "c" => ("cc", "c", "main("),
+                "cpp" => ("c++", "cpp", "main("),
                 "fortran" if fixed_form(&text) => ("gfortran", "f", "PROGRAM"),
                 "fortran" => ("gfortran", "f90", "PROGRAM"),
                 _ => continue,
@@ -163,7 +194,12 @@ fn every_c_and_fortran_block_of_the_docs_compiles_and_runs() {
             let folder = scratch(&name);
             let block = folder.join(format!("{name}.{extension}"));
             std::fs::write(&block, &text).unwrap();
-            let mut sources = vec![block];
+            // A FORTRAN block of the C API comes after the module it uses.
+            let mut sources = if text.to_lowercase().contains("use mbexpr_c") {
+                vec![file("include/mbexpr_c.f90"), block]
+            } else {
+                vec![block]
+            };
             if !text.to_uppercase().contains(&main.to_uppercase()) {
                 // The driver whose name is a routine the block defines.
                 let defined = text.to_lowercase();
@@ -172,7 +208,7 @@ fn every_c_and_fortran_block_of_the_docs_compiles_and_runs() {
                     .find(|driver| {
                         let stem = driver.file_stem().unwrap().to_string_lossy().to_lowercase();
                         let language_matches = match extension {
-                            "c" => driver.extension().is_some_and(|e| e == "c"),
+                            "c" | "cpp" => driver.extension().is_some_and(|e| e == extension),
                             _ => driver.extension().is_some_and(|e| e != "c"),
                         };
                         language_matches && defined.contains(&format!("{stem}("))
@@ -621,4 +657,112 @@ fn the_compile_commands_of_the_docs_work_as_printed() {
         std::fs::remove_dir_all(&folder).unwrap();
     }
     insta::assert_snapshot!(report);
+}
+
+/// Bulk evaluation through the shared layer of the C API and the Python
+/// package: `PROGRAMS` at random points, some outside the domain, on 1, 2
+/// and every thread: each point's value, gradient and Hessian are exactly
+/// those of a single evaluation there, or its status is 1 where that fails.
+#[test]
+fn bulk_evaluation_is_single_evaluation_at_every_point_on_any_threads() {
+    use mbexpr::embed::{Bulk, Expression};
+    const PROGRAMS: [&str; 4] = [
+        "-k*x - c*v",
+        "BISTOP(x, v, -1, 1, k, 1.5, c, 0.01) + LOG(x + 1.5)",
+        "SQRT(x) * v + k ** 2 / c",
+        "IF(x: STEP(v, -1, 0, 1, k), 0, IMPACT(x, v, 0.5, k, 2.2, c, 0.1))",
+    ];
+    let mut arguments = Arguments(0x2545_f491_4f6c_dd1d);
+    let n = 5000;
+    let columns: Vec<Vec<f64>> = (0..4)
+        .map(|_| (0..n).map(|_| 4.0 * arguments.unit() - 2.0).collect())
+        .collect();
+    let columns: Vec<&[f64]> = columns.iter().map(Vec::as_slice).collect();
+    for text in PROGRAMS {
+        let expression = Expression::compile(text, &["x", "v", "k", "c"]).unwrap();
+        for (wrt, order) in [
+            (vec![], Order::Value),
+            (vec![0, 1], Order::Gradient),
+            (vec![2, 0, 3], Order::Hessian),
+        ] {
+            let k = wrt.len();
+            let mut results = Vec::new();
+            for threads in [1, 2, 0] {
+                let (mut values, mut gradients, mut hessians, mut status) = (
+                    vec![9.0; n],
+                    vec![9.0; n * k],
+                    vec![9.0; n * k * k],
+                    vec![9; n],
+                );
+                let out = Bulk {
+                    values: &mut values,
+                    gradients: if order >= Order::Gradient {
+                        &mut gradients
+                    } else {
+                        &mut []
+                    },
+                    hessians: if order >= Order::Hessian {
+                        &mut hessians
+                    } else {
+                        &mut []
+                    },
+                    status: &mut status,
+                };
+                let failed = expression
+                    .evaluate_bulk(&columns, &wrt, order, out, threads)
+                    .unwrap();
+                assert_eq!(failed, status.iter().filter(|&&s| s != 0).count());
+                results.push((values, gradients, hessians, status));
+            }
+            assert!(
+                results.windows(2).all(|pair| pair[0] == pair[1]),
+                "{text}: threads disagree"
+            );
+            let (values, gradients, hessians, status) = &results[0];
+            let mut failures = 0;
+            for p in 0..n {
+                let point: Vec<f64> = columns.iter().map(|column| column[p]).collect();
+                match expression.evaluate(&point, &wrt, order) {
+                    Ok(single) => {
+                        assert_eq!(status[p], 0, "{text} at {point:?}");
+                        assert_eq!(values[p], single.value);
+                        if let Some(gradient) = single.gradient {
+                            assert_eq!(&gradients[p * k..(p + 1) * k], gradient.as_slice());
+                        }
+                        if let Some(hessian) = single.hessian {
+                            assert_eq!(&hessians[p * k * k..(p + 1) * k * k], hessian.as_slice());
+                        }
+                    }
+                    Err(_) => {
+                        failures += 1;
+                        assert_eq!(status[p], 1, "{text} at {point:?}");
+                        assert_eq!(values[p], 0.0);
+                    }
+                }
+            }
+            assert!(failures < n, "{text}: every point failed");
+        }
+    }
+    // Columns shorter than the points, and a direction that is not an input.
+    let expression = Expression::compile("x + v", &["x", "v"]).unwrap();
+    let mut values = vec![0.0; 3];
+    let mut status = vec![0; 3];
+    let short: [&[f64]; 2] = [&[1.0, 2.0, 3.0], &[1.0]];
+    let out = Bulk {
+        values: &mut values,
+        gradients: &mut [],
+        hessians: &mut [],
+        status: &mut status,
+    };
+    let error = expression
+        .evaluate_bulk(&short, &[], Order::Value, out, 1)
+        .unwrap_err();
+    assert_eq!(error.message, "column 1 (v) has 1 points, fewer than 3");
+    let error = expression
+        .evaluate(&[1.0, 2.0], &[0, 0], Order::Gradient)
+        .unwrap_err();
+    assert_eq!(
+        error.message,
+        "derivative direction 0 (x) is asked for twice"
+    );
 }

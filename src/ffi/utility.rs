@@ -9,10 +9,6 @@
 //! On any error ERRFLG is set (C: 1; FORTRAN: .TRUE.) and VECTOR zeroed; a
 //! null output pointer is left alone; no panic crosses the boundary.
 
-// This module is the only place with `unsafe`: raw pointers from C and
-// FORTRAN callers, and the `no_mangle` symbols they link to.
-#![allow(unsafe_code)]
-
 use std::os::raw::{c_double, c_int};
 use std::panic::catch_unwind;
 

@@ -1,0 +1,56 @@
+# Hand-written stubs of the extension module (maturin's generated ones type
+# numpy arguments as Incomplete). The public API is mbexpr/__init__.py.
+from typing import Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+class Error(ValueError):
+    """A refusal with its place (line and column from 1, or None)."""
+
+    message: str
+    line: Optional[int]
+    column: Optional[int]
+    point: int
+
+class Program:
+    def __init__(self, text: str, inputs: List[str]) -> None: ...
+    @property
+    def text(self) -> str: ...
+    @property
+    def inputs(self) -> List[str]: ...
+    def evaluate(
+        self,
+        columns: Sequence[npt.NDArray[np.float64]],
+        wrt: List[int],
+        order: int,
+        threads: int,
+    ) -> Tuple[
+        npt.NDArray[np.float64],
+        npt.NDArray[np.float64],
+        npt.NDArray[np.float64],
+        npt.NDArray[np.int32],
+    ]: ...
+    def explain(self, point: List[float], wrt: List[int], order: int) -> None: ...
+
+def utility_bulk(
+    name: str, columns: Sequence[npt.NDArray[np.float64]], iord: int
+) -> npt.NDArray[np.float64]: ...
+def check_model(path: str) -> List[Tuple[str, int, int]]: ...
+def simulate(
+    source: str,
+    is_path: bool,
+    format: str,
+    method: str,
+    end: Optional[float],
+    steps: Optional[int],
+    rtol: float,
+    atol: Optional[float],
+    h_max: Optional[float],
+    max_steps: Optional[int],
+) -> Tuple[
+    List[str],
+    npt.NDArray[np.float64],
+    List[Tuple[float, str, str, str, int, int]],
+    Dict[str, object],
+]: ...

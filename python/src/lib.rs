@@ -1,0 +1,308 @@
+//! `mbexpr._core`: the extension module of the Python package. It reaches
+//! mbexpr only through the safe layer the C API shares
+//! ([`mbexpr::embed`]) and the utility subroutines ([`mbexpr::utility`]),
+//! and releases the GIL for every evaluation and run. The public API, with
+//! broadcasting and its docstrings, is `mbexpr/__init__.py`.
+
+use std::borrow::Cow;
+
+use mbexpr::embed::{self, Bulk, Expression, LoadedModel, Located, ModelFormat, RunOptions};
+use mbexpr::integrate::Method;
+use mbexpr::{Order, utility};
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+create_exception!(
+    _core,
+    Error,
+    PyValueError,
+    "An expression, a model or a call that mbexpr refuses: `message`, and `line` and `column` (from 1) in the expression or the model's file, or None when it speaks of no place."
+);
+
+/// The Python exception of a located error.
+fn raise(py: Python<'_>, located: &Located) -> PyErr {
+    let error = Error::new_err(located.to_string());
+    let value = error.value(py);
+    let place = |number: usize| (number > 0).then_some(number);
+    // Setting attributes on a fresh exception instance cannot fail.
+    let _ = value.setattr("message", &located.message);
+    let _ = value.setattr("line", place(located.line));
+    let _ = value.setattr("column", place(located.column));
+    error
+}
+
+/// The values of a numpy array as a slice: itself when contiguous, a copy
+/// when strided.
+fn values<'a>(array: &'a PyReadonlyArray1<'_, f64>) -> Cow<'a, [f64]> {
+    match array.as_slice() {
+        Ok(slice) => Cow::Borrowed(slice),
+        Err(_) => Cow::Owned(array.as_array().to_vec()),
+    }
+}
+
+/// An expression compiled for named inputs (see `mbexpr.Program`).
+#[pyclass(frozen, module = "mbexpr._core")]
+struct Program {
+    expression: Expression,
+}
+
+/// The flat outputs of a bulk evaluation: values, gradients, Hessians, status.
+type BulkArrays<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<i32>>,
+);
+
+#[pymethods]
+impl Program {
+    #[new]
+    fn new(py: Python<'_>, text: &str, inputs: Vec<String>) -> PyResult<Program> {
+        let expression = Expression::compile(text, &inputs).map_err(|error| raise(py, &error))?;
+        Ok(Program { expression })
+    }
+
+    /// The text it was compiled from.
+    #[getter]
+    fn text(&self) -> &str {
+        self.expression.text()
+    }
+
+    /// The input names, in order.
+    #[getter]
+    fn inputs(&self) -> Vec<String> {
+        self.expression.inputs().to_vec()
+    }
+
+    /// Evaluates at the points of `columns` (one 1-D array per input, of
+    /// equal length) for `order` 0, 1 or 2 in the inputs `wrt`, on
+    /// `threads` threads (0: every core), without the GIL. Returns flat
+    /// values, gradients (`k` a point), Hessians (`k²`) and the status.
+    fn evaluate<'py>(
+        &self,
+        py: Python<'py>,
+        columns: Vec<PyReadonlyArray1<'py, f64>>,
+        wrt: Vec<usize>,
+        order: u8,
+        threads: usize,
+    ) -> PyResult<BulkArrays<'py>> {
+        let order = Order::from_number(order)
+            .ok_or_else(|| PyValueError::new_err(format!("order {order} is not 0, 1 or 2")))?;
+        let columns: Vec<Cow<'_, [f64]>> = columns.iter().map(values).collect();
+        let n = columns.first().map_or(0, |column| column.len());
+        let k = wrt.len();
+        let widths = [
+            if order >= Order::Gradient { k } else { 0 },
+            if order >= Order::Hessian { k * k } else { 0 },
+        ];
+        let (mut values, mut gradients, mut hessians, mut status) = (
+            vec![0.0; n],
+            vec![0.0; n * widths[0]],
+            vec![0.0; n * widths[1]],
+            vec![0; n],
+        );
+        let slices: Vec<&[f64]> = columns.iter().map(|column| column.as_ref()).collect();
+        let expression = &self.expression;
+        py.detach(|| {
+            let out = Bulk {
+                values: &mut values,
+                gradients: &mut gradients,
+                hessians: &mut hessians,
+                status: &mut status,
+            };
+            expression.evaluate_bulk(&slices, &wrt, order, out, threads)
+        })
+        .map_err(|error| raise(py, &error))?;
+        Ok((
+            values.into_pyarray(py),
+            gradients.into_pyarray(py),
+            hessians.into_pyarray(py),
+            status.into_pyarray(py),
+        ))
+    }
+
+    /// Raises the error of one point (after a bulk status of 1 there).
+    fn explain(&self, py: Python<'_>, point: Vec<f64>, wrt: Vec<usize>, order: u8) -> PyResult<()> {
+        let order = Order::from_number(order).unwrap_or(Order::Value);
+        match self.expression.evaluate(&point, &wrt, order) {
+            Ok(_) => Ok(()),
+            Err(error) => Err(raise(py, &error)),
+        }
+    }
+}
+
+/// The utility subroutine `name` over columns of arguments (the calling
+/// sequence's order, then IORD): VECTOR per point, flat (3 a point); the
+/// first point that sets ERRFLG raises, with its index.
+#[pyfunction]
+fn utility_bulk<'py>(
+    py: Python<'py>,
+    name: &str,
+    columns: Vec<PyReadonlyArray1<'py, f64>>,
+    iord: i32,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let columns: Vec<Cow<'_, [f64]>> = columns.iter().map(values).collect();
+    let n = columns.first().map_or(0, |column| column.len());
+    let arity = match name {
+        "bistop" => 8,
+        "impact" => 7,
+        "step" => 5,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "no utility subroutine {name}"
+            )));
+        }
+    };
+    if columns.len() != arity {
+        return Err(PyValueError::new_err(format!(
+            "{name} takes {arity} arguments before iord, not {}",
+            columns.len()
+        )));
+    }
+    let run = || -> Result<Vec<f64>, (usize, String)> {
+        let mut out = Vec::with_capacity(3 * n);
+        let mut a = [0.0; 8];
+        for p in 0..n {
+            for (slot, column) in a.iter_mut().zip(&columns) {
+                *slot = column[p];
+            }
+            let vector = match name {
+                "bistop" => utility::bistop(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], iord),
+                "impact" => utility::impact(a[0], a[1], a[2], a[3], a[4], a[5], a[6], iord),
+                _ => {
+                    utility::step(a[0], a[1], a[2], a[3], a[4], iord).map(|value| [value, 0.0, 0.0])
+                }
+            }
+            .map_err(|error| (p, error.to_string()))?;
+            out.extend(vector);
+        }
+        Ok(out)
+    };
+    match py.detach(run) {
+        Ok(out) => Ok(out.into_pyarray(py)),
+        Err((point, message)) => {
+            let located = Located::nowhere(format!("{name} at point {point}: {message}"));
+            Err(raise(py, &located))
+        }
+    }
+}
+
+/// The problems of the model file at `path`: `(message, line, column)`.
+#[pyfunction]
+fn check_model(py: Python<'_>, path: &str) -> PyResult<Vec<(String, usize, usize)>> {
+    let found = py
+        .detach(|| embed::check_model_file(path))
+        .map_err(|error| raise(py, &error))?;
+    Ok(found
+        .into_iter()
+        .map(|problem| (problem.message, problem.line, problem.column))
+        .collect())
+}
+
+/// A branch switch: `(time, function, from, to, line, column)`.
+type EventTuple = (f64, String, String, String, usize, usize);
+
+/// A run: the column names, the rows flat, the events and the statistics.
+type RunTuple<'py> = (
+    Vec<String>,
+    Bound<'py, PyArray1<f64>>,
+    Vec<EventTuple>,
+    Bound<'py, PyDict>,
+);
+
+/// Runs a model (a file when `is_path`, else text of `format` "dataset"
+/// or "scene"), without the GIL. Returns the column names, the rows flat,
+/// the events and the statistics.
+#[pyfunction]
+#[pyo3(signature = (source, is_path, format, method, end, steps, rtol, atol, h_max, max_steps))]
+#[allow(clippy::too_many_arguments)]
+fn simulate<'py>(
+    py: Python<'py>,
+    source: String,
+    is_path: bool,
+    format: &str,
+    method: &str,
+    end: Option<f64>,
+    steps: Option<usize>,
+    rtol: f64,
+    atol: Option<f64>,
+    h_max: Option<f64>,
+    max_steps: Option<usize>,
+) -> PyResult<RunTuple<'py>> {
+    let method: Method = method
+        .parse()
+        .map_err(|error: mbexpr::integrate::UnknownMethod| {
+            raise(py, &Located::nowhere(error.to_string()))
+        })?;
+    let format = match format {
+        "dataset" => ModelFormat::Dataset,
+        "scene" => ModelFormat::Scene,
+        other => {
+            let message = format!("format {other:?} is neither \"dataset\" nor \"scene\"");
+            return Err(raise(py, &Located::nowhere(message)));
+        }
+    };
+    let options = RunOptions {
+        method,
+        end,
+        steps,
+        rtol,
+        atol,
+        h_max,
+        max_steps,
+    };
+    let outcome = py.detach(|| {
+        let loaded = if is_path {
+            LoadedModel::from_path(&source)
+        } else {
+            LoadedModel::from_text(source, format)
+        };
+        let loaded = loaded.map_err(Located::first_of)?;
+        let mut rows = Vec::new();
+        let ran = loaded.simulate(&options, |time, values| {
+            rows.push(time);
+            rows.extend_from_slice(values);
+            true
+        })?;
+        Ok::<_, Located>((loaded.columns(), rows, ran))
+    });
+    let (columns, rows, ran) = outcome.map_err(|error| raise(py, &error))?;
+    let events = ran
+        .events
+        .into_iter()
+        .map(|event| {
+            (
+                event.time,
+                event.function,
+                event.from,
+                event.to,
+                event.place.line,
+                event.place.column,
+            )
+        })
+        .collect();
+    let stats = ran.summary.stats;
+    let statistics = PyDict::new(py);
+    statistics.set_item("steps", stats.steps)?;
+    statistics.set_item("rejected", stats.rejected)?;
+    statistics.set_item("rhs_evaluations", stats.rhs_evaluations)?;
+    statistics.set_item("jacobian_evaluations", stats.jacobian_evaluations)?;
+    statistics.set_item("lu_decompositions", stats.lu_decompositions)?;
+    statistics.set_item("wall_time", ran.summary.wall_time.as_secs_f64())?;
+    statistics.set_item("stiff_from", ran.summary.stiff_from)?;
+    Ok((columns, rows.into_pyarray(py), events, statistics))
+}
+
+/// The extension module.
+#[pymodule]
+fn _core(module: &Bound<'_, PyModule>) -> PyResult<()> {
+    module.add("Error", module.py().get_type::<Error>())?;
+    module.add_class::<Program>()?;
+    module.add_function(wrap_pyfunction!(utility_bulk, module)?)?;
+    module.add_function(wrap_pyfunction!(check_model, module)?)?;
+    module.add_function(wrap_pyfunction!(simulate, module)?)?;
+    Ok(())
+}
