@@ -46,24 +46,20 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-mod dataset;
+mod equations;
 mod error;
-mod estimate;
-mod mechanics;
+mod initial;
 mod model;
+mod read;
 mod run;
-mod scene_file;
-mod sink;
-mod sparsity;
-mod switch;
 
-pub use dataset::{from_dataset, run_settings};
 pub use error::{Place, SimulateError};
-pub use estimate::ErrorEstimate;
 pub use model::{Diff, Expression, Force, MassProperties, Model, Output};
-pub use run::{DEFAULT_MAX_STEPS, Equations, Event, SMALLEST_RTOL, Settings, Summary};
-pub use scene_file::from_scene;
-pub use sink::{MethodChange, Sink};
+pub use read::{from_dataset, from_scene, run_settings};
+pub use run::{
+    DEFAULT_MAX_STEPS, Equations, ErrorEstimate, Event, MethodChange, SMALLEST_RTOL, Settings,
+    Sink, Summary,
+};
 
 use crate::compile::{Program, compile_outputs};
 use crate::scene::diff_input;

@@ -6,7 +6,7 @@
 
 use std::ops::ControlFlow;
 
-use super::run::Event;
+use super::Event;
 use crate::integrate::Method;
 
 /// A change of method under [`Method::Auto`].

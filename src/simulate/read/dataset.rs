@@ -9,13 +9,13 @@ use std::collections::HashMap;
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::error::SimulateError;
-use super::model::{Diff, Expression, Force, MassProperties, Model, Output};
 use crate::Shown;
 use crate::check::Reference;
 use crate::model::initial::{number, numbers};
 use crate::model::{Dataset, ModelCheck, Statement, Value, initial_scene, is_kind};
 use crate::scene::{Scene, Target};
+use crate::simulate::error::SimulateError;
+use crate::simulate::model::{Diff, Expression, Force, MassProperties, Model, Output};
 use crate::span::Span;
 
 /// Statements that need a constraint solver.

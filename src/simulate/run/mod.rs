@@ -7,10 +7,16 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
+mod estimate;
+mod sink;
+mod switch;
+
+pub use estimate::ErrorEstimate;
+pub use sink::{MethodChange, Sink};
+
+use super::equations::{BODY_STATES, Mechanics, body_offset};
 use super::error::SimulateError;
-use super::mechanics::{BODY_STATES, Mechanics, body_offset};
-use super::sink::{MethodChange, RowsOnly, Sink};
-use super::switch::{Held, Switch, find_switch, switching_slope};
+use super::initial::initial_state;
 use super::{Model, Simulation};
 use crate::Shown;
 use crate::compile::{Program, SiteKind};
@@ -19,6 +25,8 @@ use crate::integrate::{
     AbsoluteTolerance, IntegrateError, Method, Options, Rejection, Stats, Stepper,
 };
 use crate::laws::branch::{self, Code};
+use sink::RowsOnly;
+use switch::{Held, Switch, find_switch, switching_slope};
 
 /// How to run a simulation.
 #[derive(Clone, Debug, PartialEq)]
@@ -168,24 +176,6 @@ fn add(a: Stats, b: Stats) -> Stats {
 /// [`CHATTER_COUNT`], are chattering.
 const CHATTER_WINDOW: f64 = 1e-9;
 const CHATTER_COUNT: usize = 100;
-
-/// The initial state of the model.
-pub(crate) fn initial_state(model: &Model) -> Vec<f64> {
-    let mut y: Vec<f64> = model.diffs.iter().map(|diff| diff.initial).collect();
-    for (body, state) in model.scene.bodies.iter().enumerate() {
-        let rotation = state.orientation;
-        let arm = rotation * model.masses[body].centre;
-        let centre = state.position + arm;
-        let velocity = state.velocity + state.angular_velocity.cross(&arm);
-        let omega = rotation.inverse() * state.angular_velocity;
-        let q = rotation.quaternion();
-        y.extend(centre.iter());
-        y.extend([q.w, q.i, q.j, q.k]);
-        y.extend(velocity.iter());
-        y.extend(omega.iter());
-    }
-    y
-}
 
 /// The rows' values at state `y` (everything but the time).
 struct Rows<'m> {
