@@ -13,7 +13,7 @@ use rayon::prelude::*;
 use crate::eval::{EvalError, Evaluation, Order};
 use crate::integrate::Method;
 use crate::model::{self, FileKind};
-use crate::simulate::{self, Model, Place, Settings, SimulateError, Simulation, Summary};
+use crate::simulate::{self, Model, Place, Settings, SimulateError, Simulation, Summary, Unread};
 use crate::span::{LineIndex, Location, Span};
 use crate::{Program, Shown};
 
@@ -422,14 +422,16 @@ pub fn check_model_file(path: &str) -> Result<Vec<Diagnostic>, Located> {
         ))
     })?;
     let dataset = model::read(&text, kind);
-    Ok(placed_problems(&text, &model::check_model(&text, &dataset)))
+    Ok(placed_problems(
+        &text,
+        &model::check_model(&text, &dataset).problems,
+    ))
 }
 
 /// The problems of a checked model file at their places.
-fn placed_problems(text: &str, report: &model::ModelCheck) -> Vec<Diagnostic> {
+fn placed_problems(text: &str, problems: &[model::Problem]) -> Vec<Diagnostic> {
     let lines = LineIndex::new(text);
-    report
-        .problems
+    problems
         .iter()
         .map(|problem| {
             let Location { line, column } = lines.location(problem.error.span().start);
@@ -461,14 +463,7 @@ fn locate(text: &str, model: Option<&Model>, error: &SimulateError) -> Located {
     }
 }
 
-/// What a model's text is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ModelFormat {
-    /// A solver dataset (`.adm`).
-    Dataset,
-    /// A scene file (TOML).
-    Scene,
-}
+pub use crate::simulate::ModelFormat;
 
 /// A model read from its file or text, ready to simulate.
 pub struct LoadedModel {
@@ -538,26 +533,13 @@ impl LoadedModel {
     /// Reads the model of the file at `path`: a scene file (`.toml`) or a
     /// solver dataset, with the END and STEPS of an `.acf` beside it.
     pub fn from_path(path: &str) -> Result<LoadedModel, Vec<Located>> {
+        let (format, kind) = simulate::format_of_path(path, None)
+            .map_err(|message| vec![Located::nowhere(message)])?;
         let text = read_text(path).map_err(|error| vec![error])?;
-        if is_scene_path(path) {
-            return LoadedModel::from_text(text, ModelFormat::Scene);
-        }
-        if FileKind::of_path(path) == Some(FileKind::Cmd) {
-            return Err(vec![Located::nowhere(format!(
-                "{path}: an Adams View command file is not simulated: give a solver dataset (.adm) or a scene file (.toml)"
-            ))]);
-        }
-        let kind = match FileKind::of_path(path) {
-            Some(FileKind::Acf) => FileKind::Acf,
-            _ => FileKind::Adm,
-        };
-        let mut loaded = LoadedModel::read(text, ModelFormat::Dataset, kind)?;
-        let commands = std::path::Path::new(path).with_extension("acf");
-        if !path.to_ascii_lowercase().ends_with(".acf")
-            && let Ok(text) = std::fs::read_to_string(&commands)
-        {
-            let dataset = model::read(&text, FileKind::Acf);
-            loaded.model.run = simulate::run_settings(&dataset).map(|(end, steps, _)| (end, steps));
+        let mut loaded = LoadedModel::read(text, format, kind)?;
+        if format == ModelFormat::Dataset {
+            loaded.model.run = simulate::run_settings_beside(path)
+                .map_err(|message| vec![Located::nowhere(message)])?;
         }
         Ok(loaded)
     }
@@ -573,20 +555,10 @@ impl LoadedModel {
         format: ModelFormat,
         kind: FileKind,
     ) -> Result<LoadedModel, Vec<Located>> {
-        let model = match format {
-            ModelFormat::Scene => simulate::from_scene(&text),
-            ModelFormat::Dataset => {
-                let dataset = model::read(&text, kind);
-                let report = model::check_model(&text, &dataset);
-                if !report.problems.is_empty() {
-                    return Err(placed_problems(&text, &report));
-                }
-                simulate::from_dataset(&dataset, &report)
-            }
-        };
-        match model {
+        match simulate::from_text(&text, format, kind) {
             Ok(model) => Ok(LoadedModel { text, model }),
-            Err(errors) => Err(errors
+            Err(Unread::Unchecked(problems)) => Err(placed_problems(&text, &problems)),
+            Err(Unread::Refused(errors)) => Err(errors
                 .iter()
                 .map(|error| locate(&text, None, error))
                 .collect()),

@@ -204,6 +204,23 @@ fn room_violations(simulate_root: &Path) -> String {
     report
 }
 
+/// What `find` reports on a folder of `files` (path and text each).
+fn report_on(files: &[(&str, &str)], find: fn(&Path) -> String) -> String {
+    let root = std::env::temp_dir().join(format!(
+        "mbexpr-architecture-{}-{}",
+        std::process::id(),
+        files[1].0.replace('/', "-")
+    ));
+    for (path, text) in files {
+        let path = root.join(path);
+        fs::create_dir_all(path.parent().unwrap()).unwrap();
+        fs::write(path, text).unwrap();
+    }
+    let report = find(&root);
+    fs::remove_dir_all(&root).unwrap();
+    report
+}
+
 #[test]
 fn the_simulator_rooms_flow_one_way() {
     let simulate_root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/simulate");
@@ -213,7 +230,6 @@ fn the_simulator_rooms_flow_one_way() {
 
 #[test]
 fn a_room_naming_one_above_is_found() {
-    let root = std::env::temp_dir().join(format!("mbexpr-rooms-{}", std::process::id()));
     let files = [
         ("mod.rs", "use run::Settings;\n"),
         ("read/dataset.rs", "use crate::simulate::model::Model;\n"),
@@ -223,16 +239,76 @@ fn a_room_naming_one_above_is_found() {
         ),
         ("lounge.rs", "\n"),
     ];
-    for (path, text) in files {
-        let path = root.join(path);
-        fs::create_dir_all(path.parent().unwrap()).unwrap();
-        fs::write(path, text).unwrap();
-    }
-    let report = room_violations(&root);
-    fs::remove_dir_all(&root).unwrap();
+    let report = report_on(&files, room_violations);
     insta::assert_snapshot!(report, @r"
     simulate/equations/mod.rs: `equations` names `run`, a room above it
     simulate/lounge.rs: room `lounge` is not in SIMULATE_ROOMS
+    ");
+}
+
+/// One line per command of the binary at `binary_root` (a file or folder
+/// beside `main.rs`, but `support`) whose files name another command:
+/// what commands share lives in `support`, which names none.
+fn command_violations(binary_root: &Path) -> String {
+    let room_of = |path: &Path| {
+        let first = path.components().next().unwrap().as_os_str();
+        Path::new(first)
+            .file_stem()
+            .unwrap()
+            .to_str()
+            .unwrap()
+            .to_string()
+    };
+    let mut files = Vec::new();
+    source_files(binary_root, &mut files);
+    files.sort();
+    let commands: Vec<String> = fs::read_dir(binary_root)
+        .unwrap()
+        .map(|entry| room_of(Path::new(&entry.unwrap().file_name())))
+        .filter(|room| room != "main" && room != "support")
+        .collect();
+    let mut report = String::new();
+    for file in files.iter().filter(|file| file.is_file()) {
+        let relative = file.strip_prefix(binary_root).unwrap();
+        let room = room_of(relative);
+        if room == "main" {
+            continue; // the dispatcher names every command
+        }
+        let code = code_of(&fs::read_to_string(file).unwrap());
+        for named in imported_modules(&code, &BTreeMap::new()) {
+            if named != room && commands.contains(&named) {
+                report.push_str(&format!(
+                    "{}: `{room}` imports the command `{named}`: move what they share to support/\n",
+                    relative.display()
+                ));
+            }
+        }
+    }
+    report
+}
+
+#[test]
+fn commands_stand_alone() {
+    let binary_root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/bin/mbexpr");
+    let report = command_violations(&binary_root);
+    assert!(report.is_empty(), "commands that import another:\n{report}");
+}
+
+#[test]
+fn a_command_importing_another_is_found() {
+    let files = [
+        ("main.rs", "mod check;\nmod plot;\nuse crate::plot::Args;\n"),
+        ("check.rs", "use crate::support::files::read;\n"),
+        (
+            "plot/mod.rs",
+            "use crate::{check::Format, support};\nuse crate::plot::x;\n",
+        ),
+        ("support/files.rs", "use crate::check::read;\n"),
+    ];
+    let report = report_on(&files, command_violations);
+    insta::assert_snapshot!(report, @r"
+    plot/mod.rs: `plot` imports the command `check`: move what they share to support/
+    support/files.rs: `support` imports the command `check`: move what they share to support/
     ");
 }
 
@@ -245,7 +321,6 @@ fn the_pipeline_flows_one_way() {
 
 #[test]
 fn an_import_that_runs_back_up_is_found() {
-    let root = std::env::temp_dir().join(format!("mbexpr-layers-{}", std::process::id()));
     let files = [
         (
             "lib.rs",
@@ -262,13 +337,7 @@ fn an_import_that_runs_back_up_is_found() {
         ("eval.rs", "use crate::{check, ops::Op};\n"),
         ("gadget.rs", "\n"),
     ];
-    for (path, text) in files {
-        let path = root.join(path);
-        fs::create_dir_all(path.parent().unwrap()).unwrap();
-        fs::write(path, text).unwrap();
-    }
-    let report = violations(&root);
-    fs::remove_dir_all(&root).unwrap();
+    let report = report_on(&files, violations);
     insta::assert_snapshot!(report, @r"
     check/fold.rs: `check` imports `eval`, which is above it
     check/fold.rs: `check` imports `compile`, which is above it

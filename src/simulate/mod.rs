@@ -55,7 +55,10 @@ mod run;
 
 pub use error::{Place, SimulateError};
 pub use model::{Diff, Expression, Force, MassProperties, Model, Output};
-pub use read::{from_dataset, from_scene, run_settings};
+pub use read::{
+    ModelFormat, Unread, format_of_path, from_dataset, from_scene, from_text, run_settings,
+    run_settings_beside,
+};
 pub use run::{
     DEFAULT_MAX_STEPS, Equations, ErrorEstimate, Event, MethodChange, SMALLEST_RTOL, Settings,
     Sink, Summary,

@@ -1,16 +1,11 @@
 //! The `mbexpr` command: a thin layer over the library.
 
-mod binding;
-mod check_cmd;
-mod eval_cmd;
-mod model_eval;
+mod check;
+mod eval;
 mod plot;
-mod points;
-mod record;
-mod render;
 mod repl;
-mod simulate_cmd;
-mod sweep;
+mod simulate;
+mod support;
 
 use std::io::{self, Write};
 use std::process::ExitCode;
@@ -34,9 +29,9 @@ enum Command {
         expression: String,
     },
     /// Check files of expressions, one per line (`!` starts a comment line; `-` is standard input).
-    Check(check_cmd::Args),
+    Check(check::Args),
     /// Evaluate an expression, with its derivatives on request.
-    Eval(eval_cmd::Args),
+    Eval(eval::Args),
     /// Plot an expression against one variable to an SVG file.
     Plot(plot::Args),
     /// Evaluate expressions interactively (or line by line from a pipe).
@@ -52,7 +47,7 @@ enum Command {
         command: Option<String>,
     },
     /// Integrate a model's DIFF equations and free parts in time.
-    Simulate(simulate_cmd::Args),
+    Simulate(simulate::Args),
 }
 
 /// How a run ended, as the process's exit status.
@@ -146,12 +141,13 @@ fn run(cli: Cli) -> Result<Outcome, Fatal> {
                 Outcome::Success
             }
             Err(error) => {
-                let text = render::diagnostic("", &expression, error.span(), &error.to_string());
+                let text =
+                    support::render::diagnostic("", &expression, error.span(), &error.to_string());
                 return Err(Fatal::input(text));
             }
         },
-        Command::Check(args) => check_cmd::run(&args, &mut out)?,
-        Command::Eval(args) => eval_cmd::run(&args, &mut out)?,
+        Command::Check(args) => check::run(&args, &mut out)?,
+        Command::Eval(args) => eval::run(&args, &mut out)?,
         Command::Plot(args) => plot::run(&args, &mut out)?,
         Command::Repl(args) => repl::run(&args, &mut out)?,
         Command::Completions { shell } => {
@@ -166,7 +162,7 @@ fn run(cli: Cli) -> Result<Outcome, Fatal> {
             manual_page(command.as_deref())?.render(&mut out)?;
             Outcome::Success
         }
-        Command::Simulate(args) => simulate_cmd::run(&args, &mut out)?,
+        Command::Simulate(args) => simulate::run(&args, &mut out)?,
     };
     out.flush()?;
     Ok(outcome)

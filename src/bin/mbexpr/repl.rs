@@ -11,8 +11,9 @@ use mbexpr::{Counted, Order, Scene};
 use rustyline::completion::{Completer, Pair};
 use rustyline::{Context, Helper, Highlighter, Hinter, Validator};
 
-use crate::eval_cmd::{read_scene, show};
-use crate::render::{diagnostic, diagnostics};
+use crate::support::files::read_scene;
+use crate::support::render::{diagnostic, diagnostics};
+use crate::support::values::show;
 use crate::{Fatal, Outcome};
 
 #[derive(clap::Args)]
@@ -145,10 +146,13 @@ impl Session {
             let problems = errors.iter().map(|error| (error.span(), error.to_string()));
             diagnostics("", text, problems)
         })?;
-        let bound = crate::binding::bind(&checked, self.scene.as_ref(), &self.bindings, &self.wrt)
-            .map_err(|errors| {
-                crate::binding::render(&errors, "", text, |name| format!(":set {name} = VALUE"))
-            })?;
+        let bound =
+            crate::support::binding::bind(&checked, self.scene.as_ref(), &self.bindings, &self.wrt)
+                .map_err(|errors| {
+                    crate::support::binding::render(&errors, "", text, |name| {
+                        format!(":set {name} = VALUE")
+                    })
+                })?;
         let directions: Vec<usize> = self
             .wrt
             .iter()
@@ -161,7 +165,7 @@ impl Session {
         let mut result = format_result(&evaluation, &self.wrt, compact);
         if self.order() > Order::Value && self.wrt.is_empty() {
             let program = &bound.program;
-            result += &crate::binding::no_directions(program, ":wrt NAME, NAME");
+            result += &crate::support::binding::no_directions(program, ":wrt NAME, NAME");
         }
         Ok(result)
     }
@@ -345,10 +349,13 @@ impl Session {
             .map_err(|error| diagnostic("", text, error.span(), &error.to_string()))?;
         let checked = mbexpr::check(&tree)
             .map_err(|errors| diagnostic("", text, errors[0].span(), &errors[0].to_string()))?;
-        let bound = crate::binding::bind(&checked, self.scene.as_ref(), &self.bindings, &[])
-            .map_err(|errors| {
-                crate::binding::render(&errors, "", text, |name| format!(":set {name} = VALUE"))
-            })?;
+        let bound =
+            crate::support::binding::bind(&checked, self.scene.as_ref(), &self.bindings, &[])
+                .map_err(|errors| {
+                    crate::support::binding::render(&errors, "", text, |name| {
+                        format!(":set {name} = VALUE")
+                    })
+                })?;
         let evaluation = bound
             .program
             .evaluate(&bound.values, &[], Order::Value)
@@ -399,7 +406,7 @@ impl Session {
     /// A..B to FILE.svg`.
     fn plot(&self, rest: &str) -> Result<String, String> {
         let command = PlotCommand::parse(rest)?;
-        let (over, start, end) = crate::plot::parse_range(&command.range)
+        let (over, start, end) = crate::support::plotting::parse_range(&command.range)
             .map_err(|message| format!("error: {message}"))?;
         let expression = &*self.expand(command.expression.trim());
         let file = command.file.as_str();
@@ -408,7 +415,7 @@ impl Session {
         let checked = mbexpr::check(&tree).map_err(|errors| {
             diagnostic("", expression, errors[0].span(), &errors[0].to_string())
         })?;
-        let request = crate::plot::PlotRequest {
+        let request = crate::support::plotting::PlotRequest {
             text: expression,
             checked: &checked,
             scene: self.scene.as_ref(),
@@ -418,8 +425,9 @@ impl Session {
             samples: command.samples,
             derivatives: command.derivatives || self.order() > Order::Value,
         };
-        let plot = crate::plot::curves(&request).map_err(|message| format!("error: {message}"))?;
-        crate::plot::render_svg(file, &over, &plot)
+        let plot = crate::support::plotting::curves(&request)
+            .map_err(|message| format!("error: {message}"))?;
+        crate::support::plotting::render_svg(file, &over, &plot)
             .map_err(|message| format!("error: cannot write {file}: {message}"))?;
         Ok(plot.summary(file, &over))
     }

@@ -1,7 +1,7 @@
 //! `mbexpr check FILE...`: every expression of every file, every problem.
 
 use std::collections::HashSet;
-use std::io::{self, Read, Write};
+use std::io::Write;
 
 use clap::ValueEnum;
 use serde_json::{Value, json};
@@ -9,7 +9,8 @@ use serde_json::{Value, json};
 use mbexpr::model::{self, FileKind};
 use mbexpr::{CompileError, Counted, LineIndex, Span};
 
-use crate::render::{diagnostics, line_diagnostics};
+use crate::support::files::read;
+use crate::support::render::{diagnostics, line_diagnostics};
 use crate::{Fatal, Outcome};
 
 /// Output formats of `check`.
@@ -116,30 +117,6 @@ fn problems(expression: &str, names: Option<&[String]>, unbound: &mut Unbound) -
         }
     }
     found
-}
-
-/// The text of `file`, decoded (`-` is standard input; docs/encoding.md),
-/// or why there is none: it cannot be read, or it is binary.
-pub(crate) fn read(file: &str) -> Result<String, String> {
-    let mut bytes = Vec::new();
-    if file == "-" {
-        io::stdin()
-            .read_to_end(&mut bytes)
-            .map_err(|error| format!("cannot read standard input: {error}"))?;
-    } else {
-        bytes = std::fs::read(file).map_err(|error| format!("cannot read {file}: {error}"))?;
-    }
-    let (text, encoding) = model::decode_owned(bytes);
-    if model::is_binary(&text) {
-        let name = if file == "-" { "standard input" } else { file };
-        return Err(format!(
-            "{name}: not a text file (it holds NUL or other control bytes): give a model file or a file of expressions"
-        ));
-    }
-    if encoding != "UTF-8" {
-        eprintln!("note: {file} is not UTF-8: read as {encoding}");
-    }
-    Ok(text)
 }
 
 /// `{"line", "column", "message"}` of a problem at `span`.

@@ -9,10 +9,11 @@ use csv::ByteRecord;
 use mbexpr::{Evaluation, Order, Program, Run};
 use rayon::prelude::*;
 
+use super::Format;
 use crate::Fatal;
-use crate::eval_cmd::{Format, push_aligned};
-use crate::points::{Batch, PointsFile, line_of, read_values};
-use crate::record::{Problem, Record};
+use crate::support::points::{Batch, PointsFile, line_of, read_values};
+use crate::support::record::{Problem, Record};
+use crate::support::values::push_aligned;
 
 /// Rows a core takes at a time.
 const CHUNK: usize = 256;

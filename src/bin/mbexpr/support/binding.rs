@@ -71,7 +71,7 @@ pub fn render(
     let problems = errors
         .iter()
         .map(|error| (error.span(), message(error, &how_to_set)));
-    crate::render::diagnostics(origin, source, problems)
+    super::render::diagnostics(origin, source, problems)
 }
 
 /// Why a requested gradient is empty: the expression reads no input at

@@ -13,16 +13,16 @@ use std::time::{Duration, Instant};
 
 use clap::ValueEnum;
 use mbexpr::integrate::Method;
-use mbexpr::model::{self, FileKind};
 use mbexpr::simulate::{
-    self, ErrorEstimate, Event, MethodChange, Model, Place, Settings, SimulateError, Simulation,
-    Sink, Summary,
+    self, ErrorEstimate, Event, MethodChange, Model, ModelFormat, Place, Settings, SimulateError,
+    Simulation, Sink, Summary, Unread,
 };
 use mbexpr::{Counted, Shown};
 use serde_json::json;
 
-use crate::plot::{Curve, Plot, check_svg_name, render_svg};
-use crate::render::diagnostic;
+use crate::support::files;
+use crate::support::plotting::{Curve, Plot, check_svg_name, render_svg};
+use crate::support::render::diagnostic;
 use crate::{Fatal, Outcome};
 
 /// How rows are written.
@@ -145,70 +145,38 @@ impl Source {
 /// Reads the model of `path` (`-`: standard input), reporting every problem
 /// at its place.
 fn read_model(path: &str, kind: Option<ModelKind>) -> Result<(Source, Model), Fatal> {
-    let text = crate::check_cmd::read(path)
+    let format = kind.map(|kind| match kind {
+        ModelKind::Adm => ModelFormat::Dataset,
+        ModelKind::Scene => ModelFormat::Scene,
+    });
+    let (format, file_kind) = simulate::format_of_path(path, format)
         .map_err(|message| Fatal::usage(format!("error: {message}")))?;
+    let text = files::read(path).map_err(|message| Fatal::usage(format!("error: {message}")))?;
     let source = Source {
         path: path.to_string(),
         text,
     };
-    let kind = kind.unwrap_or(if path.to_ascii_lowercase().ends_with(".toml") {
-        ModelKind::Scene
-    } else {
-        ModelKind::Adm
-    });
-    let model = if kind == ModelKind::Scene {
-        simulate::from_scene(&source.text).map_err(|errors| source.render_all(None, &errors))?
-    } else {
-        let kind = match FileKind::of_path(path) {
-            Some(FileKind::Acf) => FileKind::Acf,
-            Some(FileKind::Cmd) => {
-                return Err(Fatal::usage(format!(
-                    "error: {path}: an Adams View command file is not simulated: give a solver dataset (.adm) or a scene file (.toml)"
-                )));
-            }
-            _ => FileKind::Adm,
-        };
-        let dataset = model::read(&source.text, kind);
-        let report = model::check_model(&source.text, &dataset);
-        if !report.problems.is_empty() {
-            let texts: String = report
-                .problems
+    let mut model = match simulate::from_text(&source.text, format, file_kind) {
+        Ok(model) => model,
+        Err(Unread::Refused(errors)) => return Err(source.render_all(None, &errors)),
+        Err(Unread::Unchecked(problems)) => {
+            let texts: String = problems
                 .iter()
                 .map(|problem| {
-                    diagnostic(
-                        path,
-                        &source.text,
-                        problem.error.span(),
-                        &problem.error.to_string(),
-                    )
+                    let message = problem.error.to_string();
+                    diagnostic(path, &source.text, problem.error.span(), &message)
                 })
                 .collect();
             return Err(Fatal::input(format!(
                 "{texts}{path}: the model does not check: nothing simulated\n"
             )));
         }
-        let mut model = simulate::from_dataset(&dataset, &report)
-            .map_err(|errors| source.render_all(None, &errors))?;
-        model.run = commands_beside(path)?;
-        model
     };
-    Ok((source, model))
-}
-
-/// END and STEPS from `SIMULATE/DYNAMIC` in an `.acf` beside the dataset.
-fn commands_beside(path: &str) -> Result<Option<(f64, usize)>, Fatal> {
-    let commands = Path::new(path).with_extension("acf");
-    if path == "-" || path.to_ascii_lowercase().ends_with(".acf") || !commands.exists() {
-        return Ok(None);
+    if format == ModelFormat::Dataset {
+        model.run = simulate::run_settings_beside(path)
+            .map_err(|message| Fatal::usage(format!("error: {message}")))?;
     }
-    let text = std::fs::read_to_string(&commands).map_err(|error| {
-        Fatal::usage(format!(
-            "error: cannot read {}: {error}",
-            commands.display()
-        ))
-    })?;
-    let dataset = model::read(&text, FileKind::Acf);
-    Ok(simulate::run_settings(&dataset).map(|(end, steps, _)| (end, steps)))
+    Ok((source, model))
 }
 
 /// A progress bar on standard error, shown once a run has taken a second

@@ -6,14 +6,18 @@ use std::io::Write;
 use clap::ValueEnum;
 use std::collections::HashSet;
 
-use mbexpr::{Evaluation, Order, Program, Scene, Shown, ShownBuffer};
+use mbexpr::{Evaluation, Order, Program, Scene};
 use serde_json::Value;
 
-use crate::points::PointsFile;
-use crate::record::{Problem, Record};
+mod model;
+mod sweep;
 
-use crate::sweep::Sweep;
+use crate::support::files::read_scene_file;
+use crate::support::points::PointsFile;
+use crate::support::record::{Problem, Record};
+use crate::support::values::{parse_assignment, show};
 use crate::{Fatal, Outcome};
+use sweep::Sweep;
 
 /// Output formats of `eval`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -71,47 +75,6 @@ fn direction_name(text: &str) -> Result<String, String> {
     }
 }
 
-/// `NAME=VALUE` to its parts, VALUE a constant expression of the language
-/// (`30D`, `1D3`, `2*PI`), as `:set` takes it in the REPL.
-pub fn parse_assignment(assignment: &str) -> Result<(String, f64), Fatal> {
-    let (name, value) = assignment
-        .split_once('=')
-        .ok_or_else(|| Fatal::usage(format!("error: --set {assignment}: write NAME=VALUE")))?;
-    let value = constant_value(value).map_err(|message| {
-        Fatal::usage(format!(
-            "error: --set {assignment}: {message} (a --set value is a constant expression)"
-        ))
-    })?;
-    Ok((name.trim().to_string(), value))
-}
-
-/// The value of the constant expression `text`, or the first reason it has
-/// none.
-fn constant_value(text: &str) -> Result<f64, String> {
-    let tree = mbexpr::parse(text).map_err(|error| error.to_string())?;
-    let checked = mbexpr::check(&tree).map_err(|errors| errors[0].to_string())?;
-    let program = mbexpr::compile::<&str>(&checked, &[]).map_err(|errors| errors[0].to_string())?;
-    program.value(&[]).map_err(|error| error.to_string())
-}
-
-/// A number as text, as the library's messages show numbers
-/// ([`mbexpr::Shown`]).
-pub fn show(value: f64) -> String {
-    Shown(value).to_string()
-}
-
-/// Appends [`show`]'s text of `value`, right-aligned in `width` bytes.
-pub fn push_aligned(out: &mut Vec<u8>, value: f64, width: usize) {
-    const BLANKS: [u8; 32] = [b' '; 32];
-    let mut buffer = ShownBuffer::new();
-    let pieces = Shown(value).pieces(&mut buffer);
-    let length: usize = pieces.iter().map(|piece| piece.len()).sum();
-    out.extend_from_slice(&BLANKS[..width.saturating_sub(length).min(BLANKS.len())]);
-    for piece in pieces {
-        out.extend_from_slice(piece.as_bytes());
-    }
-}
-
 fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
     let mut text = format!("value  {}\n", show(evaluation.value));
     let width = wrt
@@ -159,54 +122,6 @@ fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
     text
 }
 
-/// The scene of the file `path`, or every problem of it at its place.
-pub fn read_scene(path: &str) -> Result<Scene, Fatal> {
-    read_scene_file(path).map(|file| file.scene)
-}
-
-/// A scene and the file it was read from, whose text its messages quote.
-struct SceneFile {
-    path: String,
-    text: String,
-    scene: Scene,
-}
-
-impl SceneFile {
-    /// `problems` of the scene's named expression `name` (spans into its
-    /// text), rendered at their places in the file.
-    fn render(&self, name: &str, problems: &[Problem]) -> Option<String> {
-        let start = self.scene.expression_start(name)?;
-        let placed = problems.iter().filter_map(|problem| {
-            problem
-                .span
-                .map(|span| (span.shifted(start), problem.message.clone()))
-        });
-        Some(crate::render::diagnostics(&self.path, &self.text, placed))
-    }
-}
-
-fn read_scene_file(path: &str) -> Result<SceneFile, Fatal> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|error| Fatal::usage(format!("error: cannot read {path}: {error}")))?;
-    match Scene::from_toml(&text) {
-        Ok(scene) => Ok(SceneFile {
-            path: path.to_string(),
-            text,
-            scene,
-        }),
-        Err(errors) => {
-            let placed = errors
-                .iter()
-                .filter_map(|error| error.file_span().map(|span| (span, error.to_string())));
-            let mut message = crate::render::diagnostics(path, &text, placed);
-            for error in errors.iter().filter(|error| error.file_span().is_none()) {
-                message += &format!("error: {path}: {error}\n");
-            }
-            Err(Fatal::usage(message))
-        }
-    }
-}
-
 /// The result of one evaluation as a JSON object, its derivatives named.
 pub fn to_json(evaluation: &Evaluation, wrt: &[String]) -> Value {
     let record = Record {
@@ -247,7 +162,7 @@ struct Context<'a> {
 
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let result = match &args.model {
-        Some(path) => crate::model_eval::run(args, path, out),
+        Some(path) => model::run(args, path, out),
         None => run_expressions(args, out),
     };
     match result {
@@ -364,7 +279,7 @@ fn run_expressions(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> 
                     let placed = problems.iter().filter_map(|problem| {
                         problem.span.map(|span| (span, problem.message.clone()))
                     });
-                    crate::render::diagnostics(origin, text, placed)
+                    crate::support::render::diagnostics(origin, text, placed)
                 });
                 for problem in problems.iter().filter(|problem| problem.span.is_none()) {
                     rendered += &format!("error: {}\n", problem.message);
@@ -477,20 +392,21 @@ fn evaluate_expression(
                 .cloned(),
         );
     }
-    let bound = crate::binding::bind(&checked, context.scene, &context.assignments, &extra)
-        .map_err(|errors| {
-            Failure::Expression(
-                errors
-                    .iter()
-                    .map(|error| {
-                        let message = crate::binding::message(error, |name| {
-                            how_to_set(name, points.as_ref())
-                        });
-                        in_expression(error.span(), &message)
-                    })
-                    .collect(),
-            )
-        })?;
+    let bound =
+        crate::support::binding::bind(&checked, context.scene, &context.assignments, &extra)
+            .map_err(|errors| {
+                Failure::Expression(
+                    errors
+                        .iter()
+                        .map(|error| {
+                            let message = crate::support::binding::message(error, |name| {
+                                how_to_set(name, points.as_ref())
+                            });
+                            in_expression(error.span(), &message)
+                        })
+                        .collect(),
+                )
+            })?;
     let (program, values): (Program, Vec<f64>) = (bound.program, bound.values);
     let inputs = program.inputs();
 
@@ -524,7 +440,7 @@ fn evaluate_expression(
             Format::Text => {
                 write!(out, "{}", to_text(&evaluation, &wrt_names))?;
                 if order > Order::Value && wrt.is_empty() {
-                    let note = crate::binding::no_directions(&program, "--wrt NAME,NAME");
+                    let note = crate::support::binding::no_directions(&program, "--wrt NAME,NAME");
                     writeln!(out, "{}", note.trim_start())?;
                 }
             }
@@ -622,7 +538,7 @@ fn warn_of_unread_columns(points: &PointsFile, read: &[(usize, String)]) {
         .collect();
     eprintln!(
         "warning: the expression reads no column {} of {}",
-        crate::points::some_names(&unread),
+        crate::support::points::some_names(&unread),
         points.path
     );
 }
@@ -636,7 +552,7 @@ fn how_to_set(name: &str, points: Option<&PointsFile>) -> String {
             "--set {name}=VALUE or a column {name} in {}, whose header (line {}) names {}",
             points.path,
             points.header_line,
-            crate::points::some_names(&points.names)
+            crate::support::points::some_names(&points.names)
         ),
     }
 }
