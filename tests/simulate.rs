@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 17] = [
+    let cases: [(&str, &str, Settings); 19] = [
         (
             "a joint and a motion need a constraint solver",
             "joint
@@ -256,6 +256,31 @@ MARKER/1, PART = 1
 PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
 SFORCE/1, TRANSLATIONAL, I = 3, J = 1, FUNCTION = FX(3, 1)
+",
+            short.clone(),
+        ),
+        (
+            "refusals of one kind are one error at the first, in file order",
+            "grouped
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+BEAM/1, I = 3, J = 1, LENGTH = 1, IXX = 1, IYY = 1, IZZ = 1, AREA = 1
+CONTACT/7, IGEOM = 1, JGEOM = 2, STIFFNESS = 1, DAMPING = 1, EXPONENT = 2, DMAX = 1
+BEAM/2, I = 3, J = 1, LENGTH = 1, IXX = 1, IYY = 1, IZZ = 1, AREA = 1
+BEAM/3, I = 3, J = 1, LENGTH = 1, IXX = 1, IYY = 1, IZZ = 1, AREA = 1
+",
+            short.clone(),
+        ),
+        (
+            "a user subroutine is named for its statement",
+            "user
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+SFORCE/1, TRANSLATIONAL, I = 3, J = 1, FUNCTION = USER(7, 8)
 ",
             short,
         ),
@@ -918,4 +943,39 @@ fn the_estimated_error_is_the_true_error_within_a_factor() {
         );
     }
     assert!(!failed, "{report}");
+}
+
+/// The refusals of the corpus's models: one error per kind of statement
+/// and reason, at the first of them, in file order (FRS5 had 273).
+#[test]
+fn a_real_models_refusals_are_grouped_by_kind() {
+    let mut report = String::new();
+    for name in [
+        "alex-marinov__mbdyn__ant.adm",
+        "bthornton191__adamspy__FRS5_doe_8_LAUL_analysis.adm",
+        "bthornton191__adamspy__camelot_1_pull0_offset0.adm",
+        "bthornton191__adamspy__test_analysis_with_spikes.adm",
+    ] {
+        let Some(path) = crate::corpus::corpus_path(&format!("models/{name}")) else {
+            return;
+        };
+        let text = std::fs::read_to_string(path).unwrap();
+        let dataset = mbexpr::model::read(&text, mbexpr::model::FileKind::Adm);
+        let checked = mbexpr::model::check_model(&text, &dataset);
+        let errors = match simulate::from_dataset(&dataset, &checked) {
+            Ok(_) => Vec::new(),
+            Err(errors) => errors,
+        };
+        let lines = mbexpr::LineIndex::new(&text);
+        report += &format!("{name}: {} errors\n", errors.len());
+        for error in errors {
+            let line = match error.place() {
+                simulate::Place::File(span) => lines.location(span.start).line,
+                _ => 0,
+            };
+            let message: String = error.to_string().chars().take(110).collect();
+            report += &format!("  {line}: {message}\n");
+        }
+    }
+    insta::assert_snapshot!(report);
 }

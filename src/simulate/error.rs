@@ -66,6 +66,30 @@ pub enum SimulateError {
         /// What it reads, with its span in the expression.
         error: CompileError,
     },
+    /// A `FUNCTION = USER(...)`: the user subroutine an Adams solver
+    /// would call for the statement, which mbexpr does not have.
+    #[error(
+        "not simulated: USER(...) calls {subroutine}, the user subroutine an Adams solver loads for {statement} from the user's library, which mbexpr cannot call: write the function as an expression"
+    )]
+    UserSubroutine {
+        /// An index into [`crate::simulate::Model::expressions`].
+        expression: usize,
+        /// `GFOSUB`.
+        subroutine: &'static str,
+        /// The statement's kind, `GFORCE`.
+        statement: String,
+        /// The `USER(...)` call in the expression.
+        span: Span,
+    },
+    /// Statements refused for the same reason as `first`, of its kind:
+    /// one error for them all, placed at the first.
+    #[error("{first}; so are {} ({} in all)", listed(others), others.len() + 1)]
+    Grouped {
+        /// The first statement's refusal.
+        first: Box<SimulateError>,
+        /// The labels of the others (`JOINT/4`), in file order.
+        others: Vec<String>,
+    },
     /// An expression that does not compile for a simulation.
     #[error("{error}")]
     Compile {
@@ -128,10 +152,147 @@ pub enum SimulateError {
     },
 }
 
+/// `labels` as a sentence: all of them up to eight, else the first six and
+/// how many more.
+fn listed(labels: &[String]) -> String {
+    const SHOWN: usize = 6;
+    if labels.len() <= SHOWN + 2 {
+        return labels.join(", ");
+    }
+    format!(
+        "{} and {} more",
+        labels[..SHOWN].join(", "),
+        labels.len() - SHOWN
+    )
+}
+
+/// The user subroutine an Adams solver calls for a `FUNCTION = USER(...)`
+/// of a statement of `kind` (MotionSolve names the same ones).
+fn user_subroutine(kind: &str) -> &'static str {
+    const SUBROUTINES: [(&str, &str); 16] = [
+        ("SFORCE", "SFOSUB"),
+        ("VFORCE", "VFOSUB"),
+        ("VTORQUE", "VTOSUB"),
+        ("GFORCE", "GFOSUB"),
+        ("VARIABLE", "VARSUB"),
+        ("DIFF", "DIFSUB"),
+        ("MOTION", "MOTSUB"),
+        ("REQUEST", "REQSUB"),
+        ("SENSOR", "SENSUB"),
+        ("GCON", "GCOSUB"),
+        ("UCON", "UCOSUB"),
+        ("COUPLER", "COUSUB"),
+        ("FIELD", "FIESUB"),
+        ("CURVE", "CURSUB"),
+        ("SURFACE", "SURSUB"),
+        ("MFORCE", "MFOSUB"),
+    ];
+    SUBROUTINES
+        .iter()
+        .find(|(statement, _)| crate::model::is_kind(kind, statement))
+        .map_or("a user subroutine", |(_, subroutine)| subroutine)
+}
+
 impl SimulateError {
+    /// The error of expression `expression` (labelled `STATEMENT/ID
+    /// KEYWORD`) whose compilation fails with `error`.
+    pub(crate) fn of_expression(
+        expression: usize,
+        label: &str,
+        error: CompileError,
+    ) -> SimulateError {
+        if let CompileError::UserSubroutine { span } = error {
+            let statement = label
+                .split(['/', ' '])
+                .next()
+                .unwrap_or(label)
+                .to_ascii_uppercase();
+            return SimulateError::UserSubroutine {
+                expression,
+                subroutine: user_subroutine(&statement),
+                statement,
+                span,
+            };
+        }
+        if error.is_unavailable() {
+            SimulateError::Unavailable { expression, error }
+        } else {
+            SimulateError::Compile { expression, error }
+        }
+    }
+
+    /// `errors` with the refusals of statements of one kind for one reason
+    /// made one [`SimulateError::Grouped`] at the first, in file order
+    /// (those placed in the file first).
+    pub(crate) fn grouped(errors: Vec<SimulateError>) -> Vec<SimulateError> {
+        let mut kept: Vec<(SimulateError, Vec<String>)> = Vec::new();
+        for error in errors {
+            let Some((kind, label)) = error.refused_statement() else {
+                kept.push((error, Vec::new()));
+                continue;
+            };
+            let same = |(first, _): &&mut (SimulateError, Vec<String>)| {
+                first
+                    .refused_statement()
+                    .is_some_and(|(first_kind, _)| first_kind == kind)
+                    && std::mem::discriminant(first) == std::mem::discriminant(&error)
+                    && first.reason() == error.reason()
+            };
+            match kept.iter_mut().find(same) {
+                Some((_, others)) => others.push(label),
+                None => kept.push((error, Vec::new())),
+            }
+        }
+        let mut grouped: Vec<SimulateError> = kept
+            .into_iter()
+            .map(|(first, others)| {
+                if others.is_empty() {
+                    first
+                } else {
+                    SimulateError::Grouped {
+                        first: Box::new(first),
+                        others,
+                    }
+                }
+            })
+            .collect();
+        grouped.sort_by_key(|error| match error.place() {
+            Place::File(span) => span.start,
+            _ => usize::MAX,
+        });
+        grouped
+    }
+
+    /// The kind (`JOINT`) and label (`JOINT/3`) of a refused statement.
+    fn refused_statement(&self) -> Option<(String, String)> {
+        match self {
+            SimulateError::Constraint { statement, .. }
+            | SimulateError::Unsupported { statement, .. } => {
+                let kind = statement.split('/').next().unwrap_or(statement);
+                Some((kind.to_ascii_uppercase(), statement.clone()))
+            }
+            _ => None,
+        }
+    }
+
+    /// Why a statement is refused, when it is.
+    fn reason(&self) -> Option<&str> {
+        match self {
+            SimulateError::Unsupported { reason, .. } => Some(reason),
+            _ => None,
+        }
+    }
+
     /// Where the problem is.
     pub fn place(&self) -> Place {
         match self {
+            SimulateError::Grouped { first, .. } => first.place(),
+            SimulateError::UserSubroutine {
+                expression, span, ..
+            } => Place::Expression {
+                expression: *expression,
+                span: *span,
+            },
             SimulateError::Constraint { span, .. }
             | SimulateError::Unsupported { span, .. }
             | SimulateError::Model { span, .. } => Place::File(*span),

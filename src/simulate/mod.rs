@@ -149,13 +149,12 @@ fn compile(
         Err(failures) => {
             for (output, output_errors) in failures {
                 let expression = expressions[output];
-                errors.extend(output_errors.into_iter().map(|error| {
-                    if error.is_unavailable() {
-                        SimulateError::Unavailable { expression, error }
-                    } else {
-                        SimulateError::Compile { expression, error }
-                    }
-                }));
+                let label = &model.expressions[expression].label;
+                errors.extend(
+                    output_errors
+                        .into_iter()
+                        .map(|error| SimulateError::of_expression(expression, label, error)),
+                );
             }
             None
         }

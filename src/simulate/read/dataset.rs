@@ -102,7 +102,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
                 message: problem.to_string(),
                 span: problem.span(),
             }));
-            return Err(errors);
+            return Err(SimulateError::grouped(errors));
         }
     };
     let mut reader = Reader {
@@ -116,7 +116,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
     if reader.errors.is_empty() {
         Ok(model)
     } else {
-        Err(reader.errors)
+        Err(SimulateError::grouped(reader.errors))
     }
 }
 
