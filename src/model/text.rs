@@ -23,6 +23,17 @@ impl Embedded {
         self.text.push_str(piece);
     }
 
+    /// A text mbexpr writes for a statement (a BUSHING's force component),
+    /// every byte of which stands for the statement at `file_offset`.
+    pub fn pinned(text: &str, file_offset: usize) -> Embedded {
+        let mut embedded = Embedded::default();
+        let mut buffer = [0; 4];
+        for character in text.chars() {
+            embedded.push(character.encode_utf8(&mut buffer), file_offset);
+        }
+        embedded
+    }
+
     /// The file offset of byte `offset` of the joined text (the end of the
     /// text maps to just after its last byte).
     pub fn file_offset(&self, offset: usize) -> usize {

@@ -12,7 +12,9 @@ use nalgebra::{Matrix3, Vector3};
 use crate::Shown;
 use crate::check::Reference;
 use crate::model::initial::{number, numbers};
-use crate::model::{Dataset, ModelCheck, Statement, Value, initial_scene, is_kind};
+use crate::model::{
+    ConfigurationError, Dataset, Embedded, ModelCheck, Statement, Value, initial_scene, is_kind,
+};
 use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{Diff, Expression, Force, MassProperties, Model, Output};
@@ -61,9 +63,21 @@ const LEFT_ASIDE: [&str; 20] = [
 const SOLVER_SETTINGS: [&str; 3] = ["INTEGRATOR", "DYNAMICS", "SIMULATE"];
 
 /// The statements the simulator reads.
-const SIMULATED: [&str; 12] = [
-    "PART", "MARKER", "DIFF", "SFORCE", "VFORCE", "VTORQUE", "GFORCE", "ACCGRAV", "VARIABLE",
-    "ARRAY", "SPLINE", "REQUEST",
+const SIMULATED: [&str; 14] = [
+    "PART",
+    "MARKER",
+    "DIFF",
+    "SFORCE",
+    "VFORCE",
+    "VTORQUE",
+    "GFORCE",
+    "BUSHING",
+    "SPRINGDAMPER",
+    "ACCGRAV",
+    "VARIABLE",
+    "ARRAY",
+    "SPLINE",
+    "REQUEST",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -89,7 +103,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, ACCGRAV)"
+                reason: "is not among the elements mbexpr integrates (PART, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, ACCGRAV)"
                     .to_string(),
                 span: statement.span,
             });
@@ -117,6 +131,38 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         Ok(model)
     } else {
         Err(SimulateError::grouped(reader.errors))
+    }
+}
+
+/// A number as the language reads it back exactly (parenthesised when
+/// negative).
+fn literal(value: f64) -> String {
+    if value < 0.0 {
+        format!("({value:?})")
+    } else {
+        format!("{value:?}")
+    }
+}
+
+/// `Σ coefficient·term` as expression text, the terms whose coefficient
+/// is zero left out (an empty term is the constant itself); `0` when none
+/// is left.
+fn linear_sum(terms: &[(f64, String)]) -> String {
+    let written: Vec<String> = terms
+        .iter()
+        .filter(|(coefficient, _)| *coefficient != 0.0)
+        .map(|(coefficient, term)| {
+            if term.is_empty() {
+                literal(*coefficient)
+            } else {
+                format!("{}*{term}", literal(*coefficient))
+            }
+        })
+        .collect();
+    if written.is_empty() {
+        "0".to_string()
+    } else {
+        written.join(" + ")
     }
 }
 
@@ -361,9 +407,16 @@ impl Reader<'_> {
             .iter()
             .enumerate()
             .filter(|(_, statement)| {
-                ["SFORCE", "VFORCE", "VTORQUE", "GFORCE"]
-                    .iter()
-                    .any(|kind| is_kind(&statement.name, kind))
+                [
+                    "SFORCE",
+                    "VFORCE",
+                    "VTORQUE",
+                    "GFORCE",
+                    "BUSHING",
+                    "SPRINGDAMPER",
+                ]
+                .iter()
+                .any(|kind| is_kind(&statement.name, kind))
             })
             .map(|(index, _)| index)
             .collect();
@@ -373,6 +426,13 @@ impl Reader<'_> {
             let Some(i) = self.marker(statement, "I") else {
                 continue;
             };
+            if is_kind(&statement.name, "BUSHING") || is_kind(&statement.name, "SPRINGDAMPER") {
+                let Some(j) = self.marker(statement, "J") else {
+                    continue;
+                };
+                forces.extend(self.linear_element(index, i, j));
+                continue;
+            }
             if is_kind(&statement.name, "SFORCE") {
                 let Some(j) = self.marker(statement, "J") else {
                     continue;
@@ -434,6 +494,121 @@ impl Reader<'_> {
             });
         }
         forces
+    }
+
+    /// A BUSHING or a SPRINGDAMPER between markers `i` and `j` of
+    /// statement `index`, as the force element its Adams definition is, with
+    /// the expressions of its components written out:
+    ///
+    /// - BUSHING: on I, in J's axes, `F = -K·(DX, DY, DZ)(I,J,J) -
+    ///   C·(VX, VY, VZ)(I,J,J,J) + FORCE` and `T = -KT·(AX, AY, AZ)(I,J) -
+    ///   CT·(WX, WY, WZ)(I,J,J) + TORQUE` (the projected angles), the
+    ///   reaction on J's part at I's origin, which is Adams' torque on J with
+    ///   the moment arm of the deformation;
+    /// - SPRINGDAMPER, TRANSLATIONAL: along the line from J to I, repelling
+    ///   when positive, `-C·VR(I,J) - K·(DM(I,J) - LENGTH) + FORCE`.
+    ///
+    /// A rotational SPRINGDAMPER is refused: its angle past half a turn
+    /// is not settled here.
+    fn linear_element(&mut self, index: usize, i: Target, j: Target) -> Option<Force> {
+        let statement = &self.dataset.statements[index];
+        let ids = [number(statement, "I", 0.0), number(statement, "J", 0.0)];
+        let [Ok(i_id), Ok(j_id)] = ids else {
+            return None;
+        };
+        let (i_id, j_id) = (i_id as u64, j_id as u64);
+        let values = |keyword: &str| numbers(statement, keyword, [0.0; 3]);
+        let value = |keyword: &str| number(statement, keyword, 0.0);
+        if is_kind(&statement.name, "SPRINGDAMPER") {
+            if statement.argument("ROTATIONAL", 3).is_some() {
+                self.errors.push(SimulateError::Unsupported {
+                    statement: statement.label(),
+                    reason: "is ROTATIONAL: its angle past half a turn is not settled in mbexpr; write it as SFORCE, ROTATIONAL with AZ(I,J) and WZ(I,J,J)".to_string(),
+                    span: statement.span,
+                });
+                return None;
+            }
+            let read = ["C", "K", "LENGTH", "FORCE"].map(value);
+            let [c, k, length, force] = match read {
+                [Ok(c), Ok(k), Ok(length), Ok(force)] => [c, k, length, force],
+                _ => return self.refuse_numbers(read.into_iter().find_map(Result::err)),
+            };
+            let text = linear_sum(&[
+                (-c, format!("VR({i_id},{j_id})")),
+                (-k, format!("(DM({i_id},{j_id}) - {})", literal(length))),
+                (force, String::new()),
+            ]);
+            let magnitude = self.written(index, "force", &text)?;
+            return Some(Force::single(false, i, j, magnitude, false));
+        }
+        let read = ["K", "C", "FORCE", "KT", "CT", "TORQUE"].map(values);
+        let [k, c, force, kt, ct, torque] = match read {
+            [Ok(k), Ok(c), Ok(f), Ok(kt), Ok(ct), Ok(t)] => [k, c, f, kt, ct, t],
+            _ => return self.refuse_numbers(read.into_iter().find_map(Result::err)),
+        };
+        let mut components = [None; 6];
+        for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
+            let push = linear_sum(&[
+                (-k[axis], format!("D{name}({i_id},{j_id},{j_id})")),
+                (-c[axis], format!("V{name}({i_id},{j_id},{j_id},{j_id})")),
+                (force[axis], String::new()),
+            ]);
+            let turn = linear_sum(&[
+                (-kt[axis], format!("A{name}({i_id},{j_id})")),
+                (-ct[axis], format!("W{name}({i_id},{j_id},{j_id})")),
+                (torque[axis], String::new()),
+            ]);
+            components[axis] = Some(self.written(index, &format!("F{name}"), &push)?);
+            components[axis + 3] = Some(self.written(index, &format!("T{name}"), &turn)?);
+        }
+        let reaction = match j {
+            Target::Marker(marker) => self.scene.markers[marker].body,
+            _ => None,
+        };
+        Some(Force::Vector {
+            i,
+            reaction,
+            axes: j,
+            force: [components[0], components[1], components[2]],
+            torque: [components[3], components[4], components[5]],
+        })
+    }
+
+    /// Records a statement's numbers that cannot be read.
+    fn refuse_numbers(&mut self, error: Option<ConfigurationError>) -> Option<Force> {
+        if let Some(error) = error {
+            self.errors.push(SimulateError::Model {
+                message: error.to_string(),
+                span: error.span(),
+            });
+        }
+        None
+    }
+
+    /// An expression mbexpr writes for statement `index` (`what`: `FX`,
+    /// `force`), added to the model's expressions with every place in it at
+    /// the statement.
+    fn written(&mut self, index: usize, what: &str, text: &str) -> Option<usize> {
+        let statement = &self.dataset.statements[index];
+        let checked = crate::parse(text)
+            .ok()
+            .and_then(|tree| crate::check(&tree).ok());
+        let Some(checked) = checked else {
+            self.errors.push(SimulateError::Model {
+                message: format!(
+                    "{}: its {what} cannot be written as an expression ({text}): check its numbers",
+                    statement.label()
+                ),
+                span: statement.span,
+            });
+            return None;
+        };
+        self.expressions.push(Expression {
+            label: format!("{} {what}", statement.label()),
+            checked,
+            text: Embedded::pinned(text, statement.span.start),
+        });
+        Some(self.expressions.len() - 1)
     }
 
     /// Floating markers by id, with the body they are on (`None`: ground).
