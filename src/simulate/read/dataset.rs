@@ -9,6 +9,7 @@ use std::collections::HashMap;
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::units;
 use crate::Shown;
 use crate::check::Reference;
 use crate::model::initial::{number, numbers};
@@ -126,7 +127,25 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         expressions: Vec::new(),
         errors,
     };
-    let model = reader.model(notes);
+    let units = units::consistency_factor(dataset);
+    let mut model = reader.model(notes);
+    match units {
+        Ok((factor, note)) => {
+            for mass in &mut model.masses {
+                mass.mass *= factor;
+                mass.inertia *= factor;
+            }
+            if let Some(note) = note {
+                let span = dataset
+                    .statements
+                    .iter()
+                    .find(|statement| is_kind(&statement.name, "UNITS"))
+                    .map_or(Span::new(0, 0), |statement| statement.span);
+                model.notes.push((note, span));
+            }
+        }
+        Err(error) => reader.errors.push(error),
+    }
     if reader.errors.is_empty() {
         Ok(model)
     } else {

@@ -5,6 +5,7 @@
 
 mod dataset;
 mod scene;
+mod units;
 
 pub use dataset::{from_dataset, run_settings};
 pub use scene::from_scene;
