@@ -341,8 +341,8 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 0, 0.01)
             .iter()
             .map(|row| (energy(row[1], row[2]) - 12.5).abs() / 12.5)
             .fold(0.0, f64::max);
-        // Radau5 works at rtol' = 0.1 rtol^(2/3) = 1e-9, and its rows come
-        // from its collocation polynomial (of order 3 inside a step).
+        // Radau5's rows come from its collocation polynomial (of order 3
+        // inside a step).
         let bound = if method == Method::Radau5 { 5e-9 } else { 1e-9 };
         assert!(drift < bound, "{method}: relative energy drift {drift:e}");
     }
