@@ -18,8 +18,9 @@
 //!   order 8, the first stage of the next step being the last evaluation of
 //!   this one (FSAL). The error of the step is estimated from a 5th-order and
 //!   a 3rd-order embedded solution combined as `err5² / sqrt(err5² + 0.01
-//!   err3²)` (by `err5` alone where the caller says the solution is not
-//!   smooth: [`Stepper::set_smooth`]), and the step size follows `h_new = h / clamp(err^(1/8) / 0.9,
+//!   err3²)` (by `err5` alone on the first step of a start and where the
+//!   caller says the solution is not smooth: [`Stepper::set_smooth`]), and
+//!   the step size follows `h_new = h / clamp(err^(1/8) / 0.9,
 //!   1/6, 1/0.333)`. Three more stages give the 7th-order dense output.
 //! - **Radau IIA of order 5** (Hairer, Wanner II, IV.8): the three-stage
 //!   collocation method at the Radau points `(4 ∓ √6)/10, 1`. The stage
