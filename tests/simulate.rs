@@ -387,8 +387,8 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 0, 0.01)
             .iter()
             .map(|row| (energy(row[1], row[2]) - 12.5).abs() / 12.5)
             .fold(0.0, f64::max);
-        // Radau5 works at rtol' = 0.1 rtol^(2/3) = 1e-9, and its rows come
-        // from its collocation polynomial (of order 3 inside a step).
+        // Radau5's rows come from its collocation polynomial (of order 3
+        // inside a step).
         let bound = if method == Method::Radau5 { 5e-9 } else { 1e-9 };
         assert!(drift < bound, "{method}: relative energy drift {drift:e}");
     }
@@ -761,10 +761,11 @@ const CONVERGENCE: &[Convergence] = &[
     ("a1_ball", 10.0, Method::Radau5, [(1e-5, 5e-5), (1e-8, 1.2e-6), (1e-13, 1e-9)]),
     ("a2_stiff_ball", 10.0, Method::Dop853, [(1e-5, 1e-5), (1e-8, 1e-8), (1e-12, 1e-9)]),
     ("a2_stiff_ball", 10.0, Method::Radau5, [(1e-5, 2e-6), (1e-8, 1e-8), (1e-12, 1e-10)]),
-    ("a3_softening_ball", 10.0, Method::Dop853, [(1e-5, 5e-5), (1e-8, 3e-6), (1e-12, 1e-9)]),
-    // Radau5 on A3 gains an order of magnitude per two of rtol: the
-    // Jacobian of `p^0.8` is unbounded at first touch (BENCHMARKS.md).
-    ("a3_softening_ball", 10.0, Method::Radau5, [(1e-5, 1e-2), (1e-8, 1e-4), (1e-13, 3e-8)]),
+    // A3's error is the widest, up to 10 x rtol with DOP853 and 70 x with
+    // Radau5: the motion goes as `|t - t_touch|^2.8` at each of its 92
+    // touches and releases (BENCHMARKS.md).
+    ("a3_softening_ball", 10.0, Method::Dop853, [(1e-5, 1e-4), (1e-8, 3e-7), (1e-12, 1e-9)]),
+    ("a3_softening_ball", 10.0, Method::Radau5, [(1e-5, 1e-3), (1e-8, 3e-6), (1e-13, 1e-9)]),
     ("a4_dropped_ball", 10.0, Method::Radau5, [(1e-5, 6e-8), (1e-8, 4e-10), (1e-12, 1e-12)]),
     ("b_slider", 5.0, Method::Dop853, [(1e-5, 5e-4), (1e-8, 5e-7), (1e-12, 5e-11)]),
     ("b_slider", 5.0, Method::Radau5, [(1e-5, 5e-5), (1e-8, 5e-7), (1e-13, 5e-10)]),

@@ -43,6 +43,8 @@ pub(super) struct Core {
     pub rtol: f64,
     pub atol: Vec<f64>,
     pub max_steps: usize,
+    /// The solution is smooth to the method's order ([`Options::smooth`]).
+    pub smooth: bool,
     pub stats: Stats,
 }
 
@@ -110,6 +112,7 @@ impl Core {
             rtol: options.rtol,
             atol,
             max_steps: options.max_steps,
+            smooth: options.smooth,
             stats: Stats::default(),
         })
     }

@@ -463,12 +463,22 @@ impl Dop853 {
             err3 += (third / scale).powi(2);
             err5 += (fifth / scale).powi(2);
         }
-        let denominator = if err5 + 0.01 * err3 > 0.0 {
-            err5 + 0.01 * err3
+        // Hairer's blend, which the 3rd-order estimate tempers on a smooth
+        // solution where the steps are small enough for the estimates'
+        // orders to show; the 5th-order estimate alone near a weak
+        // singularity and on the first step of a start, whose size is only
+        // `hinit`'s guess (a contact crossed in two or three steps of a
+        // first step too large: 380 x rtol blended, 1.4 x without).
+        let err = if core.smooth && core.stats.steps > 0 {
+            let denominator = if err5 + 0.01 * err3 > 0.0 {
+                err5 + 0.01 * err3
+            } else {
+                1.0
+            };
+            h * err5 / (n as f64 * denominator).sqrt()
         } else {
-            1.0
+            h * (err5 / n as f64).sqrt()
         };
-        let err = h * err5 / (n as f64 * denominator).sqrt();
         if err.is_finite() {
             Ok(err)
         } else {

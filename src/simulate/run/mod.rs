@@ -339,6 +339,8 @@ impl Simulation<'_> {
             rtol: settings.rtol,
             atol: AbsoluteTolerance::All(settings.atol),
             h_max: settings.h_max.min(floor(limit, 0.0)),
+            // A finite limit: a weak singularity near (contact::step_limit).
+            smooth: limit.is_infinite(),
             max_steps: settings
                 .max_steps
                 .saturating_sub(spent.steps + spent.rejected)
@@ -425,6 +427,7 @@ impl Simulation<'_> {
                     // The last look was at t1.
                     start_values.copy_from_slice(&switching);
                     stepper.set_h_max(settings.h_max.min(floor(limit, t1)));
+                    stepper.set_smooth(limit.is_infinite());
                     continue;
                 }
             };
