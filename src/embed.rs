@@ -279,6 +279,12 @@ impl Expression {
         piece: Piece<'_>,
     ) -> usize {
         let Piece { start, out } = piece;
+        if order == Order::Value {
+            return self
+                .program
+                .evaluator::<f64>()
+                .values_of_columns(columns, start, out.values, out.status);
+        }
         let k = wrt.len();
         let mut point = vec![0.0; columns.len()];
         let mut failed = 0;
@@ -287,17 +293,6 @@ impl Expression {
                 *value = column[start + p];
             }
         };
-        if order == Order::Value {
-            let mut evaluator = self.program.evaluator::<f64>();
-            for p in 0..out.status.len() {
-                load(p, &mut point);
-                let result = evaluator.value(&point);
-                out.status[p] = i32::from(result.is_err());
-                out.values[p] = result.unwrap_or(0.0);
-                failed += usize::from(out.status[p] != 0);
-            }
-            return failed;
-        }
         self.program.run().with_evaluator(wrt, order, |evaluate| {
             for p in 0..out.status.len() {
                 load(p, &mut point);
