@@ -50,8 +50,23 @@ fn lanewise(program: &Program) -> Option<Vec<Lanewise>> {
 }
 
 /// `f` of each lane of `a` and `b`.
+#[inline(always)]
 fn each(a: &[f64; LANES], b: &[f64; LANES], f: impl Fn(f64, f64) -> f64) -> [f64; LANES] {
-    std::array::from_fn(|lane| f(a[lane], b[lane]))
+    let mut result = [0.0; LANES];
+    for lane in 0..LANES {
+        result[lane] = f(a[lane], b[lane]);
+    }
+    result
+}
+
+/// Adds `x - x` of each lane of `values` to `sums`: 0 for a finite number,
+/// NaN for an infinity or a NaN, so a lane's sum stays 0 while every
+/// number it saw was finite (a plain sum, which the processor vectorises).
+#[inline(always)]
+fn watch(sums: &mut [f64; LANES], values: &[f64; LANES]) {
+    for lane in 0..LANES {
+        sums[lane] += values[lane] - values[lane];
+    }
 }
 
 /// The values at points `start ..` of `columns`, as
@@ -73,26 +88,22 @@ pub(super) fn values(
     let blocks = values.chunks_mut(LANES).zip(status.chunks_mut(LANES));
     for (block, (values, status)) in blocks.enumerate() {
         let first = start + block * LANES;
-        let mut finite = [true; LANES];
+        let mut sums = [0.0; LANES];
         for load in &program.loads {
             let column = &columns[load.input as usize][first..first + values.len()];
             let lanes = &mut slots[load.slot as usize];
-            for ((lane, &input), finite) in lanes.iter_mut().zip(column).zip(&mut finite) {
-                *lane = input;
-                *finite &= input.is_finite();
-            }
+            lanes[..column.len()].copy_from_slice(column);
+            watch(&mut sums, lanes);
         }
         for &instruction in &code {
             let (dst, result) = match instruction {
-                Lanewise::Neg(dst, a) => (dst, slots[a].map(|x| -x)),
+                Lanewise::Neg(dst, a) => (dst, each(&slots[a], &slots[a], |x, _| -x)),
                 Lanewise::Add(dst, a, b) => (dst, each(&slots[a], &slots[b], |x, y| x + y)),
                 Lanewise::Sub(dst, a, b) => (dst, each(&slots[a], &slots[b], |x, y| x - y)),
                 Lanewise::Mul(dst, a, b) => (dst, each(&slots[a], &slots[b], |x, y| x * y)),
                 Lanewise::Copy(dst, src) => (dst, slots[src]),
             };
-            for (finite, value) in finite.iter_mut().zip(&result) {
-                *finite &= value.is_finite();
-            }
+            watch(&mut sums, &result);
             slots[dst] = result;
         }
         let result = program
@@ -100,9 +111,10 @@ pub(super) fn values(
             .first()
             .map_or([0.0; LANES], |&slot| slots[slot as usize]);
         for (lane, (value, status)) in values.iter_mut().zip(status.iter_mut()).enumerate() {
-            *value = if finite[lane] { result[lane] } else { 0.0 };
-            *status = i32::from(!finite[lane]);
-            failed += usize::from(!finite[lane]);
+            let finite = sums[lane] == 0.0;
+            *value = if finite { result[lane] } else { 0.0 };
+            *status = i32::from(!finite);
+            failed += usize::from(!finite);
         }
     }
     Some(failed)
