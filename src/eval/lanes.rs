@@ -65,7 +65,11 @@ fn each(a: &[f64; LANES], b: &[f64; LANES], f: impl Fn(f64, f64) -> f64) -> [f64
 #[inline(always)]
 fn watch(sums: &mut [f64; LANES], values: &[f64; LANES]) {
     for lane in 0..LANES {
-        sums[lane] += values[lane] - values[lane];
+        let value = values[lane];
+        // Not zero for an infinity or a NaN: that is the point.
+        #[allow(clippy::eq_op)]
+        let change = value - value;
+        sums[lane] += change;
     }
 }
 
