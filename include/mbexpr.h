@@ -119,24 +119,38 @@ int mbexpr_hessian_bulk(const mbexpr_program *program,
                         double *gradients, double *hessians, int *status,
                         size_t threads, size_t *failed, mbexpr_error *error);
 
-/* Checks a model file (.adm, .acf, .cmd, a dataset known by its first
- * lines, or a scene file .toml): one diagnostic per problem, with its
- * line and column; none when it checks. Fails when the file cannot be
- * read or is not a model file. */
+/* A list of messages at their places: the problems of a checked model
+ * file, or every error of a compilation or a model's load (the _all entry
+ * points). mbexpr_diagnostic gives the message of entry `index` (valid
+ * while the list lives; NULL beyond the last), its line and column (0: no
+ * place) written where the pointers are not NULL. */
 typedef struct mbexpr_diagnostics mbexpr_diagnostics;
-int mbexpr_check_model(const char *path, mbexpr_diagnostics **diagnostics,
-                       mbexpr_error *error);
 size_t mbexpr_diagnostics_count(const mbexpr_diagnostics *diagnostics);
-/* The message of diagnostic `index` (valid while `diagnostics` lives; NULL
- * beyond the last); its line and column where the pointers are not NULL. */
 const char *mbexpr_diagnostic(const mbexpr_diagnostics *diagnostics,
                               size_t index, size_t *line, size_t *column);
 void mbexpr_diagnostics_free(mbexpr_diagnostics *diagnostics);
 
+/* As mbexpr_compile, but a failure hands every problem found (in source
+ * order) to *errors, a list freed with mbexpr_diagnostics_free (errors may
+ * be NULL); *errors is NULL after a success. mbexpr_compile's error is
+ * the first, its message saying how many more there are. */
+int mbexpr_compile_all(const char *text, const char *const *inputs,
+                       size_t input_count, mbexpr_program **program,
+                       mbexpr_diagnostics **errors);
+
+/* Checks a model file (.adm, .acf, .cmd, a dataset known by its first
+ * lines, or a scene file .toml): one diagnostic per problem, with its
+ * line and column; none when it checks. Fails when the file cannot be
+ * read or is not a model file. */
+int mbexpr_check_model(const char *path, mbexpr_diagnostics **diagnostics,
+                       mbexpr_error *error);
+
 /* A model ready to simulate: a solver dataset (with END and STEPS of a
  * SIMULATE/DYNAMIC command in an .acf beside it) or a scene file. A model
  * that does not check, or holds what the simulator does not run
- * (constraints), is an error at its first problem. */
+ * (constraints), is an error at its first problem (with how many more
+ * there are); the _all forms list every problem as mbexpr_compile_all
+ * does. */
 typedef struct mbexpr_model mbexpr_model;
 #define MBEXPR_DATASET 0
 #define MBEXPR_SCENE 1
@@ -144,20 +158,30 @@ int mbexpr_model_load(const char *path, mbexpr_model **model,
                       mbexpr_error *error);
 int mbexpr_model_from_text(const char *text, int format, mbexpr_model **model,
                            mbexpr_error *error);
+int mbexpr_model_load_all(const char *path, mbexpr_model **model,
+                          mbexpr_diagnostics **errors);
+int mbexpr_model_from_text_all(const char *text, int format,
+                               mbexpr_model **model,
+                               mbexpr_diagnostics **errors);
 /* The columns of a row: time, DIF(id) for each DIFF, the bodies' states,
  * the outputs (valid while the model lives; NULL beyond the last). */
 size_t mbexpr_model_column_count(const mbexpr_model *model);
 const char *mbexpr_model_column(const mbexpr_model *model, size_t index);
 void mbexpr_model_free(mbexpr_model *model);
 
+/* The methods: AUTO takes DOP853 while the model is not stiff and Radau5
+ * while it is (the default, as on the command line); RADAU5 is for stiff
+ * models throughout, DOP853 for smooth ones. */
 #define MBEXPR_RADAU5 0
 #define MBEXPR_DOP853 1
+#define MBEXPR_AUTO 2
 
-/* How to run. A zero takes the model's own setting or the default: end
- * and steps from the model, rtol 1e-6, atol rtol/1000, no largest step,
- * ten million steps at most. */
+/* How to run: start from mbexpr_settings_default() (MBEXPR_AUTO and
+ * zeros). A zero takes the model's own setting or the default: end and
+ * steps from the model, rtol 1e-6, atol rtol/1000, no largest step, ten
+ * million steps at most. */
 typedef struct mbexpr_settings {
-  int method; /* MBEXPR_RADAU5 (stiff, the default) or MBEXPR_DOP853 */
+  int method; /* MBEXPR_AUTO (the default), MBEXPR_RADAU5 or MBEXPR_DOP853 */
   double end;
   size_t steps; /* output steps: steps + 1 rows */
   double rtol;
@@ -170,8 +194,9 @@ mbexpr_settings mbexpr_settings_default(void);
 typedef struct mbexpr_summary {
   size_t steps, rejected, rhs_evaluations, jacobian_evaluations,
       lu_decompositions, events;
-  double wall_time; /* seconds */
-  int stopped;      /* 1 when the row callback stopped the run */
+  double wall_time;      /* seconds */
+  int stopped;           /* 1 when the row callback stopped the run */
+  size_t method_changes; /* MBEXPR_AUTO: how many times it changed method */
 } mbexpr_summary;
 
 /* One output row: `values` holds the `count` columns after time (valid

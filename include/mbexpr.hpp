@@ -12,19 +12,52 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mbexpr.h"
 
 namespace mbexpr {
 
-// A failed call: the message, and the line and column (from 1; 0: no place).
+// A message at its place: a problem of a checked model file, or one error
+// of a compilation or a model's load.
+struct diagnostic {
+  std::string message;
+  std::size_t line, column;  // from 1; 0: no place
+};
+
+// A failed call: the message, and the line and column (from 1; 0: no
+// place). A compilation or a model's load that fails has every problem in
+// `errors` (the first is `line` and `column`); what() is then the first's
+// message, or every problem as "line:column: message", one a line, when
+// there are several. Other calls have one entry.
 class error : public std::runtime_error {
  public:
   error(const std::string &message, std::size_t line, std::size_t column)
-      : std::runtime_error(message), line(line), column(column) {}
+      : std::runtime_error(message),
+        line(line),
+        column(column),
+        errors{{message, line, column}} {}
+  explicit error(std::vector<diagnostic> all)
+      : std::runtime_error(listed(all)),
+        line(all.empty() ? 0 : all[0].line),
+        column(all.empty() ? 0 : all[0].column),
+        errors(std::move(all)) {}
   std::size_t line;
   std::size_t column;
+  std::vector<diagnostic> errors;
+
+ private:
+  static std::string listed(const std::vector<diagnostic> &all) {
+    if (all.size() == 1) return all[0].message;
+    std::string text;
+    for (const auto &entry : all) {
+      if (!text.empty()) text += "\n";
+      text += std::to_string(entry.line) + ":" +
+              std::to_string(entry.column) + ": " + entry.message;
+    }
+    return text;
+  }
 };
 
 namespace detail {
@@ -35,6 +68,25 @@ inline void check(int code, mbexpr_error &failure) {
   std::size_t line = failure.line, column = failure.column;
   mbexpr_error_free(&failure);
   throw error(message, line, column);
+}
+
+// The entries of a list, which is freed.
+inline std::vector<diagnostic> entries(mbexpr_diagnostics *list) {
+  std::vector<diagnostic> result;
+  for (std::size_t i = 0; i < mbexpr_diagnostics_count(list); i++) {
+    diagnostic entry;
+    entry.message = mbexpr_diagnostic(list, i, &entry.line, &entry.column);
+    result.push_back(entry);
+  }
+  mbexpr_diagnostics_free(list);
+  return result;
+}
+
+// Throws every error an _all call listed (taken by reference: the call
+// fills it, and arguments are evaluated in any order).
+inline void check_all(int code, mbexpr_diagnostics *&errors) {
+  if (code == MBEXPR_OK) return;
+  throw error(entries(errors));
 }
 }  // namespace detail
 
@@ -59,11 +111,11 @@ class program {
   program(const std::string &text, const std::vector<std::string> &inputs) {
     std::vector<const char *> names;
     for (const auto &name : inputs) names.push_back(name.c_str());
-    mbexpr_error failure = {};
+    mbexpr_diagnostics *errors = nullptr;
     mbexpr_program *compiled = nullptr;
-    detail::check(mbexpr_compile(text.c_str(), names.data(), names.size(),
-                                 &compiled, &failure),
-                  failure);
+    detail::check_all(mbexpr_compile_all(text.c_str(), names.data(),
+                                         names.size(), &compiled, &errors),
+                      errors);
     handle_.reset(compiled);
   }
 
@@ -144,25 +196,12 @@ class program {
   std::unique_ptr<mbexpr_program, free_program> handle_;
 };
 
-// A problem of a checked model file.
-struct diagnostic {
-  std::string message;
-  std::size_t line, column;
-};
-
 // Checks a model file: its problems (none when it checks).
 inline std::vector<diagnostic> check_model(const std::string &path) {
   mbexpr_error failure = {};
   mbexpr_diagnostics *found = nullptr;
   detail::check(mbexpr_check_model(path.c_str(), &found, &failure), failure);
-  std::vector<diagnostic> result;
-  for (std::size_t i = 0; i < mbexpr_diagnostics_count(found); i++) {
-    diagnostic entry;
-    entry.message = mbexpr_diagnostic(found, i, &entry.line, &entry.column);
-    result.push_back(entry);
-  }
-  mbexpr_diagnostics_free(found);
-  return result;
+  return detail::entries(found);
 }
 
 // A located branch switch.
@@ -183,19 +222,20 @@ class model {
  public:
   // The model of a file (a dataset or a scene file).
   explicit model(const std::string &path) {
-    mbexpr_error failure = {};
+    mbexpr_diagnostics *errors = nullptr;
     mbexpr_model *loaded = nullptr;
-    detail::check(mbexpr_model_load(path.c_str(), &loaded, &failure), failure);
+    detail::check_all(mbexpr_model_load_all(path.c_str(), &loaded, &errors),
+                      errors);
     handle_.reset(loaded);
   }
 
   // The model of a text: MBEXPR_DATASET or MBEXPR_SCENE.
   model(const std::string &text, int format) {
-    mbexpr_error failure = {};
+    mbexpr_diagnostics *errors = nullptr;
     mbexpr_model *loaded = nullptr;
-    detail::check(
-        mbexpr_model_from_text(text.c_str(), format, &loaded, &failure),
-        failure);
+    detail::check_all(
+        mbexpr_model_from_text_all(text.c_str(), format, &loaded, &errors),
+        errors);
     handle_.reset(loaded);
   }
 
@@ -208,8 +248,13 @@ class model {
 
   // Runs the model, calling `row(time, values, count)` at each output
   // time (return false to stop). An exception thrown by `row` stops the
-  // run and is thrown again here.
+  // run and is thrown again here. Without settings, those of
+  // mbexpr_settings_default(): MBEXPR_AUTO and the model's own end and
+  // steps.
   using row_function = std::function<bool(double, const double *, std::size_t)>;
+  mbexpr::run simulate(const row_function &row) const {
+    return simulate(mbexpr_settings_default(), row);
+  }
   mbexpr::run simulate(const mbexpr_settings &settings,
                        const row_function &row) const {
     state context{&row, nullptr, {}};

@@ -11,7 +11,10 @@ MODULE mbexpr_c
 
   INTEGER(C_INT), PARAMETER :: MBEXPR_OK = 0, MBEXPR_ERROR = 1
   INTEGER(C_INT), PARAMETER :: MBEXPR_DATASET = 0, MBEXPR_SCENE = 1
-  INTEGER(C_INT), PARAMETER :: MBEXPR_RADAU5 = 0, MBEXPR_DOP853 = 1
+  ! MBEXPR_AUTO (mbexpr_settings_default's) takes DOP853 while the model is
+  ! not stiff and Radau5 while it is.
+  INTEGER(C_INT), PARAMETER :: MBEXPR_RADAU5 = 0, MBEXPR_DOP853 = 1, &
+    MBEXPR_AUTO = 2
 
   TYPE, BIND(C) :: mbexpr_error_t
     TYPE(C_PTR) :: message = C_NULL_PTR
@@ -31,6 +34,7 @@ MODULE mbexpr_c
       jacobian_evaluations, lu_decompositions, events
     REAL(C_DOUBLE) :: wall_time
     INTEGER(C_INT) :: stopped
+    INTEGER(C_SIZE_T) :: method_changes
   END TYPE mbexpr_summary_t
 
   INTERFACE
@@ -111,6 +115,20 @@ MODULE mbexpr_c
       INTEGER(C_SIZE_T), INTENT(OUT) :: failed
       TYPE(mbexpr_error_t), INTENT(INOUT) :: error
     END FUNCTION mbexpr_gradient_bulk
+
+    INTEGER(C_INT) FUNCTION mbexpr_hessian_bulk(program, columns, n, wrt, &
+        wrt_count, values, gradients, hessians, status, threads, failed, &
+        error) BIND(C, NAME='mbexpr_hessian_bulk')
+      IMPORT :: C_PTR, C_DOUBLE, C_INT, C_SIZE_T, mbexpr_error_t
+      TYPE(C_PTR), VALUE :: program
+      TYPE(C_PTR), INTENT(IN) :: columns(*)
+      INTEGER(C_SIZE_T), VALUE :: n, wrt_count, threads
+      INTEGER(C_SIZE_T), INTENT(IN) :: wrt(*)
+      REAL(C_DOUBLE), INTENT(OUT) :: values(*), gradients(*), hessians(*)
+      INTEGER(C_INT), INTENT(OUT) :: status(*)
+      INTEGER(C_SIZE_T), INTENT(OUT) :: failed
+      TYPE(mbexpr_error_t), INTENT(INOUT) :: error
+    END FUNCTION mbexpr_hessian_bulk
 
     INTEGER(C_INT) FUNCTION mbexpr_model_from_text(text, format, model, &
         error) BIND(C, NAME='mbexpr_model_from_text')

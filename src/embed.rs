@@ -10,6 +10,8 @@ use std::sync::{Arc, Mutex};
 
 use rayon::prelude::*;
 
+use crate::check::CheckError;
+use crate::compile::CompileError;
 use crate::eval::{EvalError, Evaluation, Order};
 use crate::integrate::Method;
 use crate::model::{self, FileKind};
@@ -76,6 +78,14 @@ impl std::fmt::Display for Located {
 
 impl std::error::Error for Located {}
 
+/// Every error of a stage at its place in `text`.
+fn placed<E: std::fmt::Display>(text: &str, errors: &[E], span: fn(&E) -> Span) -> Vec<Located> {
+    errors
+        .iter()
+        .map(|error| Located::at(text, span(error), error.to_string()))
+        .collect()
+}
+
 /// An expression compiled for named inputs: immutable, shared freely
 /// between threads.
 #[derive(Clone, Debug)]
@@ -90,34 +100,24 @@ const CHUNK: usize = 1024;
 impl Expression {
     /// Parses, checks and compiles `text` for inputs named `inputs`; the
     /// first problem in source order is the error (with how many more there
-    /// are).
+    /// are; [`Expression::compile_all`] gives every one).
     pub fn compile<S: AsRef<str>>(text: &str, inputs: &[S]) -> Result<Expression, Located> {
+        Expression::compile_all(text, inputs).map_err(Located::first_of)
+    }
+
+    /// Parses, checks and compiles `text` for inputs named `inputs`; the
+    /// error is every problem of the first stage that found any (a syntax
+    /// error, else the checker's, else the compiler's), in source order.
+    pub fn compile_all<S: AsRef<str>>(
+        text: &str,
+        inputs: &[S],
+    ) -> Result<Expression, Vec<Located>> {
         let tree = crate::parse(text)
-            .map_err(|error| Located::at(text, error.span(), error.to_string()))?;
-        let placed = |errors: Vec<(Span, String)>| {
-            Located::first_of(
-                errors
-                    .into_iter()
-                    .map(|(span, message)| Located::at(text, span, message))
-                    .collect(),
-            )
-        };
-        let checked = crate::check(&tree).map_err(|errors| {
-            placed(
-                errors
-                    .iter()
-                    .map(|error| (error.span(), error.to_string()))
-                    .collect(),
-            )
-        })?;
-        let program = crate::compile(&checked, inputs).map_err(|errors| {
-            placed(
-                errors
-                    .iter()
-                    .map(|error| (error.span(), error.to_string()))
-                    .collect(),
-            )
-        })?;
+            .map_err(|error| vec![Located::at(text, error.span(), error.to_string())])?;
+        let checked =
+            crate::check(&tree).map_err(|errors| placed(text, &errors, CheckError::span))?;
+        let program = crate::compile(&checked, inputs)
+            .map_err(|errors| placed(text, &errors, CompileError::span))?;
         Ok(Expression {
             text: text.to_string(),
             program,
@@ -279,6 +279,12 @@ impl Expression {
         piece: Piece<'_>,
     ) -> usize {
         let Piece { start, out } = piece;
+        if order == Order::Value {
+            return self
+                .program
+                .evaluator::<f64>()
+                .values_of_columns(columns, start, out.values, out.status);
+        }
         let k = wrt.len();
         let mut point = vec![0.0; columns.len()];
         let mut failed = 0;
@@ -287,17 +293,6 @@ impl Expression {
                 *value = column[start + p];
             }
         };
-        if order == Order::Value {
-            let mut evaluator = self.program.evaluator::<f64>();
-            for p in 0..out.status.len() {
-                load(p, &mut point);
-                let result = evaluator.value(&point);
-                out.status[p] = i32::from(result.is_err());
-                out.values[p] = result.unwrap_or(0.0);
-                failed += usize::from(out.status[p] != 0);
-            }
-            return failed;
-        }
         self.program.run().with_evaluator(wrt, order, |evaluate| {
             for p in 0..out.status.len() {
                 load(p, &mut point);
@@ -476,7 +471,7 @@ pub struct LoadedModel {
 /// of a scene file) or the default.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunOptions {
-    /// The method.
+    /// The method ([`Method::Auto`] by default, as on the command line).
     pub method: Method,
     /// The end time.
     pub end: Option<f64>,
@@ -495,7 +490,7 @@ pub struct RunOptions {
 impl Default for RunOptions {
     fn default() -> Self {
         RunOptions {
-            method: Method::Radau5,
+            method: Method::Auto,
             end: None,
             steps: None,
             rtol: 1e-6,

@@ -666,8 +666,10 @@ fn the_compile_commands_of_the_docs_work_as_printed() {
 #[test]
 fn bulk_evaluation_is_single_evaluation_at_every_point_on_any_threads() {
     use mbexpr::embed::{Bulk, Expression};
-    const PROGRAMS: [&str; 4] = [
+    const PROGRAMS: [&str; 6] = [
         "-k*x - c*v",
+        "((((0.5*x - 1.2)*x + 3.1)*x - 0.7)*x + 2)*x - 4 + -v",
+        "(x*1e154 - k) * (v*1e154) * c",
         "BISTOP(x, v, -1, 1, k, 1.5, c, 0.01) + LOG(x + 1.5)",
         "SQRT(x) * v + k ** 2 / c",
         "IF(x: STEP(v, -1, 0, 1, k), 0, IMPACT(x, v, 0.5, k, 2.2, c, 0.1))",

@@ -10,7 +10,8 @@ array(-52.8453...)
 (5, 2)
 
 Every refusal is an :class:`Error` (a ``ValueError``) with the ``line`` and
-``column`` it speaks of. Bulk work runs on every core with the GIL
+``column`` it speaks of, and in ``errors`` every problem found (a
+compilation or a model's load may find several). Bulk work runs on every core with the GIL
 released, on a thread pool of the process (a process forked after it builds
 its own, so it does not hang).
 """
@@ -187,22 +188,27 @@ def compile(text: str, inputs: Sequence[str]) -> Program:  # noqa: A001 - the na
     """Parses, checks and compiles ``text`` for the inputs named ``inputs``
     (case-insensitive; ``TIME`` and ``MODE`` may be among them).
 
-    Raises :class:`Error` with the line and column of the first problem
-    (a syntax error, an unknown name, a broken argument rule such as
-    ``x1 >= x2``), and how many more there are.
+    Raises :class:`Error` listing every problem found (a syntax error;
+    else every unknown name, broken argument rule such as ``x1 >= x2``,
+    wrong number of arguments), each a :class:`Diagnostic` in its
+    ``errors`` with its line and column; its ``line`` and ``column`` are
+    the first's.
     """
     return Program(text, inputs)
 
 
 @dataclass(frozen=True)
 class Diagnostic:
-    """A problem of a model file, at its line and column (from 1)."""
+    """A problem of a model file or an expression, at its line and column
+    (from 1; None when it speaks of no place)."""
 
     message: str
-    line: int
-    column: int
+    line: Optional[int]
+    column: Optional[int]
 
     def __str__(self) -> str:
+        if self.line is None:
+            return self.message
         return f"{self.line}:{self.column}: {self.message}"
 
 
@@ -212,7 +218,7 @@ def check_model(path: Union[str, os.PathLike]) -> List[Diagnostic]:
     a scene file ``.toml``): every problem with its line and column, in file
     order; an empty list when it checks. Raises :class:`Error` when the file
     cannot be read or is not a model file."""
-    return [Diagnostic(*found) for found in _core.check_model(os.fspath(path))]
+    return _core.check_model(os.fspath(path))
 
 
 @dataclass(frozen=True)
@@ -238,7 +244,9 @@ class Simulation:
     ``statistics`` the integrator's counts (``steps``, ``rejected``,
     ``rhs_evaluations``, ``jacobian_evaluations``, ``lu_decompositions``),
     ``wall_time`` in seconds and ``stiff_from`` (DOP853: when Hairer's test
-    found the run stiff, else None)."""
+    found the run stiff, else None) and ``method_changes`` (under "auto":
+    ``(time, from, to)`` per change of method, in time order, the methods
+    named "radau" and "dop853")."""
 
     columns: Dict[str, np.ndarray]
     events: List[Event] = field(default_factory=list)
@@ -262,7 +270,7 @@ def simulate(
     *,
     end: Optional[float] = None,
     steps: Optional[int] = None,
-    method: str = "radau5",
+    method: str = "auto",
     rtol: float = 1e-6,
     atol: Optional[float] = None,
     h_max: Optional[float] = None,
@@ -276,13 +284,16 @@ def simulate(
     ``SIMULATE/DYNAMIC`` command in an ``.acf`` beside it, or a scene file
     ``.toml``) or the model's text (``format`` "dataset" or "scene"; by
     default a text with a line starting ``[`` is a scene). ``end`` and
-    ``steps`` default to the model's own; ``method`` is "radau5" (stiff
-    models) or "dop853"; ``atol`` defaults to ``rtol / 1000``. The GIL is
-    released during the run.
+    ``steps`` default to the model's own; ``method`` is "auto" (the
+    default, as on the command line: DOP853 while the model is not stiff,
+    Radau5 while it is; ``statistics["method_changes"]`` lists each change),
+    "radau5" (stiff models) or "dop853"; ``atol`` defaults to
+    ``rtol / 1000``. The GIL is released during the run.
 
-    Raises :class:`Error` at the first problem's line and column when the
-    model does not check, holds what the simulator does not run
-    (constraints), or the run cannot go on.
+    Raises :class:`Error` when the model does not check or holds what the
+    simulator does not run (constraints), with every problem in its
+    ``errors`` (the first's line and column its own), or when the run
+    cannot go on.
     """
     source = os.fspath(path_or_text)
     is_path = "\n" not in source and os.path.exists(source)

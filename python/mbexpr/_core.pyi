@@ -5,12 +5,16 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import numpy.typing as npt
 
+from . import Diagnostic
+
 class Error(ValueError):
-    """A refusal with its place (line and column from 1, or None)."""
+    """A refusal with its place (line and column from 1, or None): the
+    first problem's, and every problem in ``errors``."""
 
     message: str
     line: Optional[int]
     column: Optional[int]
+    errors: List[Diagnostic]
     point: int
 
 class Program:
@@ -36,7 +40,7 @@ class Program:
 def utility_bulk(
     name: str, columns: Sequence[npt.NDArray[np.float64]], iord: int
 ) -> npt.NDArray[np.float64]: ...
-def check_model(path: str) -> List[Tuple[str, int, int]]: ...
+def check_model(path: str) -> List[Diagnostic]: ...
 def simulate(
     source: str,
     is_path: bool,

@@ -99,7 +99,7 @@ def sweep(
     *,
     end: Optional[float] = None,
     steps: Optional[int] = None,
-    method: str = "radau5",
+    method: str = "auto",
     rtol: float = 1e-6,
     atol: Optional[float] = None,
     format: Optional[str] = None,  # noqa: A002 - as in simulate

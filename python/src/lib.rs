@@ -24,14 +24,52 @@ create_exception!(
 
 /// The Python exception of a located error.
 fn raise(py: Python<'_>, located: &Located) -> PyErr {
-    let error = Error::new_err(located.to_string());
+    raise_all(py, std::slice::from_ref(located))
+}
+
+/// The Python exception of every error of a compilation or a load: its
+/// text lists them, one a line; `message`, `line` and `column` are the
+/// first's; `errors` holds each as an `mbexpr.Diagnostic`.
+fn raise_all(py: Python<'_>, errors: &[Located]) -> PyErr {
+    let nowhere = Located::nowhere("no error".to_string());
+    let first = errors.first().unwrap_or(&nowhere);
+    let text: Vec<String> = errors.iter().map(Located::to_string).collect();
+    let error = Error::new_err(text.join("\n"));
     let value = error.value(py);
-    let place = |number: usize| (number > 0).then_some(number);
     // Setting attributes on a fresh exception instance cannot fail.
-    let _ = value.setattr("message", &located.message);
-    let _ = value.setattr("line", place(located.line));
-    let _ = value.setattr("column", place(located.column));
+    let _ = value.setattr("message", &first.message);
+    let _ = value.setattr("line", place(first.line));
+    let _ = value.setattr("column", place(first.column));
+    let _ = value.setattr("errors", diagnostics(py, errors));
     error
+}
+
+/// A line or column, None for no place (0).
+fn place(number: usize) -> Option<usize> {
+    (number > 0).then_some(number)
+}
+
+/// `errors` as a list of `mbexpr.Diagnostic` (tuples of message, line and
+/// column if the package cannot be imported, as when `_core` is used alone).
+fn diagnostics<'py>(py: Python<'py>, errors: &[Located]) -> Vec<Bound<'py, PyAny>> {
+    let class = py
+        .import("mbexpr")
+        .and_then(|package| package.getattr("Diagnostic"))
+        .ok();
+    errors
+        .iter()
+        .filter_map(|located| {
+            let fields = (
+                located.message.clone(),
+                place(located.line),
+                place(located.column),
+            );
+            match &class {
+                Some(class) => class.call1(fields).ok(),
+                None => fields.into_pyobject(py).ok().map(Bound::into_any),
+            }
+        })
+        .collect()
 }
 
 /// The values of a numpy array as a slice: itself when contiguous, a copy
@@ -61,7 +99,8 @@ type BulkArrays<'py> = (
 impl Program {
     #[new]
     fn new(py: Python<'_>, text: &str, inputs: Vec<String>) -> PyResult<Program> {
-        let expression = Expression::compile(text, &inputs).map_err(|error| raise(py, &error))?;
+        let expression =
+            Expression::compile_all(text, &inputs).map_err(|errors| raise_all(py, &errors))?;
         Ok(Program { expression })
     }
 
@@ -190,16 +229,13 @@ fn utility_bulk<'py>(
     }
 }
 
-/// The problems of the model file at `path`: `(message, line, column)`.
+/// The problems of the model file at `path`, as `mbexpr.Diagnostic`s.
 #[pyfunction]
-fn check_model(py: Python<'_>, path: &str) -> PyResult<Vec<(String, usize, usize)>> {
+fn check_model<'py>(py: Python<'py>, path: &str) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let found = py
         .detach(|| embed::check_model_file(path))
         .map_err(|error| raise(py, &error))?;
-    Ok(found
-        .into_iter()
-        .map(|problem| (problem.message, problem.line, problem.column))
-        .collect())
+    Ok(diagnostics(py, &found))
 }
 
 /// A branch switch: `(time, function, from, to, line, column)`.
@@ -260,16 +296,18 @@ fn simulate<'py>(
         } else {
             LoadedModel::from_text(source, format)
         };
-        let loaded = loaded.map_err(Located::first_of)?;
+        let loaded = loaded?;
         let mut rows = Vec::new();
-        let ran = loaded.simulate(&options, |time, values| {
-            rows.push(time);
-            rows.extend_from_slice(values);
-            true
-        })?;
-        Ok::<_, Located>((loaded.columns(), rows, ran))
+        let ran = loaded
+            .simulate(&options, |time, values| {
+                rows.push(time);
+                rows.extend_from_slice(values);
+                true
+            })
+            .map_err(|error| vec![error])?;
+        Ok::<_, Vec<Located>>((loaded.columns(), rows, ran))
     });
-    let (columns, rows, ran) = outcome.map_err(|error| raise(py, &error))?;
+    let (columns, rows, ran) = outcome.map_err(|errors| raise_all(py, &errors))?;
     let events = ran
         .events
         .into_iter()
@@ -293,6 +331,13 @@ fn simulate<'py>(
     statistics.set_item("lu_decompositions", stats.lu_decompositions)?;
     statistics.set_item("wall_time", ran.summary.wall_time.as_secs_f64())?;
     statistics.set_item("stiff_from", ran.summary.stiff_from)?;
+    let changes: Vec<(f64, String, String)> = ran
+        .summary
+        .method_changes
+        .iter()
+        .map(|change| (change.time, change.from.to_string(), change.to.to_string()))
+        .collect();
+    statistics.set_item("method_changes", changes)?;
     Ok((columns, rows.into_pyarray(py), events, statistics))
 }
 

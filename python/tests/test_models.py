@@ -61,6 +61,38 @@ def test_refusals_name_their_place():
         mbexpr.simulate(A1.format(k=1e5), end=1.0, steps=10, method="euler")
 
 
+A4 = """A4
+DIFF/1, IC = 0, FUNCTION = DIF(2)
+DIFF/2, IC = 0, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e8, 1.5, 1e6, 1e-5) - 9.81
+END
+"""
+
+
+def test_the_default_method_is_auto():
+    # The dropped ball falls freely (DOP853) and turns stiff where it lands
+    # in its damped stop at t = sqrt(2/9.81) = 0.4515 s: auto takes Radau5.
+    result = mbexpr.simulate(A4, end=1.0, steps=10)
+    ((time, from_method, to_method),) = result.statistics["method_changes"]
+    assert (from_method, to_method) == ("dop853", "radau")
+    assert 0.4515 <= time < 0.5
+    for method in ("radau5", "dop853"):
+        fixed = mbexpr.simulate(A4, end=1.0, steps=10, method=method)
+        assert fixed.statistics["method_changes"] == []
+        assert np.allclose(fixed["DIF(1)"], result["DIF(1)"], rtol=0, atol=1e-4)
+    study = mbexpr.sweep(A4, [{}], end=1.0, steps=10)
+    assert study["final DIF(1)"][0] == result["DIF(1)"][-1]
+
+
+def test_every_problem_of_a_model_comes_with_its_place():
+    broken = "two\nDIFF/1, IC = 0, FUNCTION = STEP(TIME, 0, 0, 1)\nDIFF/2, IC = 0, FUNCTION = DIF(3) + VARVAL(9)\nEND\n"
+    with pytest.raises(mbexpr.Error) as caught:
+        mbexpr.simulate(broken, end=1.0, steps=10)
+    places = [(found.line, found.column) for found in caught.value.errors]
+    assert places == [(2, 28), (3, 32), (3, 44)]
+    assert (caught.value.line, caught.value.column) == (2, 28)
+    assert len(str(caught.value).splitlines()) == 3
+
+
 def test_a_scene_file_is_simulated(examples):
     result = mbexpr.simulate(examples / "scenes" / "ball_simulation.toml", rtol=1e-8)
     assert "ball.x" in result.columns and len(result.time) == 201

@@ -89,6 +89,24 @@ def test_errors_carry_line_and_column_and_are_value_errors():
         program.value(1.0, y=2.0)
 
 
+def test_every_compile_error_comes_with_its_place():
+    with pytest.raises(mbexpr.Error) as caught:
+        mbexpr.compile("spped * x +\n  LOG(y) + z", ["x"])
+    error = caught.value
+    places = [(found.line, found.column) for found in error.errors]
+    assert places == [(1, 1), (2, 7), (2, 12)]
+    assert [found.message for found in error.errors] == [f"{name} has no value" for name in ("spped", "y", "z")]
+    assert (error.line, error.column, error.message) == (1, 1, error.errors[0].message)
+    assert str(error).splitlines() == [str(found) for found in error.errors]
+    # The checker's problems, each once: the compiler runs only on what checks.
+    with pytest.raises(mbexpr.Error) as caught:
+        mbexpr.compile("STEP(x, 0, 0, 1) +\n SQRT(x, 2)", ["x"])
+    assert [(found.line, found.column) for found in caught.value.errors] == [(1, 1), (2, 2)]
+    with pytest.raises(mbexpr.Error) as caught:
+        mbexpr.compile("x +", ["x"])
+    assert len(caught.value.errors) == 1 and str(caught.value.errors[0]) == str(caught.value)
+
+
 def test_programs_pickle_as_their_text():
     program = mbexpr.compile("BISTOP(x, v, -1, 1, 1e5, 1.5, 50, 0.01)", ["x", "v"])
     again = pickle.loads(pickle.dumps(program))

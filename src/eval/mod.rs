@@ -7,6 +7,7 @@
 
 mod error;
 mod held;
+mod lanes;
 
 pub use error::EvalError;
 pub use held::OutputError;
@@ -398,6 +399,45 @@ impl Evaluator<'_, f64> {
     pub fn value(&mut self, inputs: &[f64]) -> Result<f64, EvalError> {
         self.load(inputs, |_, value| value)?;
         self.run()
+    }
+
+    /// The values at points `start ..` of `columns` (one per input of the
+    /// program, `columns[i][p]` input `i` at point `p`), one a slot of
+    /// `values`: `status[p]` is 0, or 1 where the point cannot be evaluated
+    /// (its value then 0; [`Evaluator::value`] at the point says why).
+    /// Returns how many failed. Straight-line arithmetic runs a block of
+    /// points an instruction (`lanes.rs`); any other program a point at a
+    /// time, each input read from its column into its slot (no point
+    /// gathered first) and a failure only counted.
+    pub(crate) fn values_of_columns(
+        &mut self,
+        columns: &[&[f64]],
+        start: usize,
+        values: &mut [f64],
+        status: &mut [i32],
+    ) -> usize {
+        let program = self.program;
+        if let Some(failed) = lanes::values(program, columns, start, values, status) {
+            return failed;
+        }
+        let mut failed = 0;
+        for (p, (value, status)) in values.iter_mut().zip(status.iter_mut()).enumerate() {
+            let mut finite = true;
+            for load in &program.loads {
+                let input = columns[load.input as usize][start + p];
+                finite &= input.is_finite();
+                self.slots[load.slot as usize] = input;
+            }
+            let result = if finite {
+                self.run_with(&mut Natural).ok()
+            } else {
+                None
+            };
+            *value = result.unwrap_or(0.0);
+            *status = i32::from(result.is_none());
+            failed += usize::from(result.is_none());
+        }
+        failed
     }
 }
 

@@ -43,9 +43,21 @@ pub struct CProgram {
     inputs: Vec<CString>,
 }
 
-/// `mbexpr_diagnostics`: the problems of a checked model file (opaque).
+/// `mbexpr_diagnostics`: messages at their places (opaque): the problems
+/// of a checked model file, or every error of a compilation or a load.
 pub struct Diagnostics {
     entries: Vec<(CString, usize, usize)>,
+}
+
+impl Diagnostics {
+    /// The list of `found`.
+    fn of(found: &[Located]) -> Diagnostics {
+        let entries = found
+            .iter()
+            .map(|located| (c_string(&located.message), located.line, located.column))
+            .collect();
+        Diagnostics { entries }
+    }
 }
 
 /// `mbexpr_model`: a model ready to simulate (opaque).
@@ -61,7 +73,7 @@ pub struct CModel {
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct CSettings {
-    /// [`MBEXPR_RADAU5`] or [`MBEXPR_DOP853`].
+    /// [`MBEXPR_AUTO`] (the default), [`MBEXPR_RADAU5`] or [`MBEXPR_DOP853`].
     pub method: c_int,
     /// The end time (the run starts at 0).
     pub end: f64,
@@ -77,10 +89,13 @@ pub struct CSettings {
     pub max_steps: usize,
 }
 
-/// Radau IIA of order 5, for stiff models (the default).
+/// Radau IIA of order 5, for stiff models.
 pub const MBEXPR_RADAU5: c_int = 0;
 /// Dormand and Prince's explicit method of order 8.
 pub const MBEXPR_DOP853: c_int = 1;
+/// DOP853 while the model is not stiff, Radau5 while it is (the default,
+/// as on the command line; [`CSummary::method_changes`] counts the changes).
+pub const MBEXPR_AUTO: c_int = 2;
 /// A solver dataset (`.adm`) given as text.
 pub const MBEXPR_DATASET: c_int = 0;
 /// A scene file (TOML) given as text.
@@ -106,6 +121,8 @@ pub struct CSummary {
     pub wall_time: f64,
     /// 1 when the row callback stopped the run before its end.
     pub stopped: c_int,
+    /// Under [`MBEXPR_AUTO`], how many times the run changed method.
+    pub method_changes: usize,
 }
 
 /// `int (*)(void *user, double time, const double *values, size_t count)`:
@@ -131,35 +148,65 @@ pub type EventCallback = Option<
     ),
 >;
 
-/// Runs `body`, filling `error` with its error or a caught panic.
+/// Runs `body`; its errors, or a panic caught as an internal error.
+fn caught(body: impl FnOnce() -> Result<(), Vec<Located>>) -> Result<(), Vec<Located>> {
+    catch_unwind(AssertUnwindSafe(body)).unwrap_or_else(|panic| {
+        let what = panic
+            .downcast_ref::<&str>()
+            .map(|text| text.to_string())
+            .or_else(|| panic.downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        Err(vec![Located::nowhere(format!(
+            "internal error in mbexpr (please report it with the call that made it): {what}"
+        ))])
+    })
+}
+
+/// Runs `body`, filling `error` with its error or a caught panic (the
+/// first of several, with how many more there are).
 fn guarded(error: *mut Error, body: impl FnOnce() -> Result<(), Located>) -> c_int {
-    let failure = match catch_unwind(AssertUnwindSafe(body)) {
-        Ok(Ok(())) => return MBEXPR_OK,
-        Ok(Err(located)) => located,
-        Err(panic) => {
-            let what = panic
-                .downcast_ref::<&str>()
-                .map(|text| text.to_string())
-                .or_else(|| panic.downcast_ref::<String>().cloned())
-                .unwrap_or_default();
-            Located::nowhere(format!(
-                "internal error in mbexpr (please report it with the call that made it): {what}"
-            ))
-        }
+    let Err(failures) = caught(|| body().map_err(|failure| vec![failure])) else {
+        return MBEXPR_OK;
     };
+    let failure = Located::first_of(failures);
     if !error.is_null() {
-        let message = CString::new(failure.message.replace('\0', " ")).unwrap_or_default();
         // SAFETY: a non-null `error` points to a writable mbexpr_error (every
         // entry point's contract).
         unsafe {
             *error = Error {
-                message: message.into_raw(),
+                message: c_string(&failure.message).into_raw(),
                 line: failure.line,
                 column: failure.column,
             };
         }
     }
     MBEXPR_ERROR
+}
+
+/// Runs `body`; on failure hands every error (or a caught panic) to C as
+/// a list at `*errors` (when not null), else sets `*errors` to null.
+fn guarded_list(
+    errors: *mut *mut Diagnostics,
+    body: impl FnOnce() -> Result<(), Vec<Located>>,
+) -> c_int {
+    let outcome = caught(body);
+    if !errors.is_null() {
+        let list = match &outcome {
+            Ok(()) => ptr::null_mut(),
+            Err(failures) => Box::into_raw(Box::new(Diagnostics::of(failures))),
+        };
+        // SAFETY: a non-null `errors` is writable (the entry points' contract).
+        unsafe { errors.write(list) };
+    }
+    match outcome {
+        Ok(()) => MBEXPR_OK,
+        Err(_) => MBEXPR_ERROR,
+    }
+}
+
+/// One error as a list.
+fn one(error: Located) -> Vec<Located> {
+    vec![error]
 }
 
 /// A refusal of a null pointer the call needs.
@@ -293,6 +340,8 @@ pub unsafe extern "C" fn mbexpr_error_free(error: *mut Error) {
 /// checks and compiles `text` for the inputs named `inputs` (their values
 /// are later given in this order; `TIME` and `MODE` may be among them).
 /// The program is immutable: any number of threads may evaluate it at once.
+/// The error is the first problem, with how many more there are
+/// ([`mbexpr_compile_all`] lists every one).
 ///
 /// # Safety
 /// `text` and each of the `input_count` names are NUL-terminated strings;
@@ -307,24 +356,62 @@ pub unsafe extern "C" fn mbexpr_compile(
 ) -> c_int {
     guarded(error, || {
         // SAFETY: from this function's contract.
-        let source = unsafe { c_text(text, "the expression text") }?;
-        // SAFETY: from this function's contract.
-        let pointers = unsafe { slice(inputs, input_count, "the input names") }?;
-        let names = pointers
-            .iter()
-            // SAFETY: each name is a NUL-terminated string (the contract).
-            .map(|&name| unsafe { c_text(name, "an input name") })
-            .collect::<Result<Vec<&str>, Located>>()?;
-        let expression = Expression::compile(source, &names)?;
-        let inputs = expression
-            .inputs()
-            .iter()
-            .map(|name| c_string(name))
-            .collect();
-        let compiled = CProgram { expression, inputs };
-        // SAFETY: from this function's contract.
-        unsafe { hand_out(compiled, program, "the program pointer") }
+        unsafe { compile(text, inputs, input_count, program) }.map_err(Located::first_of)
     })
+}
+
+/// `int mbexpr_compile_all(const char *text, const char *const *inputs,
+/// size_t input_count, mbexpr_program **program, mbexpr_diagnostics
+/// **errors)`: as [`mbexpr_compile`], but a failure hands every problem
+/// found (in source order, each with its line and column) to `*errors`, a
+/// list freed with [`mbexpr_diagnostics_free`]; `*errors` is NULL after a
+/// success.
+///
+/// # Safety
+/// As [`mbexpr_compile`]; `errors` is null or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mbexpr_compile_all(
+    text: *const c_char,
+    inputs: *const *const c_char,
+    input_count: usize,
+    program: *mut *mut CProgram,
+    errors: *mut *mut Diagnostics,
+) -> c_int {
+    guarded_list(errors, || {
+        // SAFETY: from this function's contract.
+        unsafe { compile(text, inputs, input_count, program) }
+    })
+}
+
+/// Compiles for [`mbexpr_compile`] and [`mbexpr_compile_all`].
+///
+/// # Safety
+/// As [`mbexpr_compile`].
+unsafe fn compile(
+    text: *const c_char,
+    inputs: *const *const c_char,
+    input_count: usize,
+    program: *mut *mut CProgram,
+) -> Result<(), Vec<Located>> {
+    // SAFETY: from this function's contract.
+    let source = unsafe { c_text(text, "the expression text") }.map_err(one)?;
+    // SAFETY: from this function's contract.
+    let pointers = unsafe { slice(inputs, input_count, "the input names") }.map_err(one)?;
+    let names = pointers
+        .iter()
+        // SAFETY: each name is a NUL-terminated string (the contract).
+        .map(|&name| unsafe { c_text(name, "an input name") })
+        .collect::<Result<Vec<&str>, Located>>()
+        .map_err(one)?;
+    let expression = Expression::compile_all(source, &names)?;
+    let inputs = expression
+        .inputs()
+        .iter()
+        .map(|name| c_string(name))
+        .collect();
+    let compiled = CProgram { expression, inputs };
+    // SAFETY: from this function's contract.
+    unsafe { hand_out(compiled, program, "the program pointer") }.map_err(one)
 }
 
 /// `void mbexpr_program_free(mbexpr_program *program)` (NULL is ignored).
@@ -673,18 +760,9 @@ pub unsafe extern "C" fn mbexpr_check_model(
     guarded(error, || {
         // SAFETY: from this function's contract.
         let path = unsafe { c_text(path, "the path") }?;
-        let entries = crate::embed::check_model_file(path)?
-            .into_iter()
-            .map(|found| (c_string(&found.message), found.line, found.column))
-            .collect();
+        let found = Diagnostics::of(&crate::embed::check_model_file(path)?);
         // SAFETY: from this function's contract.
-        unsafe {
-            hand_out(
-                Diagnostics { entries },
-                diagnostics,
-                "the diagnostics pointer",
-            )
-        }
+        unsafe { hand_out(found, diagnostics, "the diagnostics pointer") }
     })
 }
 
@@ -729,33 +807,67 @@ pub unsafe extern "C" fn mbexpr_diagnostic(
 /// `void mbexpr_diagnostics_free(mbexpr_diagnostics *diagnostics)`.
 ///
 /// # Safety
-/// `diagnostics` is null or came from [`mbexpr_check_model`] and is not
-/// used again.
+/// `diagnostics` is null or came from [`mbexpr_check_model`] or a `_all`
+/// entry point and is not used again.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn mbexpr_diagnostics_free(diagnostics: *mut Diagnostics) {
     // SAFETY: from this function's contract.
     unsafe { free(diagnostics) }
 }
 
+/// Loads the model of the file at `path` and hands it to C.
+///
+/// # Safety
+/// As [`mbexpr_model_load`].
+unsafe fn load(path: *const c_char, out: *mut *mut CModel) -> Result<(), Vec<Located>> {
+    // SAFETY: from this function's contract.
+    let path = unsafe { c_text(path, "the path") }.map_err(one)?;
+    // SAFETY: from this function's contract.
+    unsafe { hand_over(LoadedModel::from_path(path)?, out) }
+}
+
+/// Reads a model from its text and hands it to C.
+///
+/// # Safety
+/// As [`mbexpr_model_from_text`].
+unsafe fn read(
+    text: *const c_char,
+    format: c_int,
+    out: *mut *mut CModel,
+) -> Result<(), Vec<Located>> {
+    // SAFETY: from this function's contract.
+    let source = unsafe { c_text(text, "the model text") }
+        .map_err(one)?
+        .to_string();
+    let format = match format {
+        MBEXPR_DATASET => ModelFormat::Dataset,
+        MBEXPR_SCENE => ModelFormat::Scene,
+        other => {
+            return Err(vec![Located::nowhere(format!(
+                "format {other} is neither MBEXPR_DATASET (0) nor MBEXPR_SCENE (1)"
+            ))]);
+        }
+    };
+    // SAFETY: from this function's contract.
+    unsafe { hand_over(LoadedModel::from_text(source, format)?, out) }
+}
+
 /// Hands a loaded model to C.
 ///
 /// # Safety
 /// `out` is writable.
-unsafe fn hand_over(
-    loaded: Result<LoadedModel, Vec<Located>>,
-    out: *mut *mut CModel,
-) -> Result<(), Located> {
-    let model = loaded.map_err(Located::first_of)?;
+unsafe fn hand_over(model: LoadedModel, out: *mut *mut CModel) -> Result<(), Vec<Located>> {
     let columns = model.columns().iter().map(|name| c_string(name)).collect();
     // SAFETY: from this function's contract.
-    unsafe { hand_out(CModel { model, columns }, out, "the model pointer") }
+    unsafe { hand_out(CModel { model, columns }, out, "the model pointer") }.map_err(one)
 }
 
 /// `int mbexpr_model_load(const char *path, mbexpr_model **model,
 /// mbexpr_error *error)`: reads a solver dataset (with the END and STEPS
 /// of an `.acf` beside it) or a scene file (`.toml`) for simulation. A
 /// model that does not check, or holds what the simulator does not run,
-/// is an error at its first problem's line and column.
+/// is an error at its first problem's line and column, with how many more
+/// there are ([`mbexpr_model_load_all`] lists every one).
 ///
 /// # Safety
 /// `path` is a NUL-terminated string; `model` is writable; `error` is null
@@ -766,12 +878,26 @@ pub unsafe extern "C" fn mbexpr_model_load(
     model: *mut *mut CModel,
     error: *mut Error,
 ) -> c_int {
+    // SAFETY: from this function's contract.
     guarded(error, || {
-        // SAFETY: from this function's contract.
-        let path = unsafe { c_text(path, "the path") }?;
-        // SAFETY: from this function's contract.
-        unsafe { hand_over(LoadedModel::from_path(path), model) }
+        unsafe { load(path, model) }.map_err(Located::first_of)
     })
+}
+
+/// `int mbexpr_model_load_all(const char *path, mbexpr_model **model,
+/// mbexpr_diagnostics **errors)`: as [`mbexpr_model_load`], but a failure
+/// hands every problem to `*errors` (as [`mbexpr_compile_all`] does).
+///
+/// # Safety
+/// As [`mbexpr_model_load`]; `errors` is null or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mbexpr_model_load_all(
+    path: *const c_char,
+    model: *mut *mut CModel,
+    errors: *mut *mut Diagnostics,
+) -> c_int {
+    // SAFETY: from this function's contract.
+    guarded_list(errors, || unsafe { load(path, model) })
 }
 
 /// `int mbexpr_model_from_text(const char *text, int format, mbexpr_model
@@ -787,21 +913,28 @@ pub unsafe extern "C" fn mbexpr_model_from_text(
     model: *mut *mut CModel,
     error: *mut Error,
 ) -> c_int {
+    // SAFETY: from this function's contract.
     guarded(error, || {
-        // SAFETY: from this function's contract.
-        let source = unsafe { c_text(text, "the model text") }?.to_string();
-        let format = match format {
-            MBEXPR_DATASET => ModelFormat::Dataset,
-            MBEXPR_SCENE => ModelFormat::Scene,
-            other => {
-                return Err(Located::nowhere(format!(
-                    "format {other} is neither MBEXPR_DATASET (0) nor MBEXPR_SCENE (1)"
-                )));
-            }
-        };
-        // SAFETY: from this function's contract.
-        unsafe { hand_over(LoadedModel::from_text(source, format), model) }
+        unsafe { read(text, format, model) }.map_err(Located::first_of)
     })
+}
+
+/// `int mbexpr_model_from_text_all(const char *text, int format,
+/// mbexpr_model **model, mbexpr_diagnostics **errors)`: as
+/// [`mbexpr_model_from_text`], but a failure hands every problem to
+/// `*errors` (as [`mbexpr_compile_all`] does).
+///
+/// # Safety
+/// As [`mbexpr_model_from_text`]; `errors` is null or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mbexpr_model_from_text_all(
+    text: *const c_char,
+    format: c_int,
+    model: *mut *mut CModel,
+    errors: *mut *mut Diagnostics,
+) -> c_int {
+    // SAFETY: from this function's contract.
+    guarded_list(errors, || unsafe { read(text, format, model) })
 }
 
 /// `size_t mbexpr_model_column_count(const mbexpr_model *model)`: the
@@ -840,12 +973,12 @@ pub unsafe extern "C" fn mbexpr_model_free(model: *mut CModel) {
     unsafe { free(model) }
 }
 
-/// `mbexpr_settings mbexpr_settings_default(void)`: Radau5 and zeros (the
-/// model's own settings and the defaults).
+/// `mbexpr_settings mbexpr_settings_default(void)`: [`MBEXPR_AUTO`] and
+/// zeros (the model's own settings and the defaults).
 #[unsafe(no_mangle)]
 pub extern "C" fn mbexpr_settings_default() -> CSettings {
     CSettings {
-        method: MBEXPR_RADAU5,
+        method: MBEXPR_AUTO,
         end: 0.0,
         steps: 0,
         rtol: 0.0,
@@ -861,9 +994,10 @@ fn options(settings: &CSettings) -> Result<RunOptions, Located> {
     let method = match settings.method {
         MBEXPR_RADAU5 => Method::Radau5,
         MBEXPR_DOP853 => Method::Dop853,
+        MBEXPR_AUTO => Method::Auto,
         other => {
             return Err(Located::nowhere(format!(
-                "method {other} is neither MBEXPR_RADAU5 (0) nor MBEXPR_DOP853 (1)"
+                "method {other} is none of MBEXPR_RADAU5 (0), MBEXPR_DOP853 (1) and MBEXPR_AUTO (2)"
             )));
         }
     };
@@ -947,6 +1081,7 @@ pub unsafe extern "C" fn mbexpr_simulate(
                     events: ran.events.len(),
                     wall_time: ran.summary.wall_time.as_secs_f64(),
                     stopped: c_int::from(ran.summary.stopped),
+                    method_changes: ran.summary.method_changes.len(),
                 });
             }
         }

@@ -13,6 +13,17 @@ static void report(const char *what, mbexpr_error *error) {
   mbexpr_error_free(error);
 }
 
+/* Prints every entry of a list of errors, then frees it. */
+static void print_list(const char *what, mbexpr_diagnostics *errors) {
+  printf("%s: %zu error(s)\n", what, mbexpr_diagnostics_count(errors));
+  for (size_t i = 0; i < mbexpr_diagnostics_count(errors); i++) {
+    size_t line, column;
+    const char *message = mbexpr_diagnostic(errors, i, &line, &column);
+    printf("  %zu:%zu: %s\n", line, column, message);
+  }
+  mbexpr_diagnostics_free(errors);
+}
+
 #define POINTS 10000
 static double xs[POINTS], vs[POINTS];
 
@@ -53,6 +64,7 @@ static void print_event(void *user, double time, const char *function,
 int main(void) {
   mbexpr_error error = {0};
   mbexpr_program *program = NULL;
+  mbexpr_model *model = NULL;
   const char *inputs[] = {"x", "v"};
   const char *text = "BISTOP(x, v, -1, 1, 1e5, 1.5, 50, 0.01) + 2*x";
   if (mbexpr_compile(text, inputs, 2, &program, &error) != MBEXPR_OK) {
@@ -137,6 +149,24 @@ int main(void) {
   if (mbexpr_compile(NULL, one, 1, &program, &error) == MBEXPR_ERROR)
     report("null text", &error);
 
+  /* Every error, as a list: three unknown names on two lines. */
+  mbexpr_diagnostics *errors = NULL;
+  if (mbexpr_compile_all("spped * x +\n  LOG(y) + z", one, 1, &program,
+                         &errors) == MBEXPR_ERROR)
+    print_list("compile_all", errors);
+  if (mbexpr_compile_all("x + 1", one, 1, &program, &errors) == MBEXPR_OK)
+    printf("compile_all of x + 1: %s\n", errors == NULL ? "no list" : "a list");
+  mbexpr_program_free(program);
+  if (mbexpr_compile_all("x + 1", one, 1, NULL, NULL) == MBEXPR_ERROR)
+    printf("compile_all with no place for the program fails\n");
+  if (mbexpr_model_from_text_all(
+          "two\nDIFF/1, IC = 0, FUNCTION = STEP(TIME, 0, 0, 1)\n"
+          "DIFF/2, IC = 0, FUNCTION = DIF(3) + VARVAL(9)\nEND\n",
+          MBEXPR_DATASET, &model, &errors) == MBEXPR_ERROR)
+    print_list("model_from_text_all", errors);
+  if (mbexpr_model_load_all("missing.adm", &model, &errors) == MBEXPR_ERROR)
+    print_list("model_load_all", errors);
+
   /* A model file checked: its problems with their lines and columns. */
   FILE *file = fopen("broken.adm", "w");
   fputs("broken\nDIFF/1, IC = 0, FUNCTION = STEP(TIME, 0, 0, 1)\n"
@@ -156,7 +186,6 @@ int main(void) {
     report("missing", &error);
 
   /* A1 of the simulation study, simulated into the callbacks. */
-  mbexpr_model *model = NULL;
   const char *a1 =
       "A1\nDIFF/1, IC = 0, FUNCTION = DIF(2)\n"
       "DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, "
@@ -187,6 +216,37 @@ int main(void) {
   if (mbexpr_simulate(model, &settings, print_row, NULL, &counts[0], NULL,
                       &error) == MBEXPR_ERROR)
     report("end -1", &error);
+  mbexpr_model_free(model);
+
+  /* The default method is auto: A4's ball lands in a damped stop at
+   * t = 0.45, where the run turns stiff and auto takes Radau5. */
+  const char *a4 =
+      "A4\nDIFF/1, IC = 0, FUNCTION = DIF(2)\n"
+      "DIFF/2, IC = 0, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e8, 1.5, "
+      "1e6, 1e-5) - 9.81\nEND\n";
+  if (mbexpr_model_from_text(a4, MBEXPR_DATASET, &model, &error) !=
+      MBEXPR_OK) {
+    report("A4", &error);
+    return 1;
+  }
+  settings = mbexpr_settings_default();
+  settings.end = 1.0;
+  settings.steps = 10;
+  int methods[] = {settings.method, MBEXPR_RADAU5, MBEXPR_DOP853};
+  for (int m = 0; m < 3; m++) {
+    settings.method = methods[m];
+    if (mbexpr_simulate(model, &settings, NULL, NULL, NULL, &summary,
+                        &error) != MBEXPR_OK)
+      report("A4", &error);
+    printf("A4 with method %d%s: %zu method change(s), %s steps\n",
+           methods[m], methods[m] == MBEXPR_AUTO ? " (MBEXPR_AUTO)" : "",
+           summary.method_changes,
+           summary.steps < 2000 ? "fewer than 2000" : "2000 or more");
+  }
+  settings.method = 7;
+  if (mbexpr_simulate(model, &settings, NULL, NULL, NULL, NULL, &error) ==
+      MBEXPR_ERROR)
+    report("method 7", &error);
   mbexpr_model_free(model);
   if (mbexpr_model_from_text("joint\nPART/1, GROUND\nJOINT/1, I = 1, J = 2, REVOLUTE\nEND\n",
                              MBEXPR_DATASET, &model, &error) == MBEXPR_ERROR)

@@ -46,6 +46,12 @@ int main() {
   } catch (const mbexpr::error &e) {
     std::printf("error at %zu:%zu: %s\n", e.line, e.column, e.what());
   }
+  try {
+    mbexpr::program broken("spped * x +\n  LOG(y)", {"x"});
+  } catch (const mbexpr::error &e) {
+    std::printf("%zu errors, the first at %zu:%zu; what():\n%s\n",
+                e.errors.size(), e.line, e.column, e.what());
+  }
   const mbexpr::program root("SQRT(x)", {"x"});
   try {
     root.value({-4.0});
@@ -89,5 +95,25 @@ int main() {
               run.events[0].function.c_str(), run.events[0].from.c_str(),
               run.events[0].to.c_str(), run.events[0].time, run.events[0].line,
               run.events[0].column);
+
+  // The default method is auto: A4's ball turns stiff where it lands in
+  // its damped stop (t = 0.45), and auto takes Radau5 there.
+  const mbexpr::model dropped(
+      "A4\nDIFF/1, IC = 0, FUNCTION = DIF(2)\n"
+      "DIFF/2, IC = 0, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e8, 1.5, "
+      "1e6, 1e-5) - 9.81\nEND\n",
+      MBEXPR_DATASET);
+  settings = mbexpr_settings_default();
+  settings.end = 1.0;
+  settings.steps = 10;
+  auto landed = dropped.simulate(settings, [](double, const double *,
+                                              std::size_t) { return true; });
+  std::printf("A4 with the default settings: %zu method change(s)\n",
+              landed.summary.method_changes);
+  try {
+    dropped.simulate([](double, const double *, std::size_t) { return true; });
+  } catch (const mbexpr::error &e) {
+    std::printf("no end time: %s\n", e.what());
+  }
   return 0;
 }

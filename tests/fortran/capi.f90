@@ -32,7 +32,7 @@ PROGRAM capi
   TYPE(C_PTR) :: inputs(2), columns(2)
   REAL(C_DOUBLE) :: value, gradient(2), hessian(4)
   REAL(C_DOUBLE), TARGET :: x(5), v(5)
-  REAL(C_DOUBLE) :: values(5), gradients(10)
+  REAL(C_DOUBLE) :: values(5), gradients(10), hessians(20)
   INTEGER(C_INT) :: status(5)
   INTEGER(C_SIZE_T) :: failed
   INTEGER(C_INT), TARGET :: seen
@@ -62,6 +62,17 @@ PROGRAM capi
     WRITE (*, '(A, F5.2, 3ES20.12, I2)') 'x =', x(p), values(p), &
       gradients(2 * p - 1), gradients(2 * p), status(p)
   END DO
+  ! The Hessians too: point p's 2 x 2 at hessians(4 * p - 3 : 4 * p).
+  IF (mbexpr_hessian_bulk(program, columns, 5_C_SIZE_T, &
+      [0_C_SIZE_T, 1_C_SIZE_T], 2_C_SIZE_T, values, gradients, hessians, &
+      status, 1_C_SIZE_T, failed, error) /= MBEXPR_OK) STOP 6
+  DO p = 1, 5
+    IF (mbexpr_hessian(program, [x(p), v(p)], [0_C_SIZE_T, 1_C_SIZE_T], &
+        2_C_SIZE_T, value, gradient, hessian, error) /= MBEXPR_OK) STOP 7
+    WRITE (*, '(A, F5.2, 4ES20.12, A, L1)') 'x =', x(p), &
+      hessians(4 * p - 3 : 4 * p), ' single: ', &
+      ALL(hessians(4 * p - 3 : 4 * p) == hessian) .AND. values(p) == value
+  END DO
   CALL mbexpr_program_free(program)
 
   ! An error with its place.
@@ -90,5 +101,22 @@ PROGRAM capi
   WRITE (*, '(A, I0, A, I0, A, L1)') 'columns ', &
     mbexpr_model_column_count(model), ', rows ', seen, &
     ', stopped ', summary%stopped == 1
+  CALL mbexpr_model_free(model)
+
+  ! The default method is auto: A4's ball turns stiff where it lands in its
+  ! damped stop (t = 0.45), and auto takes Radau5 there.
+  IF (mbexpr_model_from_text('A4' // NEW_LINE('a') // &
+      'DIFF/1, IC = 0, FUNCTION = DIF(2)' // NEW_LINE('a') // &
+      'DIFF/2, IC = 0, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e8, ' // &
+      '1.5, 1e6, 1e-5) - 9.81' // NEW_LINE('a') // 'END' // C_NULL_CHAR, &
+      MBEXPR_DATASET, model, error) /= MBEXPR_OK) STOP 8
+  settings = mbexpr_settings_default()
+  settings%end = 1.0_C_DOUBLE
+  settings%steps = 10
+  IF (mbexpr_simulate(model, settings, C_NULL_FUNPTR, C_NULL_FUNPTR, &
+      C_NULL_PTR, summary, error) /= MBEXPR_OK) STOP 9
+  WRITE (*, '(A, L1, A, I0, A)') 'default MBEXPR_AUTO: ', &
+    settings%method == MBEXPR_AUTO, ', ', summary%method_changes, &
+    ' method change(s)'
   CALL mbexpr_model_free(model)
 END PROGRAM capi
