@@ -9,6 +9,7 @@ use std::collections::HashMap;
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::constraints;
 use super::error::SimulateError;
 use super::model::{Diff, Expression, Force, MassProperties, Model, Output};
 use crate::Shown;
@@ -19,8 +20,7 @@ use crate::scene::{Scene, Target};
 use crate::span::Span;
 
 /// Statements that need a constraint solver.
-const CONSTRAINTS: [&str; 10] = [
-    "JOINT",
+const CONSTRAINTS: [&str; 9] = [
     "JPRIM",
     "MOTION",
     "COUPLER",
@@ -61,9 +61,9 @@ const LEFT_ASIDE: [&str; 20] = [
 const SOLVER_SETTINGS: [&str; 3] = ["INTEGRATOR", "DYNAMICS", "SIMULATE"];
 
 /// The statements the simulator reads.
-const SIMULATED: [&str; 12] = [
+const SIMULATED: [&str; 13] = [
     "PART", "MARKER", "DIFF", "SFORCE", "VFORCE", "VTORQUE", "GFORCE", "ACCGRAV", "VARIABLE",
-    "ARRAY", "SPLINE", "REQUEST",
+    "ARRAY", "SPLINE", "REQUEST", "JOINT",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -89,7 +89,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, ACCGRAV)"
+                reason: "is not among the elements mbexpr integrates (PART, JOINT, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, ACCGRAV)"
                     .to_string(),
                 span: statement.span,
             });
@@ -154,19 +154,25 @@ impl Reader<'_> {
         let masses = self.masses();
         let diffs = self.diffs();
         let forces = self.forces();
+        let joints = constraints::joints(self.dataset, &self.scene, &mut self.errors);
         let gravity = self.gravity();
         let outputs = self.outputs(&mut notes);
-        Model {
+        let mut model = Model {
             scene: std::mem::take(&mut self.scene),
             masses,
             diffs,
             forces,
+            joints,
             gravity,
             expressions: std::mem::take(&mut self.expressions),
             outputs,
             notes,
             run: None,
+        };
+        if self.errors.is_empty() {
+            constraints::leave_out_redundant(&mut model);
         }
+        model
     }
 
     /// The expression `keyword` of statement `index`, added to the model's

@@ -24,6 +24,7 @@
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use num_dual::{DualDVec64, DualSVec64};
 
+use super::constraints::{BodyMotion, constraint_loads, joints_singular};
 use super::model::{Force, Model};
 use super::sparsity::Sparsity;
 use crate::compile::Program;
@@ -527,6 +528,25 @@ impl Equations<'_> {
         };
         for force in &model.forces {
             self.apply(force, &kinematics, &value, &mut loads);
+        }
+        if !model.joints.is_empty() {
+            let motions: Vec<BodyMotion<T>> = kinematics
+                .iter()
+                .map(|state| BodyMotion {
+                    centre: state.centre.clone(),
+                    rotation: state.rotation.clone(),
+                    velocity: state.velocity.clone(),
+                    omega: state.omega_ground.clone(),
+                })
+                .collect();
+            constraint_loads(
+                model,
+                &motions,
+                &self.inverse_inertia,
+                &mut loads.force,
+                &mut loads.torque,
+            )
+            .map_err(|_| joints_singular())?;
         }
         for (body, state) in kinematics.iter().enumerate() {
             let offset = body_offset(model, body);

@@ -46,6 +46,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod constraints;
 mod dataset;
 mod error;
 mod estimate;
@@ -57,6 +58,7 @@ mod sink;
 mod sparsity;
 mod switch;
 
+pub use constraints::{Joint, JointKind, Residuals};
 pub use dataset::{from_dataset, run_settings};
 pub use error::{Place, SimulateError};
 pub use estimate::ErrorEstimate;

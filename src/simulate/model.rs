@@ -22,6 +22,9 @@ pub struct Model {
     pub diffs: Vec<Diff>,
     /// The force elements.
     pub forces: Vec<Force>,
+    /// The joints, held by Lagrange multipliers
+    /// ([`crate::simulate::Joint`]).
+    pub joints: Vec<super::Joint>,
     /// The acceleration of gravity, in ground.
     pub gravity: Vector3<f64>,
     /// Every expression of the model: the DIFF functions, the force

@@ -7,6 +7,7 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
+use super::constraints::{JOINTS, Residuals, Tolerance, project};
 use super::error::SimulateError;
 use super::mechanics::{BODY_STATES, Mechanics, body_offset};
 use super::sink::{MethodChange, RowsOnly, Sink};
@@ -144,6 +145,16 @@ pub struct Summary {
     /// stiff (steps held by stability, not accuracy; Radau5 takes far
     /// fewer there).
     pub stiff_from: Option<f64>,
+    /// With joints: the largest constraint residuals an accepted step
+    /// left (before its projection), over the run after the initial
+    /// assembly.
+    pub residuals: Residuals,
+    /// With joints: the initial state's residuals, before the assembly
+    /// that put it on the constraints.
+    pub initial_residuals: Residuals,
+    /// With joints: how many times a state was projected back onto the
+    /// constraints (a residual past the absolute tolerance).
+    pub projections: usize,
 }
 
 /// A step limit of the sites, raised to what the integrator can take at
@@ -330,7 +341,32 @@ impl Simulation<'_> {
             expression: self.expression_of(program, error.output),
             error: error.error,
         };
-        let y0 = initial_state(model);
+        let mut y0 = initial_state(model);
+        let assemble = |y: &mut [f64], time: f64, tolerance: Tolerance| {
+            project(model, y, &system_inverse_inertia(model), tolerance).map_err(|_| {
+                SimulateError::Integration {
+                    time,
+                    message: "the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(),
+                    cause: None,
+                }
+            })
+        };
+        let tolerance = Tolerance {
+            rtol: settings.rtol,
+            atol: settings.atol,
+        };
+        let initial_residuals = if model.joints.is_empty() {
+            Residuals::default()
+        } else {
+            assemble(
+                &mut y0,
+                0.0,
+                Tolerance {
+                    rtol: 0.0,
+                    atol: 0.0,
+                },
+            )?
+        };
         let mut natural = vec![None; program.sites().len()];
         let mut switching = vec![0.0; program.switch_count()];
         let limit = system
@@ -370,6 +406,9 @@ impl Simulation<'_> {
             stopped: false,
             method_changes: Vec::new(),
             stiff_from: None,
+            residuals: Residuals::default(),
+            initial_residuals,
+            projections: 0,
         };
         let output_time = |index: usize| settings.end * index as f64 / settings.steps as f64;
         let values = rows.at(0.0, &y0).map_err(|error| fail(0.0, error))?;
@@ -435,6 +474,15 @@ impl Simulation<'_> {
                     // The last look was at t1.
                     start_values.copy_from_slice(&switching);
                     stepper.set_h_max(settings.h_max.min(floor(limit, t1)));
+                    if !model.joints.is_empty() {
+                        dense.copy_from_slice(stepper.y());
+                        let found = assemble(&mut dense, t1, tolerance)?;
+                        summary.residuals = summary.residuals.max(found);
+                        if dense != stepper.y() {
+                            summary.projections += 1;
+                            stepper.restart(t1, &dense);
+                        }
+                    }
                     continue;
                 }
             };
@@ -451,6 +499,11 @@ impl Simulation<'_> {
                 slope,
             )?;
             dense.copy_from_slice(&state);
+            if !model.joints.is_empty() {
+                let found = assemble(&mut dense, right, tolerance)?;
+                summary.residuals = summary.residuals.max(found);
+                summary.projections += usize::from(dense != state);
+            }
             system
                 .mechanics
                 .observe(right, &dense, None, (&mut natural, &mut switching), None)
@@ -644,6 +697,13 @@ impl Simulation<'_> {
             IntegrateError::TooManySteps { t, .. }
             | IntegrateError::JacobianNotFinite { t }
             | IntegrateError::EndNotAhead { t, .. } => (*t, None),
+            IntegrateError::Jacobian { t, error } if error.output == JOINTS => {
+                return SimulateError::Integration {
+                    time: *t,
+                    message: format!("the Jacobian: {}", error.error),
+                    cause: None,
+                };
+            }
             IntegrateError::Jacobian { t, error } => {
                 return SimulateError::Evaluation {
                     time: *t,
@@ -659,7 +719,7 @@ impl Simulation<'_> {
             }
         };
         let cause = match cause {
-            Some(Rejection::System(failure)) => Some((
+            Some(Rejection::System(failure)) if failure.output != JOINTS => Some((
                 self.expression_of(&self.dynamics, failure.output),
                 failure.error.span(),
             )),
@@ -671,4 +731,17 @@ impl Simulation<'_> {
             cause,
         }
     }
+}
+
+/// The inverse inertia of each body of `model`, in its own axes.
+pub(crate) fn system_inverse_inertia(model: &Model) -> Vec<nalgebra::Matrix3<f64>> {
+    model
+        .masses
+        .iter()
+        .map(|mass| {
+            mass.inertia
+                .try_inverse()
+                .unwrap_or_else(nalgebra::Matrix3::zeros)
+        })
+        .collect()
 }

@@ -1,0 +1,209 @@
+//! The scalar equations `Φ(q) = 0` a joint puts on its I and J markers,
+//! each with what the multiplier method needs of it, over any [`Number`]
+//! (over dual numbers the reactions carry their exact derivatives):
+//!
+//! - its value `Φ` (the position residual);
+//! - its rate `Φ' = G u`, with the row of `G` on each body's generalised
+//!   velocity `u = (v, ω)` (the centre of mass's velocity and the angular
+//!   velocity, both in ground);
+//! - its bias `Φ'' − G u'`, the part of its second derivative that the
+//!   accelerations do not reach (`ω × (ω × r)` and its kin), so that the
+//!   accelerations satisfy `G u' = −bias`.
+//!
+//! A marker's origin and axes are [`Moving`] vectors; each row is a
+//! component or a dot product of them, and the product rule gives its rate,
+//! bias and `G` row, so no derivative is written by hand per joint.
+
+use nalgebra::{Matrix3, Vector3};
+
+use crate::number::Number;
+
+/// A body's motion as the constraint rows see it: the centre of mass, the
+/// rotation from body to ground axes, the centre's velocity and the
+/// angular velocity, in ground.
+pub(crate) struct BodyMotion<T: Number> {
+    /// The centre of mass in ground.
+    pub(crate) centre: Vector3<T>,
+    /// The rotation from the body's axes to ground's.
+    pub(crate) rotation: Matrix3<T>,
+    /// The velocity of the centre of mass, in ground.
+    pub(crate) velocity: Vector3<T>,
+    /// The angular velocity, in ground.
+    pub(crate) omega: Vector3<T>,
+}
+
+/// A vector fixed in a body (or in ground), moving with it: its value, its
+/// rate, the bias of its second derivative, and the linear map from each
+/// body's generalised velocity to its rate (`[linear | angular]`, 3 × 6).
+pub(crate) struct Moving<T: Number> {
+    value: Vector3<T>,
+    rate: Vector3<T>,
+    bias: Vector3<T>,
+    map: Vec<(usize, [Vector3<T>; 6])>,
+}
+
+impl<T: Number> Moving<T> {
+    /// A constant vector (on ground).
+    fn fixed(value: Vector3<T>) -> Moving<T> {
+        Moving {
+            value,
+            rate: Vector3::zeros(),
+            bias: Vector3::zeros(),
+            map: Vec::new(),
+        }
+    }
+
+    /// The point at `offset` from the centre of mass of `body` (in its own
+    /// axes): `p = c + R s`, `p' = v + ω × r`.
+    pub(crate) fn point(
+        body: Option<(usize, &BodyMotion<T>)>,
+        offset: &Vector3<f64>,
+        ground: &Vector3<f64>,
+    ) -> Moving<T> {
+        let Some((index, motion)) = body else {
+            return Moving::fixed(ground.map(T::from));
+        };
+        let arm = &motion.rotation * offset.map(T::from);
+        let omega = &motion.omega;
+        // ω × r = −r × ω: column k of the angular part is e_k × r.
+        let turn = |axis: usize| {
+            let mut unit = Vector3::zeros();
+            unit[axis] = T::one();
+            unit.cross(&arm)
+        };
+        Moving {
+            value: &motion.centre + &arm,
+            rate: &motion.velocity + omega.cross(&arm),
+            bias: omega.cross(&omega.cross(&arm)),
+            map: vec![(
+                index,
+                [
+                    Vector3::x(),
+                    Vector3::y(),
+                    Vector3::z(),
+                    turn(0),
+                    turn(1),
+                    turn(2),
+                ],
+            )],
+        }
+    }
+
+    /// The direction `axis` (in the body's axes) of `body`: `a = R a_b`,
+    /// `a' = ω × a`.
+    pub(crate) fn axis(
+        body: Option<(usize, &BodyMotion<T>)>,
+        axis_in_body: &Vector3<f64>,
+    ) -> Moving<T> {
+        let Some((index, motion)) = body else {
+            return Moving::fixed(axis_in_body.map(T::from));
+        };
+        let axis = &motion.rotation * axis_in_body.map(T::from);
+        let omega = &motion.omega;
+        let turn = |component: usize| {
+            let mut unit = Vector3::zeros();
+            unit[component] = T::one();
+            unit.cross(&axis)
+        };
+        let columns = [
+            Vector3::zeros(),
+            Vector3::zeros(),
+            Vector3::zeros(),
+            turn(0),
+            turn(1),
+            turn(2),
+        ];
+        Moving {
+            rate: omega.cross(&axis),
+            bias: omega.cross(&omega.cross(&axis)),
+            value: axis,
+            map: vec![(index, columns)],
+        }
+    }
+
+    /// `self − other`.
+    pub(crate) fn minus(&self, other: &Moving<T>) -> Moving<T> {
+        let mut map = self.map.clone();
+        for (body, columns) in &other.map {
+            let negated = columns.clone().map(|column| -column);
+            add_columns(&mut map, *body, &negated);
+        }
+        Moving {
+            value: &self.value - &other.value,
+            rate: &self.rate - &other.rate,
+            bias: &self.bias - &other.bias,
+            map,
+        }
+    }
+
+    /// The row of component `axis` (0, 1, 2: x, y, z of ground).
+    pub(crate) fn component(&self, axis: usize) -> Row<T> {
+        Row {
+            value: self.value[axis].clone(),
+            rate: self.rate[axis].clone(),
+            bias: self.bias[axis].clone(),
+            coefficients: self
+                .map
+                .iter()
+                .map(|(body, columns)| (*body, columns.clone().map(|column| column[axis].clone())))
+                .collect(),
+        }
+    }
+
+    /// The row of `self · other`: by the product rule, rate `a'·b + a·b'`,
+    /// bias `a''·b + 2 a'·b' + a·b''` (of the bias parts).
+    pub(crate) fn dot(&self, other: &Moving<T>) -> Row<T> {
+        let mut coefficients: Vec<(usize, [T; 6])> = Vec::new();
+        let mut add = |map: &[(usize, [Vector3<T>; 6])], with: &Vector3<T>| {
+            for (body, columns) in map {
+                let row = columns.clone().map(|column| column.dot(with));
+                match coefficients.iter_mut().find(|(b, _)| b == body) {
+                    Some((_, sum)) => {
+                        for (sum, term) in sum.iter_mut().zip(row) {
+                            *sum += term;
+                        }
+                    }
+                    None => coefficients.push((*body, row)),
+                }
+            }
+        };
+        add(&self.map, &other.value);
+        add(&other.map, &self.value);
+        Row {
+            value: self.value.dot(&other.value),
+            rate: self.rate.dot(&other.value) + self.value.dot(&other.rate),
+            bias: self.bias.dot(&other.value)
+                + self.value.dot(&other.bias)
+                + self.rate.dot(&other.rate) * T::from(2.0),
+            coefficients,
+        }
+    }
+}
+
+/// Adds `columns` to `body`'s entry of `map`.
+fn add_columns<T: Number>(
+    map: &mut Vec<(usize, [Vector3<T>; 6])>,
+    body: usize,
+    columns: &[Vector3<T>; 6],
+) {
+    match map.iter_mut().find(|(b, _)| *b == body) {
+        Some((_, sum)) => {
+            for (sum, term) in sum.iter_mut().zip(columns) {
+                *sum += term;
+            }
+        }
+        None => map.push((body, columns.clone())),
+    }
+}
+
+/// One scalar constraint equation at the current state.
+pub(crate) struct Row<T: Number> {
+    /// `Φ`: zero on the constraint.
+    pub(crate) value: T,
+    /// `Φ' = G u`.
+    pub(crate) rate: T,
+    /// `Φ'' − G u'`.
+    pub(crate) bias: T,
+    /// The row of `G` on each body it involves: `[v_x v_y v_z ω_x ω_y ω_z]`.
+    pub(crate) coefficients: Vec<(usize, [T; 6])>,
+}
