@@ -11,15 +11,15 @@ use mbexpr::simulate::{self, Event, Model, Place, Settings, SimulateError, Simul
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 /// A run's rows (time first), its events and what it cost.
-struct Run {
-    rows: Vec<Vec<f64>>,
-    events: Vec<Event>,
-    summary: Summary,
+pub(super) struct Run {
+    pub(super) rows: Vec<Vec<f64>>,
+    pub(super) events: Vec<Event>,
+    pub(super) summary: Summary,
 }
 
 /// The model of a scene file (text starting with `#` or `[`) or a dataset
 /// (which must check first, as `mbexpr simulate` asks).
-fn model_of(text: &str) -> Result<Model, String> {
+pub(super) fn model_of(text: &str) -> Result<Model, String> {
     if text.starts_with('#') || text.starts_with('[') {
         return simulate::from_scene(text).map_err(|errors| render(text, None, &errors));
     }
@@ -39,7 +39,7 @@ fn model_of(text: &str) -> Result<Model, String> {
 }
 
 /// Runs the model of `text`; every error as `LINE:COL: message`.
-fn run(text: &str, settings: &Settings) -> Result<Run, String> {
+pub(super) fn run(text: &str, settings: &Settings) -> Result<Run, String> {
     let model = model_of(text)?;
     let simulation =
         Simulation::new(&model).map_err(|errors| render(text, Some(&model), &errors))?;
@@ -76,7 +76,7 @@ fn render(text: &str, model: Option<&Model>, errors: &[SimulateError]) -> String
         .collect()
 }
 
-fn settings(end: f64, steps: usize, rtol: f64) -> Settings {
+pub(super) fn settings(end: f64, steps: usize, rtol: f64) -> Settings {
     Settings {
         end,
         steps,
@@ -591,7 +591,7 @@ END
 /// The Jacobian from dual numbers agrees with central differences of the
 /// right-hand side of `text`'s model at its start shifted by `shifts`
 /// (cycled over the states), at `time`.
-fn the_jacobian_agrees_with_finite_differences(
+pub(super) fn the_jacobian_agrees_with_finite_differences(
     text: &str,
     shifts: &[f64],
     time: f64,

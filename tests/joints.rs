@@ -1,0 +1,268 @@
+//! Joints: closed forms (a compound pendulum's period from the complete
+//! elliptic integral and its energy over many periods; a body on a
+//! translational joint under a spring, an exact sine), conserved
+//! quantities of 3-D joints (a heavy top on a spherical joint), the exact
+//! Jacobian of jointed bodies against finite differences, and the
+//! constraint residuals below the tolerance all run long.
+
+use std::f64::consts::PI;
+
+use mbexpr::integrate::Method;
+use mbexpr::simulate::Settings;
+
+use super::simulate::{Run, run, settings, the_jacobian_agrees_with_finite_differences};
+
+/// The complete elliptic integral of the first kind `K(k)`, by the
+/// arithmetic-geometric mean.
+fn elliptic_k(k: f64) -> f64 {
+    let (mut a, mut b) = (1.0_f64, (1.0 - k * k).sqrt());
+    while (a - b).abs() > 1e-16 * a {
+        (a, b) = (0.5 * (a + b), (a * b).sqrt());
+    }
+    PI / (2.0 * a)
+}
+
+/// A compound pendulum: mass `m`, centre of mass `d` from a revolute
+/// pivot at the ground's origin, moment `izz` about the centre of mass,
+/// released at rest with its centre of mass level with the pivot.
+fn pendulum(m: f64, d: f64, izz: f64) -> String {
+    format!(
+        "pendulum
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = {m}, CM = 20, IP = {izz}, {izz}, {izz}
+MARKER/20, PART = 2, QP = {d}, 0, 0
+MARKER/21, PART = 2
+JOINT/1, REVOLUTE, I = 21, J = 1
+ACCGRAV/JGRAV = -9.80665
+END
+"
+    )
+}
+
+/// The rotation angle about z of a body's quaternion columns `q0 .. q3`
+/// starting at `column`, unwrapped against `previous`.
+fn angle(row: &[f64], column: usize, previous: f64) -> f64 {
+    let raw = 2.0 * row[column + 3].atan2(row[column]);
+    raw + 2.0 * PI * ((previous - raw) / (2.0 * PI)).round()
+}
+
+fn method(name: &str) -> Method {
+    match name {
+        "radau" => Method::Radau5,
+        "dop853" => Method::Dop853,
+        _ => Method::Auto,
+    }
+}
+
+/// `m d izz rtol method`: the pendulum over one exact period `T = 4 K(k)
+/// / ω0` (`k = sin(π/4)`, `ω0² = m g d / (izz + m d²)`): the angle at
+/// `T/2` (−π: the centre of mass level on the other side) and at `T`
+/// (back to 0), as errors relative to `rtol`.
+fn period_error(case: &str) -> (f64, f64, Run) {
+    let fields: Vec<&str> = case.split_whitespace().collect();
+    let number = |index: usize| fields[index].parse::<f64>().expect("a number");
+    let (m, d, izz, rtol) = (number(0), number(1), number(2), number(3));
+    let omega0 = (m * 9.80665 * d / (izz + m * d * d)).sqrt();
+    let period = 4.0 * elliptic_k((PI / 4.0).sin()) / omega0;
+    let mut settings = settings(period, 2, rtol);
+    settings.method = method(fields[4]);
+    let run = run(&pendulum(m, d, izz), &settings).expect("the pendulum runs");
+    let half = angle(&run.rows[1], 4, -PI);
+    let whole = angle(&run.rows[2], 4, 0.0);
+    (
+        (half + PI).abs() / rtol,
+        whole.abs() / rtol,
+        run,
+    )
+}
+
+#[test]
+fn a_pendulum_on_a_revolute_joint_keeps_the_elliptic_integrals_period() {
+    let cases = "
+        1 2 0.1 1e-6 dop853
+        1 2 0.1 1e-9 dop853
+        1 2 0.1 1e-6 radau
+        1 2 0.1 1e-9 radau
+        3.5 0.4 0.02 1e-8 auto
+        0.2 1.5 0.7 1e-8 radau
+        0.2 1.5 0.7 1e-11 dop853
+    ";
+    for case in cases.lines().map(str::trim).filter(|case| !case.is_empty()) {
+        let (half, whole, run) = period_error(case);
+        println!(
+            "{case}: angle error at T/2 {half:.2} rtol, at T {whole:.2} rtol; residuals {:?}, {} projections",
+            run.summary.residuals, run.summary.projections
+        );
+        assert!(half < 50.0 && whole < 50.0, "{case}: {half} {whole}");
+    }
+}
+
+/// A body of mass `m` on a translational joint along ground z, pulled
+/// back by a spring `k` (an action-only SFORCE along the joint), its
+/// centre of mass off the axis and gravity across it (the joint takes
+/// both): `z = z0 cos ωt + v0/ω sin ωt`, `ω² = k / m`.
+fn slider(m: f64, k: f64, z0: f64, v0: f64) -> String {
+    format!(
+        "slider
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = {m}, CM = 20, IP = 1, 2, 3, QG = 0, 0, {z0}, VZ = {v0}
+MARKER/20, PART = 2, QP = 0.3, 0.1, 0
+MARKER/21, PART = 2
+JOINT/1, TRANSLATIONAL, I = 21, J = 1
+SFORCE/1, TRANSLATIONAL, I = 21, J = 1, ACTIONONLY, FUNCTION = -{k} * DZ(21, 1)
+ACCGRAV/IGRAV = 3, JGRAV = -9.80665
+END
+"
+    )
+}
+
+#[test]
+fn a_body_on_a_translational_joint_under_a_spring_moves_as_the_exact_sine() {
+    // m k z0 v0 rtol method
+    let cases = "
+        1 100 0.5 0 1e-8 dop853
+        2 30 -0.2 3 1e-8 radau
+        0.3 500 0.1 -2 1e-10 auto
+        5 1 1 1 1e-6 radau
+    ";
+    for case in cases.lines().map(str::trim).filter(|case| !case.is_empty()) {
+        let fields: Vec<&str> = case.split_whitespace().collect();
+        let number = |index: usize| fields[index].parse::<f64>().expect("a number");
+        let (m, k, z0, v0, rtol) = (number(0), number(1), number(2), number(3), number(4));
+        let omega = (k / m).sqrt();
+        let mut settings = settings(20.0 * PI / omega, 200, rtol);
+        settings.method = method(fields[5]);
+        let run = run(&slider(m, k, z0, v0), &settings).expect("the slider runs");
+        let scale = z0.abs().max(v0.abs() / omega);
+        let mut worst: f64 = 0.0;
+        for row in &run.rows {
+            let t = row[0];
+            let exact = z0 * (omega * t).cos() + v0 / omega * (omega * t).sin();
+            worst = worst.max((row[3] - exact).abs() / scale);
+            // It neither leaves the axis nor turns.
+            let off = row[1].abs().max(row[2].abs()).max((row[4] - 1.0).abs());
+            worst = worst.max(off / scale);
+        }
+        println!(
+            "{case}: largest error {:.2} rtol over 10 periods; residuals {:?}, {} projections",
+            worst / rtol,
+            run.summary.residuals,
+            run.summary.projections
+        );
+        assert!(worst < 100.0 * rtol, "{case}: {} rtol", worst / rtol);
+    }
+}
+
+/// A heavy top: a body of inertia `0.3, 0.5, 0.7` (mass 2) on a spherical
+/// joint at the ground's origin, its centre of mass `h` up its own z axis,
+/// tilted by `theta` and spun at `spin` about its axis.
+fn top(h: f64, theta: f64, spin: f64) -> String {
+    format!(
+        "top
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 2, CM = 20, IP = 0.3, 0.5, 0.7, REULER = 0.4, {theta}, 0, WZ = {spin}, WX = 0.3
+MARKER/20, PART = 2, QP = 0, 0, {h}
+MARKER/21, PART = 2
+JOINT/1, SPHERICAL, I = 21, J = 1
+ACCGRAV/KGRAV = -9.80665
+END
+"
+    )
+}
+
+/// The energy and the angular momentum about the vertical through the
+/// pivot of the top in `row` (its columns from 1: origin, quaternion,
+/// origin velocity, angular velocity in ground).
+fn top_invariants(row: &[f64], h: f64) -> (f64, f64) {
+    use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+    let q = UnitQuaternion::from_quaternion(Quaternion::new(row[4], row[5], row[6], row[7]));
+    let rotation = q.to_rotation_matrix().into_inner();
+    let origin = Vector3::new(row[1], row[2], row[3]);
+    let omega = Vector3::new(row[11], row[12], row[13]);
+    let arm = rotation * Vector3::new(0.0, 0.0, h);
+    let centre = origin + arm;
+    let velocity = Vector3::new(row[8], row[9], row[10]) + omega.cross(&arm);
+    let inertia = rotation * Matrix3::from_diagonal(&Vector3::new(0.3, 0.5, 0.7)) * rotation.transpose();
+    let energy = 0.5 * 2.0 * velocity.norm_squared()
+        + 0.5 * omega.dot(&(inertia * omega))
+        + 2.0 * 9.80665 * centre.z;
+    let momentum = (inertia * omega + centre.cross(&velocity) * 2.0).z;
+    (energy, momentum)
+}
+
+#[test]
+fn a_heavy_top_on_a_spherical_joint_keeps_its_energy_and_vertical_momentum() {
+    // h theta spin end rtol method
+    let cases = "
+        0.5 0.3 20 10 1e-9 dop853
+        0.5 0.3 20 10 1e-9 radau
+        1.2 1.1 5 20 1e-10 auto
+        0.2 0.05 40 5 1e-8 dop853
+    ";
+    for case in cases.lines().map(str::trim).filter(|case| !case.is_empty()) {
+        let fields: Vec<&str> = case.split_whitespace().collect();
+        let number = |index: usize| fields[index].parse::<f64>().expect("a number");
+        let (h, theta, spin, end, rtol) =
+            (number(0), number(1), number(2), number(3), number(4));
+        let mut settings: Settings = settings(end, 100, rtol);
+        settings.method = method(fields[5]);
+        let run = run(&top(h, theta, spin), &settings).expect("the top runs");
+        let (energy0, momentum0) = top_invariants(&run.rows[0], h);
+        let energy_scale = 0.5 * 0.7 * spin * spin + 2.0 * 9.80665 * h;
+        let momentum_scale = 0.7 * spin;
+        let mut worst: f64 = 0.0;
+        for row in &run.rows {
+            let (energy, momentum) = top_invariants(row, h);
+            worst = worst
+                .max((energy - energy0).abs() / energy_scale)
+                .max((momentum - momentum0).abs() / momentum_scale);
+            // The pivot stays at the origin.
+            worst = worst.max(row[1].abs().max(row[2].abs()).max(row[3].abs()) / h);
+        }
+        println!(
+            "{case}: largest drift {:.2} rtol; residuals {:?}, {} projections; {} steps",
+            worst / rtol,
+            run.summary.residuals,
+            run.summary.projections,
+            run.summary.stats.steps
+        );
+        assert!(worst < 100.0 * rtol, "{case}: {} rtol", worst / rtol);
+    }
+}
+
+/// Two bodies on a spherical and a revolute joint, a spring between them
+/// that reads their motion, off the constraints (the shifts), so that every
+/// part of the index-1 right-hand side is differentiated.
+const DOUBLE: &str = "double pendulum
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 20, IP = 0.1, 0.2, 0.3, WX = 1
+MARKER/20, PART = 2, QP = 1, 0, 0
+MARKER/21, PART = 2
+MARKER/22, PART = 2, QP = 2, 0, 0
+PART/3, MASS = 0.5, CM = 30, IP = 0.05, 0.05, 0.08, WZ = 2
+MARKER/30, PART = 3, QP = 2.5, 0.5, 0
+MARKER/31, PART = 3, QP = 2, 0, 0
+JOINT/1, SPHERICAL, I = 21, J = 1
+JOINT/2, REVOLUTE, I = 31, J = 22
+SFORCE/1, TRANSLATIONAL, I = 30, J = 1, FUNCTION = -3 * (DM(30, 1) - 2) - 0.2 * VR(30, 1)
+ACCGRAV/JGRAV = -9.80665
+END
+";
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(16))]
+
+    /// The Jacobian of jointed bodies (their multipliers through the
+    /// solve) from dual numbers agrees with central differences.
+    #[test]
+    fn the_exact_jacobian_of_jointed_bodies_agrees_with_finite_differences(
+        shifts in proptest::collection::vec(-0.05f64..0.05, 26),
+        time in 0.0f64..3.0,
+    ) {
+        the_jacobian_agrees_with_finite_differences(DOUBLE, &shifts, time)?;
+    }
+}
