@@ -149,6 +149,95 @@ fn violations(source_root: &Path) -> String {
     report
 }
 
+/// The rooms of `src/simulate/` from the bottom up: each may name only
+/// those before it (a room is a file or folder of `simulate`; `mod.rs`
+/// stands on them all). A reader builds a model and knows nothing of the
+/// equations; the constraints (the joints' equations, what the equations
+/// of motion add for them) know nothing of the equations of motion; the
+/// equations and constraints know nothing of a run.
+const SIMULATE_ROOMS: &[&str] = &[
+    "error",
+    "model",
+    "read",
+    "constraints",
+    "equations",
+    "initial",
+    "run",
+];
+
+/// One line per name of a room above its own in a file of `simulate`.
+fn room_violations(simulate_root: &Path) -> String {
+    let rank = |room: &str| SIMULATE_ROOMS.iter().position(|name| *name == room);
+    let mut files = Vec::new();
+    source_files(simulate_root, &mut files);
+    files.sort();
+    let mut report = String::new();
+    for file in files.iter().filter(|file| file.is_file()) {
+        let relative = file.strip_prefix(simulate_root).unwrap();
+        let room = relative.components().next().unwrap().as_os_str();
+        let room = Path::new(room).file_stem().unwrap().to_str().unwrap();
+        if room == "mod" {
+            continue;
+        }
+        let Some(own) = rank(room) else {
+            report.push_str(&format!(
+                "simulate/{}: room `{room}` is not in SIMULATE_ROOMS\n",
+                relative.display()
+            ));
+            continue;
+        };
+        let code = code_of(&fs::read_to_string(file).unwrap());
+        for prefix in ["simulate::", "super::"] {
+            for (start, _) in code.match_indices(prefix) {
+                let rest = &code[start + prefix.len()..];
+                let end = rest
+                    .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                    .unwrap_or(rest.len());
+                let named = &rest[..end];
+                if rank(named).is_some_and(|theirs| theirs > own) {
+                    report.push_str(&format!(
+                        "simulate/{}: `{room}` names `{named}`, a room above it\n",
+                        relative.display()
+                    ));
+                }
+            }
+        }
+    }
+    report
+}
+
+#[test]
+fn the_simulator_rooms_flow_one_way() {
+    let simulate_root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/simulate");
+    let report = room_violations(&simulate_root);
+    assert!(report.is_empty(), "names of rooms above:\n{report}");
+}
+
+#[test]
+fn a_room_naming_one_above_is_found() {
+    let root = std::env::temp_dir().join(format!("mbexpr-rooms-{}", std::process::id()));
+    let files = [
+        ("mod.rs", "use run::Settings;\n"),
+        ("read/dataset.rs", "use crate::simulate::model::Model;\n"),
+        (
+            "equations/mod.rs",
+            "use super::run::Settings;\n// super::read\n",
+        ),
+        ("lounge.rs", "\n"),
+    ];
+    for (path, text) in files {
+        let path = root.join(path);
+        fs::create_dir_all(path.parent().unwrap()).unwrap();
+        fs::write(path, text).unwrap();
+    }
+    let report = room_violations(&root);
+    fs::remove_dir_all(&root).unwrap();
+    insta::assert_snapshot!(report, @r"
+    simulate/equations/mod.rs: `equations` names `run`, a room above it
+    simulate/lounge.rs: room `lounge` is not in SIMULATE_ROOMS
+    ");
+}
+
 #[test]
 fn the_pipeline_flows_one_way() {
     let source_root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");

@@ -70,11 +70,7 @@ fn period_error(case: &str) -> (f64, f64, Run) {
     let run = run(&pendulum(m, d, izz), &settings).expect("the pendulum runs");
     let half = angle(&run.rows[1], 4, -PI);
     let whole = angle(&run.rows[2], 4, 0.0);
-    (
-        (half + PI).abs() / rtol,
-        whole.abs() / rtol,
-        run,
-    )
+    ((half + PI).abs() / rtol, whole.abs() / rtol, run)
 }
 
 #[test]
@@ -185,7 +181,8 @@ fn top_invariants(row: &[f64], h: f64) -> (f64, f64) {
     let arm = rotation * Vector3::new(0.0, 0.0, h);
     let centre = origin + arm;
     let velocity = Vector3::new(row[8], row[9], row[10]) + omega.cross(&arm);
-    let inertia = rotation * Matrix3::from_diagonal(&Vector3::new(0.3, 0.5, 0.7)) * rotation.transpose();
+    let inertia =
+        rotation * Matrix3::from_diagonal(&Vector3::new(0.3, 0.5, 0.7)) * rotation.transpose();
     let energy = 0.5 * 2.0 * velocity.norm_squared()
         + 0.5 * omega.dot(&(inertia * omega))
         + 2.0 * 9.80665 * centre.z;
@@ -205,8 +202,7 @@ fn a_heavy_top_on_a_spherical_joint_keeps_its_energy_and_vertical_momentum() {
     for case in cases.lines().map(str::trim).filter(|case| !case.is_empty()) {
         let fields: Vec<&str> = case.split_whitespace().collect();
         let number = |index: usize| fields[index].parse::<f64>().expect("a number");
-        let (h, theta, spin, end, rtol) =
-            (number(0), number(1), number(2), number(3), number(4));
+        let (h, theta, spin, end, rtol) = (number(0), number(1), number(2), number(3), number(4));
         let mut settings: Settings = settings(end, 100, rtol);
         settings.method = method(fields[5]);
         let run = run(&top(h, theta, spin), &settings).expect("the top runs");

@@ -47,28 +47,42 @@
 //! ```
 
 mod constraints;
-mod dataset;
+mod equations;
 mod error;
-mod estimate;
-mod mechanics;
+mod initial;
 mod model;
+mod read;
 mod run;
-mod scene_file;
-mod sink;
-mod sparsity;
-mod switch;
 
-pub use constraints::{Joint, JointKind, Residuals};
-pub use dataset::{from_dataset, run_settings};
+pub use constraints::Residuals;
 pub use error::{Place, SimulateError};
-pub use estimate::ErrorEstimate;
-pub use model::{Diff, Expression, Force, MassProperties, Model, Output};
-pub use run::{DEFAULT_MAX_STEPS, Equations, Event, SMALLEST_RTOL, Settings, Summary};
-pub use scene_file::from_scene;
-pub use sink::{MethodChange, Sink};
+pub use model::{Diff, Expression, Force, Joint, JointKind, MassProperties, Model, Output};
+pub use read::{from_scene, run_settings};
+pub use run::{
+    DEFAULT_MAX_STEPS, Equations, ErrorEstimate, Event, MethodChange, SMALLEST_RTOL, Settings,
+    Sink, Summary,
+};
 
 use crate::compile::{Program, compile_outputs};
 use crate::scene::diff_input;
+
+/// The model of a dataset that [`crate::model::check_model`] has checked
+/// (`report`). Every statement that cannot be simulated is reported. The
+/// equations of its joints that repeat others at the initial state are
+/// left out of the run, each joint that loses some named in the model's
+/// notes.
+pub fn from_dataset(
+    dataset: &crate::model::Dataset,
+    report: &crate::model::ModelCheck,
+) -> Result<Model, Vec<SimulateError>> {
+    let mut model = read::from_dataset(dataset, report)?;
+    if !model.joints.is_empty() {
+        let y = initial::initial_state(&model);
+        let offsets = run::body_offsets(&model);
+        constraints::leave_out_redundant(&mut model, &y, &offsets);
+    }
+    Ok(model)
+}
 
 /// A model compiled for simulation: its DIFF functions and force
 /// components as one program with an output each, and its output columns

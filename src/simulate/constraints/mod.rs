@@ -26,11 +26,9 @@
 //! out-of-plane equations are dependent) are found once, at the initial
 //! state, and left out ([`Joint::redundant`]), as Adams removes them.
 
-mod read;
 mod rows;
 mod solve;
 
-pub(crate) use read::joints;
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
 pub(crate) use solve::{Tolerance, constraint_loads, find_redundant, project};
@@ -38,67 +36,8 @@ pub(crate) use solve::{Tolerance, constraint_loads, find_redundant, project};
 use nalgebra::Vector3;
 
 use crate::scene::Target;
-use crate::span::Span;
+use crate::simulate::model::{Joint, JointKind};
 use rows::{Moving, Row};
-
-/// The kinds of joint simulated.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum JointKind {
-    /// Origins and axes together: no relative motion (6 equations).
-    Fixed,
-    /// Origins together, z axes parallel: a rotation about z (5).
-    Revolute,
-    /// Axes parallel, I's origin on J's z axis: a translation along z (5).
-    Translational,
-    /// Origins together: any rotation (3).
-    Spherical,
-    /// z axes parallel, I's origin on J's z axis: a rotation about and a
-    /// translation along z (4).
-    Cylindrical,
-    /// z axes parallel, I's origin in J's x-y plane: a rotation about z
-    /// and a translation in the plane (3).
-    Planar,
-}
-
-impl JointKind {
-    /// Every kind with its keyword.
-    pub const ALL: [(JointKind, &'static str); 6] = [
-        (JointKind::Fixed, "FIXED"),
-        (JointKind::Revolute, "REVOLUTE"),
-        (JointKind::Translational, "TRANSLATIONAL"),
-        (JointKind::Spherical, "SPHERICAL"),
-        (JointKind::Cylindrical, "CYLINDRICAL"),
-        (JointKind::Planar, "PLANAR"),
-    ];
-
-    /// The number of scalar equations.
-    pub fn equations(self) -> usize {
-        match self {
-            JointKind::Fixed => 6,
-            JointKind::Revolute | JointKind::Translational => 5,
-            JointKind::Cylindrical => 4,
-            JointKind::Spherical | JointKind::Planar => 3,
-        }
-    }
-}
-
-/// A `JOINT` statement.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Joint {
-    /// The statement id.
-    pub id: u64,
-    /// What it holds.
-    pub kind: JointKind,
-    /// The I marker (on the moving body, by Adams' convention).
-    pub i: Target,
-    /// The J marker.
-    pub j: Target,
-    /// Its equations (indices below [`JointKind::equations`]) that repeat
-    /// other joints' at the initial state, left out of the run.
-    pub redundant: Vec<usize>,
-    /// The statement.
-    pub span: Span,
-}
 
 /// A marker's frame in motion: its origin and its three axes.
 struct Frame<T: crate::number::Number> {
@@ -182,15 +121,11 @@ fn active_rows<T: crate::number::Number>(
     rows
 }
 
-/// Finds the equations of `model`'s joints that repeat others at its
-/// initial state, marks them [`Joint::redundant`] and says so in the
-/// model's notes.
-pub(crate) fn leave_out_redundant(model: &mut super::Model) {
-    if model.joints.is_empty() {
-        return;
-    }
-    let y = super::run::initial_state(model);
-    for (joint, equation) in find_redundant(model, &y) {
+/// Finds the equations of `model`'s joints that repeat others at state
+/// `y` (its initial state), marks them [`Joint::redundant`] and says so in
+/// the model's notes.
+pub(crate) fn leave_out_redundant(model: &mut super::Model, y: &[f64], offsets: &[usize]) {
+    for (joint, equation) in find_redundant(model, y, offsets) {
         model.joints[joint].redundant.push(equation);
     }
     for joint in &model.joints {

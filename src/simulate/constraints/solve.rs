@@ -196,17 +196,14 @@ impl Residuals {
     }
 }
 
-/// The index of a body's first state, its centre of mass, quaternion,
-/// velocity and angular velocity (in its axes) after it.
-fn offset(model: &Model, body: usize) -> usize {
-    super::super::mechanics::body_offset(model, body)
-}
-
-/// The bodies' motions at state `y`.
-fn motions(model: &Model, y: &[f64]) -> Vec<BodyMotion<f64>> {
-    (0..model.masses.len())
-        .map(|body| {
-            let s = &y[offset(model, body)..];
+/// The bodies' motions at state `y`, where each body's states start at
+/// its entry of `offsets` (its centre of mass, quaternion `w x y z`,
+/// velocity and angular velocity in its own axes).
+fn motions(y: &[f64], offsets: &[usize]) -> Vec<BodyMotion<f64>> {
+    offsets
+        .iter()
+        .map(|&offset| {
+            let s = &y[offset..];
             let rotation = quaternion(s).to_rotation_matrix().into_inner();
             BodyMotion {
                 centre: Vector3::new(s[0], s[1], s[2]),
@@ -257,15 +254,15 @@ pub(crate) struct Tolerance {
 /// `first` (0: the positions, 7: the velocities) of `y`: above 1, the
 /// change is larger than the error the integrator allows those states.
 fn scaled(
-    model: &Model,
     y: &[f64],
+    offsets: &[usize],
     change: &[[f64; 6]],
     first: usize,
     tolerance: Tolerance,
 ) -> f64 {
     let mut most: f64 = 0.0;
-    for (body, change) in change.iter().enumerate() {
-        let s = &y[offset(model, body)..];
+    for (change, &offset) in change.iter().zip(offsets) {
+        let s = &y[offset..];
         let rotation_size = if first == 0 {
             s[3..7].iter().fold(0.0_f64, |most, q| most.max(q.abs()))
         } else {
@@ -290,22 +287,23 @@ fn scaled(
 pub(crate) fn project(
     model: &Model,
     y: &mut [f64],
+    offsets: &[usize],
     inverse_inertia: &[Matrix3<f64>],
     tolerance: Tolerance,
 ) -> Result<Residuals, Singular> {
-    let bodies = motions(model, y);
+    let bodies = motions(y, offsets);
     let rows = active_rows(model, &bodies);
     let before = Residuals::of(&rows);
     let off_positions = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
     let off_velocities = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
-    if scaled(model, y, &off_positions, 0, tolerance) <= 1.0
-        && scaled(model, y, &off_velocities, 7, tolerance) <= 1.0
+    if scaled(y, offsets, &off_positions, 0, tolerance) <= 1.0
+        && scaled(y, offsets, &off_velocities, 7, tolerance) <= 1.0
     {
         return Ok(before);
     }
     let mut last = f64::INFINITY;
     for _ in 0..POSITION_ITERATIONS {
-        let bodies = motions(model, y);
+        let bodies = motions(y, offsets);
         let rows = active_rows(model, &bodies);
         let residual = Residuals::of(&rows).position;
         // Stop where rounding stops the residual from falling.
@@ -314,8 +312,8 @@ pub(crate) fn project(
         }
         last = residual;
         let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
-        for (body, change) in change.iter().enumerate() {
-            let s = &mut y[offset(model, body)..];
+        for (change, &offset) in change.iter().zip(offsets) {
+            let s = &mut y[offset..];
             for k in 0..3 {
                 s[k] += change[k];
             }
@@ -325,11 +323,11 @@ pub(crate) fn project(
             s[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k]);
         }
     }
-    let bodies = motions(model, y);
+    let bodies = motions(y, offsets);
     let rows = active_rows(model, &bodies);
     let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
-    for (body, (change, motion)) in change.iter().zip(&bodies).enumerate() {
-        let s = &mut y[offset(model, body)..];
+    for ((change, motion), &offset) in change.iter().zip(&bodies).zip(offsets) {
+        let s = &mut y[offset..];
         for k in 0..3 {
             s[7 + k] += change[k];
         }
@@ -344,8 +342,8 @@ pub(crate) fn project(
 /// state `y`: a row of `G` whose part outside the span of the rows kept
 /// before it is below a millionth of its length (Gram-Schmidt, in the
 /// order of the joints).
-pub(crate) fn find_redundant(model: &Model, y: &[f64]) -> Vec<(usize, usize)> {
-    let bodies = motions(model, y);
+pub(crate) fn find_redundant(model: &Model, y: &[f64], offsets: &[usize]) -> Vec<(usize, usize)> {
+    let bodies = motions(y, offsets);
     let width = 6 * bodies.len();
     let mut kept: Vec<DVector<f64>> = Vec::new();
     let mut redundant = Vec::new();

@@ -5,11 +5,11 @@
 
 use nalgebra::DMatrix;
 
-use super::mechanics::Mechanics;
 use crate::eval::OutputError;
 use crate::integrate::linalg::Pattern;
 use crate::integrate::{Stepper, System};
 use crate::laws::branch::Code;
+use crate::simulate::equations::Mechanics;
 
 /// A look at the switching values at a time: whether one that is watched
 /// is negative there.

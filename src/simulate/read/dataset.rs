@@ -9,14 +9,13 @@ use std::collections::HashMap;
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::constraints;
-use super::error::SimulateError;
-use super::model::{Diff, Expression, Force, MassProperties, Model, Output};
 use crate::Shown;
 use crate::check::Reference;
 use crate::model::initial::{number, numbers};
 use crate::model::{Dataset, ModelCheck, Statement, Value, initial_scene, is_kind};
 use crate::scene::{Scene, Target};
+use crate::simulate::error::SimulateError;
+use crate::simulate::model::{Diff, Expression, Force, MassProperties, Model, Output};
 use crate::span::Span;
 
 /// Statements that need a constraint solver.
@@ -154,10 +153,10 @@ impl Reader<'_> {
         let masses = self.masses();
         let diffs = self.diffs();
         let forces = self.forces();
-        let joints = constraints::joints(self.dataset, &self.scene, &mut self.errors);
+        let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
         let gravity = self.gravity();
         let outputs = self.outputs(&mut notes);
-        let mut model = Model {
+        Model {
             scene: std::mem::take(&mut self.scene),
             masses,
             diffs,
@@ -168,11 +167,7 @@ impl Reader<'_> {
             outputs,
             notes,
             run: None,
-        };
-        if self.errors.is_empty() {
-            constraints::leave_out_redundant(&mut model);
         }
-        model
     }
 
     /// The expression `keyword` of statement `index`, added to the model's

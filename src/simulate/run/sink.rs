@@ -6,7 +6,7 @@
 
 use std::ops::ControlFlow;
 
-use super::run::Event;
+use super::Event;
 use crate::integrate::Method;
 
 /// A change of method under [`Method::Auto`].
@@ -25,7 +25,7 @@ pub struct MethodChange {
 /// [`row`](Sink::row) must be written.
 pub trait Sink {
     /// A row: the time and the values of the columns after `time`
-    /// ([`columns`](super::columns)). [`ControlFlow::Break`] stops the run
+    /// ([`columns`](crate::simulate::columns)). [`ControlFlow::Break`] stops the run
     /// there.
     fn row(&mut self, time: f64, values: &[f64]) -> ControlFlow<()>;
 

@@ -9,13 +9,13 @@ use nalgebra::{Matrix3, Vector3};
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::error::SimulateError;
-use super::model::{Diff, Expression, Force, MassProperties, Model, Output};
 use crate::Errors;
 use crate::Shown;
 use crate::check::Reference;
 use crate::model::Embedded;
 use crate::scene::{DiffData, Scene, SceneError, Target};
+use crate::simulate::error::SimulateError;
+use crate::simulate::model::{Diff, Expression, Force, MassProperties, Model, Output};
 use crate::span::Span;
 
 #[derive(Deserialize)]

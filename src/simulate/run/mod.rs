@@ -7,11 +7,17 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
+mod estimate;
+mod sink;
+mod switch;
+
+pub use estimate::ErrorEstimate;
+pub use sink::{MethodChange, Sink};
+
 use super::constraints::{JOINTS, Residuals, Tolerance, project};
+use super::equations::{BODY_STATES, Mechanics, body_offset};
 use super::error::SimulateError;
-use super::mechanics::{BODY_STATES, Mechanics, body_offset};
-use super::sink::{MethodChange, RowsOnly, Sink};
-use super::switch::{Held, Switch, find_switch, switching_slope};
+use super::initial::initial_state;
 use super::{Model, Simulation};
 use crate::Shown;
 use crate::compile::{Program, SiteKind};
@@ -20,6 +26,8 @@ use crate::integrate::{
     AbsoluteTolerance, IntegrateError, Method, Options, Rejection, Stats, Stepper,
 };
 use crate::laws::branch::{self, Code};
+use sink::RowsOnly;
+use switch::{Held, Switch, find_switch, switching_slope};
 
 /// How to run a simulation.
 #[derive(Clone, Debug, PartialEq)]
@@ -180,24 +188,6 @@ fn add(a: Stats, b: Stats) -> Stats {
 const CHATTER_WINDOW: f64 = 1e-9;
 const CHATTER_COUNT: usize = 100;
 
-/// The initial state of the model.
-pub(crate) fn initial_state(model: &Model) -> Vec<f64> {
-    let mut y: Vec<f64> = model.diffs.iter().map(|diff| diff.initial).collect();
-    for (body, state) in model.scene.bodies.iter().enumerate() {
-        let rotation = state.orientation;
-        let arm = rotation * model.masses[body].centre;
-        let centre = state.position + arm;
-        let velocity = state.velocity + state.angular_velocity.cross(&arm);
-        let omega = rotation.inverse() * state.angular_velocity;
-        let q = rotation.quaternion();
-        y.extend(centre.iter());
-        y.extend([q.w, q.i, q.j, q.k]);
-        y.extend(velocity.iter());
-        y.extend(omega.iter());
-    }
-    y
-}
-
 /// The rows' values at state `y` (everything but the time).
 struct Rows<'m> {
     model: &'m Model,
@@ -342,8 +332,10 @@ impl Simulation<'_> {
             error: error.error,
         };
         let mut y0 = initial_state(model);
+        let offsets = body_offsets(model);
+        let inverse_inertia = model.inverse_inertia();
         let assemble = |y: &mut [f64], time: f64, tolerance: Tolerance| {
-            project(model, y, &system_inverse_inertia(model), tolerance).map_err(|_| {
+            project(model, y, &offsets, &inverse_inertia, tolerance).map_err(|_| {
                 SimulateError::Integration {
                     time,
                     message: "the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(),
@@ -733,15 +725,9 @@ impl Simulation<'_> {
     }
 }
 
-/// The inverse inertia of each body of `model`, in its own axes.
-pub(crate) fn system_inverse_inertia(model: &Model) -> Vec<nalgebra::Matrix3<f64>> {
-    model
-        .masses
-        .iter()
-        .map(|mass| {
-            mass.inertia
-                .try_inverse()
-                .unwrap_or_else(nalgebra::Matrix3::zeros)
-        })
+/// The index of each body's first state in the state vector.
+pub(super) fn body_offsets(model: &Model) -> Vec<usize> {
+    (0..model.masses.len())
+        .map(|body| body_offset(model, body))
         .collect()
 }

@@ -18,11 +18,11 @@
 //! or chain of bodies, whose rates read a body and its two neighbours, needs
 //! three body colours (39 directions) whatever its length.
 
-use super::mechanics::{BODY_STATES, Source, body_offset};
-use super::model::{Force, Model};
+use super::{BODY_STATES, Source, body_offset};
 use crate::compile::Program;
 use crate::integrate::linalg::Pattern;
 use crate::scene::Target;
+use crate::simulate::model::{Force, Model};
 
 /// The pattern of a model's Jacobian and the seeding that fills it.
 pub(crate) struct Sparsity {

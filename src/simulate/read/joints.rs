@@ -1,11 +1,11 @@
 //! `JOINT` statements of a dataset.
 
-use super::{Joint, JointKind};
 use crate::check::Reference;
 use crate::model::initial::number;
 use crate::model::{Dataset, Statement, is_kind};
 use crate::scene::{Scene, Target};
 use crate::simulate::SimulateError;
+use crate::simulate::model::{Joint, JointKind};
 
 /// Joint types of Adams that are not simulated yet.
 const NOT_YET: [&str; 5] = ["UNIVERSAL", "HOOKE", "CONVEL", "RACKPIN", "SCREW"];

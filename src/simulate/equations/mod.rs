@@ -21,21 +21,24 @@
 //! their derivative parts, so the program's derivatives flow into the
 //! Jacobian by the chain rule with no hand-written derivative.
 
+mod bodies;
+mod forces;
+mod sparsity;
+
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use num_dual::{DualDVec64, DualSVec64};
 
-use super::constraints::{BodyMotion, constraint_loads, joints_singular};
-use super::model::{Force, Model};
-use super::sparsity::Sparsity;
 use crate::compile::Program;
 use crate::eval::{Evaluator, OutputError};
 use crate::integrate::linalg::Pattern;
 use crate::laws::branch::Code;
 use crate::number::{Directional, Number};
-use crate::scene::{StateComponent, Target, parse_diff_input};
-
-/// Components of a body's state.
-pub(crate) const BODY_STATES: usize = 13;
+use crate::scene::{StateComponent, parse_diff_input};
+use crate::simulate::constraints::{BodyMotion, constraint_loads, joints_singular};
+use crate::simulate::model::Model;
+pub(crate) use bodies::{BODY_STATES, body_offset};
+use bodies::{Kinematics, Loads};
+use sparsity::Sparsity;
 
 /// Where a program input's value comes from.
 #[derive(Clone, Copy, Debug)]
@@ -50,148 +53,14 @@ pub(crate) enum Source {
     Body(usize, StateComponent),
 }
 
-/// A body's state as the expressions and the force elements see it.
-struct Kinematics<T: Number> {
-    centre: Vector3<T>,
-    /// The quaternion as integrated (not normalised).
-    quaternion: [T; 4],
-    rotation: Matrix3<T>,
-    /// A small rotation about the current orientation, with value 0 and the
-    /// derivative parts of the orientation.
-    turn: Vector3<T>,
-    velocity: Vector3<T>,
-    /// Angular velocity in the body's axes.
-    omega: Vector3<T>,
-    /// Angular velocity in ground.
-    omega_ground: Vector3<T>,
-    /// The body frame's origin and its velocity, in ground: the state
-    /// inputs, worked out once per call for every expression that reads them.
-    origin: Vector3<T>,
-    origin_velocity: Vector3<T>,
-}
-
-impl<T: Number> Kinematics<T> {
-    fn of(state: &[T], centre_in_body: &Vector3<f64>) -> Kinematics<T> {
-        let vector = |first: usize| {
-            Vector3::new(
-                state[first].clone(),
-                state[first + 1].clone(),
-                state[first + 2].clone(),
-            )
-        };
-        let quaternion = [
-            state[3].clone(),
-            state[4].clone(),
-            state[5].clone(),
-            state[6].clone(),
-        ];
-        let length = quaternion
-            .iter()
-            .map(|part| part.clone() * part.clone())
-            .reduce(|sum, term| sum + term)
-            .expect("four parts")
-            .sqrt();
-        let [w, x, y, z] = quaternion.clone().map(|part| part / length.clone());
-        let rotation = rotation_matrix(&w, &x, &y, &z);
-        // vec(n ⊗ n0*) = w0 v − w v0 − v × v0, twice, is the small rotation
-        // whose derivative parts are the orientation's.
-        let (w0, v0) = (w.value(), Vector3::new(x.value(), y.value(), z.value()));
-        let v = Vector3::new(x, y, z);
-        let cross = v.cross(&v0.map(T::from));
-        let turn = (v.clone() * T::from(w0) - v0.map(|c| w.clone() * c) - cross) * T::from(2.0);
-        let turn = turn.map(|component| component.clone() - component.value());
-        let omega = vector(10);
-        let omega_ground = &rotation * &omega;
-        let to_origin = -(&rotation * centre_in_body.map(T::from));
-        let (centre, velocity) = (vector(0), vector(7));
-        let origin = &centre + &to_origin;
-        let origin_velocity = &velocity + omega_ground.cross(&to_origin);
-        Kinematics {
-            centre,
-            quaternion,
-            rotation,
-            turn,
-            velocity,
-            omega,
-            omega_ground,
-            origin,
-            origin_velocity,
-        }
-    }
-
-    /// The value of state input `component` (of the body frame's origin).
-    fn input(&self, component: StateComponent) -> T {
-        match component {
-            StateComponent::Position(axis) => self.origin[axis].clone(),
-            StateComponent::Rotation(axis) => self.turn[axis].clone(),
-            StateComponent::Velocity(axis) => self.origin_velocity[axis].clone(),
-            StateComponent::AngularVelocity(axis) => self.omega_ground[axis].clone(),
-        }
-    }
-}
-
-/// The rotation matrix of the unit quaternion `w x y z`.
-fn rotation_matrix<T: Number>(w: &T, x: &T, y: &T, z: &T) -> Matrix3<T> {
-    let two = |a: &T, b: &T| a.clone() * b.clone() * 2.0;
-    let one = T::one();
-    Matrix3::new(
-        one.clone() - two(y, y) - two(z, z),
-        two(x, y) - two(w, z),
-        two(x, z) + two(w, y),
-        two(x, y) + two(w, z),
-        one.clone() - two(x, x) - two(z, z),
-        two(y, z) - two(w, x),
-        two(x, z) - two(w, y),
-        two(y, z) + two(w, x),
-        one - two(x, x) - two(y, y),
-    )
-}
-
-/// A marker's origin and axes in ground.
-struct Placed<T: Number> {
-    origin: Vector3<T>,
-    axes: Matrix3<T>,
-    body: Option<usize>,
-}
-
-/// The force and the torque about the centre of mass, in ground, that the
-/// force elements apply to each body.
-struct Loads<T: Number> {
-    force: Vec<Vector3<T>>,
-    torque: Vec<Vector3<T>>,
-}
-
-impl<T: Number> Loads<T> {
-    /// `force` at `point` on `body` (nothing on ground).
-    fn push(
-        &mut self,
-        body: Option<usize>,
-        point: &Vector3<T>,
-        force: &Vector3<T>,
-        kinematics: &[Kinematics<T>],
-    ) {
-        if let Some(body) = body {
-            let arm = point - &kinematics[body].centre;
-            self.torque[body] += arm.cross(force);
-            self.force[body] += force;
-        }
-    }
-
-    /// `torque` on `body` (nothing on ground).
-    fn turn(&mut self, body: Option<usize>, torque: &Vector3<T>) {
-        if let Some(body) = body {
-            self.torque[body] += torque;
-        }
-    }
-}
-
 /// The equations of motion of a model, with its compiled expressions.
 pub(crate) struct Mechanics<'m> {
     equations: Equations<'m>,
     values: Evaluator<'m, f64>,
     buffers: Buffers<f64>,
     /// The Jacobian's pattern and evaluator, built when first asked for.
-    jacobian: Option<(Sparsity, DualEvaluator<'m>)>,
+    /// The count is the number of directions the evaluator seeds.
+    jacobian: Option<(Sparsity, DualEvaluator<'m>, usize)>,
 }
 
 /// The evaluator of the Jacobian's dual numbers: a size fixed at compile
@@ -225,11 +94,6 @@ impl<'m> DualEvaluator<'m> {
     }
 }
 
-/// The state index of the first component of body `body`.
-pub(crate) fn body_offset(model: &Model, body: usize) -> usize {
-    model.diffs.len() + BODY_STATES * body
-}
-
 impl<'m> Mechanics<'m> {
     /// The equations of `model`, whose DIFF functions and force components
     /// `program` computes (output `k` is the expression `computed[k]`).
@@ -259,11 +123,7 @@ impl<'m> Mechanics<'m> {
             .iter()
             .map(|diff| output_of[diff.function])
             .collect();
-        let inverse_inertia = model
-            .masses
-            .iter()
-            .map(|mass| mass.inertia.try_inverse().unwrap_or_else(Matrix3::zeros))
-            .collect();
+        let inverse_inertia = model.inverse_inertia();
         Mechanics {
             equations: Equations {
                 model,
@@ -356,9 +216,9 @@ impl<'m> Mechanics<'m> {
                     &equations.sources,
                     &equations.output_of,
                 );
-                let (duals, _) =
+                let (duals, count) =
                     DualEvaluator::for_directions(equations.program, sparsity.directions);
-                (sparsity, duals)
+                (sparsity, duals, count)
             })
             .0
     }
@@ -374,37 +234,21 @@ impl<'m> Mechanics<'m> {
         values: &mut [f64],
     ) -> Result<(), OutputError> {
         self.sparsity();
-        let Some((sparsity, duals)) = &mut self.jacobian else {
+        let Some((sparsity, duals, count)) = &mut self.jacobian else {
             unreachable!("built above");
         };
         let equations = &self.equations;
-        let count = |size: usize| size.max(sparsity.directions);
-        match duals {
-            DualEvaluator::One(evaluator) => {
-                equations.fill(evaluator, t, y, held, sparsity, count(1), values)
-            }
-            DualEvaluator::Two(evaluator) => {
-                equations.fill(evaluator, t, y, held, sparsity, count(2), values)
-            }
-            DualEvaluator::Three(evaluator) => {
-                equations.fill(evaluator, t, y, held, sparsity, count(3), values)
-            }
-            DualEvaluator::Four(evaluator) => {
-                equations.fill(evaluator, t, y, held, sparsity, count(4), values)
-            }
-            DualEvaluator::OneBody(evaluator) => {
-                equations.fill(evaluator, t, y, held, sparsity, count(13), values)
-            }
-            DualEvaluator::TwoBodies(evaluator) => {
-                equations.fill(evaluator, t, y, held, sparsity, count(26), values)
-            }
-            DualEvaluator::ThreeBodies(evaluator) => {
-                equations.fill(evaluator, t, y, held, sparsity, count(39), values)
-            }
-            DualEvaluator::Many(evaluator) => {
-                equations.fill(evaluator, t, y, held, sparsity, count(0), values)
-            }
+        // Each size's evaluator fills the same way: one arm per variant.
+        macro_rules! fill_with {
+            ($($variant:ident),*) => {
+                match duals {
+                    $(DualEvaluator::$variant(evaluator) => {
+                        equations.fill(evaluator, t, y, held, sparsity, *count, values)
+                    })*
+                }
+            };
         }
+        fill_with!(One, Two, Three, Four, OneBody, TwoBodies, ThreeBodies, Many)
     }
 
     /// `d(dy/dt)/dy` at `(t, y)` with the sites on `held`, into the dense
@@ -527,7 +371,7 @@ impl Equations<'_> {
                 .map_or_else(T::zero, |output| outputs[output].clone())
         };
         for force in &model.forces {
-            self.apply(force, &kinematics, &value, &mut loads);
+            forces::apply(model, force, &kinematics, &value, &mut loads);
         }
         if !model.joints.is_empty() {
             let motions: Vec<BodyMotion<T>> = kinematics
@@ -550,158 +394,16 @@ impl Equations<'_> {
         }
         for (body, state) in kinematics.iter().enumerate() {
             let offset = body_offset(model, body);
-            self.body_rates(
-                body,
-                state,
+            state.rates(
+                &model.masses[body],
+                &self.inverse_inertia[body],
+                &model.gravity,
                 &loads.force[body],
                 &loads.torque[body],
                 &mut rates[offset..offset + BODY_STATES],
             );
         }
         Ok(())
-    }
-
-    /// A marker's origin and axes in ground.
-    fn place<T: Number>(&self, target: &Target, kinematics: &[Kinematics<T>]) -> Placed<T> {
-        let Target::Marker(index) = target else {
-            return Placed {
-                origin: Vector3::zeros(),
-                axes: Matrix3::identity(),
-                body: None,
-            };
-        };
-        let marker = &self.model.scene.markers[*index];
-        let axes_in_body = marker.orientation.to_rotation_matrix().into_inner();
-        match marker.body {
-            None => Placed {
-                origin: marker.position.map(T::from),
-                axes: axes_in_body.map(T::from),
-                body: None,
-            },
-            Some(body) => {
-                let state = &kinematics[body];
-                let offset = marker.position - self.model.masses[body].centre;
-                Placed {
-                    origin: &state.centre + &state.rotation * offset.map(T::from),
-                    axes: &state.rotation * axes_in_body.map(T::from),
-                    body: Some(body),
-                }
-            }
-        }
-    }
-
-    /// Adds what `force` applies to the bodies.
-    fn apply<T: Number>(
-        &self,
-        force: &Force,
-        kinematics: &[Kinematics<T>],
-        value: &impl Fn(Option<usize>) -> T,
-        loads: &mut Loads<T>,
-    ) {
-        match force {
-            Force::Translational {
-                i,
-                j,
-                magnitude,
-                action_only,
-            } => {
-                let (i, j) = (self.place(i, kinematics), self.place(j, kinematics));
-                let magnitude = value(Some(*magnitude));
-                if *action_only {
-                    let along = j.axes.column(2).into_owned() * magnitude;
-                    loads.push(i.body, &i.origin, &along, kinematics);
-                    return;
-                }
-                let line = &i.origin - &j.origin;
-                let length = line.dot(&line).sqrt();
-                if length.value() == 0.0 {
-                    // Coincident markers: no line of action, no force.
-                    return;
-                }
-                let push = line / length * magnitude;
-                loads.push(i.body, &i.origin, &push, kinematics);
-                loads.push(j.body, &j.origin, &-push, kinematics);
-            }
-            Force::Rotational {
-                i,
-                j,
-                magnitude,
-                action_only,
-            } => {
-                let (i, j) = (self.place(i, kinematics), self.place(j, kinematics));
-                let torque = j.axes.column(2).into_owned() * value(Some(*magnitude));
-                loads.turn(i.body, &torque);
-                if !*action_only {
-                    loads.turn(j.body, &-torque);
-                }
-            }
-            Force::Vector {
-                i,
-                reaction,
-                axes,
-                force,
-                torque,
-            } => {
-                let i = self.place(i, kinematics);
-                let axes = self.place(axes, kinematics).axes;
-                let along = |components: &[Option<usize>; 3]| {
-                    let local = Vector3::new(
-                        value(components[0]),
-                        value(components[1]),
-                        value(components[2]),
-                    );
-                    &axes * local
-                };
-                let (push, turn) = (along(force), along(torque));
-                loads.push(i.body, &i.origin, &push, kinematics);
-                loads.turn(i.body, &turn);
-                if reaction.is_some() {
-                    loads.push(*reaction, &i.origin, &-push, kinematics);
-                    loads.turn(*reaction, &-turn);
-                }
-            }
-        }
-    }
-
-    /// The rates of one body's 13 states under `force` and `torque` (about
-    /// its centre of mass, in ground).
-    fn body_rates<T: Number>(
-        &self,
-        body: usize,
-        state: &Kinematics<T>,
-        force: &Vector3<T>,
-        torque: &Vector3<T>,
-        rates: &mut [T],
-    ) {
-        let mass = &self.model.masses[body];
-        let inertia = mass.inertia.map(T::from);
-        let acceleration = force / T::from(mass.mass) + self.model.gravity.map(T::from);
-        let omega = &state.omega;
-        let body_torque = state.rotation.transpose() * torque;
-        let angular = self.inverse_inertia[body].map(T::from)
-            * (body_torque - omega.cross(&(&inertia * omega)));
-        let [w, x, y, z] = &state.quaternion;
-        let v = Vector3::new(x.clone(), y.clone(), z.clone());
-        let spin_w = -v.dot(omega) * 0.5;
-        let spin_v = (omega * w.clone() + v.cross(omega)) * T::from(0.5);
-        let rows: [T; 13] = [
-            state.velocity[0].clone(),
-            state.velocity[1].clone(),
-            state.velocity[2].clone(),
-            spin_w,
-            spin_v[0].clone(),
-            spin_v[1].clone(),
-            spin_v[2].clone(),
-            acceleration[0].clone(),
-            acceleration[1].clone(),
-            acceleration[2].clone(),
-            angular[0].clone(),
-            angular[1].clone(),
-            angular[2].clone(),
-        ];
-        for (rate, row) in rates.iter_mut().zip(rows) {
-            *rate = row;
-        }
     }
 
     /// The Jacobian's entries into `values`, by one evaluation over dual

@@ -2,8 +2,8 @@
 //! would: the same model run again at a hundredth of the tolerances, over
 //! the same output times, and the rows compared.
 
-use super::run::{SMALLEST_RTOL, Settings};
-use super::{SimulateError, Simulation};
+use super::{SMALLEST_RTOL, Settings};
+use crate::simulate::{SimulateError, Simulation};
 
 /// How far a run's rows lie from a run at a hundredth of its tolerances
 /// ([`Simulation::estimate_error`]).
