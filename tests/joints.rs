@@ -262,3 +262,122 @@ proptest::proptest! {
         the_jacobian_agrees_with_finite_differences(DOUBLE, &shifts, time)?;
     }
 }
+
+/// Andrews' squeezing mechanism (`examples/simulate/d_andrews.adm`,
+/// written by `scripts/andrews_dataset.py` from the Test Set for IVP
+/// Solvers' definition): 7 parts on 10 revolute joints in space (9 of
+/// their equations redundant), its spring and driving torque.
+const ANDREWS: &str = include_str!("../examples/simulate/d_andrews.adm");
+
+/// The angles `β Θ γ Φ δ Ω ε` at t = 0 (the test set's consistent initial
+/// values) and the published reference at t = 0.03 (PSIDE at rtol = atol
+/// = 1e-14; Test Set for IVP Solvers, release 2.3, `andsoln`).
+const ANDREWS_START: [f64; 7] = [
+    -0.0617138900142764496358948458001,
+    0.0,
+    0.455279819163070380255912382449,
+    0.222668390165885884674473185609,
+    0.487364979543842550225598953530,
+    -0.222668390165885884674473185609,
+    1.23054744454982119249735015568,
+];
+const ANDREWS_REFERENCE: [f64; 7] = [
+    0.1581077119629904e+2,
+    -0.1575637105984298e+2,
+    0.4082224013073101e-1,
+    -0.5347301163226948e+0,
+    0.5244099658805304e+0,
+    0.5347301163226948e+0,
+    0.1048080741042263e+1,
+];
+
+/// `method rtol`: the seven angles at t = 0.03 read from the parts'
+/// turns (unwrapped over 300 rows: the crank turns 2.5 times), and the
+/// test set's "mixed error significant digits" of the worst one,
+/// `−log10 max |y − ref| / (1 + |ref|)`.
+fn andrews_digits(case: &str) -> (f64, Run) {
+    let fields: Vec<&str> = case.split_whitespace().collect();
+    let mut settings = settings(0.03, 300, fields[1].parse().expect("a tolerance"));
+    settings.method = method(fields[0]);
+    let run = run(ANDREWS, &settings).expect("Andrews' mechanism runs");
+    // Each part's turn about z (parts 2 ... 8: bodies 1 ... 7).
+    let mut turn = [0.0; 7];
+    for row in &run.rows {
+        for (body, turned) in turn.iter_mut().enumerate() {
+            *turned = angle(row, 1 + 13 * body + 3, *turned);
+        }
+    }
+    let [b0, t0, g0, p0, d0, o0, e0] = ANDREWS_START;
+    let beta = b0 + turn[0];
+    let theta = b0 + t0 + turn[1] - beta;
+    let gamma = g0 + turn[2];
+    let delta = d0 + turn[4];
+    let phi = p0 + d0 + turn[3] - delta;
+    let epsilon = e0 + turn[6];
+    let omega = o0 + e0 + turn[5] - epsilon;
+    let angles = [beta, theta, gamma, phi, delta, omega, epsilon];
+    let worst = angles
+        .iter()
+        .zip(ANDREWS_REFERENCE)
+        .map(|(angle, reference)| (angle - reference).abs() / (1.0 + reference.abs()))
+        .fold(0.0, f64::max);
+    (-worst.log10(), run)
+}
+
+#[test]
+fn andrews_squeezing_mechanism_meets_the_published_reference() {
+    // method rtol: the least significant digits
+    let cases = "
+        dop853 1e-8: 8
+        dop853 1e-10: 9.5
+        auto 1e-9: 9
+        radau 1e-8: 8.5
+    ";
+    for case in cases.lines().map(str::trim).filter(|case| !case.is_empty()) {
+        let (run_case, least) = case.split_once(':').expect("method rtol: digits");
+        let least: f64 = least.trim().parse().expect("a number");
+        let (digits, run) = andrews_digits(run_case);
+        println!(
+            "{run_case}: {digits:.2} digits; {} steps ({} rejected), {} jacobians, {} lu; residuals {:?}, {} projections",
+            run.summary.stats.steps,
+            run.summary.stats.rejected,
+            run.summary.stats.jacobian_evaluations,
+            run.summary.stats.lu_decompositions,
+            run.summary.residuals,
+            run.summary.projections
+        );
+        assert!(digits >= least, "{run_case}: {digits} digits");
+    }
+}
+
+#[test]
+fn a_pendulum_keeps_its_energy_over_a_hundred_periods() {
+    // m d izz rtol method: energy drift relative to m g d
+    let cases = "
+        1 2 0.1 1e-10 dop853
+        0.4 0.7 0.05 1e-10 auto
+    ";
+    for case in cases.lines().map(str::trim).filter(|case| !case.is_empty()) {
+        let fields: Vec<&str> = case.split_whitespace().collect();
+        let number = |index: usize| fields[index].parse::<f64>().expect("a number");
+        let (m, d, izz, rtol) = (number(0), number(1), number(2), number(3));
+        let omega0 = (m * 9.80665 * d / (izz + m * d * d)).sqrt();
+        let period = 4.0 * elliptic_k((PI / 4.0).sin()) / omega0;
+        let mut settings = settings(100.0 * period, 1000, rtol);
+        settings.method = method(fields[4]);
+        let run = run(&pendulum(m, d, izz), &settings).expect("the pendulum runs");
+        let mut worst: f64 = 0.0;
+        let mut turned = 0.0;
+        for row in &run.rows {
+            turned = angle(row, 4, turned);
+            let spin = row[13];
+            let energy = 0.5 * (izz + m * d * d) * spin * spin + m * 9.80665 * d * turned.sin();
+            worst = worst.max(energy.abs() / (m * 9.80665 * d));
+        }
+        println!(
+            "{case}: energy drift {worst:.2e} of m g d over 100 periods; {} steps, {} projections",
+            run.summary.stats.steps, run.summary.projections
+        );
+        assert!(worst < 1e-9, "{case}: {worst}");
+    }
+}
