@@ -103,9 +103,9 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 17] = [
+    let cases: [(&str, &str, Settings); 19] = [
         (
-            "a joint and a motion need a constraint solver",
+            "a motion and a primitive are constraints not held yet",
             "joint
 PART/1, GROUND
 MARKER/1, PART = 1
@@ -113,6 +113,34 @@ PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
 JOINT/1, REVOLUTE, I = 3, J = 1
 MOTION/1, JOINT = 1, FUNCTION = TIME
+JPRIM/2, INPLANE, I = 3, J = 1
+",
+            short.clone(),
+        ),
+        (
+            "joints of a type not simulated, with no type, with initial conditions, without their markers",
+            "joints
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+JOINT/1, UNIVERSAL, I = 3, J = 1
+JOINT/2, I = 3, J = 1
+JOINT/3, REVOLUTE, I = 3, J = 1, IC = 0, 0
+JOINT/4, SPHERICAL, I = 3
+",
+            short.clone(),
+        ),
+        (
+            "two joints that leave nothing to move still run",
+            "welded
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+JOINT/1, FIXED, I = 3, J = 1
+JOINT/2, REVOLUTE, I = 3, J = 1
+ACCGRAV/JGRAV = -9.8
 ",
             short.clone(),
         ),
