@@ -271,16 +271,16 @@ proptest::proptest! {
 const ANDREWS: &str = include_str!("../examples/simulate/d_andrews.adm");
 
 /// The angles `β Θ γ Φ δ Ω ε` at t = 0 (the test set's consistent initial
-/// values) and the published reference at t = 0.03 (PSIDE at rtol = atol
+/// values, to a double's precision) and the published reference at t = 0.03 (PSIDE at rtol = atol
 /// = 1e-14; Test Set for IVP Solvers, release 2.3, `andsoln`).
 const ANDREWS_START: [f64; 7] = [
-    -0.0617138900142764496358948458001,
+    -0.061_713_890_014_276_45,
     0.0,
-    0.455279819163070380255912382449,
-    0.222668390165885884674473185609,
-    0.487364979543842550225598953530,
-    -0.222668390165885884674473185609,
-    1.23054744454982119249735015568,
+    0.455_279_819_163_070_37,
+    0.222_668_390_165_885_88,
+    0.487_364_979_543_842_56,
+    -0.222_668_390_165_885_88,
+    1.230_547_444_549_821_2,
 ];
 const ANDREWS_REFERENCE: [f64; 7] = [
     0.1581077119629904e+2,
