@@ -54,7 +54,8 @@ impl<T: Number> Moving<T> {
     }
 
     /// The point at `offset` from the centre of mass of `body` (in its own
-    /// axes): `p = c + R s`, `p' = v + ω × r`.
+    /// axes; on ground, the point `ground`): `p = c + r` with `r = R s`,
+    /// `p' = v + ω × r`.
     pub(crate) fn point(
         body: Option<(usize, &BodyMotion<T>)>,
         offset: &Vector3<f64>,
@@ -63,30 +64,15 @@ impl<T: Number> Moving<T> {
         let Some((index, motion)) = body else {
             return Moving::fixed(ground.map(T::from));
         };
-        let arm = &motion.rotation * offset.map(T::from);
-        let omega = &motion.omega;
-        // ω × r = −r × ω: column k of the angular part is e_k × r.
-        let turn = |axis: usize| {
-            let mut unit = Vector3::zeros();
-            unit[axis] = T::one();
-            unit.cross(&arm)
-        };
-        Moving {
-            value: &motion.centre + &arm,
-            rate: &motion.velocity + omega.cross(&arm),
-            bias: omega.cross(&omega.cross(&arm)),
-            map: vec![(
-                index,
-                [
-                    Vector3::x(),
-                    Vector3::y(),
-                    Vector3::z(),
-                    turn(0),
-                    turn(1),
-                    turn(2),
-                ],
-            )],
+        let mut point = Moving::turning(index, motion, offset);
+        point.value += &motion.centre;
+        point.rate += &motion.velocity;
+        for (_, columns) in &mut point.map {
+            columns[0] = Vector3::x();
+            columns[1] = Vector3::y();
+            columns[2] = Vector3::z();
         }
+        point
     }
 
     /// The direction `axis` (in the body's axes) of `body`: `a = R a_b`,
@@ -95,15 +81,21 @@ impl<T: Number> Moving<T> {
         body: Option<(usize, &BodyMotion<T>)>,
         axis_in_body: &Vector3<f64>,
     ) -> Moving<T> {
-        let Some((index, motion)) = body else {
-            return Moving::fixed(axis_in_body.map(T::from));
-        };
-        let axis = &motion.rotation * axis_in_body.map(T::from);
+        match body {
+            Some((index, motion)) => Moving::turning(index, motion, axis_in_body),
+            None => Moving::fixed(axis_in_body.map(T::from)),
+        }
+    }
+
+    /// The vector `a = R a_b` turning with body `index`: rate `ω × a`, bias
+    /// `ω × (ω × a)`; column `k` of its angular map is `e_k × a`.
+    fn turning(index: usize, motion: &BodyMotion<T>, in_body: &Vector3<f64>) -> Moving<T> {
+        let value = &motion.rotation * in_body.map(T::from);
         let omega = &motion.omega;
         let turn = |component: usize| {
             let mut unit = Vector3::zeros();
             unit[component] = T::one();
-            unit.cross(&axis)
+            unit.cross(&value)
         };
         let columns = [
             Vector3::zeros(),
@@ -114,9 +106,9 @@ impl<T: Number> Moving<T> {
             turn(2),
         ];
         Moving {
-            rate: omega.cross(&axis),
-            bias: omega.cross(&omega.cross(&axis)),
-            value: axis,
+            rate: omega.cross(&value),
+            bias: omega.cross(&omega.cross(&value)),
+            value,
             map: vec![(index, columns)],
         }
     }
