@@ -103,16 +103,21 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 19] = [
+    let cases: [(&str, &str, Settings); 20] = [
         (
-            "a motion and a primitive are constraints not held yet",
+            "motions not simulated, and a primitive, a constraint not held yet",
             "joint
 PART/1, GROUND
 MARKER/1, PART = 1
 PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
 JOINT/1, REVOLUTE, I = 3, J = 1
-MOTION/1, JOINT = 1, FUNCTION = TIME
+JOINT/2, SPHERICAL, I = 3, J = 1
+MOTION/1, JOINT = 1, TRANSLATION, FUNCTION = TIME
+MOTION/2, JOINT = 1, VELOCITY, FUNCTION = TIME
+MOTION/3, I = 3, J = 1, B3, FUNCTION = TIME
+MOTION/4, JOINT = 2, FUNCTION = TIME
+MOTION/5, JOINT = 9, FUNCTION = TIME
 JPRIM/2, INPLANE, I = 3, J = 1
 ",
             short.clone(),
@@ -128,6 +133,18 @@ JOINT/1, UNIVERSAL, I = 3, J = 1
 JOINT/2, I = 3, J = 1
 JOINT/3, REVOLUTE, I = 3, J = 1, IC = 0, 0
 JOINT/4, SPHERICAL, I = 3
+",
+            short.clone(),
+        ),
+        (
+            "a motion whose FUNCTION reads a state",
+            "motion
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+JOINT/1, REVOLUTE, I = 3, J = 1
+MOTION/1, JOINT = 1, FUNCTION = 2 * TIME + DX(3, 1)
 ",
             short.clone(),
         ),

@@ -56,7 +56,7 @@ mod run;
 
 pub use constraints::Residuals;
 pub use error::{Place, SimulateError};
-pub use model::{Diff, Expression, Force, Joint, JointKind, MassProperties, Model, Output};
+pub use model::{Diff, Expression, Force, Joint, JointKind, MassProperties, Model, Motion, Output};
 pub use read::{from_scene, run_settings};
 pub use run::{
     DEFAULT_MAX_STEPS, Equations, ErrorEstimate, Event, MethodChange, SMALLEST_RTOL, Settings,
@@ -123,6 +123,20 @@ impl<'m> Simulation<'m> {
             .map(|output| output.expression)
             .collect();
         let mut errors = Vec::new();
+        let functions: Vec<usize> = model.motions.iter().map(|motion| motion.function).collect();
+        if !functions.is_empty() && compile(model, &functions, &mut errors).is_some() {
+            let read = constraints::Drives::states_read(model);
+            if !read.is_empty() {
+                errors.extend(model.motions.iter().map(|motion| SimulateError::Model {
+                    message: format!(
+                        "MOTION/{}: a motion's FUNCTION must be a function of time only (the motions read {})",
+                        motion.id,
+                        read.join(", ")
+                    ),
+                    span: motion.span,
+                }));
+            }
+        }
         let dynamics = compile(model, &computed, &mut errors);
         let outputs = compile(model, &output_expressions, &mut errors);
         match (dynamics, outputs) {

@@ -25,6 +25,8 @@ pub struct Model {
     /// The joints, held by Lagrange multipliers
     /// ([`crate::simulate::Joint`]).
     pub joints: Vec<Joint>,
+    /// The motions imposed on joints.
+    pub motions: Vec<Motion>,
     /// The acceleration of gravity, in ground.
     pub gravity: Vector3<f64>,
     /// Every expression of the model: the DIFF functions, the force
@@ -232,6 +234,23 @@ pub struct Joint {
     /// Its equations (indices below [`JointKind::equations`]) that repeat
     /// other joints' at the initial state, left out of the run.
     pub redundant: Vec<usize>,
+    /// The statement.
+    pub span: Span,
+}
+
+/// A `MOTION` on a joint: the joint's displacement along (translation) or
+/// about (rotation) its J marker's z axis, a function of time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Motion {
+    /// The statement id.
+    pub id: u64,
+    /// The joint, an index into [`Model::joints`].
+    pub joint: usize,
+    /// About the z axis (the angle of I's x axis from J's, towards J's y
+    /// axis) rather than along it (I's origin from J's).
+    pub rotation: bool,
+    /// Its FUNCTION, an index into [`Model::expressions`].
+    pub function: usize,
     /// The statement.
     pub span: Span,
 }

@@ -26,9 +26,11 @@
 //! out-of-plane equations are dependent) are found once, at the initial
 //! state, and left out ([`Joint::redundant`]), as Adams removes them.
 
+mod drives;
 mod rows;
 mod solve;
 
+pub(crate) use drives::{Drive, Drives};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
 pub(crate) use solve::{Tolerance, constraint_loads, find_redundant, project};
@@ -103,10 +105,40 @@ fn joint_rows<T: crate::number::Number>(
     }
 }
 
-/// The model's equations held in the run (the redundant ones left out).
+/// The equation of `motion` at the displacement `drive` gives.
+fn motion_row<T: crate::number::Number>(
+    model: &super::Model,
+    motion: &super::model::Motion,
+    drive: &Drive,
+    bodies: &[BodyMotion<T>],
+) -> Row<T> {
+    let joint = &model.joints[motion.joint];
+    let i = frame(model, &joint.i, bodies);
+    let j = frame(model, &joint.j, bodies);
+    let mut row = if motion.rotation {
+        let [xi, _, _] = &i.axes;
+        let [xj, yj, _] = &j.axes;
+        Row::angle(xi.dot(yj), xi.dot(xj))
+    } else {
+        j.axes[2].dot(&i.origin.minus(&j.origin))
+    };
+    row.value -= T::from(drive.value);
+    if motion.rotation {
+        // The angle's value modulo a turn, nearest the displacement.
+        let turns = (row.value.value() / std::f64::consts::TAU).round();
+        row.value -= T::from(turns * std::f64::consts::TAU);
+    }
+    row.rate -= T::from(drive.rate);
+    row.bias -= T::from(drive.acceleration);
+    row
+}
+
+/// The model's equations held in the run (the redundant ones left out),
+/// the motions' last at the displacements `drives` gives.
 fn active_rows<T: crate::number::Number>(
     model: &super::Model,
     bodies: &[BodyMotion<T>],
+    drives: &[Drive],
 ) -> Vec<Row<T>> {
     let mut rows = Vec::new();
     for joint in &model.joints {
@@ -117,6 +149,9 @@ fn active_rows<T: crate::number::Number>(
                 .filter(|(index, _)| !joint.redundant.contains(index))
                 .map(|(_, row)| row),
         );
+    }
+    for (motion, drive) in model.motions.iter().zip(drives) {
+        rows.push(motion_row(model, motion, drive, bodies));
     }
     rows
 }
@@ -149,7 +184,8 @@ pub(crate) fn leave_out_redundant(model: &mut super::Model, y: &[f64], offsets: 
 pub(crate) const JOINTS: usize = usize::MAX;
 
 /// The error of a state where the joints' equations are singular (the
-/// multipliers unbounded): the integrator rejects the trial step.
+/// multipliers unbounded), or a motion's FUNCTION fails: the integrator
+/// rejects the trial step.
 pub(crate) fn joints_singular() -> crate::eval::OutputError {
     crate::eval::OutputError {
         output: JOINTS,

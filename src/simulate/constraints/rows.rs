@@ -199,3 +199,41 @@ pub(crate) struct Row<T: Number> {
     /// The row of `G` on each body it involves: `[v_x v_y v_z ω_x ω_y ω_z]`.
     pub(crate) coefficients: Vec<(usize, [T; 6])>,
 }
+
+impl<T: Number> Row<T> {
+    /// The row of the angle `atan2(s, c)`: rate `(c s' − s c') / r²`, bias
+    /// `(c b_s − s b_c) / r² − 2 θ' (c c' + s s') / r²` (`r² = s² + c²`).
+    pub(crate) fn angle(s: Row<T>, c: Row<T>) -> Row<T> {
+        let r2 = s.value.clone() * s.value.clone() + c.value.clone() * c.value.clone();
+        let rate =
+            (c.value.clone() * s.rate.clone() - s.value.clone() * c.rate.clone()) / r2.clone();
+        let bias = (c.value.clone() * s.bias.clone() - s.value.clone() * c.bias.clone())
+            / r2.clone()
+            - rate.clone()
+                * (c.value.clone() * c.rate.clone() + s.value.clone() * s.rate.clone())
+                * T::from(2.0)
+                / r2.clone();
+        let mut coefficients: Vec<(usize, [T; 6])> = Vec::new();
+        for (row, factor) in [(&s, c.value.clone()), (&c, -s.value.clone())] {
+            for (body, columns) in &row.coefficients {
+                let scaled = columns
+                    .clone()
+                    .map(|entry| entry * factor.clone() / r2.clone());
+                match coefficients.iter_mut().find(|(b, _)| b == body) {
+                    Some((_, sum)) => {
+                        for (sum, term) in sum.iter_mut().zip(scaled) {
+                            *sum += term;
+                        }
+                    }
+                    None => coefficients.push((*body, scaled)),
+                }
+            }
+        }
+        Row {
+            value: s.value.clone().atan2(c.value.clone()),
+            rate,
+            bias,
+            coefficients,
+        }
+    }
+}

@@ -5,7 +5,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
 
 use super::rows::{BodyMotion, Row};
-use super::{active_rows, joint_rows};
+use super::{Drive, active_rows, joint_rows};
 use crate::number::Number;
 use crate::simulate::Model;
 
@@ -114,11 +114,12 @@ fn generalised<T: Number>(rows: &[Row<T>], multipliers: &DVector<T>, bodies: usi
 pub(crate) fn constraint_loads<T: Number>(
     model: &Model,
     bodies: &[BodyMotion<T>],
+    drives: &[Drive],
     inverse_inertia: &[Matrix3<f64>],
     force: &mut [Vector3<T>],
     torque: &mut [Vector3<T>],
 ) -> Result<(), Singular> {
-    let rows = active_rows(model, bodies);
+    let rows = active_rows(model, bodies, drives);
     if rows.is_empty() {
         return Ok(());
     }
@@ -288,11 +289,12 @@ pub(crate) fn project(
     model: &Model,
     y: &mut [f64],
     offsets: &[usize],
+    drives: &[Drive],
     inverse_inertia: &[Matrix3<f64>],
     tolerance: Tolerance,
 ) -> Result<Residuals, Singular> {
     let bodies = motions(y, offsets);
-    let rows = active_rows(model, &bodies);
+    let rows = active_rows(model, &bodies, drives);
     let before = Residuals::of(&rows);
     let off_positions = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
     let off_velocities = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
@@ -304,7 +306,7 @@ pub(crate) fn project(
     let mut last = f64::INFINITY;
     for _ in 0..POSITION_ITERATIONS {
         let bodies = motions(y, offsets);
-        let rows = active_rows(model, &bodies);
+        let rows = active_rows(model, &bodies, drives);
         let residual = Residuals::of(&rows).position;
         // Stop where rounding stops the residual from falling.
         if residual == 0.0 || residual >= 0.5 * last {
@@ -324,7 +326,7 @@ pub(crate) fn project(
         }
     }
     let bodies = motions(y, offsets);
-    let rows = active_rows(model, &bodies);
+    let rows = active_rows(model, &bodies, drives);
     let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
     for ((change, motion), &offset) in change.iter().zip(&bodies).zip(offsets) {
         let s = &mut y[offset..];

@@ -34,7 +34,7 @@ use crate::integrate::linalg::Pattern;
 use crate::laws::branch::Code;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input};
-use crate::simulate::constraints::{BodyMotion, constraint_loads, joints_singular};
+use crate::simulate::constraints::{BodyMotion, Drives, constraint_loads, joints_singular};
 use crate::simulate::model::Model;
 pub(crate) use bodies::{BODY_STATES, body_offset};
 use bodies::{Kinematics, Loads};
@@ -132,6 +132,7 @@ impl<'m> Mechanics<'m> {
                 diff_outputs,
                 output_of,
                 inverse_inertia,
+                drives: Drives::new(model),
             },
             values: program.evaluator(),
             buffers: Buffers::new(program),
@@ -323,6 +324,8 @@ struct Equations<'m> {
     output_of: Vec<Option<usize>>,
     /// The inverse inertia of each body.
     inverse_inertia: Vec<Matrix3<f64>>,
+    /// The motions' displacements in time.
+    drives: Drives,
 }
 
 impl Equations<'_> {
@@ -383,9 +386,11 @@ impl Equations<'_> {
                     omega: state.omega_ground.clone(),
                 })
                 .collect();
+            let drives = self.drives.at(t).ok_or_else(joints_singular)?;
             constraint_loads(
                 model,
                 &motions,
+                &drives,
                 &self.inverse_inertia,
                 &mut loads.force,
                 &mut loads.torque,

@@ -14,7 +14,7 @@ mod switch;
 pub use estimate::ErrorEstimate;
 pub use sink::{MethodChange, Sink};
 
-use super::constraints::{JOINTS, Residuals, Tolerance, project};
+use super::constraints::{Drives, JOINTS, Residuals, Tolerance, project};
 use super::equations::{BODY_STATES, Mechanics, body_offset};
 use super::error::SimulateError;
 use super::initial::initial_state;
@@ -334,8 +334,10 @@ impl Simulation<'_> {
         let mut y0 = initial_state(model);
         let offsets = body_offsets(model);
         let inverse_inertia = model.inverse_inertia();
+        let drives = Drives::new(model);
         let assemble = |y: &mut [f64], time: f64, tolerance: Tolerance| {
-            project(model, y, &offsets, &inverse_inertia, tolerance).map_err(|_| {
+            let at = drives.at(time).unwrap_or_default();
+            project(model, y, &offsets, &at, &inverse_inertia, tolerance).map_err(|_| {
                 SimulateError::Integration {
                     time,
                     message: "the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(),
