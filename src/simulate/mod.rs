@@ -125,11 +125,15 @@ impl<'m> Simulation<'m> {
         let mut errors = Vec::new();
         let functions: Vec<usize> = model.motions.iter().map(|motion| motion.function).collect();
         if !functions.is_empty() && compile(model, &functions, &mut errors).is_some() {
-            let read = constraints::Drives::states_read(model);
+            let mut read: Vec<String> = constraints::Drives::states_read(model)
+                .into_iter()
+                .map(|name| name.split('.').next().unwrap_or_default().to_string())
+                .collect();
+            read.dedup();
             if !read.is_empty() {
                 errors.extend(model.motions.iter().map(|motion| SimulateError::Model {
                     message: format!(
-                        "MOTION/{}: a motion's FUNCTION must be a function of time only (the motions read {})",
+                        "MOTION/{}: a motion's FUNCTION must be a function of time only (the motions read the state of {})",
                         motion.id,
                         read.join(", ")
                     ),

@@ -148,15 +148,11 @@ impl<T: Number> Moving<T> {
         let mut coefficients: Vec<(usize, [T; 6])> = Vec::new();
         let mut add = |map: &[(usize, [Vector3<T>; 6])], with: &Vector3<T>| {
             for (body, columns) in map {
-                let row = columns.clone().map(|column| column.dot(with));
-                match coefficients.iter_mut().find(|(b, _)| b == body) {
-                    Some((_, sum)) => {
-                        for (sum, term) in sum.iter_mut().zip(row) {
-                            *sum += term;
-                        }
-                    }
-                    None => coefficients.push((*body, row)),
-                }
+                add_coefficients(
+                    &mut coefficients,
+                    *body,
+                    columns.clone().map(|column| column.dot(with)),
+                );
             }
         };
         add(&self.map, &other.value);
@@ -169,6 +165,18 @@ impl<T: Number> Moving<T> {
                 + self.rate.dot(&other.rate) * T::from(2.0),
             coefficients,
         }
+    }
+}
+
+/// Adds `row` to `body`'s coefficients in `coefficients`.
+fn add_coefficients<T: Number>(coefficients: &mut Vec<(usize, [T; 6])>, body: usize, row: [T; 6]) {
+    match coefficients.iter_mut().find(|(b, _)| *b == body) {
+        Some((_, sum)) => {
+            for (sum, term) in sum.iter_mut().zip(row) {
+                *sum += term;
+            }
+        }
+        None => coefficients.push((body, row)),
     }
 }
 
@@ -219,14 +227,7 @@ impl<T: Number> Row<T> {
                 let scaled = columns
                     .clone()
                     .map(|entry| entry * factor.clone() / r2.clone());
-                match coefficients.iter_mut().find(|(b, _)| b == body) {
-                    Some((_, sum)) => {
-                        for (sum, term) in sum.iter_mut().zip(scaled) {
-                            *sum += term;
-                        }
-                    }
-                    None => coefficients.push((*body, scaled)),
-                }
+                add_coefficients(&mut coefficients, *body, scaled);
             }
         }
         Row {
