@@ -152,13 +152,15 @@ fn violations(source_root: &Path) -> String {
 /// The rooms of `src/simulate/` from the bottom up: each may name only
 /// those before it (a room is a file or folder of `simulate`; `mod.rs`
 /// stands on them all). A reader builds a model and knows nothing of the
-/// equations; the equations and constraints know nothing of a run.
+/// equations; the constraints (the joints' equations, what the equations
+/// of motion add for them) know nothing of the equations of motion; the
+/// equations and constraints know nothing of a run.
 const SIMULATE_ROOMS: &[&str] = &[
     "error",
     "model",
     "read",
-    "equations",
     "constraints",
+    "equations",
     "initial",
     "run",
 ];

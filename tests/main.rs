@@ -13,6 +13,7 @@ mod eval;
 mod ffi;
 mod integrate;
 mod integrate_problems;
+mod joints;
 mod magnitudes;
 mod model;
 mod numerics;

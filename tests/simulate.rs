@@ -11,15 +11,15 @@ use mbexpr::simulate::{self, Event, Model, Place, Settings, SimulateError, Simul
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 /// A run's rows (time first), its events and what it cost.
-struct Run {
-    rows: Vec<Vec<f64>>,
-    events: Vec<Event>,
-    summary: Summary,
+pub(super) struct Run {
+    pub(super) rows: Vec<Vec<f64>>,
+    pub(super) events: Vec<Event>,
+    pub(super) summary: Summary,
 }
 
 /// The model of a scene file (text starting with `#` or `[`) or a dataset
 /// (which must check first, as `mbexpr simulate` asks).
-fn model_of(text: &str) -> Result<Model, String> {
+pub(super) fn model_of(text: &str) -> Result<Model, String> {
     if text.starts_with('#') || text.starts_with('[') {
         return simulate::from_scene(text).map_err(|errors| render(text, None, &errors));
     }
@@ -39,7 +39,7 @@ fn model_of(text: &str) -> Result<Model, String> {
 }
 
 /// Runs the model of `text`; every error as `LINE:COL: message`.
-fn run(text: &str, settings: &Settings) -> Result<Run, String> {
+pub(super) fn run(text: &str, settings: &Settings) -> Result<Run, String> {
     let model = model_of(text)?;
     let simulation =
         Simulation::new(&model).map_err(|errors| render(text, Some(&model), &errors))?;
@@ -76,7 +76,7 @@ fn render(text: &str, model: Option<&Model>, errors: &[SimulateError]) -> String
         .collect()
 }
 
-fn settings(end: f64, steps: usize, rtol: f64) -> Settings {
+pub(super) fn settings(end: f64, steps: usize, rtol: f64) -> Settings {
     Settings {
         end,
         steps,
@@ -103,16 +103,61 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 21] = [
+    let cases: [(&str, &str, Settings); 24] = [
         (
-            "a joint and a motion need a constraint solver",
+            "motions not simulated, and a primitive, a constraint not held yet",
             "joint
 PART/1, GROUND
 MARKER/1, PART = 1
 PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
 JOINT/1, REVOLUTE, I = 3, J = 1
-MOTION/1, JOINT = 1, FUNCTION = TIME
+JOINT/2, SPHERICAL, I = 3, J = 1
+MOTION/1, JOINT = 1, TRANSLATION, FUNCTION = TIME
+MOTION/2, JOINT = 1, VELOCITY, FUNCTION = TIME
+MOTION/3, I = 3, J = 1, B3, FUNCTION = TIME
+MOTION/4, JOINT = 2, FUNCTION = TIME
+MOTION/5, JOINT = 9, FUNCTION = TIME
+JPRIM/2, INPLANE, I = 3, J = 1
+",
+            short.clone(),
+        ),
+        (
+            "joints of a type not simulated, with no type, with initial conditions, without their markers",
+            "joints
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+JOINT/1, UNIVERSAL, I = 3, J = 1
+JOINT/2, I = 3, J = 1
+JOINT/3, REVOLUTE, I = 3, J = 1, IC = 0, 0
+JOINT/4, SPHERICAL, I = 3
+",
+            short.clone(),
+        ),
+        (
+            "a motion whose FUNCTION reads a state",
+            "motion
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+JOINT/1, REVOLUTE, I = 3, J = 1
+MOTION/1, JOINT = 1, FUNCTION = 2 * TIME + DX(3, 1)
+",
+            short.clone(),
+        ),
+        (
+            "two joints that leave nothing to move still run",
+            "welded
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+JOINT/1, FIXED, I = 3, J = 1
+JOINT/2, REVOLUTE, I = 3, J = 1
+ACCGRAV/JGRAV = -9.8
 ",
             short.clone(),
         ),
@@ -637,7 +682,7 @@ END
 /// The Jacobian from dual numbers agrees with central differences of the
 /// right-hand side of `text`'s model at its start shifted by `shifts`
 /// (cycled over the states), at `time`.
-fn the_jacobian_agrees_with_finite_differences(
+pub(super) fn the_jacobian_agrees_with_finite_differences(
     text: &str,
     shifts: &[f64],
     time: f64,

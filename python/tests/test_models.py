@@ -51,8 +51,8 @@ def test_the_ball_rebounds_conserving_what_damping_leaves(examples):
 
 def test_refusals_name_their_place():
     with pytest.raises(mbexpr.Error) as caught:
-        mbexpr.simulate("joint\nPART/1, GROUND\nJOINT/1, I = 1, J = 2, REVOLUTE\nEND\n", end=1, steps=1)
-    assert caught.value.line == 3 and "constraints" in str(caught.value)
+        mbexpr.simulate("joint\nPART/1, GROUND\nJPRIM/1, I = 1, J = 2, INPLANE\nEND\n", end=1, steps=1)
+    assert caught.value.line == 3 and "constraint" in str(caught.value)
     with pytest.raises(mbexpr.Error, match="end time"):
         mbexpr.simulate(A1.format(k=1e5), end=-1.0, steps=10)
     with pytest.raises(mbexpr.Error, match="give the end time"):

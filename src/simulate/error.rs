@@ -29,7 +29,9 @@ pub enum Place {
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum SimulateError {
     /// A statement that needs a constraint solver.
-    #[error("not simulated: constraints are outside mbexpr's simulator ({statement})")]
+    #[error(
+        "not simulated: {statement} is a constraint mbexpr does not hold yet (it simulates JOINTs: FIXED, REVOLUTE, TRANSLATIONAL, SPHERICAL, CYLINDRICAL, PLANAR, and MOTIONs on them)"
+    )]
     Constraint {
         /// `JOINT/3`.
         statement: String,

@@ -46,6 +46,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod constraints;
 mod equations;
 mod error;
 mod initial;
@@ -53,11 +54,11 @@ mod model;
 mod read;
 mod run;
 
+pub use constraints::Residuals;
 pub use error::{Place, SimulateError};
-pub use model::{Diff, Expression, Force, MassProperties, Model, Output};
+pub use model::{Diff, Expression, Force, Joint, JointKind, MassProperties, Model, Motion, Output};
 pub use read::{
-    ModelFormat, Unread, format_of_path, from_dataset, from_scene, from_text, run_settings,
-    run_settings_beside,
+    ModelFormat, Unread, format_of_path, from_scene, run_settings, run_settings_beside,
 };
 pub use run::{
     DEFAULT_MAX_STEPS, Equations, ErrorEstimate, Event, MethodChange, SMALLEST_RTOL, Settings,
@@ -66,6 +67,44 @@ pub use run::{
 
 use crate::compile::{Program, compile_outputs};
 use crate::scene::diff_input;
+
+/// The model of a dataset that [`crate::model::check_model`] has checked
+/// (`report`). Every statement that cannot be simulated is reported. The
+/// equations of its joints that repeat others at the initial state are
+/// left out of the run, each joint that loses some named in the model's
+/// notes.
+pub fn from_dataset(
+    dataset: &crate::model::Dataset,
+    report: &crate::model::ModelCheck,
+) -> Result<Model, Vec<SimulateError>> {
+    let mut model = read::from_dataset(dataset, report)?;
+    if !model.joints.is_empty() {
+        let y = initial::initial_state(&model);
+        let offsets = run::body_offsets(&model);
+        constraints::leave_out_redundant(&mut model, &y, &offsets);
+    }
+    Ok(model)
+}
+
+/// The model of `text`: a scene file, or a solver dataset read as `kind`
+/// that checks.
+pub fn from_text(
+    text: &str,
+    format: ModelFormat,
+    kind: crate::model::FileKind,
+) -> Result<Model, Unread> {
+    match format {
+        ModelFormat::Scene => read::from_scene(text).map_err(Unread::Refused),
+        ModelFormat::Dataset => {
+            let dataset = crate::model::read(text, kind);
+            let report = crate::model::check_model(text, &dataset);
+            if !report.problems.is_empty() {
+                return Err(Unread::Unchecked(report.problems));
+            }
+            from_dataset(&dataset, &report).map_err(Unread::Refused)
+        }
+    }
+}
 
 /// A model compiled for simulation: its DIFF functions and force
 /// components as one program with an output each, and its output columns
@@ -106,6 +145,24 @@ impl<'m> Simulation<'m> {
             .map(|output| output.expression)
             .collect();
         let mut errors = Vec::new();
+        let functions: Vec<usize> = model.motions.iter().map(|motion| motion.function).collect();
+        if !functions.is_empty() && compile(model, &functions, &mut errors).is_some() {
+            let mut read: Vec<String> = constraints::Drives::states_read(model)
+                .into_iter()
+                .map(|name| name.split('.').next().unwrap_or_default().to_string())
+                .collect();
+            read.dedup();
+            if !read.is_empty() {
+                errors.extend(model.motions.iter().map(|motion| SimulateError::Model {
+                    message: format!(
+                        "MOTION/{}: a motion's FUNCTION must be a function of time only (the motions read the state of {})",
+                        motion.id,
+                        read.join(", ")
+                    ),
+                    span: motion.span,
+                }));
+            }
+        }
         let dynamics = compile(model, &computed, &mut errors);
         let outputs = compile(model, &output_expressions, &mut errors);
         match (dynamics, outputs) {

@@ -22,6 +22,11 @@ pub struct Model {
     pub diffs: Vec<Diff>,
     /// The force elements.
     pub forces: Vec<Force>,
+    /// The joints, held by Lagrange multipliers
+    /// ([`crate::simulate::Joint`]).
+    pub joints: Vec<Joint>,
+    /// The motions imposed on joints.
+    pub motions: Vec<Motion>,
     /// The acceleration of gravity, in ground.
     pub gravity: Vector3<f64>,
     /// Every expression of the model: the DIFF functions, the force
@@ -36,6 +41,16 @@ pub struct Model {
     /// The end time and number of output steps the file gives (a
     /// `SIMULATE/DYNAMIC` command), when it gives them.
     pub run: Option<(f64, usize)>,
+}
+
+impl Model {
+    /// The inverse inertia of each body, in its own axes.
+    pub(crate) fn inverse_inertia(&self) -> Vec<Matrix3<f64>> {
+        self.masses
+            .iter()
+            .map(|mass| mass.inertia.try_inverse().unwrap_or_else(Matrix3::zeros))
+            .collect()
+    }
 }
 
 /// The mass, centre of mass and inertia of a body.
@@ -162,4 +177,80 @@ pub struct Output {
     pub name: String,
     /// An index into [`Model::expressions`].
     pub expression: usize,
+}
+
+/// The kinds of joint simulated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// Origins and axes together: no relative motion (6 equations).
+    Fixed,
+    /// Origins together, z axes parallel: a rotation about z (5).
+    Revolute,
+    /// Axes parallel, I's origin on J's z axis: a translation along z (5).
+    Translational,
+    /// Origins together: any rotation (3).
+    Spherical,
+    /// z axes parallel, I's origin on J's z axis: a rotation about and a
+    /// translation along z (4).
+    Cylindrical,
+    /// z axes parallel, I's origin in J's x-y plane: a rotation about z
+    /// and a translation in the plane (3).
+    Planar,
+}
+
+impl JointKind {
+    /// Every kind with its keyword.
+    pub const ALL: [(JointKind, &'static str); 6] = [
+        (JointKind::Fixed, "FIXED"),
+        (JointKind::Revolute, "REVOLUTE"),
+        (JointKind::Translational, "TRANSLATIONAL"),
+        (JointKind::Spherical, "SPHERICAL"),
+        (JointKind::Cylindrical, "CYLINDRICAL"),
+        (JointKind::Planar, "PLANAR"),
+    ];
+
+    /// The number of scalar equations.
+    pub fn equations(self) -> usize {
+        match self {
+            JointKind::Fixed => 6,
+            JointKind::Revolute | JointKind::Translational => 5,
+            JointKind::Cylindrical => 4,
+            JointKind::Spherical | JointKind::Planar => 3,
+        }
+    }
+}
+
+/// A `JOINT` statement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Joint {
+    /// The statement id.
+    pub id: u64,
+    /// What it holds.
+    pub kind: JointKind,
+    /// The I marker (on the moving body, by Adams' convention).
+    pub i: Target,
+    /// The J marker.
+    pub j: Target,
+    /// Its equations (indices below [`JointKind::equations`]) that repeat
+    /// other joints' at the initial state, left out of the run.
+    pub redundant: Vec<usize>,
+    /// The statement.
+    pub span: Span,
+}
+
+/// A `MOTION` on a joint: the joint's displacement along (translation) or
+/// about (rotation) its J marker's z axis, a function of time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Motion {
+    /// The statement id.
+    pub id: u64,
+    /// The joint, an index into [`Model::joints`].
+    pub joint: usize,
+    /// About the z axis (the angle of I's x axis from J's, towards J's y
+    /// axis) rather than along it (I's origin from J's).
+    pub rotation: bool,
+    /// Its FUNCTION, an index into [`Model::expressions`].
+    pub function: usize,
+    /// The statement.
+    pub span: Span,
 }

@@ -360,6 +360,7 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         estimate: estimate.as_ref(),
         signal,
         rows: sink.count,
+        joints: model.joints.len(),
     };
     let _ = match args.stats {
         StatsFormat::Text => write!(stderr, "{}", report.text()),
@@ -513,6 +514,8 @@ struct Report<'a> {
     /// The signal that ended the run (0: none).
     signal: usize,
     rows: usize,
+    /// The number of joints of the model.
+    joints: usize,
 }
 
 impl Report<'_> {
@@ -538,6 +541,17 @@ impl Report<'_> {
                 .map(|change| format!("{} at t = {}", change.to, Shown(change.time)))
                 .collect();
             text += &format!("method changes: {}\n", changes.join(", "));
+        }
+        if self.joints > 0 {
+            text += &format!(
+                "constraints: {}; initial residuals {:.1e} (positions), {:.1e} (velocities) before assembly; largest after a step {:.1e}, {:.1e}; {}\n",
+                Counted(self.joints, "joint"),
+                summary.initial_residuals.position,
+                summary.initial_residuals.velocity,
+                summary.residuals.position,
+                summary.residuals.velocity,
+                Counted(summary.projections, "projection"),
+            );
         }
         if let Some(estimate) = self.estimate {
             let columns: Vec<String> = self.columns[1..]
@@ -601,6 +615,12 @@ impl Report<'_> {
             "stopped": summary.stopped,
             "interrupted_by": (self.signal != 0).then(|| signal_name(self.signal)),
             "estimated_error": estimate,
+            "constraints": (self.joints > 0).then(|| json!({
+                "joints": self.joints,
+                "initial_residuals": {"position": summary.initial_residuals.position, "velocity": summary.initial_residuals.velocity},
+                "largest_residuals": {"position": summary.residuals.position, "velocity": summary.residuals.velocity},
+                "projections": summary.projections,
+            })),
         })
     }
 }

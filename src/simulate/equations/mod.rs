@@ -34,6 +34,7 @@ use crate::integrate::linalg::Pattern;
 use crate::laws::branch::Code;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input};
+use crate::simulate::constraints::{BodyMotion, Drives, constraint_loads, joints_singular};
 use crate::simulate::model::Model;
 pub(crate) use bodies::{BODY_STATES, body_offset};
 use bodies::{Kinematics, Loads};
@@ -122,11 +123,7 @@ impl<'m> Mechanics<'m> {
             .iter()
             .map(|diff| output_of[diff.function])
             .collect();
-        let inverse_inertia = model
-            .masses
-            .iter()
-            .map(|mass| mass.inertia.try_inverse().unwrap_or_else(Matrix3::zeros))
-            .collect();
+        let inverse_inertia = model.inverse_inertia();
         Mechanics {
             equations: Equations {
                 model,
@@ -135,6 +132,7 @@ impl<'m> Mechanics<'m> {
                 diff_outputs,
                 output_of,
                 inverse_inertia,
+                drives: Drives::new(model),
             },
             values: program.evaluator(),
             buffers: Buffers::new(program),
@@ -326,6 +324,8 @@ struct Equations<'m> {
     output_of: Vec<Option<usize>>,
     /// The inverse inertia of each body.
     inverse_inertia: Vec<Matrix3<f64>>,
+    /// The motions' displacements in time.
+    drives: Drives,
 }
 
 impl Equations<'_> {
@@ -375,6 +375,27 @@ impl Equations<'_> {
         };
         for force in &model.forces {
             forces::apply(model, force, &kinematics, &value, &mut loads);
+        }
+        if !model.joints.is_empty() {
+            let motions: Vec<BodyMotion<T>> = kinematics
+                .iter()
+                .map(|state| BodyMotion {
+                    centre: state.centre.clone(),
+                    rotation: state.rotation.clone(),
+                    velocity: state.velocity.clone(),
+                    omega: state.omega_ground.clone(),
+                })
+                .collect();
+            let drives = self.drives.at(t).ok_or_else(joints_singular)?;
+            constraint_loads(
+                model,
+                &motions,
+                &drives,
+                &self.inverse_inertia,
+                &mut loads.force,
+                &mut loads.torque,
+            )
+            .map_err(|_| joints_singular())?;
         }
         for (body, state) in kinematics.iter().enumerate() {
             let offset = body_offset(model, body);

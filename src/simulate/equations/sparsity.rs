@@ -124,6 +124,19 @@ impl Sparsity {
                 reads[body].extend(&read);
             }
         }
+        // Bodies joined (through any chain of joints) share their
+        // multipliers: each one's rates read what any of them reads.
+        for component in joined(model) {
+            let mut read: Vec<usize> = component
+                .iter()
+                .flat_map(|&body| reads[body].clone())
+                .collect();
+            read.sort_unstable();
+            read.dedup();
+            for &body in &component {
+                reads[body].clone_from(&read);
+            }
+        }
         for read in &mut reads {
             read.sort_unstable();
             read.dedup();
@@ -204,4 +217,36 @@ fn colouring(reads: &[Vec<usize>], bodies: usize) -> Vec<usize> {
             .expect("a free colour");
     }
     colour
+}
+
+/// The sets of two or more bodies that joints join, directly or through
+/// other bodies (ground joins nothing: a body held to ground moves on its
+/// own).
+fn joined(model: &Model) -> Vec<Vec<usize>> {
+    let bodies = model.scene.bodies.len();
+    let mut root: Vec<usize> = (0..bodies).collect();
+    fn find(root: &mut [usize], mut body: usize) -> usize {
+        while root[body] != body {
+            root[body] = root[root[body]];
+            body = root[body];
+        }
+        body
+    }
+    let body_of = |target: &Target| match target {
+        Target::Marker(index) => model.scene.markers[*index].body,
+        Target::Ground => None,
+    };
+    for joint in &model.joints {
+        if let (Some(i), Some(j)) = (body_of(&joint.i), body_of(&joint.j)) {
+            let (a, b) = (find(&mut root, i), find(&mut root, j));
+            root[a] = b;
+        }
+    }
+    let mut components: Vec<Vec<usize>> = vec![Vec::new(); bodies];
+    for body in 0..bodies {
+        let top = find(&mut root, body);
+        components[top].push(body);
+    }
+    components.retain(|component| component.len() > 1);
+    components
 }

@@ -18,14 +18,14 @@ use crate::model::{
 };
 use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
-use crate::simulate::model::{Diff, Expression, Force, MassProperties, Model, Output};
+use crate::simulate::model::{
+    Diff, Expression, Force, Joint, JointKind, MassProperties, Model, Motion, Output,
+};
 use crate::span::Span;
 
 /// Statements that need a constraint solver.
-const CONSTRAINTS: [&str; 10] = [
-    "JOINT",
+const CONSTRAINTS: [&str; 8] = [
     "JPRIM",
-    "MOTION",
     "COUPLER",
     "GEAR",
     "UCON",
@@ -64,7 +64,7 @@ const LEFT_ASIDE: [&str; 20] = [
 const SOLVER_SETTINGS: [&str; 3] = ["INTEGRATOR", "DYNAMICS", "SIMULATE"];
 
 /// The statements the simulator reads.
-const SIMULATED: [&str; 14] = [
+const SIMULATED: [&str; 16] = [
     "PART",
     "MARKER",
     "DIFF",
@@ -79,6 +79,8 @@ const SIMULATED: [&str; 14] = [
     "ARRAY",
     "SPLINE",
     "REQUEST",
+    "JOINT",
+    "MOTION",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -104,7 +106,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, ACCGRAV)"
+                reason: "is not among the elements mbexpr integrates (PART, JOINT, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, ACCGRAV)"
                     .to_string(),
                 span: statement.span,
             });
@@ -219,6 +221,8 @@ impl Reader<'_> {
         let masses = self.masses();
         let diffs = self.diffs();
         let forces = self.forces();
+        let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
+        let motions = self.motions(&joints);
         let gravity = self.gravity();
         let outputs = self.outputs(&mut notes);
         Model {
@@ -226,12 +230,89 @@ impl Reader<'_> {
             masses,
             diffs,
             forces,
+            joints,
+            motions,
             gravity,
             expressions: std::mem::take(&mut self.expressions),
             outputs,
             notes,
             run: None,
         }
+    }
+
+    /// The MOTION statements, each on one of `joints`.
+    fn motions(&mut self, joints: &[Joint]) -> Vec<Motion> {
+        let indices: Vec<usize> = self.statements("MOTION").map(|(index, _)| index).collect();
+        let dataset = self.dataset;
+        let mut motions = Vec::new();
+        for index in indices {
+            let statement = &dataset.statements[index];
+            let label = statement.label();
+            let refuse = |errors: &mut Vec<SimulateError>, reason: &str| {
+                errors.push(SimulateError::Unsupported {
+                    statement: label.clone(),
+                    reason: reason.to_string(),
+                    span: statement.span,
+                });
+            };
+            if statement.argument("I", 1).is_some() || statement.argument("J", 1).is_some() {
+                refuse(
+                    &mut self.errors,
+                    "is between markers (I, J): mbexpr simulates a MOTION on a joint (JOINT = id)",
+                );
+                continue;
+            }
+            if statement.argument("VELOCITY", 1).is_some()
+                || statement.argument("ACCELERATION", 1).is_some()
+            {
+                refuse(
+                    &mut self.errors,
+                    "is a VELOCITY or ACCELERATION: mbexpr simulates a DISPLACEMENT motion",
+                );
+                continue;
+            }
+            let id = number(statement, "JOINT", f64::NAN).unwrap_or(f64::NAN);
+            let Some(joint) = joints.iter().position(|joint| joint.id as f64 == id) else {
+                self.errors.push(SimulateError::Model {
+                    message: format!("{label}: JOINT must name a JOINT of the model"),
+                    span: statement
+                        .argument("JOINT", 2)
+                        .map_or(statement.span, |argument| argument.span),
+                });
+                continue;
+            };
+            let asks_rotation = statement.argument("ROTATION", 3).is_some();
+            let asks_translation = statement.argument("TRANSLATION", 3).is_some();
+            let rotation = match joints[joint].kind {
+                JointKind::Revolute if !asks_translation => true,
+                JointKind::Translational if !asks_rotation => false,
+                JointKind::Cylindrical if asks_rotation != asks_translation => asks_rotation,
+                _ => {
+                    refuse(
+                        &mut self.errors,
+                        "must turn a REVOLUTE joint (ROTATION), slide a TRANSLATIONAL one (TRANSLATION) or do either to a CYLINDRICAL one (say which)",
+                    );
+                    continue;
+                }
+            };
+            let Some(function) = self.expression(index, "FUNCTION") else {
+                if statement.argument("FUNCTION", 4).is_none() {
+                    refuse(
+                        &mut self.errors,
+                        "needs FUNCTION = the displacement, a function of time",
+                    );
+                }
+                continue;
+            };
+            motions.push(Motion {
+                id: statement.id.unwrap_or(0),
+                joint,
+                rotation,
+                function,
+                span: statement.span,
+            });
+        }
+        motions
     }
 
     /// The expression `keyword` of statement `index`, added to the model's

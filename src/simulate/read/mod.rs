@@ -1,9 +1,10 @@
-//! Readers: a [`Model`] from a solver dataset (`.adm` with the END and
+//! Readers: a [`Model`](super::Model) from a solver dataset (`.adm` with the END and
 //! STEPS of an `.acf` beside it) or from a scene file, every problem
 //! reported at its place. The command line and the embedding layer both
 //! read models here.
 
 mod dataset;
+mod joints;
 mod scene;
 mod units;
 
@@ -13,7 +14,6 @@ pub use scene::from_scene;
 use std::path::Path;
 
 use super::error::SimulateError;
-use super::model::Model;
 use crate::model::{self, FileKind, Problem};
 
 /// What a model's text is.
@@ -56,22 +56,6 @@ pub fn format_of_path(
             "{path}: an Adams View command file is not simulated: give a solver dataset (.adm) or a scene file (.toml)"
         )),
         _ => Ok((format, FileKind::Adm)),
-    }
-}
-
-/// The model of `text`: a scene file, or a solver dataset read as `kind`
-/// that checks.
-pub fn from_text(text: &str, format: ModelFormat, kind: FileKind) -> Result<Model, Unread> {
-    match format {
-        ModelFormat::Scene => from_scene(text).map_err(Unread::Refused),
-        ModelFormat::Dataset => {
-            let dataset = model::read(text, kind);
-            let report = model::check_model(text, &dataset);
-            if !report.problems.is_empty() {
-                return Err(Unread::Unchecked(report.problems));
-            }
-            from_dataset(&dataset, &report).map_err(Unread::Refused)
-        }
     }
 }
 

@@ -146,6 +146,8 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         return Err(reader.errors);
     }
     Ok(Model {
+        joints: Vec::new(),
+        motions: Vec::new(),
         scene: reader.scene,
         masses,
         diffs,

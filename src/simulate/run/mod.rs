@@ -14,6 +14,7 @@ mod switch;
 pub use estimate::ErrorEstimate;
 pub use sink::{MethodChange, Sink};
 
+use super::constraints::{Drives, JOINTS, Residuals, Tolerance, project};
 use super::equations::{BODY_STATES, Mechanics, body_offset};
 use super::error::SimulateError;
 use super::initial::initial_state;
@@ -152,6 +153,16 @@ pub struct Summary {
     /// stiff (steps held by stability, not accuracy; Radau5 takes far
     /// fewer there).
     pub stiff_from: Option<f64>,
+    /// With joints: the largest constraint residuals an accepted step
+    /// left (before its projection), over the run after the initial
+    /// assembly.
+    pub residuals: Residuals,
+    /// With joints: the initial state's residuals, before the assembly
+    /// that put it on the constraints.
+    pub initial_residuals: Residuals,
+    /// With joints: how many times a state was projected back onto the
+    /// constraints (a residual past the absolute tolerance).
+    pub projections: usize,
 }
 
 /// A step limit of the sites, raised to what the integrator can take at
@@ -320,7 +331,36 @@ impl Simulation<'_> {
             expression: self.expression_of(program, error.output),
             error: error.error,
         };
-        let y0 = initial_state(model);
+        let mut y0 = initial_state(model);
+        let offsets = body_offsets(model);
+        let inverse_inertia = model.inverse_inertia();
+        let drives = Drives::new(model);
+        let assemble = |y: &mut [f64], time: f64, tolerance: Tolerance| {
+            let at = drives.at(time).unwrap_or_default();
+            project(model, y, &offsets, &at, &inverse_inertia, tolerance).map_err(|_| {
+                SimulateError::Integration {
+                    time,
+                    message: "the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(),
+                    cause: None,
+                }
+            })
+        };
+        let tolerance = Tolerance {
+            rtol: settings.rtol,
+            atol: settings.atol,
+        };
+        let initial_residuals = if model.joints.is_empty() {
+            Residuals::default()
+        } else {
+            assemble(
+                &mut y0,
+                0.0,
+                Tolerance {
+                    rtol: 0.0,
+                    atol: 0.0,
+                },
+            )?
+        };
         let mut natural = vec![None; program.sites().len()];
         let mut switching = vec![0.0; program.switch_count()];
         let limit = system
@@ -362,6 +402,9 @@ impl Simulation<'_> {
             stopped: false,
             method_changes: Vec::new(),
             stiff_from: None,
+            residuals: Residuals::default(),
+            initial_residuals,
+            projections: 0,
         };
         let output_time = |index: usize| settings.end * index as f64 / settings.steps as f64;
         let values = rows.at(0.0, &y0).map_err(|error| fail(0.0, error))?;
@@ -428,6 +471,15 @@ impl Simulation<'_> {
                     start_values.copy_from_slice(&switching);
                     stepper.set_h_max(settings.h_max.min(floor(limit, t1)));
                     stepper.set_smooth(limit.is_infinite());
+                    if !model.joints.is_empty() {
+                        dense.copy_from_slice(stepper.y());
+                        let found = assemble(&mut dense, t1, tolerance)?;
+                        summary.residuals = summary.residuals.max(found);
+                        if dense != stepper.y() {
+                            summary.projections += 1;
+                            stepper.restart(t1, &dense);
+                        }
+                    }
                     continue;
                 }
             };
@@ -444,6 +496,11 @@ impl Simulation<'_> {
                 slope,
             )?;
             dense.copy_from_slice(&state);
+            if !model.joints.is_empty() {
+                let found = assemble(&mut dense, right, tolerance)?;
+                summary.residuals = summary.residuals.max(found);
+                summary.projections += usize::from(dense != state);
+            }
             system
                 .mechanics
                 .observe(right, &dense, None, (&mut natural, &mut switching), None)
@@ -637,6 +694,13 @@ impl Simulation<'_> {
             IntegrateError::TooManySteps { t, .. }
             | IntegrateError::JacobianNotFinite { t }
             | IntegrateError::EndNotAhead { t, .. } => (*t, None),
+            IntegrateError::Jacobian { t, error } if error.output == JOINTS => {
+                return SimulateError::Integration {
+                    time: *t,
+                    message: format!("the Jacobian: {}", error.error),
+                    cause: None,
+                };
+            }
             IntegrateError::Jacobian { t, error } => {
                 return SimulateError::Evaluation {
                     time: *t,
@@ -652,7 +716,7 @@ impl Simulation<'_> {
             }
         };
         let cause = match cause {
-            Some(Rejection::System(failure)) => Some((
+            Some(Rejection::System(failure)) if failure.output != JOINTS => Some((
                 self.expression_of(&self.dynamics, failure.output),
                 failure.error.span(),
             )),
@@ -664,4 +728,11 @@ impl Simulation<'_> {
             cause,
         }
     }
+}
+
+/// The index of each body's first state in the state vector.
+pub(super) fn body_offsets(model: &Model) -> Vec<usize> {
+    (0..model.masses.len())
+        .map(|body| body_offset(model, body))
+        .collect()
 }

@@ -1,0 +1,198 @@
+//! Joints: constraint equations between two markers' frames, held by
+//! Lagrange multipliers on the rigid bodies (Adams Solver's semantics: a
+//! joint's I and J markers, its axes their z axes).
+//!
+//! The formulation is the index-1 one: at each right-hand side the
+//! accelerations and the multipliers solve
+//!
+//! ```text
+//! [ M  Gᵀ ] [ u' ]   [ f     ]
+//! [ G  0  ] [ λ  ] = [ −bias ]
+//! ```
+//!
+//! (`u` each body's centre-of-mass velocity and angular velocity in
+//! ground, `M` their masses and inertias, `f` the applied forces and
+//! torques, `G u = Φ'` the constraints' rates, `bias` the part of `Φ''`
+//! the accelerations do not reach; [`rows`]), so the equations stay an
+//! ODE that both Radau5 and DOP853 integrate, and written over any
+//! [`crate::number::Number`] the multipliers carry their exact
+//! derivatives into the Jacobian. The positions and velocities drift off
+//! the constraints by the integration error; [`project`] puts them back
+//! (the mass-weighted least change) whenever a residual passes the
+//! absolute tolerance, before the run, after every accepted step and
+//! after every located switch.
+//!
+//! Equations that repeat others (a planar loop of revolute joints, whose
+//! out-of-plane equations are dependent) are found once, at the initial
+//! state, and left out ([`Joint::redundant`]), as Adams removes them.
+
+mod drives;
+mod rows;
+mod solve;
+
+pub(crate) use drives::{Drive, Drives};
+pub(crate) use rows::BodyMotion;
+pub use solve::Residuals;
+pub(crate) use solve::{Tolerance, constraint_loads, find_redundant, project};
+
+use nalgebra::Vector3;
+
+use crate::scene::Target;
+use crate::simulate::model::{Joint, JointKind};
+use rows::{Moving, Row};
+
+/// A marker's frame in motion: its origin and its three axes.
+struct Frame<T: crate::number::Number> {
+    origin: Moving<T>,
+    axes: [Moving<T>; 3],
+}
+
+/// The frame of marker `target`, bodies moving as `bodies` say.
+fn frame<T: crate::number::Number>(
+    model: &super::Model,
+    target: &Target,
+    bodies: &[BodyMotion<T>],
+) -> Frame<T> {
+    let (body, position, axes) = match target {
+        Target::Ground => (None, Vector3::zeros(), nalgebra::Matrix3::identity()),
+        Target::Marker(index) => {
+            let marker = &model.scene.markers[*index];
+            let axes = marker.orientation.to_rotation_matrix().into_inner();
+            match marker.body {
+                None => (None, marker.position, axes),
+                Some(body) => (
+                    Some(body),
+                    marker.position - model.masses[body].centre,
+                    axes,
+                ),
+            }
+        }
+    };
+    let moving = body.map(|body| (body, &bodies[body]));
+    Frame {
+        origin: Moving::point(moving, &position, &position),
+        axes: [0, 1, 2].map(|axis| Moving::axis(moving, &axes.column(axis).into_owned())),
+    }
+}
+
+/// The equations of `joint` (all of them, redundant ones too), in order.
+fn joint_rows<T: crate::number::Number>(
+    model: &super::Model,
+    joint: &Joint,
+    bodies: &[BodyMotion<T>],
+) -> Vec<Row<T>> {
+    let i = frame(model, &joint.i, bodies);
+    let j = frame(model, &joint.j, bodies);
+    let apart = i.origin.minus(&j.origin);
+    let [xi, _, zi] = &i.axes;
+    let [xj, yj, zj] = &j.axes;
+    let together = || (0..3).map(|axis| apart.component(axis));
+    let parallel = || [zi.dot(xj), zi.dot(yj)];
+    match joint.kind {
+        JointKind::Spherical => together().collect(),
+        JointKind::Revolute => together().chain(parallel()).collect(),
+        JointKind::Fixed => together().chain(parallel()).chain([xi.dot(yj)]).collect(),
+        JointKind::Cylindrical => [xj.dot(&apart), yj.dot(&apart)]
+            .into_iter()
+            .chain(parallel())
+            .collect(),
+        JointKind::Translational => [xj.dot(&apart), yj.dot(&apart)]
+            .into_iter()
+            .chain(parallel())
+            .chain([xi.dot(yj)])
+            .collect(),
+        JointKind::Planar => [zj.dot(&apart)].into_iter().chain(parallel()).collect(),
+    }
+}
+
+/// The equation of `motion` at the displacement `drive` gives.
+fn motion_row<T: crate::number::Number>(
+    model: &super::Model,
+    motion: &super::model::Motion,
+    drive: &Drive,
+    bodies: &[BodyMotion<T>],
+) -> Row<T> {
+    let joint = &model.joints[motion.joint];
+    let i = frame(model, &joint.i, bodies);
+    let j = frame(model, &joint.j, bodies);
+    let mut row = if motion.rotation {
+        let [xi, _, _] = &i.axes;
+        let [xj, yj, _] = &j.axes;
+        Row::angle(xi.dot(yj), xi.dot(xj))
+    } else {
+        j.axes[2].dot(&i.origin.minus(&j.origin))
+    };
+    row.value -= T::from(drive.value);
+    if motion.rotation {
+        // The angle's value modulo a turn, nearest the displacement.
+        let turns = (row.value.value() / std::f64::consts::TAU).round();
+        row.value -= T::from(turns * std::f64::consts::TAU);
+    }
+    row.rate -= T::from(drive.rate);
+    row.bias -= T::from(drive.acceleration);
+    row
+}
+
+/// The model's equations held in the run (the redundant ones left out),
+/// the motions' last at the displacements `drives` gives.
+fn active_rows<T: crate::number::Number>(
+    model: &super::Model,
+    bodies: &[BodyMotion<T>],
+    drives: &[Drive],
+) -> Vec<Row<T>> {
+    let mut rows = Vec::new();
+    for joint in &model.joints {
+        rows.extend(
+            joint_rows(model, joint, bodies)
+                .into_iter()
+                .enumerate()
+                .filter(|(index, _)| !joint.redundant.contains(index))
+                .map(|(_, row)| row),
+        );
+    }
+    for (motion, drive) in model.motions.iter().zip(drives) {
+        rows.push(motion_row(model, motion, drive, bodies));
+    }
+    rows
+}
+
+/// Finds the equations of `model`'s joints that repeat others at state
+/// `y` (its initial state), marks them [`Joint::redundant`] and says so in
+/// the model's notes.
+pub(crate) fn leave_out_redundant(model: &mut super::Model, y: &[f64], offsets: &[usize]) {
+    for (joint, equation) in find_redundant(model, y, offsets) {
+        model.joints[joint].redundant.push(equation);
+    }
+    for joint in &model.joints {
+        if joint.redundant.is_empty() {
+            continue;
+        }
+        model.notes.push((
+            format!(
+                "JOINT/{}: {} of its {} equations repeat other joints' (the mechanism is over-constrained, as a planar loop is in space): they are left out, as Adams does, and the reactions they would share are not unique",
+                joint.id,
+                joint.redundant.len(),
+                joint.kind.equations()
+            ),
+            joint.span,
+        ));
+    }
+}
+
+/// The output index an [`OutputError`](crate::eval::OutputError) names
+/// when the joints' equations, not an expression, fail.
+pub(crate) const JOINTS: usize = usize::MAX;
+
+/// The error of a state where the joints' equations are singular (the
+/// multipliers unbounded), or a motion's FUNCTION fails: the integrator
+/// rejects the trial step.
+pub(crate) fn joints_singular() -> crate::eval::OutputError {
+    crate::eval::OutputError {
+        output: JOINTS,
+        error: crate::eval::EvalError::NotFinite {
+            operation: "the joints' multipliers (their equations are dependent at this state: a singular configuration)".to_string(),
+            value: f64::INFINITY,
+            span: crate::span::Span::default(),
+        },
+    }
+}

@@ -1,0 +1,374 @@
+//! The multipliers: the reactions that hold the joints at each right-hand
+//! side, the projection of a state onto the constraints, and the search
+//! for redundant equations.
+
+use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
+
+use super::rows::{BodyMotion, Row};
+use super::{Drive, active_rows, joint_rows};
+use crate::number::Number;
+use crate::simulate::Model;
+
+/// The joints' equations are singular at a state (the mechanism is at a
+/// singular configuration, or its equations are dependent there).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Singular;
+
+/// A body's inverse mass: of its centre of mass, and its inverse inertia
+/// in ground axes.
+struct Inverse<T: Number> {
+    linear: f64,
+    angular: Matrix3<T>,
+}
+
+fn inverses<T: Number>(
+    model: &Model,
+    bodies: &[BodyMotion<T>],
+    inverse_inertia: &[Matrix3<f64>],
+) -> Vec<Inverse<T>> {
+    bodies
+        .iter()
+        .zip(&model.masses)
+        .zip(inverse_inertia)
+        .map(|((body, mass), inverse)| Inverse {
+            linear: 1.0 / mass.mass,
+            angular: &body.rotation * inverse.map(T::from) * body.rotation.transpose(),
+        })
+        .collect()
+}
+
+/// `M⁻¹ c` for one row's coefficients `c` on one body.
+fn weighted<T: Number>(inverse: &Inverse<T>, c: &[T; 6]) -> [T; 6] {
+    let angular = &inverse.angular * Vector3::new(c[3].clone(), c[4].clone(), c[5].clone());
+    [
+        c[0].clone() * inverse.linear,
+        c[1].clone() * inverse.linear,
+        c[2].clone() * inverse.linear,
+        angular[0].clone(),
+        angular[1].clone(),
+        angular[2].clone(),
+    ]
+}
+
+fn dot6<T: Number>(a: &[T; 6], b: &[T; 6]) -> T {
+    a.iter()
+        .zip(b)
+        .map(|(a, b)| a.clone() * b.clone())
+        .fold(T::zero(), |sum, term| sum + term)
+}
+
+/// The multipliers `λ` of `W λ = rhs`, `W = G M⁻¹ Gᵀ`.
+fn multipliers<T: Number>(
+    rows: &[Row<T>],
+    inverse: &[Inverse<T>],
+    rhs: DVector<T>,
+) -> Result<DVector<T>, Singular> {
+    let weighted_rows: Vec<Vec<(usize, [T; 6])>> = rows
+        .iter()
+        .map(|row| {
+            row.coefficients
+                .iter()
+                .map(|(body, c)| (*body, weighted(&inverse[*body], c)))
+                .collect()
+        })
+        .collect();
+    let m = rows.len();
+    let mut w = DMatrix::<T>::zeros(m, m);
+    for (k, row) in rows.iter().enumerate() {
+        for (l, other) in weighted_rows.iter().enumerate().skip(k) {
+            let mut sum = T::zero();
+            for (body, c) in &row.coefficients {
+                if let Some((_, mc)) = other.iter().find(|(b, _)| b == body) {
+                    sum += dot6(c, mc);
+                }
+            }
+            w[(l, k)] = sum.clone();
+            w[(k, l)] = sum;
+        }
+    }
+    let solution = w.lu().solve(&rhs).ok_or(Singular)?;
+    if solution.iter().all(|value| value.value().is_finite()) {
+        Ok(solution)
+    } else {
+        Err(Singular)
+    }
+}
+
+/// `Gᵀ λ` on each body: a force and a torque (about its centre of mass), in
+/// ground.
+fn generalised<T: Number>(rows: &[Row<T>], multipliers: &DVector<T>, bodies: usize) -> Vec<[T; 6]> {
+    let mut loads = vec![std::array::from_fn(|_| T::zero()); bodies];
+    for (row, lambda) in rows.iter().zip(multipliers.iter()) {
+        for (body, c) in &row.coefficients {
+            for (load, c) in loads[*body].iter_mut().zip(c) {
+                *load += c.clone() * lambda.clone();
+            }
+        }
+    }
+    loads
+}
+
+/// Adds the joints' reactions to the applied `force` and `torque` (about
+/// each body's centre of mass, in ground): the loads `−Gᵀ λ` whose
+/// accelerations keep every held equation's second derivative zero.
+pub(crate) fn constraint_loads<T: Number>(
+    model: &Model,
+    bodies: &[BodyMotion<T>],
+    drives: &[Drive],
+    inverse_inertia: &[Matrix3<f64>],
+    force: &mut [Vector3<T>],
+    torque: &mut [Vector3<T>],
+) -> Result<(), Singular> {
+    let rows = active_rows(model, bodies, drives);
+    if rows.is_empty() {
+        return Ok(());
+    }
+    let inverse = inverses(model, bodies, inverse_inertia);
+    // The accelerations under the applied loads alone.
+    let free: Vec<[T; 6]> = bodies
+        .iter()
+        .enumerate()
+        .map(|(index, body)| {
+            let mass = &model.masses[index];
+            let linear =
+                &force[index] * T::from(inverse[index].linear) + model.gravity.map(T::from);
+            let inertia = mass.inertia.map(T::from);
+            let omega = body.rotation.transpose() * &body.omega;
+            let spin = inverse_inertia[index].map(T::from)
+                * (body.rotation.transpose() * &torque[index] - omega.cross(&(&inertia * &omega)));
+            let angular = &body.rotation * spin;
+            [0, 1, 2, 3, 4, 5].map(|k| {
+                if k < 3 {
+                    linear[k].clone()
+                } else {
+                    angular[k - 3].clone()
+                }
+            })
+        })
+        .collect();
+    let rhs = DVector::from_iterator(
+        rows.len(),
+        rows.iter().map(|row| {
+            row.coefficients
+                .iter()
+                .fold(row.bias.clone(), |sum, (body, c)| {
+                    sum + dot6(c, &free[*body])
+                })
+        }),
+    );
+    let lambda = multipliers(&rows, &inverse, rhs)?;
+    for (body, load) in generalised(&rows, &lambda, bodies.len())
+        .into_iter()
+        .enumerate()
+    {
+        for k in 0..3 {
+            force[body][k] -= load[k].clone();
+            torque[body][k] -= load[k + 3].clone();
+        }
+    }
+    Ok(())
+}
+
+/// The largest constraint residuals of a state: of the positions (`Φ`)
+/// and of the velocities (`Φ' = G u`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Residuals {
+    /// The largest `|Φ|` (a length, or the cosine of an angle).
+    pub position: f64,
+    /// The largest `|Φ'|`.
+    pub velocity: f64,
+}
+
+impl Residuals {
+    fn of(rows: &[Row<f64>]) -> Residuals {
+        rows.iter()
+            .fold(Residuals::default(), |most, row| Residuals {
+                position: most.position.max(row.value.abs()),
+                velocity: most.velocity.max(row.rate.abs()),
+            })
+    }
+
+    /// The larger of each residual of `self` and `other`.
+    pub fn max(self, other: Residuals) -> Residuals {
+        Residuals {
+            position: self.position.max(other.position),
+            velocity: self.velocity.max(other.velocity),
+        }
+    }
+}
+
+/// The bodies' motions at state `y`, where each body's states start at
+/// its entry of `offsets` (its centre of mass, quaternion `w x y z`,
+/// velocity and angular velocity in its own axes).
+fn motions(y: &[f64], offsets: &[usize]) -> Vec<BodyMotion<f64>> {
+    offsets
+        .iter()
+        .map(|&offset| {
+            let s = &y[offset..];
+            let rotation = quaternion(s).to_rotation_matrix().into_inner();
+            BodyMotion {
+                centre: Vector3::new(s[0], s[1], s[2]),
+                velocity: Vector3::new(s[7], s[8], s[9]),
+                omega: rotation * Vector3::new(s[10], s[11], s[12]),
+                rotation,
+            }
+        })
+        .collect()
+}
+
+fn quaternion(s: &[f64]) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(s[3], s[4], s[5], s[6]))
+}
+
+/// The least change (weighted by the masses and inertias) `−M⁻¹ Gᵀ W⁻¹ r`
+/// that takes the residuals `r` of `rows` to zero at first order.
+fn least_change(
+    model: &Model,
+    rows: &[Row<f64>],
+    bodies: &[BodyMotion<f64>],
+    inverse_inertia: &[Matrix3<f64>],
+    residual: impl Fn(&Row<f64>) -> f64,
+) -> Result<Vec<[f64; 6]>, Singular> {
+    let inverse = inverses(model, bodies, inverse_inertia);
+    let rhs = DVector::from_iterator(rows.len(), rows.iter().map(residual));
+    let lambda = multipliers(rows, &inverse, rhs)?;
+    Ok(generalised(rows, &lambda, bodies.len())
+        .iter()
+        .zip(&inverse)
+        .map(|(load, inverse)| weighted(inverse, load).map(|change| -change))
+        .collect())
+}
+
+/// Newton iterations on the positions at most.
+const POSITION_ITERATIONS: usize = 12;
+
+/// The integrator's error tolerance on a state: `atol + rtol |y|` for
+/// each component (zero: put every state on the constraints).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Tolerance {
+    pub(crate) rtol: f64,
+    pub(crate) atol: f64,
+}
+
+/// The size of `change` (per body, `[position | rotation]` or `[velocity |
+/// angular velocity]`) against the tolerance on the body states from
+/// `first` (0: the positions, 7: the velocities) of `y`: above 1, the
+/// change is larger than the error the integrator allows those states.
+fn scaled(
+    y: &[f64],
+    offsets: &[usize],
+    change: &[[f64; 6]],
+    first: usize,
+    tolerance: Tolerance,
+) -> f64 {
+    let mut most: f64 = 0.0;
+    for (change, &offset) in change.iter().zip(offsets) {
+        let s = &y[offset..];
+        let rotation_size = if first == 0 {
+            s[3..7].iter().fold(0.0_f64, |most, q| most.max(q.abs()))
+        } else {
+            s[10..13].iter().fold(0.0_f64, |most, w| most.max(w.abs()))
+        };
+        for k in 0..3 {
+            let linear_scale = tolerance.atol + tolerance.rtol * s[first + k].abs();
+            let angular_scale = tolerance.atol + tolerance.rtol * rotation_size;
+            most = most
+                .max(change[k].abs() / linear_scale)
+                .max(change[k + 3].abs() / angular_scale);
+        }
+    }
+    most
+}
+
+/// Puts state `y` back on the constraints when the least change that does
+/// it is larger than `tolerance` allows: the positions by Newton's method
+/// on the least change (until it is a thousandth of the tolerance, or as
+/// far as rounding allows), then the velocities by one least change. The
+/// residuals found before.
+pub(crate) fn project(
+    model: &Model,
+    y: &mut [f64],
+    offsets: &[usize],
+    drives: &[Drive],
+    inverse_inertia: &[Matrix3<f64>],
+    tolerance: Tolerance,
+) -> Result<Residuals, Singular> {
+    let bodies = motions(y, offsets);
+    let rows = active_rows(model, &bodies, drives);
+    let before = Residuals::of(&rows);
+    let off_positions = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
+    let off_velocities = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
+    if scaled(y, offsets, &off_positions, 0, tolerance) <= 1.0
+        && scaled(y, offsets, &off_velocities, 7, tolerance) <= 1.0
+    {
+        return Ok(before);
+    }
+    let mut last = f64::INFINITY;
+    for _ in 0..POSITION_ITERATIONS {
+        let bodies = motions(y, offsets);
+        let rows = active_rows(model, &bodies, drives);
+        let residual = Residuals::of(&rows).position;
+        // Stop where rounding stops the residual from falling.
+        if residual == 0.0 || residual >= 0.5 * last {
+            break;
+        }
+        last = residual;
+        let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
+        for (change, &offset) in change.iter().zip(offsets) {
+            let s = &mut y[offset..];
+            for k in 0..3 {
+                s[k] += change[k];
+            }
+            let turn =
+                UnitQuaternion::from_scaled_axis(Vector3::new(change[3], change[4], change[5]));
+            let q = turn * quaternion(s);
+            s[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k]);
+        }
+    }
+    let bodies = motions(y, offsets);
+    let rows = active_rows(model, &bodies, drives);
+    let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
+    for ((change, motion), &offset) in change.iter().zip(&bodies).zip(offsets) {
+        let s = &mut y[offset..];
+        for k in 0..3 {
+            s[7 + k] += change[k];
+        }
+        let omega = motion.omega + Vector3::new(change[3], change[4], change[5]);
+        let in_body = motion.rotation.transpose() * omega;
+        s[10..13].copy_from_slice(in_body.as_slice());
+    }
+    Ok(before)
+}
+
+/// The equations, each as (joint, equation), that repeat earlier ones at
+/// state `y`: a row of `G` whose part outside the span of the rows kept
+/// before it is below a millionth of its length (Gram-Schmidt, in the
+/// order of the joints).
+pub(crate) fn find_redundant(model: &Model, y: &[f64], offsets: &[usize]) -> Vec<(usize, usize)> {
+    let bodies = motions(y, offsets);
+    let width = 6 * bodies.len();
+    let mut kept: Vec<DVector<f64>> = Vec::new();
+    let mut redundant = Vec::new();
+    for (joint_index, joint) in model.joints.iter().enumerate() {
+        for (equation, row) in joint_rows(model, joint, &bodies).iter().enumerate() {
+            let mut dense = DVector::zeros(width);
+            for (body, c) in &row.coefficients {
+                for (k, c) in c.iter().enumerate() {
+                    dense[6 * body + k] += c;
+                }
+            }
+            let length = dense.norm();
+            for basis in &kept {
+                let along = basis.dot(&dense);
+                dense -= basis * along;
+            }
+            let rest = dense.norm();
+            if rest <= 1e-6 * length || length == 0.0 {
+                redundant.push((joint_index, equation));
+            } else {
+                kept.push(dense / rest);
+            }
+        }
+    }
+    redundant
+}

@@ -1,0 +1,112 @@
+//! `JOINT` statements of a dataset.
+
+use crate::check::Reference;
+use crate::model::initial::number;
+use crate::model::{Dataset, Statement, is_kind};
+use crate::scene::{Scene, Target};
+use crate::simulate::SimulateError;
+use crate::simulate::model::{Joint, JointKind};
+
+/// Joint types of Adams that are not simulated yet.
+const NOT_YET: [&str; 5] = ["UNIVERSAL", "HOOKE", "CONVEL", "RACKPIN", "SCREW"];
+
+/// The JOINT statements of `dataset`, their markers found in `scene`; every
+/// problem added to `errors` at its place.
+pub(crate) fn joints(
+    dataset: &Dataset,
+    scene: &Scene,
+    errors: &mut Vec<SimulateError>,
+) -> Vec<Joint> {
+    let mut joints = Vec::new();
+    for statement in &dataset.statements {
+        if !is_kind(&statement.name, "JOINT") {
+            continue;
+        }
+        if let Some(joint) = joint(statement, scene, errors) {
+            joints.push(joint);
+        }
+    }
+    joints
+}
+
+fn joint(statement: &Statement, scene: &Scene, errors: &mut Vec<SimulateError>) -> Option<Joint> {
+    let label = statement.label();
+    let names: Vec<&str> = JointKind::ALL.iter().map(|(_, name)| *name).collect();
+    let kind = JointKind::ALL
+        .iter()
+        .find(|(_, name)| statement.argument(name, 3).is_some())
+        .map(|(kind, _)| *kind);
+    let Some(kind) = kind else {
+        let other = NOT_YET
+            .iter()
+            .find(|name| statement.argument(name, 2).is_some());
+        errors.push(SimulateError::Unsupported {
+            statement: label,
+            reason: match other {
+                Some(name) => format!(
+                    "is a {} joint: mbexpr simulates {} joints",
+                    name,
+                    names.join(", ")
+                ),
+                None => format!("needs its type: one of {}", names.join(", ")),
+            },
+            span: statement.span,
+        });
+        return None;
+    };
+    for keyword in [
+        "IC",
+        "ICTRAN",
+        "ICROT",
+        "DELTA_V",
+        "MAXIMUM_DEFORMATION",
+        "MU_DYN_ROT",
+        "FRICTION",
+    ] {
+        if let Some(argument) = statement.argument(keyword, keyword.len()) {
+            errors.push(SimulateError::Unsupported {
+                statement: label.clone(),
+                reason: format!(
+                    "sets {keyword}: joint initial conditions and friction are not simulated"
+                ),
+                span: argument.span,
+            });
+        }
+    }
+    let i = marker(statement, "I", scene, errors);
+    let j = marker(statement, "J", scene, errors);
+    let (i, j) = (i?, j?);
+    Some(Joint {
+        id: statement.id.unwrap_or(0),
+        kind,
+        i,
+        j,
+        redundant: Vec::new(),
+        span: statement.span,
+    })
+}
+
+/// The marker `keyword` names (a joint needs both of its markers).
+fn marker(
+    statement: &Statement,
+    keyword: &str,
+    scene: &Scene,
+    errors: &mut Vec<SimulateError>,
+) -> Option<Target> {
+    let found = number(statement, keyword, f64::NAN)
+        .ok()
+        .filter(|id| id.fract() == 0.0 && *id > 0.0)
+        .and_then(|id| scene.find_marker(&Reference::Id(id as u64)).ok());
+    if found.is_none() {
+        errors.push(SimulateError::Model {
+            message: format!(
+                "{}: a joint needs {keyword} = the id of a MARKER of the model",
+                statement.label()
+            ),
+            span: statement
+                .argument(keyword, keyword.len())
+                .map_or(statement.span, |argument| argument.span),
+        });
+    }
+    found
+}
