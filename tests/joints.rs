@@ -467,3 +467,114 @@ fn the_slider_in_a_turning_slot_moves_as_its_diff_form() {
         assert!(slot_worst < 10.0 * rtol, "{case}: {slot_worst}");
     }
 }
+
+/// Joint primitives (`JPRIM`) against closed forms: a part held by one
+/// primitive to ground (J's axes those of ground, I at the part's centre
+/// of mass) under gravity moves as the free directions allow, exactly.
+#[test]
+fn joint_primitives_leave_exactly_their_free_motions() {
+    let g = 9.80665;
+    let part = |primitive: &str, placement: &str| {
+        format!(
+            "primitive
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 2, CM = 20, IP = 0.3, 0.5, 0.7, {placement}
+MARKER/20, PART = 2
+{primitive}
+ACCGRAV/KGRAV = -{g}
+END
+"
+        )
+    };
+    // Each case: the model, and at a row its measured values beside the exact ones.
+    type Exact<'c> = &'c dyn Fn(f64, &[f64]) -> Vec<(f64, f64)>;
+    let cases: [(String, Exact); 4] = [
+        (
+            // On the line (z): falls freely along it, turning as it likes.
+            part(
+                "JPRIM/1, INLINE, I = 20, J = 1",
+                "QG = 0, 0, 2, WX = 0.3, WZ = 2",
+            ),
+            &|t, row| {
+                vec![
+                    (row[1], 0.0),
+                    (row[2], 0.0),
+                    (row[3], 2.0 - 0.5 * g * t * t),
+                ]
+            },
+        ),
+        (
+            // In the plane (x-y): slides uniformly, gravity held by the plane.
+            part("JPRIM/1, INPLANE, I = 20, J = 1", "VX = 1.5, VY = -0.5"),
+            &|t, row| vec![(row[1], 1.5 * t), (row[2], -0.5 * t), (row[3], 0.0)],
+        ),
+        (
+            // Axes held: falls and moves without turning.
+            part(
+                "JPRIM/1, ORIENTATION, I = 20, J = 1",
+                "QG = 0, 0, 3, VX = 0.7",
+            ),
+            &|t, row| {
+                vec![
+                    (row[1], 0.7 * t),
+                    (row[3], 3.0 - 0.5 * g * t * t),
+                    (row[4], 1.0),
+                ]
+            },
+        ),
+        (
+            // z axes parallel: falls freely, turning about z only at its rate.
+            part(
+                "JPRIM/1, PARALLEL_AXES, I = 20, J = 1",
+                "QG = 0, 0, 3, WZ = 3",
+            ),
+            &|t, row| vec![(row[3], 3.0 - 0.5 * g * t * t), (row[4], (1.5 * t).cos())],
+        ),
+    ];
+    for (text, exact) in &cases {
+        let run = run(text, &settings(1.0, 20, 1e-10)).unwrap_or_else(|error| panic!("{error}"));
+        for row in &run.rows {
+            for (measured, expected) in exact(row[0], row) {
+                assert!(
+                    (measured - expected).abs() < 1e-7,
+                    "{}: t = {}: {measured} against {expected}",
+                    text.lines().nth(4).unwrap(),
+                    row[0]
+                );
+            }
+        }
+    }
+}
+
+/// A top on ATPOINT and PERPENDICULAR primitives (its axis held
+/// horizontal, J's z vertical): the constraint torques are horizontal
+/// and do no work, so the energy and the vertical angular momentum about
+/// the pivot stay what they were.
+#[test]
+fn a_top_held_by_primitives_keeps_its_energy_and_vertical_momentum() {
+    let text = top(0.5, std::f64::consts::FRAC_PI_2, 6.0).replace(
+        "JOINT/1, SPHERICAL, I = 21, J = 1",
+        "JPRIM/1, ATPOINT, I = 21, J = 1\nJPRIM/2, PERPENDICULAR, I = 21, J = 1",
+    );
+    let run = run(&text, &settings(5.0, 50, 1e-10)).unwrap_or_else(|error| panic!("{error}"));
+    let (energy, momentum) = top_invariants(&run.rows[0], 0.5);
+    for row in &run.rows {
+        let (now_energy, now_momentum) = top_invariants(row, 0.5);
+        assert!(
+            (now_energy - energy).abs() < 1e-7,
+            "t = {}: energy {now_energy} against {energy}",
+            row[0]
+        );
+        assert!(
+            (now_momentum - momentum).abs() < 1e-7,
+            "t = {}: momentum drifts",
+            row[0]
+        );
+    }
+    assert!(
+        run.summary.residuals.position <= 1e-8,
+        "{:?}",
+        run.summary.residuals
+    );
+}

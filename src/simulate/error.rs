@@ -30,7 +30,7 @@ pub enum Place {
 pub enum SimulateError {
     /// A statement that needs a constraint solver.
     #[error(
-        "not simulated: {statement} is a constraint mbexpr does not hold yet (it simulates JOINTs: FIXED, REVOLUTE, TRANSLATIONAL, SPHERICAL, CYLINDRICAL, PLANAR, and MOTIONs on them)"
+        "not simulated: {statement} is a constraint mbexpr does not hold yet (it simulates JOINTs: FIXED, REVOLUTE, TRANSLATIONAL, SPHERICAL, CYLINDRICAL, PLANAR, the JPRIMs and MOTIONs on joints)"
     )]
     Constraint {
         /// `JOINT/3`.

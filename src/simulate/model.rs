@@ -196,6 +196,18 @@ pub enum JointKind {
     /// z axes parallel, I's origin in J's x-y plane: a rotation about z
     /// and a translation in the plane (3).
     Planar,
+    /// `JPRIM`, ATPOINT: origins together (3).
+    AtPoint,
+    /// `JPRIM`, INLINE: I's origin on J's z axis (2).
+    InLine,
+    /// `JPRIM`, INPLANE: I's origin in J's x-y plane (1).
+    InPlane,
+    /// `JPRIM`, ORIENTATION: the axes parallel (3).
+    Orientation,
+    /// `JPRIM`, PARALLEL_AXES: the z axes parallel (2).
+    ParallelAxes,
+    /// `JPRIM`, PERPENDICULAR: I's z axis perpendicular to J's (1).
+    Perpendicular,
 }
 
 impl JointKind {
@@ -209,13 +221,43 @@ impl JointKind {
         (JointKind::Planar, "PLANAR"),
     ];
 
+    /// Every kind of joint primitive (`JPRIM`) with its keyword.
+    pub const PRIMITIVES: [(JointKind, &'static str); 6] = [
+        (JointKind::AtPoint, "ATPOINT"),
+        (JointKind::InLine, "INLINE"),
+        (JointKind::InPlane, "INPLANE"),
+        (JointKind::Orientation, "ORIENTATION"),
+        (JointKind::ParallelAxes, "PARALLEL_AXES"),
+        (JointKind::Perpendicular, "PERPENDICULAR"),
+    ];
+
     /// The number of scalar equations.
     pub fn equations(self) -> usize {
         match self {
             JointKind::Fixed => 6,
             JointKind::Revolute | JointKind::Translational => 5,
             JointKind::Cylindrical => 4,
-            JointKind::Spherical | JointKind::Planar => 3,
+            JointKind::Spherical
+            | JointKind::Planar
+            | JointKind::AtPoint
+            | JointKind::Orientation => 3,
+            JointKind::InLine | JointKind::ParallelAxes => 2,
+            JointKind::InPlane | JointKind::Perpendicular => 1,
+        }
+    }
+
+    /// Whether it is a joint primitive (`JPRIM`), which a MOTION cannot
+    /// name.
+    pub fn is_primitive(self) -> bool {
+        JointKind::PRIMITIVES.iter().any(|(kind, _)| *kind == self)
+    }
+
+    /// The statement that gives it: `JOINT` or `JPRIM`.
+    pub fn statement(self) -> &'static str {
+        if self.is_primitive() {
+            "JPRIM"
+        } else {
+            "JOINT"
         }
     }
 }

@@ -102,6 +102,12 @@ fn joint_rows<T: crate::number::Number>(
             .chain([xi.dot(yj)])
             .collect(),
         JointKind::Planar => [zj.dot(&apart)].into_iter().chain(parallel()).collect(),
+        JointKind::AtPoint => together().collect(),
+        JointKind::InLine => vec![xj.dot(&apart), yj.dot(&apart)],
+        JointKind::InPlane => vec![zj.dot(&apart)],
+        JointKind::Orientation => parallel().into_iter().chain([xi.dot(yj)]).collect(),
+        JointKind::ParallelAxes => parallel().into_iter().collect(),
+        JointKind::Perpendicular => vec![zi.dot(zj)],
     }
 }
 
@@ -169,7 +175,8 @@ pub(crate) fn leave_out_redundant(model: &mut super::Model, y: &[f64], offsets: 
         }
         model.notes.push((
             format!(
-                "JOINT/{}: {} of its {} equations repeat other joints' (the mechanism is over-constrained, as a planar loop is in space): they are left out, as Adams does, and the reactions they would share are not unique",
+                "{}/{}: {} of its {} equations repeat other joints' (the mechanism is over-constrained, as a planar loop is in space): they are left out, as Adams does, and the reactions they would share are not unique",
+                joint.kind.statement(),
                 joint.id,
                 joint.redundant.len(),
                 joint.kind.equations()

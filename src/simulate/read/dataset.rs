@@ -24,8 +24,7 @@ use crate::simulate::model::{
 use crate::span::Span;
 
 /// Statements that need a constraint solver.
-const CONSTRAINTS: [&str; 8] = [
-    "JPRIM",
+const CONSTRAINTS: [&str; 7] = [
     "COUPLER",
     "GEAR",
     "UCON",
@@ -64,7 +63,7 @@ const LEFT_ASIDE: [&str; 20] = [
 const SOLVER_SETTINGS: [&str; 3] = ["INTEGRATOR", "DYNAMICS", "SIMULATE"];
 
 /// The statements the simulator reads.
-const SIMULATED: [&str; 16] = [
+const SIMULATED: [&str; 17] = [
     "PART",
     "MARKER",
     "DIFF",
@@ -80,6 +79,7 @@ const SIMULATED: [&str; 16] = [
     "SPLINE",
     "REQUEST",
     "JOINT",
+    "JPRIM",
     "MOTION",
 ];
 
@@ -272,7 +272,10 @@ impl Reader<'_> {
                 continue;
             }
             let id = number(statement, "JOINT", f64::NAN).unwrap_or(f64::NAN);
-            let Some(joint) = joints.iter().position(|joint| joint.id as f64 == id) else {
+            let Some(joint) = joints
+                .iter()
+                .position(|joint| joint.id as f64 == id && !joint.kind.is_primitive())
+            else {
                 self.errors.push(SimulateError::Model {
                     message: format!("{label}: JOINT must name a JOINT of the model"),
                     span: statement

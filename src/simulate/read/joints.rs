@@ -1,4 +1,4 @@
-//! `JOINT` statements of a dataset.
+//! `JOINT` and `JPRIM` statements of a dataset.
 
 use crate::check::Reference;
 use crate::model::initial::number;
@@ -19,12 +19,14 @@ pub(crate) fn joints(
 ) -> Vec<Joint> {
     let mut joints = Vec::new();
     for statement in &dataset.statements {
-        if !is_kind(&statement.name, "JOINT") {
+        let found = if is_kind(&statement.name, "JOINT") {
+            joint(statement, scene, errors)
+        } else if is_kind(&statement.name, "JPRIM") {
+            primitive(statement, scene, errors)
+        } else {
             continue;
-        }
-        if let Some(joint) = joint(statement, scene, errors) {
-            joints.push(joint);
-        }
+        };
+        joints.extend(found);
     }
     joints
 }
@@ -73,6 +75,41 @@ fn joint(statement: &Statement, scene: &Scene, errors: &mut Vec<SimulateError>) 
             });
         }
     }
+    let i = marker(statement, "I", scene, errors);
+    let j = marker(statement, "J", scene, errors);
+    let (i, j) = (i?, j?);
+    Some(Joint {
+        id: statement.id.unwrap_or(0),
+        kind,
+        i,
+        j,
+        redundant: Vec::new(),
+        span: statement.span,
+    })
+}
+
+/// A `JPRIM` statement: one of the joint primitives, between its markers.
+fn primitive(
+    statement: &Statement,
+    scene: &Scene,
+    errors: &mut Vec<SimulateError>,
+) -> Option<Joint> {
+    let kind = JointKind::PRIMITIVES
+        .iter()
+        .find(|(_, name)| statement.argument(name, 3).is_some())
+        .map(|(kind, _)| *kind);
+    let Some(kind) = kind else {
+        let names: Vec<&str> = JointKind::PRIMITIVES
+            .iter()
+            .map(|(_, name)| *name)
+            .collect();
+        errors.push(SimulateError::Unsupported {
+            statement: statement.label(),
+            reason: format!("needs its type: one of {}", names.join(", ")),
+            span: statement.span,
+        });
+        return None;
+    };
     let i = marker(statement, "I", scene, errors);
     let j = marker(statement, "J", scene, errors);
     let (i, j) = (i?, j?);
