@@ -75,17 +75,7 @@ fn joint(statement: &Statement, scene: &Scene, errors: &mut Vec<SimulateError>) 
             });
         }
     }
-    let i = marker(statement, "I", scene, errors);
-    let j = marker(statement, "J", scene, errors);
-    let (i, j) = (i?, j?);
-    Some(Joint {
-        id: statement.id.unwrap_or(0),
-        kind,
-        i,
-        j,
-        redundant: Vec::new(),
-        span: statement.span,
-    })
+    between_markers(statement, kind, scene, errors)
 }
 
 /// A `JPRIM` statement: one of the joint primitives, between its markers.
@@ -110,6 +100,17 @@ fn primitive(
         });
         return None;
     };
+    between_markers(statement, kind, scene, errors)
+}
+
+/// The joint of `kind` that `statement` places between its I and J
+/// markers.
+fn between_markers(
+    statement: &Statement,
+    kind: JointKind,
+    scene: &Scene,
+    errors: &mut Vec<SimulateError>,
+) -> Option<Joint> {
     let i = marker(statement, "I", scene, errors);
     let j = marker(statement, "J", scene, errors);
     let (i, j) = (i?, j?);
