@@ -402,7 +402,7 @@ fn read_text(path: &str) -> Result<String, Located> {
 /// a file that cannot be read or is not a model file.
 pub fn check_model_file(path: &str) -> Result<Vec<Diagnostic>, Located> {
     let text = read_text(path)?;
-    if is_scene_path(path) {
+    if simulate::is_scene_path(path) {
         return Ok(match simulate::from_scene(&text) {
             Ok(_) => Vec::new(),
             Err(errors) => errors
@@ -437,11 +437,6 @@ fn placed_problems(text: &str, problems: &[model::Problem]) -> Vec<Diagnostic> {
             }
         })
         .collect()
-}
-
-/// Whether `path` names a scene file.
-fn is_scene_path(path: &str) -> bool {
-    path.to_ascii_lowercase().ends_with(".toml")
 }
 
 /// A simulation error placed in the model's file.

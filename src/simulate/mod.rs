@@ -58,7 +58,8 @@ pub use constraints::Residuals;
 pub use error::{Place, SimulateError};
 pub use model::{Diff, Expression, Force, Joint, JointKind, MassProperties, Model, Motion, Output};
 pub use read::{
-    ModelFormat, Unread, format_of_path, from_scene, run_settings, run_settings_beside,
+    ModelFormat, Unread, format_of_path, from_scene, is_scene_path, run_settings,
+    run_settings_beside,
 };
 pub use run::{
     DEFAULT_MAX_STEPS, Equations, ErrorEstimate, Event, MethodChange, SMALLEST_RTOL, Settings,

@@ -209,6 +209,11 @@ struct Reader<'d> {
 }
 
 impl Reader<'_> {
+    /// Records what is wrong with the model at `span`.
+    fn refuse(&mut self, message: String, span: Span) {
+        self.errors.push(SimulateError::Model { message, span });
+    }
+
     fn statements(&self, kind: &'static str) -> impl Iterator<Item = (usize, &Statement)> {
         self.dataset
             .statements
@@ -276,12 +281,12 @@ impl Reader<'_> {
                 .iter()
                 .position(|joint| joint.id as f64 == id && !joint.kind.is_primitive())
             else {
-                self.errors.push(SimulateError::Model {
-                    message: format!("{label}: JOINT must name a JOINT of the model"),
-                    span: statement
+                self.refuse(
+                    format!("{label}: JOINT must name a JOINT of the model"),
+                    statement
                         .argument("JOINT", 2)
                         .map_or(statement.span, |argument| argument.span),
-                });
+                );
                 continue;
             };
             let asks_rotation = statement.argument("ROTATION", 3).is_some();
@@ -325,13 +330,13 @@ impl Reader<'_> {
         let statement = &dataset.statements[index];
         let argument = statement.argument(keyword, keyword.len().min(4))?;
         let Value::Expression { text, .. } = &argument.value else {
-            self.errors.push(SimulateError::Model {
-                message: format!(
+            self.refuse(
+                format!(
                     "{}: {keyword} must be a function expression",
                     statement.label()
                 ),
-                span: argument.span,
-            });
+                argument.span,
+            );
             return None;
         };
         let found = self
@@ -356,13 +361,11 @@ impl Reader<'_> {
             .filter(|id| id.fract() == 0.0 && *id >= 0.0)
             .and_then(|id| self.scene.find_marker(&Reference::Id(id as u64)).ok());
         if found.is_none() {
-            self.errors.push(SimulateError::Model {
-                message: format!(
-                    "{}: {keyword} must name a MARKER of the model (a floating marker only as JFLOAT)",
-                    statement.label()
-                ),
-                span: argument.span,
-            });
+            let message = format!(
+                "{}: {keyword} must name a MARKER of the model (a floating marker only as JFLOAT)",
+                statement.label()
+            );
+            self.refuse(message, argument.span);
         }
         found
     }
@@ -474,21 +477,18 @@ impl Reader<'_> {
                 continue;
             }
             let initial = number(statement, "IC", 0.0).unwrap_or_else(|error| {
-                self.errors.push(SimulateError::Model {
-                    message: error.to_string(),
-                    span: error.span(),
-                });
+                self.refuse(error.to_string(), error.span());
                 0.0
             });
             let Some(function) = self.expression(index, "FUNCTION") else {
                 if statement.argument("FUNCTION", 4).is_none() {
-                    self.errors.push(SimulateError::Model {
-                        message: format!(
+                    self.refuse(
+                        format!(
                             "{}: a DIFF needs FUNCTION = its time derivative",
                             statement.label()
                         ),
-                        span: statement.span,
-                    });
+                        statement.span,
+                    );
                 }
                 continue;
             };
@@ -555,13 +555,11 @@ impl Reader<'_> {
                     match floating.get(&(id as u64)) {
                         Some(body) => *body,
                         None => {
-                            self.errors.push(SimulateError::Model {
-                                message: format!(
-                                    "{}: JFLOAT must name a floating MARKER (MARKER/id, PART = ..., FLOATING)",
-                                    statement.label()
-                                ),
-                                span: argument.span,
-                            });
+                            let message = format!(
+                                "{}: JFLOAT must name a floating MARKER (MARKER/id, PART = ..., FLOATING)",
+                                statement.label()
+                            );
+                            self.refuse(message, argument.span);
                             continue;
                         }
                     }
@@ -680,10 +678,7 @@ impl Reader<'_> {
     /// Records a statement's numbers that cannot be read.
     fn refuse_numbers(&mut self, error: Option<ConfigurationError>) -> Option<Force> {
         if let Some(error) = error {
-            self.errors.push(SimulateError::Model {
-                message: error.to_string(),
-                span: error.span(),
-            });
+            self.refuse(error.to_string(), error.span());
         }
         None
     }
@@ -697,13 +692,13 @@ impl Reader<'_> {
             .ok()
             .and_then(|tree| crate::check(&tree).ok());
         let Some(checked) = checked else {
-            self.errors.push(SimulateError::Model {
-                message: format!(
+            self.refuse(
+                format!(
                     "{}: its {what} cannot be written as an expression ({text}): check its numbers",
                     statement.label()
                 ),
-                span: statement.span,
-            });
+                statement.span,
+            );
             return None;
         };
         self.expressions.push(Expression {
@@ -748,10 +743,7 @@ impl Reader<'_> {
             for (axis, keyword) in ["IGRAV", "JGRAV", "KGRAV"].into_iter().enumerate() {
                 match number(statement, keyword, 0.0) {
                     Ok(value) => gravity[axis] = value,
-                    Err(error) => self.errors.push(SimulateError::Model {
-                        message: error.to_string(),
-                        span: error.span(),
-                    }),
+                    Err(error) => self.refuse(error.to_string(), error.span()),
                 }
             }
         }

@@ -34,6 +34,11 @@ pub enum Unread {
     Refused(Vec<SimulateError>),
 }
 
+/// Whether `path` names a scene file (`.toml`).
+pub fn is_scene_path(path: &str) -> bool {
+    path.to_ascii_lowercase().ends_with(".toml")
+}
+
 /// How the file at `path` is read: as `format` when given, else a scene
 /// file for `.toml` and a solver dataset otherwise; a dataset is read as
 /// a command file for `.acf`. An Adams View command file is refused with
@@ -42,7 +47,7 @@ pub fn format_of_path(
     path: &str,
     format: Option<ModelFormat>,
 ) -> Result<(ModelFormat, FileKind), String> {
-    let format = format.unwrap_or(if path.to_ascii_lowercase().ends_with(".toml") {
+    let format = format.unwrap_or(if is_scene_path(path) {
         ModelFormat::Scene
     } else {
         ModelFormat::Dataset
@@ -64,7 +69,7 @@ pub fn format_of_path(
 /// there is no such file.
 pub fn run_settings_beside(path: &str) -> Result<Option<(f64, usize)>, String> {
     let commands = Path::new(path).with_extension("acf");
-    if path == "-" || path.to_ascii_lowercase().ends_with(".acf") || !commands.exists() {
+    if path == "-" || FileKind::of_path(path) == Some(FileKind::Acf) || !commands.exists() {
         return Ok(None);
     }
     let text = std::fs::read_to_string(&commands)
