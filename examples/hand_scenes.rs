@@ -1,5 +1,6 @@
-//! The five scenes of the simulation study integrated by the hand-written
-//! program of `benches/hand` (hand-coded right-hand side, Jacobian and
+//! The five scenes of the simulation study and issue 22's variant,
+//! integrated by the hand-written program of `benches/hand` (hand-coded
+//! right-hand side, Jacobian and
 //! switching functions, its own event driver), with output as `mbexpr
 //! simulate` writes it: CSV rows `time,DIF(1),DIF(2)` on standard output
 //! and one line of statistics on standard error. `scripts/work_precision.sh`
@@ -23,7 +24,7 @@ use mbexpr::integrate::Method;
 #[derive(Parser)]
 struct Args {
     /// The scene: a1_ball, a2_stiff_ball, a3_softening_ball,
-    /// a4_dropped_ball or b_slider.
+    /// a4_dropped_ball, b_slider or v_variant_ball.
     scene: String,
     /// Output steps: STEPS + 1 rows at equally spaced times from 0 to the
     /// scene's end.
@@ -46,9 +47,11 @@ struct Args {
 fn main() -> ExitCode {
     let args = Args::parse();
     let Some(scene) = hand::SCENES.iter().find(|scene| scene.name == args.scene) else {
+        let names: Vec<&str> = hand::SCENES.iter().map(|scene| scene.name).collect();
         eprintln!(
-            "error: no scene `{}`: expected a1_ball, a2_stiff_ball, a3_softening_ball, a4_dropped_ball or b_slider",
-            args.scene
+            "error: no scene `{}`: expected one of {}",
+            args.scene,
+            names.join(", ")
         );
         return ExitCode::FAILURE;
     };

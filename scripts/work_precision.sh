@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Work-precision report of the simulation study's five scenes (issue 16):
+# Work-precision report of the simulation study's five scenes (issue 16) and
+# issue 22's variant ball:
 # mbexpr simulate (radau, dop853), scipy's solve_ivp (RK45, DOP853, Radau,
 # BDF, LSODA), SUNDIALS CVODE from C with hand-coded roots, and the
 # hand-written Rust, at rtol 1e-3 .. 1e-12, timed on this machine in one run.

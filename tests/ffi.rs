@@ -52,7 +52,12 @@ fn compile_and_run(compiler: &str, sources: &[PathBuf], flags: &[&str]) -> Optio
         "{compiler} failed on {sources:?}:\n{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    let output = Command::new(&program).output().expect("the program runs");
+    // In the scratch folder: the programs write files of their own
+    // (`broken.adm`), which must not land in the source tree.
+    let output = Command::new(&program)
+        .current_dir(&scratch)
+        .output()
+        .expect("the program runs");
     std::fs::remove_dir_all(&scratch).unwrap();
     assert!(
         output.status.success(),

@@ -1,5 +1,6 @@
 /*
- * The five scenes of the simulation study (issue 15's table) with SUNDIALS
+ * The five scenes of the simulation study (issue 15's table) and issue 22's
+ * variant with SUNDIALS
  * CVODE: BDF, Newton iterations with a dense analytic Jacobian, hand-coded
  * root functions at the branch switches of BISTOP and a restart
  * (CVodeReInit) at each root: what a careful engineer writes by hand.
@@ -49,6 +50,7 @@ static const Scene SCENES[] = {
     {"a3_softening_ball", -1, 1, 1e6, 0.8, 10, 1e-3, 0, 0, 0, 5, 10},
     {"a4_dropped_ball", -1, 1, 1e8, 1.5, 1e6, 1e-5, 0, 9.81, 0, 0, 10},
     {"b_slider", -0.5, 0.5, 1e6, 1.5, 100, 0.005, 4, 0, 0.1, 0, 5},
+    {"v_variant_ball", -0.7, 0.9, 3e5, 1.3, 80, 0.02, 0, 0, 0.1, -4, 8},
 };
 
 enum Piece { RAMP, FULL, CLAMPED };

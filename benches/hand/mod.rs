@@ -65,8 +65,10 @@ pub struct Scene {
     pub end: f64,
 }
 
-/// The five scenes of issue 15's table, in its order.
-pub const SCENES: [Scene; 5] = [
+/// The five scenes of issue 15's table, in its order, and the variant of
+/// issue 22 (other walls, exponent, damping and start) that no method was
+/// tuned to.
+pub const SCENES: [Scene; 6] = [
     Scene {
         name: "a1_ball",
         x1: -1.0,
@@ -136,6 +138,20 @@ pub const SCENES: [Scene; 5] = [
         x0: 0.1,
         v0: 0.0,
         end: 5.0,
+    },
+    Scene {
+        name: "v_variant_ball",
+        x1: -0.7,
+        x2: 0.9,
+        k: 3e5,
+        e: 1.3,
+        cmax: 80.0,
+        d: 0.02,
+        spring: 0.0,
+        gravity: 0.0,
+        x0: 0.1,
+        v0: -4.0,
+        end: 8.0,
     },
 ];
 
