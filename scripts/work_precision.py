@@ -2,7 +2,7 @@
 issue 22's variant ball.
 
 Run by scripts/work_precision.sh, which installs what this needs and builds
-the programs it times. Two commands:
+the programs it times. Its commands:
 
   references [SCENE...]
               integrate each scene at rtol 1e-14 with `mbexpr simulate
@@ -16,6 +16,10 @@ the programs it times. Two commands:
               hand-written Rust (examples/hand_scenes.rs); write the tables
               and targets into BENCHMARKS.md and the plots into
               docs/work-precision/.
+  auto        `--method auto` against the better of radau and dop853 at
+              auto's error, in instructions counted by cachegrind (the
+              count does not move with the machine's load): the table
+              into target/work_precision/auto_instructions.md.
 
 Where each figure comes from:
 - errors: max |x - x_ref| over the 200 output times, |x(T) - x_ref(T)|,
@@ -44,8 +48,10 @@ ROOT = Path(__file__).resolve().parent.parent
 REFERENCES = ROOT / "tests" / "data" / "simulate"
 OUT = ROOT / "target" / "work_precision"
 PLOTS = ROOT / "docs" / "work-precision"
-MBEXPR = ROOT / "target" / "release" / "mbexpr"
-HAND = ROOT / "target" / "release" / "examples" / "hand_scenes"
+# The binaries timed: the release builds, or those the MBEXPR and HAND_SCENES
+# variables name.
+MBEXPR = Path(os.environ.get("MBEXPR", ROOT / "target" / "release" / "mbexpr"))
+HAND = Path(os.environ.get("HAND_SCENES", ROOT / "target" / "release" / "examples" / "hand_scenes"))
 CVODE = ROOT / "target" / "work_precision" / "cvode_scenes"
 
 STEPS = 199  # 200 output times
@@ -409,14 +415,22 @@ def time_to(results, scene, label, accuracy):
     None where no run reaches it."""
     points = [(results[f"{scene}|{label}|{rtol:.0e}"]["max_x"], results[f"{scene}|{label}|{rtol:.0e}"]["time"])
               for rtol in TOLERANCES if "time" in results[f"{scene}|{label}|{rtol:.0e}"]]
+    return interpolate(points, accuracy)
+
+
+def interpolate(points, accuracy):
+    """The cost of reaching max error `accuracy` from (error, cost) points
+    from loose to tight tolerances: log-log between the two whose errors
+    bracket it, the loosest's cost where even that is accurate enough,
+    None where none reaches it."""
     if not points:
         return None
     if points[0][0] <= accuracy:
         return points[0][1]
-    for (error_a, time_a), (error_b, time_b) in zip(points, points[1:]):
+    for (error_a, cost_a), (error_b, cost_b) in zip(points, points[1:]):
         if error_b <= accuracy < error_a:
             fraction = math.log(accuracy / error_a) / math.log(max(error_b, 1e-300) / error_a)
-            return math.exp(math.log(time_a) + fraction * (math.log(time_b) - math.log(time_a)))
+            return math.exp(math.log(cost_a) + fraction * (math.log(cost_b) - math.log(cost_a)))
     return None
 
 
@@ -561,12 +575,101 @@ def report(results):
         print(f"BENCHMARKS.md has no work-precision section: the tables are in {OUT / 'tables.md'}")
 
 
+# ---------------------------------------------------------------- auto, by instructions
+
+
+AUTO_TOLERANCES = [10.0 ** -n for n in range(3, 11)]
+AUTO_METHODS = ["auto", "radau", "dop853"]
+
+
+def instructions(argv, budget):
+    """The instructions `argv` executes under cachegrind, and its standard
+    output."""
+    done = subprocess.run(["valgrind", "--tool=cachegrind", "--cache-sim=no",
+                           "--cachegrind-out-file=/dev/null", *argv],
+                          capture_output=True, text=True, timeout=budget)
+    if done.returncode != 0:
+        raise RuntimeError(done.stderr.strip().splitlines()[-1])
+    line = next(line for line in done.stderr.splitlines() if "I   refs:" in line or "I refs:" in line)
+    return int(line.split(":")[1].replace(",", "").strip()), done.stdout
+
+
+def auto_instructions():
+    """`--method auto` against the better of radau and dop853 at auto's
+    error, counted in instructions (cachegrind) rather than timed: the
+    count of a run does not move with the machine's load. A run's count is
+    that of the whole process less that of the same command ending at
+    t = 1e-9 (reading, compiling and starting); a run over 120 s under
+    cachegrind (DOP853 on A4's stiff stop) is left out with the tighter
+    tolerances of its method."""
+    store = OUT / "auto_instructions.json"
+    results = json.loads(store.read_text()) if store.exists() else {}
+    for scene in SCENES:
+        reference = read_reference(scene[0])
+        for method in AUTO_METHODS:
+            given_up = False
+            for rtol in AUTO_TOLERANCES:
+                key = f"{scene[0]}|{method}|{rtol:.0e}"
+                if given_up:
+                    results[key] = {"skipped": "over 120 s under cachegrind at a looser rtol"}
+                if key in results:
+                    given_up = "skipped" in results[key]
+                    continue
+                argv = command("mbexpr", method, scene, rtol, rtol * 1e-3)
+                try:
+                    count, out = instructions(argv, 120)
+                    start = argv.copy()
+                    start[start.index("--end") + 1] = "1e-9"
+                    start[start.index("--steps") + 1] = "1"
+                    base, _ = instructions(start, 120)
+                    results[key] = {"instructions": count - base,
+                                    "max_x": errors(read_rows(out), reference)["max_x"]}
+                except subprocess.TimeoutExpired:
+                    results[key] = {"skipped": "over 120 s under cachegrind"}
+                except RuntimeError as error:
+                    results[key] = {"failed": str(error)}
+                store.write_text(json.dumps(results, indent=1))
+                print(key, results[key], flush=True)
+                given_up = "skipped" in results[key]
+    lines = [
+        "| scene | " + " | ".join(f"{rtol:.0e}" for rtol in AUTO_TOLERANCES) + " | worst |",
+        "|---|" + "---|" * (len(AUTO_TOLERANCES) + 1),
+    ]
+    for scene in SCENES:
+        cells, worst = [], 0.0
+        for rtol in AUTO_TOLERANCES:
+            auto = results[f"{scene[0]}|auto|{rtol:.0e}"]
+            if "instructions" not in auto:
+                cells.append("–")
+                continue
+            better = []
+            for method in ("radau", "dop853"):
+                points = [(results[f"{scene[0]}|{method}|{r:.0e}"]["max_x"],
+                           results[f"{scene[0]}|{method}|{r:.0e}"]["instructions"])
+                          for r in AUTO_TOLERANCES if "instructions" in results[f"{scene[0]}|{method}|{r:.0e}"]]
+                found = interpolate(points, auto["max_x"])
+                if found is not None:
+                    better.append(found)
+            if not better:
+                cells.append("best")
+                continue
+            ratio = auto["instructions"] / min(better)
+            worst = max(worst, ratio)
+            cells.append(f"{ratio:.2f}")
+        lines.append(f"| {scene[1]} | " + " | ".join(cells) + f" | {worst:.2f} |")
+    table_text = "\n".join(lines) + "\n"
+    (OUT / "auto_instructions.md").write_text(table_text)
+    print(table_text)
+
+
 if __name__ == "__main__":
     if sys.argv[1:2] == ["references"]:
         references(sys.argv[2:])
     elif sys.argv[1:2] == ["sweep"]:
         sweep(fresh="--fresh" in sys.argv)
+    elif sys.argv[1:2] == ["auto"]:
+        auto_instructions()
     elif sys.argv[1:2] == ["report"]:
         report(json.loads((OUT / "results.json").read_text()))
     else:
-        sys.exit("usage: work_precision.py references | sweep [--fresh] | report")
+        sys.exit("usage: work_precision.py references | sweep [--fresh] | auto | report")

@@ -10,6 +10,8 @@
 #   scripts/work_precision.sh --references  first regenerate tests/data/simulate/
 #   scripts/work_precision.sh --fresh       forget the results of an earlier run
 #                                           (target/work_precision/results.json)
+#   scripts/work_precision.sh --auto        only --method auto against the better
+#                                           method, in instructions (cachegrind)
 #
 # Installs what it needs itself: Debian's libsundials-dev and a C compiler
 # (apt-get), a Python virtual environment with scipy and matplotlib
@@ -45,6 +47,13 @@ python="$out/venv/bin/python"
 for argument in "$@"; do
     case "$argument" in
         --references) "$python" scripts/work_precision.py references ;;
+        --auto)
+            if ! command -v valgrind >/dev/null; then
+                apt-get update -qq
+                DEBIAN_FRONTEND=noninteractive apt-get install -y -qq valgrind >/dev/null
+            fi
+            "$python" scripts/work_precision.py auto
+            exit 0 ;;
         --fresh) ;;
         *) echo "unknown argument $argument" >&2; exit 2 ;;
     esac

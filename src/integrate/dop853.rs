@@ -21,17 +21,31 @@ const GROW_MOST: f64 = 1.0 / 6.0;
 /// Step factor after a trial state the system refuses.
 const FAILURE_SHRINK: f64 = 0.5;
 
-/// Hairer's stiffness test (`dop853.f`, `NSTIFF`): every this many
-/// accepted steps, and at every step while the last test found `h |λ|`
-/// beyond [`STABILITY_EDGE`]. Under [`Method::Auto`](super::Method::Auto),
-/// at every step.
-pub(super) const STIFFNESS_TEST_EVERY: usize = 1000;
 /// `h |λ|` near the edge of DOP853's stability region along the negative
 /// real axis (Hairer's 6.1).
 pub(super) const STABILITY_EDGE: f64 = 6.1;
-/// Tests beyond the edge, with fewer than [`NONSTIFF_RESET`] tests within
-/// it between them, that make a problem stiff (Hairer's 15).
-const STIFF_TESTS: u32 = 15;
+
+/// How the stiffness test runs: how often, against which `h |λ|`, and how
+/// many tests beyond it make a problem stiff.
+#[derive(Clone, Copy)]
+pub(super) struct StiffnessTest {
+    /// The test runs every this many accepted steps, and at every step
+    /// while the last test found `h |λ|` beyond the edge.
+    pub every: usize,
+    /// `h |λ|` beyond which a test counts as stiff.
+    pub edge: f64,
+    /// Tests beyond the edge, with fewer than [`NONSTIFF_RESET`] tests
+    /// within it between them, that make a problem stiff.
+    pub tests: u32,
+}
+
+/// Hairer's stiffness test (`dop853.f`, `NSTIFF`): every 1000 accepted
+/// steps, against the edge of the stability region, 15 tests.
+pub(super) const HAIRER_TEST: StiffnessTest = StiffnessTest {
+    every: 1000,
+    edge: STABILITY_EDGE,
+    tests: 15,
+};
 /// Tests within the edge in a row that forget the ones beyond it (6).
 const NONSTIFF_RESET: u32 = 6;
 
@@ -308,10 +322,8 @@ pub(super) struct Dop853 {
     after_rejection: bool,
     /// Hairer's stiffness test over the accepted steps.
     stiffness: Stiffness,
-    /// The stiffness test runs every this many accepted steps.
-    test_every: usize,
-    /// `h |λ|` beyond which a test counts as stiff.
-    edge: f64,
+    /// How the stiffness test runs.
+    test: StiffnessTest,
 }
 
 /// The state of Hairer's stiffness test: `h |λ|` estimated on the last
@@ -331,14 +343,14 @@ struct Stiffness {
 
 impl Stiffness {
     /// Counts the estimate of the step from `t` that was just accepted.
-    fn count(&mut self, t: f64, edge: f64) {
+    fn count(&mut self, t: f64, test: &StiffnessTest) {
         let Some(h_lambda) = self.pending.take() else {
             return;
         };
-        if h_lambda > edge {
+        if h_lambda > test.edge {
             self.within = 0;
             self.beyond += 1;
-            if self.beyond == STIFF_TESTS && self.found_at.is_none() {
+            if self.beyond == test.tests && self.found_at.is_none() {
                 self.found_at = Some(t);
             }
         } else {
@@ -351,10 +363,9 @@ impl Stiffness {
 }
 
 impl Dop853 {
-    /// Working storage for `n` components, the stiffness test run every
-    /// `test_every` accepted steps, counting `h |λ|` beyond `edge` as stiff
-    /// (Hairer's [`STIFFNESS_TEST_EVERY`] and [`STABILITY_EDGE`]).
-    pub fn new(n: usize, test_every: usize, edge: f64) -> Self {
+    /// Working storage for `n` components, the stiffness test run as
+    /// `test` says ([`HAIRER_TEST`] for DOP853 alone).
+    pub fn new(n: usize, test: StiffnessTest) -> Self {
         Dop853 {
             n,
             k: vec![0.0; 16 * n],
@@ -364,16 +375,18 @@ impl Dop853 {
             h_dense: 0.0,
             after_rejection: false,
             stiffness: Stiffness::default(),
-            test_every: test_every.max(1),
-            edge,
+            test: StiffnessTest {
+                every: test.every.max(1),
+                ..test
+            },
         }
     }
 
-    /// The start of the step at which Hairer's stiffness test first found
-    /// the problem stiff: `h |λ|` beyond the edge of DOP853's stability
-    /// region (6.1) in 15 tests, with fewer than 6 within it in a row
-    /// between them. The steps are then held to that edge by stability,
-    /// not accuracy.
+    /// The start of the step at which the stiffness test first found the
+    /// problem stiff: `h |λ|` beyond its edge (Hairer's: 6.1, the edge of
+    /// DOP853's stability region) in its number of tests (Hairer's: 15),
+    /// with fewer than 6 within it in a row between them. The steps are
+    /// then held near that edge by stability, not accuracy.
     pub fn stiff_from(&self) -> Option<f64> {
         self.stiffness.found_at
     }
@@ -431,7 +444,7 @@ impl Dop853 {
             // A step shortened to land keeps the longer step it replaced.
             core.h = if lands { h_new.max(core.h) } else { h_new };
             self.h_dense = h;
-            self.stiffness.count(core.t, self.edge);
+            self.stiffness.count(core.t, &self.test);
             std::mem::swap(&mut core.y, &mut self.y_new);
             core.dy.copy_from_slice(&self.k[12 * self.n..13 * self.n]);
             core.advance(h, lands, t_end);
@@ -504,7 +517,7 @@ impl Dop853 {
             &mut self.k[12 * n..13 * n],
         )?;
         let accepted = core.stats.steps + 1;
-        self.stiffness.pending = (accepted.is_multiple_of(self.test_every)
+        self.stiffness.pending = (accepted.is_multiple_of(self.test.every)
             || self.stiffness.beyond > 0)
             .then(|| self.stiffness_estimate(h));
         for (index, stage) in DENSE_STAGES.iter().enumerate() {

@@ -460,12 +460,12 @@ impl Stepper {
                 Scheme::Radau5(Box::new(Radau5::new(options, core.atol.len(), pattern)?))
             }
             Method::Dop853 | Method::Auto => {
-                let (test_every, edge) = if auto {
-                    (1, auto::STIFF_EDGE)
+                let test = if auto {
+                    auto::STIFFNESS_TEST
                 } else {
-                    (dop853::STIFFNESS_TEST_EVERY, dop853::STABILITY_EDGE)
+                    dop853::HAIRER_TEST
                 };
-                Scheme::Dop853(Box::new(Dop853::new(core.y.len(), test_every, edge)))
+                Scheme::Dop853(Box::new(Dop853::new(core.y.len(), test)))
             }
         })
     }
