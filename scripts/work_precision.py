@@ -505,7 +505,10 @@ def targets(results):
         "",
         "`--method auto` against the better of mbexpr's radau and dop853 at auto's error: auto's",
         "time over the least time either method takes to reach that error (interpolated log-log",
-        "between its tolerances; \"best\": neither reaches auto's error at any tolerance):",
+        "between its tolerances; \"best\": neither reaches auto's error at any tolerance). Auto",
+        "and DOP853 take the same steps where auto stays explicit, so a ratio far from 1 there is",
+        "the machine's noise: `scripts/work_precision.sh --auto` counts instructions instead",
+        "(\"`--method auto` against the better method\" below).",
         "",
     ] + auto_against_better(results)
     lines += [
@@ -540,7 +543,7 @@ def plot(results, scene):
         if not points:
             continue
         style = {"mbexpr": "-", "hand": "--", "cvode": "-.", "scipy": ":"}[kind]
-        marker = "osD^vx<>*p"[index]
+        marker = "osD^vx<>*ph+"[index % 12]
         axes.loglog([p[0] for p in points], [max(p[1], 1e-16) for p in points], style, marker=marker,
                     label=label, markersize=4)
     axes.set_xlabel("wall time of the integration (s, median of 5)")
