@@ -187,3 +187,46 @@ fn reactions_that_cannot_be_had_are_refused_before_the_run() {
         .expect("refused");
     assert!(error.contains("reads a reaction"), "{error}");
 }
+
+/// Adams' cubic STEP from `h0` at `x0` to `h1` at `x1`, written here.
+fn step(x: f64, x0: f64, h0: f64, x1: f64, h1: f64) -> f64 {
+    let s = ((x - x0) / (x1 - x0)).clamp(0.0, 1.0);
+    h0 + (h1 - h0) * s * s * (3.0 - 2.0 * s)
+}
+
+/// The corpus's spiked model: a crank driven at 30°/s by MOTION/1 (its
+/// I marker on ground) with a connecting rod and an INLINE slider, and a
+/// 10 lbf·in torque pulse (SFORCE/1) on the crank about ground z in t = 1
+/// ... 1.02. `VARIABLE/1 = MOTION(1,0,8,0)` is written with the rows, and
+/// since the motion fixes the mechanism's path, the pulse changes nothing
+/// but the torque the motion applies: VARIABLE/1 minus its value in a copy
+/// without the pulse is the pulse itself, `(STEP(t, 1, 0, 1.01, 1) −
+/// STEP(t, 1.01, 0, 1.02, 1)) · 10` (the torque the crank takes from the
+/// motion falls by the pulse; the ground's, jflag 0, rises by it).
+#[test]
+fn the_spiked_models_motion_torque_takes_the_pulse() {
+    let Some(path) =
+        crate::corpus::corpus_path("models/bthornton191__adamspy__test_analysis_with_spikes.adm")
+    else {
+        return;
+    };
+    let text = std::fs::read_to_string(path).expect("the corpus model reads");
+    let pulse = ", FUNCTION = (step(time, 1, 0, 1.01, 1) - step(time, 1.01, 0, 1.02, 1))*10";
+    assert!(text.contains(pulse));
+    let quiet = text.replace(pulse, ", FUNCTION = 0");
+    let settings = settings(2.0, 400, 1e-9);
+    let spiked = run(&text, &settings).expect("the spiked model runs");
+    let unspiked = run(&quiet, &settings).expect("its copy runs");
+    let mut worst: f64 = 0.0;
+    for (row, quiet_row) in spiked.rows.iter().zip(&unspiked.rows) {
+        let t = row[0];
+        let expected = (step(t, 1.0, 0.0, 1.01, 1.0) - step(t, 1.01, 0.0, 1.02, 1.0)) * 10.0;
+        let variable = row[row.len() - 1];
+        worst = worst.max((variable - quiet_row[quiet_row.len() - 1] - expected).abs());
+    }
+    let peak = spiked.rows[202][spiked.rows[202].len() - 1];
+    println!(
+        "spikes: VARIABLE/1 at t = 1.01 is {peak}; largest difference from the pulse {worst:.2e} lbf·in"
+    );
+    assert!(worst < 1e-6, "{worst}");
+}

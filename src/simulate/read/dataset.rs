@@ -1,7 +1,8 @@
 //! A [`Model`] from a solver dataset: PART and MARKER statements give the
 //! bodies (MASS, CM, IP, IM) and their initial states, DIFF the
 //! differential states, SFORCE, VFORCE, VTORQUE and GFORCE the forces,
-//! ACCGRAV gravity, REQUEST's `F1` ... `F8` the output columns. Statements
+//! ACCGRAV gravity, REQUEST's `F1` ... `F8` and each VARIABLE the output
+//! columns. Statements
 //! that need a constraint solver, and force elements the simulator does
 //! not integrate, are refused at their place.
 
@@ -775,6 +776,19 @@ impl Reader<'_> {
                     format!("{label} is not computed: simulate writes a REQUEST's F1 ... F8 expressions (write DX(i, j), VX(i, j) ... there)"),
                     statement.span,
                 ));
+            }
+        }
+        // Each VARIABLE's value, as Adams writes it with the results.
+        let variables: Vec<usize> = self
+            .statements("VARIABLE")
+            .map(|(index, _)| index)
+            .collect();
+        for index in variables {
+            if let Some(expression) = self.expression(index, "FUNCTION") {
+                outputs.push(Output {
+                    name: dataset.statements[index].label(),
+                    expression,
+                });
             }
         }
         outputs
