@@ -30,6 +30,16 @@ END
 /// The columns after the time: 13 of the part, then the REQUEST's.
 const FIRST: usize = 14;
 
+/// The pendulum's centre of mass from the pivot `r`, its angular velocity
+/// in ground and its orientation, from a row's state columns.
+fn swing(row: &[f64]) -> (Vector3<f64>, Vector3<f64>, nalgebra::UnitQuaternion<f64>) {
+    let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+        row[4], row[5], row[6], row[7],
+    ));
+    let r = q * Vector3::new(2.0, 0.0, 0.0);
+    (r, Vector3::new(row[11], row[12], row[13]), q)
+}
+
 /// The research note's measured value: `JOINT(1,0,4,0) = −0.239187` at t =
 /// 0 (the pull on the ground, `−m (g − a)` with `a = g m d² / (Izz + m d²)`),
 /// and along the swing the force on the ground is `−m (a − g)` of the
@@ -48,11 +58,7 @@ fn a_pendulum_pulls_its_pivot_as_newtons_law_says_with_adams_sign() {
     assert!((first[FIRST + 3] + G * 0.1 / 4.1).abs() < 1e-12);
     let mut worst: f64 = 0.0;
     for row in &run.rows {
-        let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-            row[4], row[5], row[6], row[7],
-        ));
-        let r = q * Vector3::new(2.0, 0.0, 0.0);
-        let omega = Vector3::new(row[11], row[12], row[13]);
+        let (r, omega, _) = swing(row);
         let gravity = Vector3::new(0.0, 0.0, -G);
         // About the pivot: (Izz + m d²) α = r × m g.
         let alpha = r.cross(&gravity) / (0.1 + 4.0);
@@ -229,4 +235,70 @@ fn the_spiked_models_motion_torque_takes_the_pulse() {
         "spikes: VARIABLE/1 at t = 1.01 is {peak}; largest difference from the pulse {worst:.2e} lbf·in"
     );
     assert!(worst < 1e-6, "{worst}");
+}
+
+/// REQUESTs of the standard kinds give Adams' columns from the measures:
+/// the pendulum's centre-of-mass marker against the pivot (DISPLACEMENT:
+/// `r = R (2, 0, 0)`) and against ground along its own axes (VELOCITY:
+/// `v = ω × r` turned into the marker's axes), checked against the run's
+/// own state columns; FORCE and ACCELERATION are refused before the run.
+#[test]
+fn standard_requests_write_adams_columns() {
+    let text = PENDULUM.replace(
+        "REQUEST/1",
+        "REQUEST/2, DISPLACEMENT, I = 20, J = 1\nREQUEST/3, VELOCITY, I = 20, RM = 20\nREQUEST/1",
+    );
+    let swinging = run(&text, &settings(2.0, 20, 1e-10)).expect("the pendulum runs");
+    let mut worst: f64 = 0.0;
+    for row in &swinging.rows {
+        let (r, omega, q) = swing(row);
+        let v = q.inverse() * omega.cross(&r);
+        let w = q.inverse() * omega;
+        let columns = &row[FIRST..];
+        let expected = [
+            r.norm(),
+            r.x,
+            r.y,
+            r.z,
+            v.norm(),
+            v.x,
+            v.y,
+            v.z,
+            w.norm(),
+            w.x,
+            w.y,
+            w.z,
+        ];
+        let found = [
+            columns[0],
+            columns[1],
+            columns[2],
+            columns[3],
+            columns[7],
+            columns[8],
+            columns[9],
+            columns[10],
+            columns[11],
+            columns[12],
+            columns[13],
+            columns[14],
+        ];
+        for (found, expected) in found.iter().zip(expected) {
+            worst = worst.max((found - expected).abs());
+        }
+    }
+    assert!(worst < 1e-9, "{worst}");
+    for kind in ["FORCE", "ACCELERATION"] {
+        let refused = PENDULUM.replace(
+            "REQUEST/1",
+            &format!("REQUEST/2, {kind}, I = 20, J = 1\nREQUEST/1"),
+        );
+        let error = run(&refused, &settings(1.0, 1, 1e-8))
+            .err()
+            .expect("refused");
+        assert!(
+            error.contains(&format!("a REQUEST of {kind} is not computed")),
+            "{error}"
+        );
+    }
 }
