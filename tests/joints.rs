@@ -26,7 +26,7 @@ fn elliptic_k(k: f64) -> f64 {
 /// A compound pendulum: mass `m`, centre of mass `d` from a revolute
 /// pivot at the ground's origin, moment `izz` about the centre of mass,
 /// released at rest with its centre of mass level with the pivot.
-fn pendulum(m: f64, d: f64, izz: f64) -> String {
+pub(super) fn pendulum(m: f64, d: f64, izz: f64) -> String {
     format!(
         "pendulum
 PART/1, GROUND

@@ -21,6 +21,7 @@ mod parse;
 mod plot;
 mod probes;
 mod properties;
+mod reactions;
 mod reference;
 mod repl;
 mod scene;

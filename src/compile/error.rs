@@ -76,6 +76,15 @@ pub enum CompileError {
         /// The call.
         span: Span,
     },
+    /// A reaction of a running solver that this run cannot give (an id no
+    /// statement has, a flag out of range, a force reading a reaction).
+    #[error("{message}")]
+    Reaction {
+        /// Why.
+        message: String,
+        /// The call.
+        span: Span,
+    },
     /// A marker the scene does not have.
     #[error("{error}")]
     Scene {
@@ -170,6 +179,7 @@ impl CompileError {
             | CompileError::NeedsModel { span, .. }
             | CompileError::MissingStatement { span, .. }
             | CompileError::NeedsSolver { span, .. }
+            | CompileError::Reaction { span, .. }
             | CompileError::NeedsSolverState { span, .. }
             | CompileError::Scene { span, .. }
             | CompileError::VariableLoop { span, .. }

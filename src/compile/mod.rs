@@ -4,6 +4,7 @@
 
 mod error;
 mod program;
+mod solver;
 
 use std::collections::{HashMap, HashSet};
 
@@ -12,6 +13,7 @@ pub use crate::ops::{FrameArg, Op, Slot};
 pub use error::CompileError;
 pub(crate) use program::{InputNames, NO_SITE};
 pub use program::{InputSlot, Instruction, Program, Site, SiteKind};
+pub use solver::SolverCall;
 
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
@@ -80,7 +82,25 @@ pub fn compile_outputs<S: AsRef<str>>(
     inputs: &[S],
     scene: Option<&Scene>,
 ) -> Result<Program, Vec<(usize, Errors<CompileError>)>> {
-    compile_all(trees, inputs, scene, false)
+    compile_all(trees, inputs, scene, false, None)
+}
+
+/// Whether a program may read a reaction of a running solver: `Ok`, or
+/// why not (the message of the error at the call).
+pub type Reactions<'r> = &'r dyn Fn(&SolverCall) -> Result<(), String>;
+
+/// Compiles several trees into one program like [`compile_outputs`], for
+/// a running solver: each call of `JOINT`, `JPRIM` or `MOTION` that
+/// `reactions` accepts becomes the input named by
+/// [`SolverCall::input_name`], whose value the solver gives; one it
+/// refuses is an error at the call with its message.
+pub fn compile_run_outputs<S: AsRef<str>>(
+    trees: &[&Checked],
+    inputs: &[S],
+    scene: &Scene,
+    reactions: Reactions<'_>,
+) -> Result<Program, Vec<(usize, Errors<CompileError>)>> {
+    compile_all(trees, inputs, Some(scene), false, Some(reactions))
 }
 
 fn compile_all<S: AsRef<str>>(
@@ -88,9 +108,11 @@ fn compile_all<S: AsRef<str>>(
     inputs: &[S],
     scene: Option<&Scene>,
     variables_as_inputs: bool,
+    reactions: Option<Reactions<'_>>,
 ) -> Result<Program, Vec<(usize, Errors<CompileError>)>> {
     let mut compiler = Compiler {
         scene,
+        reactions,
         origin: 0,
         inlining: Vec::new(),
         inlining_set: HashSet::new(),
@@ -153,12 +175,15 @@ fn compile_with<S: AsRef<str>>(
     scene: Option<&Scene>,
     variables_as_inputs: bool,
 ) -> Result<Program, Errors<CompileError>> {
-    compile_all(&[checked], inputs, scene, variables_as_inputs)
+    compile_all(&[checked], inputs, scene, variables_as_inputs, None)
         .map_err(|mut failures| failures.swap_remove(0).1)
 }
 
 struct Compiler<'s> {
     scene: Option<&'s Scene>,
+    /// Which solver reactions are inputs (`None`: none, every solver
+    /// result is refused).
+    reactions: Option<Reactions<'s>>,
     /// The index of the tree being compiled, recorded with each instruction.
     origin: u32,
     /// The VARIABLEs being compiled in place, outermost first.
@@ -369,10 +394,16 @@ impl Compiler<'_> {
                 },
                 None => Some(model_data_error(function, args, span, None)),
             },
-            Family::Solver => Some(CompileError::NeedsSolver {
-                function: function.name(),
-                span,
-            }),
+            Family::Solver => match (self.reactions, SolverCall::of(function, args)) {
+                (Some(reactions), Some(call)) => match reactions(&call) {
+                    Ok(()) => return self.reaction(&call, span),
+                    Err(message) => Some(CompileError::Reaction { message, span }),
+                },
+                _ => Some(CompileError::NeedsSolver {
+                    function: function.name(),
+                    span,
+                }),
+            },
             Family::User => Some(CompileError::UserSubroutine { span }),
         };
         if let Some(error) = error {
@@ -422,6 +453,15 @@ impl Compiler<'_> {
             },
             span,
         )
+    }
+
+    /// The input that holds the value of the solver's `call`, added when new.
+    fn reaction(&mut self, call: &SolverCall, span: Span) -> Slot {
+        let name = call.input_name();
+        let index = self
+            .input_index(&name)
+            .unwrap_or_else(|| self.inputs.push(name));
+        self.input(index, span)
     }
 
     /// The index of `stops` in the program's table, added when new.

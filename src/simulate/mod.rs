@@ -66,7 +66,7 @@ pub use run::{
     Sink, Summary,
 };
 
-use crate::compile::{Program, compile_outputs};
+use crate::compile::{Program, compile_run_outputs};
 use crate::scene::diff_input;
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -147,7 +147,8 @@ impl<'m> Simulation<'m> {
             .collect();
         let mut errors = Vec::new();
         let functions: Vec<usize> = model.motions.iter().map(|motion| motion.function).collect();
-        if !functions.is_empty() && compile(model, &functions, &mut errors).is_some() {
+        if !functions.is_empty() && compile(model, &functions, &no_reaction, &mut errors).is_some()
+        {
             let mut read: Vec<String> = constraints::Drives::states_read(model)
                 .into_iter()
                 .map(|name| name.split('.').next().unwrap_or_default().to_string())
@@ -164,8 +165,10 @@ impl<'m> Simulation<'m> {
                 }));
             }
         }
-        let dynamics = compile(model, &computed, &mut errors);
-        let outputs = compile(model, &output_expressions, &mut errors);
+        let dynamics = compile(model, &computed, &no_reaction, &mut errors);
+        let reaction =
+            |call: &crate::compile::SolverCall| constraints::Component::of(model, call).map(|_| ());
+        let outputs = compile(model, &output_expressions, &reaction, &mut errors);
         match (dynamics, outputs) {
             (Some(dynamics), Some(outputs)) if errors.is_empty() => Ok(Simulation {
                 model,
@@ -190,10 +193,20 @@ impl<'m> Simulation<'m> {
     }
 }
 
-/// `expressions` of `model` compiled together, their errors added to `errors`.
+/// Refuses a reaction read by a motion, a force or a DIFF.
+fn no_reaction(call: &crate::compile::SolverCall) -> Result<(), String> {
+    Err(format!(
+        "{}: a force, DIFF or MOTION that reads a reaction (joint friction) is not simulated: its value and the multipliers would have to be solved together; REQUESTs and VARIABLEs read reactions",
+        call.input_name()
+    ))
+}
+
+/// `expressions` of `model` compiled together, the reactions `reactions`
+/// accepts as inputs, their errors added to `errors`.
 fn compile(
     model: &Model,
     expressions: &[usize],
+    reactions: crate::compile::Reactions<'_>,
     errors: &mut Vec<SimulateError>,
 ) -> Option<Program> {
     let trees: Vec<&crate::Checked> = expressions
@@ -202,7 +215,7 @@ fn compile(
         .collect();
     let mut inputs = vec!["TIME".to_string()];
     inputs.extend(model.scene.variables.iter().map(|(name, _)| name.clone()));
-    match compile_outputs(&trees, &inputs, Some(&model.scene)) {
+    match compile_run_outputs(&trees, &inputs, &model.scene, reactions) {
         Ok(program) => Some(program),
         Err(failures) => {
             for (output, output_errors) in failures {

@@ -27,10 +27,12 @@
 //! state, and left out ([`Joint::redundant`]), as Adams removes them.
 
 mod drives;
+mod reactions;
 mod rows;
 mod solve;
 
 pub(crate) use drives::{Drive, Drives};
+pub(crate) use reactions::{Component, Reactions};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
 pub(crate) use solve::{Tolerance, constraint_loads, find_redundant, project};

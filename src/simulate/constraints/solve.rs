@@ -110,7 +110,9 @@ fn generalised<T: Number>(rows: &[Row<T>], multipliers: &DVector<T>, bodies: usi
 
 /// Adds the joints' reactions to the applied `force` and `torque` (about
 /// each body's centre of mass, in ground): the loads `−Gᵀ λ` whose
-/// accelerations keep every held equation's second derivative zero.
+/// accelerations keep every held equation's second derivative zero. The
+/// multipliers `λ`, one for each held equation in the order of
+/// [`active_rows`].
 pub(crate) fn constraint_loads<T: Number>(
     model: &Model,
     bodies: &[BodyMotion<T>],
@@ -118,10 +120,10 @@ pub(crate) fn constraint_loads<T: Number>(
     inverse_inertia: &[Matrix3<f64>],
     force: &mut [Vector3<T>],
     torque: &mut [Vector3<T>],
-) -> Result<(), Singular> {
+) -> Result<DVector<T>, Singular> {
     let rows = active_rows(model, bodies, drives);
     if rows.is_empty() {
-        return Ok(());
+        return Ok(DVector::zeros(0));
     }
     let inverse = inverses(model, bodies, inverse_inertia);
     // The accelerations under the applied loads alone.
@@ -166,7 +168,7 @@ pub(crate) fn constraint_loads<T: Number>(
             torque[body][k] -= load[k + 3].clone();
         }
     }
-    Ok(())
+    Ok(lambda)
 }
 
 /// The largest constraint residuals of a state: of the positions (`Φ`)

@@ -28,13 +28,15 @@ mod sparsity;
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use num_dual::{DualDVec64, DualSVec64};
 
-use crate::compile::Program;
+use crate::compile::{Program, SolverCall};
 use crate::eval::{Evaluator, OutputError};
 use crate::integrate::linalg::Pattern;
 use crate::laws::branch::Code;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input};
-use crate::simulate::constraints::{BodyMotion, Drives, constraint_loads, joints_singular};
+use crate::simulate::constraints::{
+    BodyMotion, Drives, Reactions, constraint_loads, joints_singular,
+};
 use crate::simulate::model::Model;
 pub(crate) use bodies::{BODY_STATES, body_offset};
 use bodies::{Kinematics, Loads};
@@ -51,6 +53,10 @@ pub(crate) enum Source {
     State(usize),
     /// A body's state input.
     Body(usize, StateComponent),
+    /// A reaction of the running solver, the one at this index of
+    /// [`Mechanics::solver_calls`] (only in the programs of output columns,
+    /// which have no Jacobian).
+    Solver(usize),
 }
 
 /// The equations of motion of a model, with its compiled expressions.
@@ -102,11 +108,15 @@ impl<'m> Mechanics<'m> {
         for (output, &expression) in computed.iter().enumerate() {
             output_of[expression] = Some(output);
         }
+        let mut solver_calls = Vec::new();
         let sources: Vec<Source> = program
             .inputs()
             .iter()
             .map(|name| {
-                if name.eq_ignore_ascii_case("TIME") {
+                if let Some(call) = SolverCall::parse(name) {
+                    solver_calls.push(call);
+                    Source::Solver(solver_calls.len() - 1)
+                } else if name.eq_ignore_ascii_case("TIME") {
                     Source::Time
                 } else if let Some(id) = parse_diff_input(name) {
                     let index = model.diffs.iter().position(|diff| diff.id == id);
@@ -133,6 +143,7 @@ impl<'m> Mechanics<'m> {
                 output_of,
                 inverse_inertia,
                 drives: Drives::new(model),
+                solver_calls,
             },
             values: program.evaluator(),
             buffers: Buffers::new(program),
@@ -173,7 +184,14 @@ impl<'m> Mechanics<'m> {
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
         let buffers = &mut self.buffers;
-        fill_inputs(&equations.sources, t, y, &kinematics, &mut buffers.inputs);
+        fill_inputs(
+            &equations.sources,
+            t,
+            y,
+            &kinematics,
+            &[],
+            &mut buffers.inputs,
+        );
         reorient(&mut self.values, &kinematics);
         self.values.observe(
             &buffers.inputs,
@@ -184,19 +202,43 @@ impl<'m> Mechanics<'m> {
         )
     }
 
-    /// Every output of the program at `(t, y)`, all branches natural.
+    /// The reactions of the running solver the program reads, in the order
+    /// their values are given to [`outputs`](Mechanics::outputs).
+    pub(crate) fn solver_calls(&self) -> &[SolverCall] {
+        &self.equations.solver_calls
+    }
+
+    /// Every output of the program at `(t, y)`, all branches natural, the
+    /// solver's reactions it reads being `solved` (one for each of
+    /// [`solver_calls`](Mechanics::solver_calls)).
     pub(crate) fn outputs(
         &mut self,
         t: f64,
         y: &[f64],
+        solved: &[f64],
         outputs: &mut [f64],
     ) -> Result<(), OutputError> {
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
         let inputs = &mut self.buffers.inputs;
-        fill_inputs(&equations.sources, t, y, &kinematics, inputs);
+        fill_inputs(&equations.sources, t, y, &kinematics, solved, inputs);
         reorient(&mut self.values, &kinematics);
         self.values.outputs(inputs, None, outputs)
+    }
+
+    /// The reactions of the joints, primitives and motions at `(t, y)`, all
+    /// branches natural.
+    pub(crate) fn reactions(&mut self, t: f64, y: &[f64]) -> Result<Reactions, OutputError> {
+        let equations = &self.equations;
+        let solved = equations.solve(&mut self.values, t, y, None, &mut self.buffers)?;
+        let drives = equations.drives.at(t).ok_or_else(joints_singular)?;
+        let multipliers = solved.multipliers.unwrap_or_default();
+        Ok(Reactions::new(
+            equations.model,
+            &body_motions(&solved.kinematics),
+            &drives,
+            multipliers.as_slice(),
+        ))
     }
 
     /// Where the Jacobian's entries can be nonzero (the same on every
@@ -271,12 +313,14 @@ impl<'m> Mechanics<'m> {
     }
 }
 
-/// The program input values from the state, into `inputs`.
+/// The program input values from the state and the solver's reactions
+/// `solved`, into `inputs`.
 fn fill_inputs<T: Number>(
     sources: &[Source],
     t: f64,
     y: &[T],
     kinematics: &[Kinematics<T>],
+    solved: &[f64],
     inputs: &mut Vec<T>,
 ) {
     inputs.clear();
@@ -285,7 +329,29 @@ fn fill_inputs<T: Number>(
         Source::Constant(value) => T::from(value),
         Source::State(index) => y[index].clone(),
         Source::Body(body, component) => kinematics[body].input(component),
+        Source::Solver(index) => T::from(solved[index]),
     }));
+}
+
+/// The bodies as the constraint rows see them.
+fn body_motions<T: Number>(kinematics: &[Kinematics<T>]) -> Vec<BodyMotion<T>> {
+    kinematics
+        .iter()
+        .map(|state| BodyMotion {
+            centre: state.centre.clone(),
+            rotation: state.rotation.clone(),
+            velocity: state.velocity.clone(),
+            omega: state.omega_ground.clone(),
+        })
+        .collect()
+}
+
+/// What [`Equations::solve`] finds at a state.
+struct Solved<T: Number> {
+    kinematics: Vec<Kinematics<T>>,
+    loads: Loads<T>,
+    /// The joints' multipliers (`None`: the model has no joint).
+    multipliers: Option<nalgebra::DVector<T>>,
 }
 
 /// The program's inputs and outputs, kept from call to call.
@@ -326,6 +392,8 @@ struct Equations<'m> {
     inverse_inertia: Vec<Matrix3<f64>>,
     /// The motions' displacements in time.
     drives: Drives,
+    /// The reactions of the running solver the program reads.
+    solver_calls: Vec<SolverCall>,
 }
 
 impl Equations<'_> {
@@ -355,14 +423,42 @@ impl Equations<'_> {
         buffers: &mut Buffers<T>,
     ) -> Result<(), OutputError> {
         let model = self.model;
-        let kinematics = self.kinematics(y);
-        fill_inputs(&self.sources, t, y, &kinematics, &mut buffers.inputs);
-        reorient(evaluator, &kinematics);
-        evaluator.outputs(&buffers.inputs, held, &mut buffers.outputs)?;
+        let solved = self.solve(evaluator, t, y, held, buffers)?;
         let outputs = &buffers.outputs;
         for (rate, output) in rates.iter_mut().zip(&self.diff_outputs) {
             *rate = output.map_or_else(T::zero, |output| outputs[output].clone());
         }
+        for (body, state) in solved.kinematics.iter().enumerate() {
+            let offset = body_offset(model, body);
+            state.rates(
+                &model.masses[body],
+                &self.inverse_inertia[body],
+                &model.gravity,
+                &solved.loads.force[body],
+                &solved.loads.torque[body],
+                &mut rates[offset..offset + BODY_STATES],
+            );
+        }
+        Ok(())
+    }
+
+    /// The bodies' kinematics at `(t, y)` and the loads on them, the joints'
+    /// reactions among them, with the joints' multipliers (the program's
+    /// outputs left in `buffers`).
+    fn solve<T: Number>(
+        &self,
+        evaluator: &mut Evaluator<'_, T>,
+        t: f64,
+        y: &[T],
+        held: Option<&[Option<Code>]>,
+        buffers: &mut Buffers<T>,
+    ) -> Result<Solved<T>, OutputError> {
+        let model = self.model;
+        let kinematics = self.kinematics(y);
+        fill_inputs(&self.sources, t, y, &kinematics, &[], &mut buffers.inputs);
+        reorient(evaluator, &kinematics);
+        evaluator.outputs(&buffers.inputs, held, &mut buffers.outputs)?;
+        let outputs = &buffers.outputs;
         let bodies = model.scene.bodies.len();
         let mut loads = Loads {
             force: vec![Vector3::zeros(); bodies],
@@ -376,39 +472,27 @@ impl Equations<'_> {
         for force in &model.forces {
             forces::apply(model, force, &kinematics, &value, &mut loads);
         }
+        let mut multipliers = None;
         if !model.joints.is_empty() {
-            let motions: Vec<BodyMotion<T>> = kinematics
-                .iter()
-                .map(|state| BodyMotion {
-                    centre: state.centre.clone(),
-                    rotation: state.rotation.clone(),
-                    velocity: state.velocity.clone(),
-                    omega: state.omega_ground.clone(),
-                })
-                .collect();
+            let motions = body_motions(&kinematics);
             let drives = self.drives.at(t).ok_or_else(joints_singular)?;
-            constraint_loads(
-                model,
-                &motions,
-                &drives,
-                &self.inverse_inertia,
-                &mut loads.force,
-                &mut loads.torque,
-            )
-            .map_err(|_| joints_singular())?;
-        }
-        for (body, state) in kinematics.iter().enumerate() {
-            let offset = body_offset(model, body);
-            state.rates(
-                &model.masses[body],
-                &self.inverse_inertia[body],
-                &model.gravity,
-                &loads.force[body],
-                &loads.torque[body],
-                &mut rates[offset..offset + BODY_STATES],
+            multipliers = Some(
+                constraint_loads(
+                    model,
+                    &motions,
+                    &drives,
+                    &self.inverse_inertia,
+                    &mut loads.force,
+                    &mut loads.torque,
+                )
+                .map_err(|_| joints_singular())?,
             );
         }
-        Ok(())
+        Ok(Solved {
+            kinematics,
+            loads,
+            multipliers,
+        })
     }
 
     /// The Jacobian's entries into `values`, by one evaluation over dual

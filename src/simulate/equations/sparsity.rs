@@ -69,7 +69,7 @@ impl Sparsity {
                     .filter_map(|&input| match sources[input] {
                         Source::Body(body, _) => Some(body),
                         Source::State(diff) => Some(bodies + diff),
-                        Source::Time | Source::Constant(_) => None,
+                        Source::Time | Source::Constant(_) | Source::Solver(_) => None,
                     })
                     .collect();
                 read.sort_unstable();

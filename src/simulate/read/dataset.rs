@@ -1,7 +1,8 @@
 //! A [`Model`] from a solver dataset: PART and MARKER statements give the
 //! bodies (MASS, CM, IP, IM) and their initial states, DIFF the
 //! differential states, SFORCE, VFORCE, VTORQUE and GFORCE the forces,
-//! ACCGRAV gravity, REQUEST's `F1` ... `F8` the output columns. Statements
+//! ACCGRAV gravity, REQUEST's `F1` ... `F8` and each VARIABLE the output
+//! columns. Statements
 //! that need a constraint solver, and force elements the simulator does
 //! not integrate, are refused at their place.
 
@@ -750,6 +751,90 @@ impl Reader<'_> {
         gravity
     }
 
+    /// The columns of REQUEST `index` when it is of a standard kind, as
+    /// Adams lists them for the I marker against the J marker (ground when
+    /// 0 or left out), the vectors along RM's axes (ground's when 0 or left
+    /// out): DISPLACEMENT `DM DX DY DZ PSI THETA PHI` (the body-fixed 3-1-3
+    /// angles of I from J, in radians), VELOCITY `VM VX VY VZ WM WX WY WZ`
+    /// (derivatives in ground). ACCELERATION and FORCE are refused at the
+    /// statement: their measures have no value during a run yet. `false`
+    /// when it is of no standard kind.
+    fn standard_request(&mut self, index: usize, outputs: &mut Vec<Output>) -> bool {
+        let dataset = self.dataset;
+        let statement = &dataset.statements[index];
+        let kind = ["DISPLACEMENT", "VELOCITY", "ACCELERATION", "FORCE"]
+            .into_iter()
+            .find(|kind| statement.argument(kind, 3).is_some());
+        let Some(kind) = kind else {
+            return false;
+        };
+        let id = |keyword: &str| match number(statement, keyword, 0.0) {
+            Ok(id) if id.fract() == 0.0 && id >= 0.0 => Some(Shown(id).to_string()),
+            _ => None,
+        };
+        let (Some(i), Some(j), Some(rm)) = (id("I"), id("J"), id("RM")) else {
+            self.refuse(
+                format!("{}: I, J and RM must be marker ids", statement.label()),
+                statement.span,
+            );
+            return true;
+        };
+        // Each measure, and whether it is resolved along RM's axes.
+        let measures: &[(&str, bool)] = match kind {
+            "DISPLACEMENT" => &[
+                ("DM", false),
+                ("DX", true),
+                ("DY", true),
+                ("DZ", true),
+                ("PSI", false),
+                ("THETA", false),
+                ("PHI", false),
+            ],
+            "VELOCITY" => &[
+                ("VM", false),
+                ("VX", true),
+                ("VY", true),
+                ("VZ", true),
+                ("WM", false),
+                ("WX", true),
+                ("WY", true),
+                ("WZ", true),
+            ],
+            _ => {
+                let missing = if kind == "FORCE" {
+                    "the net forces between markers (FX ...)"
+                } else {
+                    "the accelerations of markers (ACCX ...)"
+                };
+                self.refuse(
+                    format!(
+                        "{}: a REQUEST of {kind} is not computed: {missing} have no value during a run yet (write its F1 ... F8 with the reactions JOINT(...), MOTION(...) or the measures instead)",
+                        statement.label()
+                    ),
+                    statement.span,
+                );
+                return true;
+            }
+        };
+        let columns = measures.iter().map(|&(heading, along_rm)| {
+            let text = if along_rm {
+                format!("{heading}({i}, {j}, {rm})")
+            } else {
+                format!("{heading}({i}, {j})")
+            };
+            (heading, text)
+        });
+        for (heading, text) in columns {
+            if let Some(expression) = self.written(index, heading, &text) {
+                outputs.push(Output {
+                    name: format!("{}.{heading}", statement.label()),
+                    expression,
+                });
+            }
+        }
+        true
+    }
+
     fn outputs(&mut self, notes: &mut Vec<(String, Span)>) -> Vec<Output> {
         let requests: Vec<usize> = self.statements("REQUEST").map(|(index, _)| index).collect();
         let mut outputs = Vec::new();
@@ -770,11 +855,24 @@ impl Reader<'_> {
                     });
                 }
             }
-            if !any {
+            if !any && !self.standard_request(index, &mut outputs) {
                 notes.push((
-                    format!("{label} is not computed: simulate writes a REQUEST's F1 ... F8 expressions (write DX(i, j), VX(i, j) ... there)"),
+                    format!("{label} is not computed: simulate writes a REQUEST's F1 ... F8 expressions, or its DISPLACEMENT or VELOCITY (write DX(i, j), VX(i, j) ... there)"),
                     statement.span,
                 ));
+            }
+        }
+        // Each VARIABLE's value, as Adams writes it with the results.
+        let variables: Vec<usize> = self
+            .statements("VARIABLE")
+            .map(|(index, _)| index)
+            .collect();
+        for index in variables {
+            if let Some(expression) = self.expression(index, "FUNCTION") {
+                outputs.push(Output {
+                    name: dataset.statements[index].label(),
+                    expression,
+                });
             }
         }
         outputs

@@ -14,7 +14,7 @@ mod switch;
 pub use estimate::ErrorEstimate;
 pub use sink::{MethodChange, Sink};
 
-use super::constraints::{Drives, JOINTS, Residuals, Tolerance, project};
+use super::constraints::{Component, Drives, JOINTS, Residuals, Tolerance, project};
 use super::equations::{BODY_STATES, Mechanics, body_offset};
 use super::error::SimulateError;
 use super::initial::initial_state;
@@ -192,6 +192,9 @@ const CHATTER_COUNT: usize = 100;
 struct Rows<'m> {
     model: &'m Model,
     outputs: Mechanics<'m>,
+    /// The equations of motion and the reactions the outputs read, when
+    /// they read any.
+    reactions: Option<(Mechanics<'m>, Vec<Component>)>,
     values: Vec<f64>,
 }
 
@@ -218,7 +221,18 @@ impl Rows<'_> {
         let start = self.values.len();
         self.values.resize(start + model.outputs.len(), 0.0);
         if !model.outputs.is_empty() {
-            self.outputs.outputs(t, y, &mut self.values[start..])?;
+            let solved: Vec<f64> = match &mut self.reactions {
+                None => Vec::new(),
+                Some((dynamics, components)) => {
+                    let reactions = dynamics.reactions(t, y)?;
+                    components
+                        .iter()
+                        .map(|component| reactions.value(model, component))
+                        .collect()
+                }
+            };
+            self.outputs
+                .outputs(t, y, &solved, &mut self.values[start..])?;
         }
         Ok(&self.values)
     }
@@ -321,9 +335,18 @@ impl Simulation<'_> {
             tolerance: settings.atol,
             before_end: None,
         };
+        let outputs = Mechanics::new(model, &self.outputs, &self.output_expressions);
+        let components: Vec<Component> = outputs
+            .solver_calls()
+            .iter()
+            .map(|call| Component::of(model, call).expect("checked when compiled"))
+            .collect();
+        let reactions = (!components.is_empty())
+            .then(|| (Mechanics::new(model, program, &self.computed), components));
         let mut rows = Rows {
             model,
-            outputs: Mechanics::new(model, &self.outputs, &self.output_expressions),
+            outputs,
+            reactions,
             values: Vec::new(),
         };
         let fail = |time: f64, error: OutputError| SimulateError::Evaluation {

@@ -1,0 +1,96 @@
+//! Results of a running solver as program inputs: a call such as
+//! `JOINT(1, 0, 4, 0)` compiled by [`super::compile_run_outputs`] becomes
+//! the input of that name, whose value the simulation gives at each
+//! evaluation.
+
+use crate::catalog::Function;
+use crate::check::{Argument, Reference};
+use crate::scene::{Scene, Target};
+
+/// A reaction a running solver computes: `JOINT`, `JPRIM` or `MOTION` with
+/// its statement id, `jflag` (0: on the I marker, 1: on the J marker),
+/// component (1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty Tz`) and the
+/// marker `rm` whose axes the components are along.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct SolverCall {
+    /// `JOINT`, `JPRIM` or `MOTION`.
+    pub function: Function,
+    /// The statement id.
+    pub id: u64,
+    /// 0: the reaction on the I marker; 1: on the J marker.
+    pub jflag: i64,
+    /// The component, 1 to 8.
+    pub component: i64,
+    /// The marker whose axes the components are along, as written.
+    pub rm: Reference,
+}
+
+impl SolverCall {
+    /// The functions whose calls become inputs.
+    pub const FUNCTIONS: [Function; 3] = [Function::Joint, Function::Jprim, Function::Motion];
+
+    /// The call of `function` with `args`, when it is one of
+    /// [`SolverCall::FUNCTIONS`] with an id, two flags and a marker.
+    pub(crate) fn of(function: Function, args: &[Argument]) -> Option<SolverCall> {
+        if !SolverCall::FUNCTIONS.contains(&function) {
+            return None;
+        }
+        match args {
+            [
+                Argument::Object(Reference::Id(id), _),
+                Argument::Flag(jflag, _),
+                Argument::Flag(component, _),
+                Argument::Marker(rm, _),
+            ] => Some(SolverCall {
+                function,
+                id: *id,
+                jflag: *jflag,
+                component: *component,
+                rm: rm.clone(),
+            }),
+            _ => None,
+        }
+    }
+
+    /// The input's name: the call as written, `JOINT(1,0,4,0)` (no name of
+    /// the language has a parenthesis).
+    pub fn input_name(&self) -> String {
+        format!(
+            "{}({},{},{},{})",
+            self.function.name(),
+            self.id,
+            self.jflag,
+            self.component,
+            self.rm
+        )
+    }
+
+    /// The call an input named by [`SolverCall::input_name`] stands for.
+    pub fn parse(name: &str) -> Option<SolverCall> {
+        let (function, rest) = name.split_once('(')?;
+        let function = Function::lookup(function)?;
+        if !SolverCall::FUNCTIONS.contains(&function) {
+            return None;
+        }
+        let mut parts = rest.strip_suffix(')')?.split(',');
+        let id = parts.next()?.parse().ok()?;
+        let jflag = parts.next()?.parse().ok()?;
+        let component = parts.next()?.parse().ok()?;
+        let rm = parts.next()?;
+        let rm = rm
+            .parse()
+            .map_or_else(|_| Reference::Name(rm.to_string()), Reference::Id);
+        parts.next().is_none().then_some(SolverCall {
+            function,
+            id,
+            jflag,
+            component,
+            rm,
+        })
+    }
+
+    /// The marker `rm` in `scene`.
+    pub fn rm_in(&self, scene: &Scene) -> Option<Target> {
+        scene.find_marker(&self.rm).ok()
+    }
+}

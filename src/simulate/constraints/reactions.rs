@@ -1,0 +1,250 @@
+//! The reactions of the joints, joint primitives and motions, as the
+//! functions `JOINT(id, jflag, comp, rm)`, `JPRIM(...)` and `MOTION(...)`
+//! give them: the force and the torque a holder applies on its I marker's
+//! body (jflag 0) or its J marker's (jflag 1), the torque about that
+//! marker's origin, both resolved in the axes of marker `rm` (ground's
+//! when 0).
+//!
+//! A held equation with multiplier `λ` and row `c` of `G` on a body puts
+//! the load `−c λ` on it (a force at its centre of mass and a torque, in
+//! ground; [`super::constraint_loads`]); a holder's reaction on a body sums
+//! the loads of its equations. A marker on ground takes the opposite of
+//! what the other marker's body takes (Newton's third law), moved to the
+//! marker's origin. So for a pendulum hanging from ground by a revolute
+//! joint whose I marker is on ground, `JOINT(id, 0, ...)` is the pull of
+//! the pendulum on the ground: Adams' convention (the research note's
+//! "Sign convention").
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::rows::BodyMotion;
+use super::{Drive, joint_rows, motion_row};
+use crate::catalog::Function;
+use crate::compile::SolverCall;
+use crate::scene::Target;
+use crate::simulate::Model;
+
+/// What holds: a joint or primitive, or a motion, by its index in the
+/// model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Holder {
+    Joint(usize),
+    Motion(usize),
+}
+
+/// A reaction component a model's expression asks for, found in the model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Component {
+    holder: Holder,
+    /// On the J marker (jflag 1) rather than the I marker.
+    on_j: bool,
+    /// 1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty Tz`.
+    component: usize,
+    /// The marker whose axes the components are along.
+    rm: Target,
+}
+
+impl Component {
+    /// The component `call` asks of `model`, or why it has none.
+    pub(crate) fn of(model: &Model, call: &SolverCall) -> Result<Component, String> {
+        let written = call.input_name();
+        let holder = match call.function {
+            Function::Motion => model
+                .motions
+                .iter()
+                .position(|motion| motion.id == call.id)
+                .map(Holder::Motion),
+            function => model
+                .joints
+                .iter()
+                .position(|joint| joint.id == call.id && joint.kind.statement() == function.name())
+                .map(Holder::Joint),
+        };
+        let Some(holder) = holder else {
+            return Err(format!(
+                "{written}: the model has no {}/{} that is simulated",
+                call.function.name(),
+                call.id
+            ));
+        };
+        let on_j = match call.jflag {
+            0 => false,
+            1 => true,
+            other => {
+                return Err(format!(
+                    "{written}: jflag must be 0 (the reaction on the I marker) or 1 (on the J marker), not {other}"
+                ));
+            }
+        };
+        let component = match usize::try_from(call.component) {
+            Ok(component @ 1..=8) => component,
+            _ => {
+                return Err(format!(
+                    "{written}: comp must be 1 to 8 (|F|, Fx, Fy, Fz, |T|, Tx, Ty, Tz), not {}",
+                    call.component
+                ));
+            }
+        };
+        let Some(rm) = call.rm_in(&model.scene) else {
+            return Err(format!(
+                "{written}: the model has no marker {} (rm)",
+                call.rm
+            ));
+        };
+        Ok(Component {
+            holder,
+            on_j,
+            component,
+            rm,
+        })
+    }
+}
+
+/// The reactions at one state: each holder's loads on the bodies.
+pub(crate) struct Reactions {
+    /// For each joint, its load on each body it holds: `[force | torque
+    /// about the centre of mass]`, in ground.
+    joints: Vec<Vec<(usize, [f64; 6])>>,
+    /// The same for each motion.
+    motions: Vec<Vec<(usize, [f64; 6])>>,
+    /// Each body's centre of mass and rotation to ground.
+    bodies: Vec<(Vector3<f64>, Matrix3<f64>)>,
+}
+
+/// Adds the loads `−c λ` of the rows `rows` with multipliers from
+/// `multipliers` (taken in order) to `loads`.
+fn add_loads(
+    rows: impl Iterator<Item = super::rows::Row<f64>>,
+    multipliers: &mut impl Iterator<Item = f64>,
+    loads: &mut Vec<(usize, [f64; 6])>,
+) {
+    for row in rows {
+        let Some(lambda) = multipliers.next() else {
+            return;
+        };
+        for (body, c) in &row.coefficients {
+            let index = match loads.iter().position(|(held, _)| held == body) {
+                Some(index) => index,
+                None => {
+                    loads.push((*body, [0.0; 6]));
+                    loads.len() - 1
+                }
+            };
+            for (load, c) in loads[index].1.iter_mut().zip(c) {
+                *load -= c * lambda;
+            }
+        }
+    }
+}
+
+impl Reactions {
+    /// The reactions with the held equations' `multipliers` (in the order
+    /// of the run's rows: the joints' kept equations, then the motions'),
+    /// the bodies moving as `bodies` say and the motions at `drives`.
+    pub(crate) fn new(
+        model: &Model,
+        bodies: &[BodyMotion<f64>],
+        drives: &[Drive],
+        multipliers: &[f64],
+    ) -> Reactions {
+        let mut multipliers = multipliers.iter().copied();
+        let joints = model
+            .joints
+            .iter()
+            .map(|joint| {
+                let mut loads = Vec::new();
+                let kept = joint_rows(model, joint, bodies)
+                    .into_iter()
+                    .enumerate()
+                    .filter(|(index, _)| !joint.redundant.contains(index))
+                    .map(|(_, row)| row);
+                add_loads(kept, &mut multipliers, &mut loads);
+                loads
+            })
+            .collect();
+        let motions = model
+            .motions
+            .iter()
+            .zip(drives)
+            .map(|(motion, drive)| {
+                let mut loads = Vec::new();
+                let row = motion_row(model, motion, drive, bodies);
+                add_loads(std::iter::once(row), &mut multipliers, &mut loads);
+                loads
+            })
+            .collect();
+        Reactions {
+            joints,
+            motions,
+            bodies: bodies
+                .iter()
+                .map(|body| (body.centre, body.rotation))
+                .collect(),
+        }
+    }
+
+    /// The origin and axes of marker `target` in ground.
+    fn place(&self, model: &Model, target: &Target) -> (Vector3<f64>, Matrix3<f64>) {
+        let Target::Marker(index) = target else {
+            return (Vector3::zeros(), Matrix3::identity());
+        };
+        let marker = &model.scene.markers[*index];
+        let axes = marker.orientation.to_rotation_matrix().into_inner();
+        match marker.body {
+            None => (marker.position, axes),
+            Some(body) => {
+                let (centre, rotation) = &self.bodies[body];
+                (
+                    centre + rotation * (marker.position - model.masses[body].centre),
+                    rotation * axes,
+                )
+            }
+        }
+    }
+
+    /// The value of `component` of `model`.
+    pub(crate) fn value(&self, model: &Model, component: &Component) -> f64 {
+        let (loads, joint) = match component.holder {
+            Holder::Joint(index) => (&self.joints[index], &model.joints[index]),
+            Holder::Motion(index) => (
+                &self.motions[index],
+                &model.joints[model.motions[index].joint],
+            ),
+        };
+        let (marker, other) = if component.on_j {
+            (&joint.j, &joint.i)
+        } else {
+            (&joint.i, &joint.j)
+        };
+        let body_of = |target: &Target| match target {
+            Target::Ground => None,
+            Target::Marker(index) => model.scene.markers[*index].body,
+        };
+        // On ground, the opposite of what the other marker's body takes.
+        let (sign, body) = match body_of(marker) {
+            Some(body) => (1.0, Some(body)),
+            None => (-1.0, body_of(other)),
+        };
+        let origin = self.place(model, marker).0;
+        let mut force = Vector3::zeros();
+        let mut torque = Vector3::zeros();
+        if let Some(body) = body {
+            for (_, load) in loads.iter().filter(|(held, _)| *held == body) {
+                force += Vector3::new(load[0], load[1], load[2]);
+                torque += Vector3::new(load[3], load[4], load[5]);
+            }
+            torque += (self.bodies[body].0 - origin).cross(&force);
+        }
+        let axes = self.place(model, &component.rm).1;
+        let (force, torque) = (
+            axes.transpose() * force * sign,
+            axes.transpose() * torque * sign,
+        );
+        match component.component {
+            1 => force.norm(),
+            5 => torque.norm(),
+            component @ 2..=4 => force[component - 2],
+            component => torque[component - 6],
+        }
+    }
+}
