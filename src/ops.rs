@@ -107,8 +107,12 @@ impl FrameArg {
 /// inputs, which a run does not change) and shared by every measure that
 /// reads it, as `DM(i, j)` and `VR(i, j)` of one contact do.
 pub struct SharedFrames<T> {
-    frames: Vec<Option<(Option<[Slot; 12]>, Frame<T>)>>,
+    frames: Vec<Option<Known<T>>>,
 }
+
+/// A frame worked out in a run, with the state slots it was worked out
+/// from.
+type Known<T> = (Option<[Slot; 12]>, Frame<T>);
 
 impl<T: Number> SharedFrames<T> {
     /// No frame worked out.
