@@ -49,7 +49,7 @@ impl FrameData {
 
 /// A marker frame at the current state, in ground.
 #[derive(Clone, Debug)]
-pub struct Frame<T: Number> {
+pub struct Frame<T> {
     /// Origin.
     pub origin: Vector3<T>,
     /// Axes as columns.
@@ -92,7 +92,7 @@ fn skew<T: Number>(v: &Vector3<T>) -> Matrix3<T> {
 
 /// `a * b` for a constant `b` (a matrix or a vector): each entry a sum of
 /// numbers times `f64`s, with no dual products of constants.
-fn times_constant<T: Number, const C: usize>(
+pub(crate) fn times_constant<T: Number, const C: usize>(
     a: &Matrix3<T>,
     b: &SMatrix<f64, 3, C>,
 ) -> SMatrix<T, 3, C> {
@@ -111,8 +111,14 @@ fn times_constant<T: Number, const C: usize>(
 /// to a subnormal beneath a division (an angle of 1e-160 gave NaN).
 fn rotation<T: Number>(r: &Vector3<T>) -> Matrix3<T> {
     let s = skew(r);
-    let s2 = &s * &s;
     let angle = r.map(|component| component.value()).norm();
+    if angle == 0.0 && T::NDERIV <= 1 {
+        // At a zero rotation `S²` and `t²` vanish with their first
+        // derivatives: `I + S` is exact to first order (a simulation's
+        // small rotations are all zero, seeded in their derivative parts).
+        return Matrix3::identity() + s;
+    }
+    let s2 = &s * &s;
     if angle < 1e-3 {
         let t2 = r.dot(r);
         let a = T::one() - t2.clone() * (1.0 / 6.0) + t2.clone() * t2.clone() * (1.0 / 120.0);
@@ -209,10 +215,10 @@ fn length<T: Number>(v: &Vector3<T>) -> T {
 
 /// The value of `measure` for frames `i, j, k, l` as its signature orders
 /// them (omitted markers already replaced by ground).
-pub fn measure<T: Number>(function: Function, frames: &[Frame<T>]) -> Result<T, LawError> {
+pub fn measure<T: Number>(function: Function, frames: &[&Frame<T>]) -> Result<T, LawError> {
     use Function as F;
-    let i = &frames[0];
-    let j = &frames[1];
+    let i = frames[0];
+    let j = frames[1];
     let d = &i.origin - &j.origin;
     // Time derivative of d in frame `l`: d' = (v_i - v_j) - w_l x d.
     let rate_in = |l: &Frame<T>| (&i.velocity - &j.velocity) - l.omega.cross(&d);
@@ -228,8 +234,8 @@ pub fn measure<T: Number>(function: Function, frames: &[Frame<T>]) -> Result<T, 
     Ok(match function {
         F::Dx | F::Dy | F::Dz => d.dot(&frames[2].axis(axis_of(function))),
         F::Dm => length(&d),
-        F::Vx | F::Vy | F::Vz => rate_in(&frames[3]).dot(&frames[2].axis(axis_of(function))),
-        F::Vm => length(&rate_in(&frames[2])),
+        F::Vx | F::Vy | F::Vz => rate_in(frames[3]).dot(&frames[2].axis(axis_of(function))),
+        F::Vm => length(&rate_in(frames[2])),
         F::Vr => {
             let distance = length(&d);
             if distance.value() == 0.0 {
@@ -238,18 +244,18 @@ pub fn measure<T: Number>(function: Function, frames: &[Frame<T>]) -> Result<T, 
                     "the markers coincide: the radial direction is not defined".to_string(),
                 );
             }
-            range::quotient(&d.dot(&rate_in(&frames[2])), &distance)
+            range::quotient(&d.dot(&rate_in(frames[2])), &distance)
         }
         F::Accx | F::Accy | F::Accz => {
-            acceleration_in(&frames[3]).dot(&frames[2].axis(axis_of(function)))
+            acceleration_in(frames[3]).dot(&frames[2].axis(axis_of(function)))
         }
-        F::Accm => length(&acceleration_in(&frames[2])),
+        F::Accm => length(&acceleration_in(frames[2])),
         F::Wx | F::Wy | F::Wz => omega.dot(&frames[2].axis(axis_of(function))),
         F::Wm => length(&omega),
         F::Wdtx | F::Wdty | F::Wdtz => {
-            omega_rate_in(&frames[3]).dot(&frames[2].axis(axis_of(function)))
+            omega_rate_in(frames[3]).dot(&frames[2].axis(axis_of(function)))
         }
-        F::Wdtm => length(&omega_rate_in(&frames[2])),
+        F::Wdtm => length(&omega_rate_in(frames[2])),
         F::Ax | F::Ay | F::Az => {
             // The rotation of i about one axis of j: the next axis of i,
             // seen in the plane of j's other two axes.

@@ -91,6 +91,78 @@ pub struct FrameArg {
     pub state: Option<[Slot; 12]>,
 }
 
+impl FrameArg {
+    /// The frame at the state in `slots`.
+    fn frame<T: Number>(&self, slots: &[T], tables: &Tables) -> Frame<T> {
+        let data = &tables.frames[self.data as usize];
+        match &self.state {
+            Some(state) => Frame::on_body(data, state.map(|index| &slots[index as usize])),
+            None => Frame::fixed(data),
+        }
+    }
+}
+
+/// The marker frames one run of a program has worked out, by index in the
+/// frame table: each is computed once per run (from the body's state
+/// inputs, which a run does not change) and shared by every measure that
+/// reads it, as `DM(i, j)` and `VR(i, j)` of one contact do.
+pub struct SharedFrames<T> {
+    frames: Vec<Option<Known<T>>>,
+}
+
+/// A frame worked out in a run, with the state slots it was worked out
+/// from.
+type Known<T> = (Option<[Slot; 12]>, Frame<T>);
+
+impl<T: Number> SharedFrames<T> {
+    /// No frame worked out.
+    pub fn new() -> SharedFrames<T> {
+        SharedFrames { frames: Vec::new() }
+    }
+
+    /// Forgets every frame: the state inputs or the bodies' orientations
+    /// are about to change.
+    pub fn clear(&mut self) {
+        self.frames.iter_mut().for_each(|frame| *frame = None);
+    }
+
+    /// The value of measure `function` of the frames `args`, each worked
+    /// out at most once between two [`clear`](SharedFrames::clear)s.
+    pub fn measure(
+        &mut self,
+        function: Function,
+        args: &[FrameArg],
+        slots: &[T],
+        tables: &Tables,
+    ) -> Result<T, LawError> {
+        if self.frames.len() < tables.frames.len() {
+            self.frames.resize_with(tables.frames.len(), || None);
+        }
+        for arg in args {
+            let entry = &mut self.frames[arg.data as usize];
+            if !matches!(entry, Some((state, _)) if *state == arg.state) {
+                *entry = Some((arg.state, arg.frame(slots, tables)));
+            }
+        }
+        let frame = |position: usize| {
+            let arg = &args[position.min(args.len() - 1)];
+            match &self.frames[arg.data as usize] {
+                Some((_, frame)) => frame,
+                None => unreachable!("worked out above"),
+            }
+        };
+        // A measure reads at most four frames (i, j, k, l).
+        let frames: [&Frame<T>; 4] = std::array::from_fn(frame);
+        kinematics::measure(function, &frames[..args.len().min(4)])
+    }
+}
+
+impl<T: Number> Default for SharedFrames<T> {
+    fn default() -> SharedFrames<T> {
+        SharedFrames::new()
+    }
+}
+
 /// The data instructions refer to by index: the constants of the marker
 /// frames the measures use, the splines fitted for `AKISPL`/`CUBSPL`, and
 /// the constant stops of contact laws.
@@ -122,16 +194,8 @@ pub fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Result<T, La
             function,
             frames: args,
         } => {
-            let frames: Vec<Frame<T>> = args
-                .iter()
-                .map(|arg| {
-                    let data = &tables.frames[arg.data as usize];
-                    match &arg.state {
-                        Some(state) => Frame::on_body(data, state.map(&slot)),
-                        None => Frame::fixed(data),
-                    }
-                })
-                .collect();
+            let frames: Vec<Frame<T>> = args.iter().map(|arg| arg.frame(slots, tables)).collect();
+            let frames: Vec<&Frame<T>> = frames.iter().collect();
             kinematics::measure(*function, &frames)?
         }
         Op::Spline {

@@ -19,7 +19,7 @@ use num_dual::{Dual2DVec64, Dual2SVec64, DualDVec64, DualSVec64};
 
 use crate::compile::{Instruction, Program, Slot};
 use crate::number::{Directional, Number};
-use crate::ops::{Op, Tables, execute};
+use crate::ops::{Op, SharedFrames, Tables, execute};
 
 /// How many orders of derivatives to compute.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -67,6 +67,8 @@ pub struct Evaluator<'p, T> {
     slots: Vec<T>,
     /// The last value of each AX, AY, AZ instruction (empty until one runs).
     angles: Vec<Option<f64>>,
+    /// The marker frames of the current run, shared by its measures.
+    frames: SharedFrames<T>,
 }
 
 /// Evaluations of one program at a sequence of points, in order (the steps
@@ -149,6 +151,7 @@ impl Program {
             turned: None,
             slots,
             angles: Vec::new(),
+            frames: SharedFrames::new(),
         }
     }
 
@@ -269,6 +272,7 @@ impl<T: Number> Evaluator<'_, T> {
     fn run_with<B: Branching<T>>(&mut self, branching: &mut B) -> Result<T, (usize, EvalError)> {
         let program = self.program;
         let code = &program.code;
+        self.frames.clear();
         let mut pc = 0;
         while let Some(instruction) = code.get(pc) {
             pc += 1;
@@ -281,9 +285,16 @@ impl<T: Number> Evaluator<'_, T> {
                 Instruction::Mul { dst, a, b } => (dst, slot(a) * slot(b)),
                 Instruction::Compute { dst, op } => {
                     let tables = self.turned.as_deref().unwrap_or(&program.tables);
+                    let frames = &mut self.frames;
                     let computed = branching
                         .compute(program, pc - 1, op, slots)
-                        .unwrap_or_else(|| execute(op, slots, tables));
+                        .unwrap_or_else(|| match op {
+                            Op::Measure {
+                                function,
+                                frames: args,
+                            } => frames.measure(*function, args, slots, tables),
+                            _ => execute(op, slots, tables),
+                        });
                     match computed {
                         Ok(result) if matches!(op, Op::Measure { .. }) => {
                             (dst, self.continue_angle(op, pc - 1, result))

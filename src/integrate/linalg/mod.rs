@@ -29,13 +29,16 @@ pub use self::dense::DenseLu;
 pub use self::sparse::SparseLu;
 
 /// From this many states on, a system with a pattern no denser than
-/// [`SPARSE_DENSITY`] is factorised sparse (measured on the stack of balls:
-/// `BENCHMARKS.md`, "Simulation: the sparse core").
-pub const SPARSE_FROM: usize = 60;
+/// [`SPARSE_DENSITY`] is factorised sparse. Measured by `benches/linalg.rs`
+/// on the stack of balls' pattern (`BENCHMARKS.md`, "The dense and sparse
+/// crossover"): the dense LU is the faster at 39 states (3 bodies), the
+/// sparse one from 52 (4 bodies: 1.6 times).
+pub const SPARSE_FROM: usize = 48;
 
 /// The largest fraction of nonzero entries a pattern may have and still be
-/// factorised sparse.
-pub const SPARSE_DENSITY: f64 = 0.25;
+/// factorised sparse: the stack of 4 bodies, density 0.62, is factorised
+/// faster sparse; denser patterns were not measured.
+pub const SPARSE_DENSITY: f64 = 2.0 / 3.0;
 
 /// Where the entries of an `n×n` matrix may be nonzero, by columns: the
 /// rows of column `j` are `rows[starts[j]..starts[j + 1]]`, increasing.

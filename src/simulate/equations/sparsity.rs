@@ -18,6 +18,7 @@
 //! or chain of bodies, whose rates read a body and its two neighbours, needs
 //! three body colours (39 directions) whatever its length.
 
+use super::forces::body_of;
 use super::{BODY_STATES, Source, body_offset};
 use crate::compile::Program;
 use crate::integrate::linalg::Pattern;
@@ -87,10 +88,7 @@ impl Sparsity {
         for (diff, statement) in model.diffs.iter().enumerate() {
             reads[bodies + diff].extend(expression_groups(Some(statement.function)));
         }
-        let body_of = |target: &Target| match target {
-            Target::Marker(index) => model.scene.markers[*index].body,
-            Target::Ground => None,
-        };
+        let body_of = |target: &Target| body_of(model, target);
         for force in &model.forces {
             let (touched, expressions): (Vec<usize>, Vec<Option<usize>>) = match force {
                 Force::Translational {
@@ -232,10 +230,7 @@ fn joined(model: &Model) -> Vec<Vec<usize>> {
         }
         body
     }
-    let body_of = |target: &Target| match target {
-        Target::Marker(index) => model.scene.markers[*index].body,
-        Target::Ground => None,
-    };
+    let body_of = |target: &Target| body_of(model, target);
     for joint in &model.joints {
         if let (Some(i), Some(j)) = (body_of(&joint.i), body_of(&joint.j)) {
             let (a, b) = (find(&mut root, i), find(&mut root, j));
