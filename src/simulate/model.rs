@@ -196,6 +196,24 @@ pub enum JointKind {
     /// z axes parallel, I's origin in J's x-y plane: a rotation about z
     /// and a translation in the plane (3).
     Planar,
+    /// Origins together, I's z axis perpendicular to J's (the two arms of
+    /// the cross): a rotation about each (4).
+    Universal,
+    /// Origins together, I's x axis perpendicular to J's y axis (the two
+    /// arms of the cross), the z axes down the shafts (4).
+    Hooke,
+    /// Origins together, the z axes down the shafts away from the centre,
+    /// the rotation of I about its z axis equal and opposite to J's about
+    /// its own: `x_i · y_j + y_i · x_j = 0` (4).
+    Convel,
+    /// The translation of I's origin along J's z axis (the rack) is the
+    /// pitch radius times I's rotation about its own z axis (the pinion;
+    /// [`Joint::pitch`] its pitch diameter), the rack on the side
+    /// `z_i × z_j` of the pinion (1).
+    RackPin,
+    /// The translation of I's origin along J's z axis is [`Joint::pitch`]
+    /// per turn of I's x axis about J's z axis (1).
+    Screw,
     /// `JPRIM`, ATPOINT: origins together (3).
     AtPoint,
     /// `JPRIM`, INLINE: I's origin on J's z axis (2).
@@ -212,13 +230,18 @@ pub enum JointKind {
 
 impl JointKind {
     /// Every kind with its keyword.
-    pub const ALL: [(JointKind, &'static str); 6] = [
+    pub const ALL: [(JointKind, &'static str); 11] = [
         (JointKind::Fixed, "FIXED"),
         (JointKind::Revolute, "REVOLUTE"),
         (JointKind::Translational, "TRANSLATIONAL"),
         (JointKind::Spherical, "SPHERICAL"),
         (JointKind::Cylindrical, "CYLINDRICAL"),
         (JointKind::Planar, "PLANAR"),
+        (JointKind::Universal, "UNIVERSAL"),
+        (JointKind::Hooke, "HOOKE"),
+        (JointKind::Convel, "CONVEL"),
+        (JointKind::RackPin, "RACKPIN"),
+        (JointKind::Screw, "SCREW"),
     ];
 
     /// Every kind of joint primitive (`JPRIM`) with its keyword.
@@ -236,13 +259,19 @@ impl JointKind {
         match self {
             JointKind::Fixed => 6,
             JointKind::Revolute | JointKind::Translational => 5,
-            JointKind::Cylindrical => 4,
+            JointKind::Cylindrical
+            | JointKind::Universal
+            | JointKind::Hooke
+            | JointKind::Convel => 4,
             JointKind::Spherical
             | JointKind::Planar
             | JointKind::AtPoint
             | JointKind::Orientation => 3,
             JointKind::InLine | JointKind::ParallelAxes => 2,
-            JointKind::InPlane | JointKind::Perpendicular => 1,
+            JointKind::InPlane
+            | JointKind::Perpendicular
+            | JointKind::RackPin
+            | JointKind::Screw => 1,
         }
     }
 
@@ -273,6 +302,10 @@ pub struct Joint {
     pub i: Target,
     /// The J marker.
     pub j: Target,
+    /// The length its kind needs: a SCREW's PITCH (the translation per
+    /// turn), a RACKPIN's PD (the pinion's pitch diameter); 0 for the
+    /// others.
+    pub pitch: f64,
     /// Its equations (indices below [`JointKind::equations`]) that repeat
     /// other joints' at the initial state, left out of the run.
     pub redundant: Vec<usize>,

@@ -84,7 +84,7 @@ fn joint_rows<T: crate::number::Number>(
     let i = frame(model, &joint.i, bodies);
     let j = frame(model, &joint.j, bodies);
     let apart = i.origin.minus(&j.origin);
-    let [xi, _, zi] = &i.axes;
+    let [xi, yi, zi] = &i.axes;
     let [xj, yj, zj] = &j.axes;
     let together = || (0..3).map(|axis| apart.component(axis));
     let parallel = || [zi.dot(xj), zi.dot(yj)];
@@ -102,6 +102,28 @@ fn joint_rows<T: crate::number::Number>(
             .chain([xi.dot(yj)])
             .collect(),
         JointKind::Planar => [zj.dot(&apart)].into_iter().chain(parallel()).collect(),
+        JointKind::Universal => together().chain([zi.dot(zj)]).collect(),
+        JointKind::Hooke => together().chain([xi.dot(yj)]).collect(),
+        JointKind::Convel => together()
+            .chain([xi.dot(yj).plus_scaled(yi.dot(xj), 1.0)])
+            .collect(),
+        JointKind::RackPin => {
+            // The pinion's turn about z_i, less a constant: minus the
+            // angle of the rack's direction in the pinion's x-y plane.
+            let radius = 0.5 * joint.pitch;
+            let turned = Row::angle(yi.dot(zj), xi.dot(zj));
+            let mut row = zj.dot(&apart).plus_scaled(turned, radius);
+            row.wrap(std::f64::consts::TAU * radius);
+            vec![row]
+        }
+        JointKind::Screw => {
+            let turned = Row::angle(xi.dot(yj), xi.dot(xj));
+            let mut row = zj
+                .dot(&apart)
+                .plus_scaled(turned, -joint.pitch / std::f64::consts::TAU);
+            row.wrap(joint.pitch);
+            vec![row]
+        }
         JointKind::AtPoint => together().collect(),
         JointKind::InLine => vec![xj.dot(&apart), yj.dot(&apart)],
         JointKind::InPlane => vec![zj.dot(&apart)],
@@ -131,8 +153,7 @@ fn motion_row<T: crate::number::Number>(
     row.value -= T::from(drive.value);
     if motion.rotation {
         // The angle's value modulo a turn, nearest the displacement.
-        let turns = (row.value.value() / std::f64::consts::TAU).round();
-        row.value -= T::from(turns * std::f64::consts::TAU);
+        row.wrap(std::f64::consts::TAU);
     }
     row.rate -= T::from(drive.rate);
     row.bias -= T::from(drive.acceleration);
