@@ -284,3 +284,33 @@ fn a_crank_slider_driven_by_a_motion_follows_its_closed_form() {
         assert!(place < 100.0 * rtol && speed < 1000.0 * rtol, "{case}");
     }
 }
+
+/// A PART's VM or WM naming another marker than its CM is refused at the
+/// argument (the velocities would be read as the centre's); naming the CM
+/// changes nothing.
+#[test]
+fn velocities_given_at_another_marker_are_refused_at_their_place() {
+    let part = |extra: &str| {
+        format!(
+            "part\nPART/1, GROUND\nPART/2, MASS = 1, CM = 3, IP = 1, 1, 1, VX = 1{extra}\nMARKER/3, PART = 2\nMARKER/4, PART = 2, QP = 1, 0, 0\n"
+        )
+    };
+    for (extra, keyword) in [(", VM = 4", "VM"), (", WX = 2, WM = 4", "WM")] {
+        let text = part(extra);
+        let line = text.lines().nth(2).expect("the PART line");
+        let column = line.find(keyword).expect("the keyword") + 1;
+        let Err(error) = run(&text, &settings(1.0, 2, 1e-6)) else {
+            panic!("{extra} runs");
+        };
+        assert!(
+            error.starts_with(&format!("3:{column}: not simulated: PART/2 sets")),
+            "{extra}: {error}"
+        );
+    }
+    let same = run(&part(", VM = 3, WM = 3"), &settings(1.0, 2, 1e-6));
+    let plain = run(&part(""), &settings(1.0, 2, 1e-6));
+    assert_eq!(
+        same.map(|run| run.rows).ok(),
+        plain.map(|run| run.rows).ok()
+    );
+}

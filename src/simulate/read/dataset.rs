@@ -384,6 +384,28 @@ impl Reader<'_> {
         masses
     }
 
+    /// Refuses a PART's VM or WM (the marker whose velocity VX, VY, VZ
+    /// give, or about whose axes WX, WY, WZ turn) naming another marker
+    /// than its CM: the velocities are read as the centre of mass's, in
+    /// ground.
+    fn velocities_at_the_centre(&mut self, statement: &Statement) {
+        let centre = number(statement, "CM", f64::NAN).ok();
+        for keyword in ["VM", "WM"] {
+            let Some(argument) = statement.argument(keyword, 2) else {
+                continue;
+            };
+            if number(statement, keyword, f64::NAN).ok() != centre {
+                self.errors.push(SimulateError::Unsupported {
+                    statement: statement.label(),
+                    reason: format!(
+                        "sets {keyword}: initial velocities given at another marker than the CM are not simulated"
+                    ),
+                    span: argument.span,
+                });
+            }
+        }
+    }
+
     fn mass(&mut self, statement: &Statement) -> MassProperties {
         let label = statement.label();
         let fail = |errors: &mut Vec<SimulateError>, message: String| {
@@ -409,6 +431,7 @@ impl Reader<'_> {
                 ),
             );
         }
+        self.velocities_at_the_centre(statement);
         let marker_of = |keyword: &str| {
             number(statement, keyword, f64::NAN)
                 .ok()
