@@ -314,3 +314,55 @@ fn velocities_given_at_another_marker_are_refused_at_their_place() {
         plain.map(|run| run.rows).ok()
     );
 }
+
+/// A part driven in all six directions by MOTIONs between its marker and
+/// a ground marker (turned, so the directions are J's): its origin is at
+/// X, Y, Z along J's axes and its axes are J's turned by `Rx(b1) Ry(b2)
+/// Rz(b3)` (the body 1-2-3 angles), at every output time.
+#[test]
+fn motions_between_markers_place_a_part_by_their_displacements() {
+    let j = reuler(
+        Vector3::new(0.0, 1.0, 1.0).normalize(),
+        Vector3::new(1.0, 0.0, 0.0),
+    );
+    let text = format!(
+        "driven
+PART/1, GROUND
+MARKER/1, PART = 1, QP = 0.5, -1, 2, {j}
+PART/2, MASS = 2, CM = 20, IP = 0.3, 0.5, 0.7, QG = 0.5, -1, 2, {j}
+MARKER/20, PART = 2
+MOTION/1, I = 20, J = 1, X, FUNCTION = 0.3 * SIN(2 * TIME)
+MOTION/2, I = 20, J = 1, Y, FUNCTION = TIME * TIME
+MOTION/3, I = 20, J = 1, Z, FUNCTION = -0.5 * TIME
+MOTION/4, I = 20, J = 1, B1, FUNCTION = 0.4 * SIN(TIME)
+MOTION/5, I = 20, J = 1, B2, FUNCTION = 0.7 * SIN(3 * TIME)
+MOTION/6, I = 20, J = 1, B3, FUNCTION = 2.5 * TIME
+ACCGRAV/KGRAV = -9.80665
+END
+"
+    );
+    let run = run(&text, &settings(3.0, 30, 1e-10)).unwrap_or_else(|error| panic!("{error}"));
+    let ground = UnitQuaternion::from_basis_unchecked(&{
+        let z = Vector3::new(0.0, 1.0, 1.0).normalize();
+        let x = Vector3::x();
+        [x, z.cross(&x), z]
+    });
+    let mut worst: f64 = 0.0;
+    for row in &run.rows {
+        let t = row[0];
+        let offset = Vector3::new(0.3 * (2.0 * t).sin(), t * t, -0.5 * t);
+        let place = Vector3::new(0.5, -1.0, 2.0) + ground * offset;
+        let turn = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 0.4 * t.sin())
+            * UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 0.7 * (3.0 * t).sin())
+            * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 2.5 * t);
+        let axes = ground * turn;
+        worst = worst
+            .max((Vector3::new(row[1], row[2], row[3]) - place).norm())
+            .max(rotation(row, 4).angle_to(&axes));
+    }
+    println!(
+        "marker motions: off by {worst:.1e}; residuals {:?}",
+        run.summary.residuals
+    );
+    assert!(worst < 1e-8, "{worst}");
+}

@@ -27,6 +27,9 @@ pub struct Model {
     pub joints: Vec<Joint>,
     /// The motions imposed on joints.
     pub motions: Vec<Motion>,
+    /// The motions imposed between two markers (their equations and
+    /// FUNCTIONs after those of [`Model::motions`]).
+    pub marker_motions: Vec<MarkerMotion>,
     /// The acceleration of gravity, in ground.
     pub gravity: Vector3<f64>,
     /// Every expression of the model: the DIFF functions, the force
@@ -44,6 +47,34 @@ pub struct Model {
 }
 
 impl Model {
+    /// Whether anything holds the bodies by multipliers: a joint, a
+    /// primitive or a motion between markers (a motion on a joint comes
+    /// with its joint).
+    pub(crate) fn is_constrained(&self) -> bool {
+        !self.joints.is_empty() || !self.marker_motions.is_empty()
+    }
+
+    /// The FUNCTION of every motion: those on joints, then those between
+    /// markers (the order of the drives and of the motions' equations).
+    pub(crate) fn motion_functions(&self) -> impl Iterator<Item = usize> + '_ {
+        self.motions
+            .iter()
+            .map(|motion| motion.function)
+            .chain(self.marker_motions.iter().map(|motion| motion.function))
+    }
+
+    /// The id and statement of every motion, in the same order.
+    pub(crate) fn motion_statements(&self) -> impl Iterator<Item = (u64, Span)> + '_ {
+        self.motions
+            .iter()
+            .map(|motion| (motion.id, motion.span))
+            .chain(
+                self.marker_motions
+                    .iter()
+                    .map(|motion| (motion.id, motion.span)),
+            )
+    }
+
     /// The inverse inertia of each body, in its own axes.
     pub(crate) fn inverse_inertia(&self) -> Vec<Matrix3<f64>> {
         self.masses
@@ -324,6 +355,36 @@ pub struct Motion {
     /// About the z axis (the angle of I's x axis from J's, towards J's y
     /// axis) rather than along it (I's origin from J's).
     pub rotation: bool,
+    /// Its FUNCTION, an index into [`Model::expressions`].
+    pub function: usize,
+    /// The statement.
+    pub span: Span,
+}
+
+/// What a [`MarkerMotion`] sets of its I marker relative to its J marker.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Along {
+    /// `X`, `Y`, `Z`: I's origin from J's, along J's axis 0, 1 or 2.
+    Axis(usize),
+    /// `B1`, `B2`, `B3`: the body 1-2-3 angle 1, 2 or 3 of I's axes
+    /// from J's (the rotation from J's axes to I's is `Rx(b1) Ry(b2)
+    /// Rz(b3)` in J's; B2 is held through its sine, so within a quarter
+    /// turn).
+    Angle(usize),
+}
+
+/// A `MOTION` between markers (`I =`, `J =`): one of I's displacements
+/// from J, a function of time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MarkerMotion {
+    /// The statement id.
+    pub id: u64,
+    /// The I marker.
+    pub i: Target,
+    /// The J marker.
+    pub j: Target,
+    /// The displacement it sets.
+    pub along: Along,
     /// Its FUNCTION, an index into [`Model::expressions`].
     pub function: usize,
     /// The statement.

@@ -38,7 +38,7 @@ pub(crate) use solve::{Tolerance, constraint_loads, find_redundant, project};
 use nalgebra::Vector3;
 
 use crate::scene::Target;
-use crate::simulate::model::{Joint, JointKind};
+use crate::simulate::model::{Along, Joint, JointKind};
 use rows::{Moving, Row};
 
 /// A marker's frame in motion: its origin and its three axes.
@@ -160,6 +160,43 @@ fn motion_row<T: crate::number::Number>(
     row
 }
 
+/// The equation of `motion` between markers at the displacement `drive`
+/// gives.
+fn marker_motion_row<T: crate::number::Number>(
+    model: &super::Model,
+    motion: &super::model::MarkerMotion,
+    drive: &Drive,
+    bodies: &[BodyMotion<T>],
+) -> Row<T> {
+    let i = frame(model, &motion.i, bodies);
+    let j = frame(model, &motion.j, bodies);
+    let [xi, yi, zi] = &i.axes;
+    let [xj, yj, zj] = &j.axes;
+    // Entry (a, b) of the rotation from J's axes to I's is J's axis a
+    // dotted with I's axis b.
+    let mut row = match motion.along {
+        Along::Axis(axis) => j.axes[axis].dot(&i.origin.minus(&j.origin)),
+        Along::Angle(0) => Row::angle(yj.dot(zi).scaled(-1.0), zj.dot(zi)),
+        Along::Angle(2) => Row::angle(xj.dot(yi).scaled(-1.0), xj.dot(xi)),
+        Along::Angle(_) => {
+            // sin b2 = R02, less the sine of the displacement.
+            let mut row = xj.dot(zi);
+            let (sine, cosine) = drive.value.sin_cos();
+            row.value -= T::from(sine);
+            row.rate -= T::from(cosine * drive.rate);
+            row.bias -= T::from(cosine * drive.acceleration - sine * drive.rate * drive.rate);
+            return row;
+        }
+    };
+    row.value -= T::from(drive.value);
+    if matches!(motion.along, Along::Angle(_)) {
+        row.wrap(std::f64::consts::TAU);
+    }
+    row.rate -= T::from(drive.rate);
+    row.bias -= T::from(drive.acceleration);
+    row
+}
+
 /// The model's equations held in the run (the redundant ones left out),
 /// the motions' last at the displacements `drives` gives.
 fn active_rows<T: crate::number::Number>(
@@ -179,6 +216,10 @@ fn active_rows<T: crate::number::Number>(
     }
     for (motion, drive) in model.motions.iter().zip(drives) {
         rows.push(motion_row(model, motion, drive, bodies));
+    }
+    let marker_drives = drives.get(model.motions.len()..).unwrap_or_default();
+    for (motion, drive) in model.marker_motions.iter().zip(marker_drives) {
+        rows.push(marker_motion_row(model, motion, drive, bodies));
     }
     rows
 }

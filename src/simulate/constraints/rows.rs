@@ -224,6 +224,20 @@ impl<T: Number> Row<T> {
         self
     }
 
+    /// The row of `factor · self`.
+    pub(crate) fn scaled(self, factor: f64) -> Row<T> {
+        Row {
+            value: self.value * factor,
+            rate: self.rate * factor,
+            bias: self.bias * factor,
+            coefficients: self
+                .coefficients
+                .into_iter()
+                .map(|(body, columns)| (body, columns.map(|entry| entry * factor)))
+                .collect(),
+        }
+    }
+
     /// Its value less the whole number of `period`s that brings it nearest
     /// zero: an equation on an angle known modulo a turn (`period` the
     /// equation's change over one turn), its rate and bias unchanged.

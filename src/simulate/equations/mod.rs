@@ -376,7 +376,7 @@ impl Equations<'_> {
         for force in &model.forces {
             forces::apply(model, force, &kinematics, &value, &mut loads);
         }
-        if !model.joints.is_empty() {
+        if model.is_constrained() {
             let motions: Vec<BodyMotion<T>> = kinematics
                 .iter()
                 .map(|state| BodyMotion {

@@ -19,7 +19,8 @@ use crate::model::{
 use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{
-    Diff, Expression, Force, Joint, JointKind, MassProperties, Model, Motion, Output,
+    Along, Diff, Expression, Force, Joint, JointKind, MarkerMotion, MassProperties, Model, Motion,
+    Output,
 };
 use crate::span::Span;
 
@@ -227,7 +228,7 @@ impl Reader<'_> {
         let diffs = self.diffs();
         let forces = self.forces();
         let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
-        let motions = self.motions(&joints);
+        let (motions, marker_motions) = self.motions(&joints);
         let gravity = self.gravity();
         let outputs = self.outputs(&mut notes);
         Model {
@@ -237,6 +238,7 @@ impl Reader<'_> {
             forces,
             joints,
             motions,
+            marker_motions,
             gravity,
             expressions: std::mem::take(&mut self.expressions),
             outputs,
@@ -245,11 +247,13 @@ impl Reader<'_> {
         }
     }
 
-    /// The MOTION statements, each on one of `joints`.
-    fn motions(&mut self, joints: &[Joint]) -> Vec<Motion> {
+    /// The MOTION statements: those on one of `joints`, and those between
+    /// markers.
+    fn motions(&mut self, joints: &[Joint]) -> (Vec<Motion>, Vec<MarkerMotion>) {
         let indices: Vec<usize> = self.statements("MOTION").map(|(index, _)| index).collect();
         let dataset = self.dataset;
         let mut motions = Vec::new();
+        let mut marker_motions = Vec::new();
         for index in indices {
             let statement = &dataset.statements[index];
             let label = statement.label();
@@ -260,13 +264,6 @@ impl Reader<'_> {
                     span: statement.span,
                 });
             };
-            if statement.argument("I", 1).is_some() || statement.argument("J", 1).is_some() {
-                refuse(
-                    &mut self.errors,
-                    "is between markers (I, J): mbexpr simulates a MOTION on a joint (JOINT = id)",
-                );
-                continue;
-            }
             if statement.argument("VELOCITY", 1).is_some()
                 || statement.argument("ACCELERATION", 1).is_some()
             {
@@ -274,6 +271,10 @@ impl Reader<'_> {
                     &mut self.errors,
                     "is a VELOCITY or ACCELERATION: mbexpr simulates a DISPLACEMENT motion",
                 );
+                continue;
+            }
+            if statement.argument("I", 1).is_some() || statement.argument("J", 1).is_some() {
+                marker_motions.extend(self.marker_motion(index));
                 continue;
             }
             let id = number(statement, "JOINT", f64::NAN).unwrap_or(f64::NAN);
@@ -320,7 +321,73 @@ impl Reader<'_> {
                 span: statement.span,
             });
         }
-        motions
+        (motions, marker_motions)
+    }
+
+    /// A MOTION between its I and J markers (J ground when not given):
+    /// one of X, Y, Z, B1, B2, B3, its FUNCTION the displacement.
+    fn marker_motion(&mut self, index: usize) -> Option<MarkerMotion> {
+        let dataset = self.dataset;
+        let statement = &dataset.statements[index];
+        let components = ["X", "Y", "Z", "B1", "B2", "B3"];
+        let given: Vec<usize> = components
+            .iter()
+            .enumerate()
+            .filter(|(_, name)| {
+                statement
+                    .arguments
+                    .iter()
+                    .any(|argument| argument.keyword.eq_ignore_ascii_case(name))
+            })
+            .map(|(k, _)| k)
+            .collect();
+        let i = self.marker(statement, "I");
+        let j = match statement.argument("J", 1) {
+            Some(_) => self.marker(statement, "J"),
+            None => Some(Target::Ground),
+        };
+        if statement.argument("I", 1).is_none() {
+            self.refuse(
+                format!(
+                    "{}: a MOTION between markers needs I = the id of a MARKER",
+                    statement.label()
+                ),
+                statement.span,
+            );
+        }
+        let [component] = given[..] else {
+            self.refuse(
+                format!(
+                    "{}: a MOTION between markers sets one of {}",
+                    statement.label(),
+                    components.join(", ")
+                ),
+                statement.span,
+            );
+            return None;
+        };
+        let function = self.expression(index, "FUNCTION");
+        if function.is_none() && statement.argument("FUNCTION", 4).is_none() {
+            self.refuse(
+                format!(
+                    "{}: a MOTION needs FUNCTION = the displacement, a function of time",
+                    statement.label()
+                ),
+                statement.span,
+            );
+        }
+        Some(MarkerMotion {
+            id: statement.id.unwrap_or(0),
+            i: i?,
+            j: j?,
+            along: if component < 3 {
+                Along::Axis(component)
+            } else {
+                Along::Angle(component - 3)
+            },
+            function: function?,
+            span: statement.span,
+        })
     }
 
     /// The expression `keyword` of statement `index`, added to the model's
