@@ -782,7 +782,7 @@ fn simulate_warns_of_a_stiff_run() {
 
 #[test]
 fn simulate_refuses_what_it_cannot_run() {
-    let joint = "joint\nPART/1, GROUND\nMARKER/1, PART = 1\nPART/2, MASS = 1, CM = 3, IP = 1, 1, 1\nMARKER/3, PART = 2\nJOINT/1, UNIVERSAL, I = 3, J = 1\n";
+    let joint = "joint\nPART/1, GROUND\nMARKER/1, PART = 1\nPART/2, MASS = 1, CM = 3, IP = 1, 1, 1\nMARKER/3, PART = 2\nJOINT/1, SCREW, I = 3, J = 1\n";
     let typo = "typo\nDIFF/1, IC = 0, FUNCTION = STPE(TIME, 0, 0, 1, 1)\n";
     insta::assert_snapshot!(
         check_run(&["simulate", "-"], BALL_DATASET)

@@ -43,12 +43,12 @@ END
 
 /// The rotation angle about z of a body's quaternion columns `q0 .. q3`
 /// starting at `column`, unwrapped against `previous`.
-fn angle(row: &[f64], column: usize, previous: f64) -> f64 {
+pub(super) fn angle(row: &[f64], column: usize, previous: f64) -> f64 {
     let raw = 2.0 * row[column + 3].atan2(row[column]);
     raw + 2.0 * PI * ((previous - raw) / (2.0 * PI)).round()
 }
 
-fn method(name: &str) -> Method {
+pub(super) fn method(name: &str) -> Method {
     match name {
         "radau" => Method::Radau5,
         "dop853" => Method::Dop853,

@@ -13,6 +13,7 @@ mod eval;
 mod ffi;
 mod integrate;
 mod integrate_problems;
+mod joint_kinds;
 mod joints;
 mod magnitudes;
 mod model;

@@ -115,7 +115,7 @@ JOINT/1, REVOLUTE, I = 3, J = 1
 JOINT/2, SPHERICAL, I = 3, J = 1
 MOTION/1, JOINT = 1, TRANSLATION, FUNCTION = TIME
 MOTION/2, JOINT = 1, VELOCITY, FUNCTION = TIME
-MOTION/3, I = 3, J = 1, B3, FUNCTION = TIME
+MOTION/3, I = 3, J = 1, B3, X, FUNCTION = TIME
 MOTION/4, JOINT = 2, FUNCTION = TIME
 MOTION/5, JOINT = 9, FUNCTION = TIME
 JPRIM/2, INPLANE, I = 3, J = 1
@@ -123,13 +123,13 @@ JPRIM/2, INPLANE, I = 3, J = 1
             short.clone(),
         ),
         (
-            "joints of a type not simulated, with no type, with initial conditions, without their markers",
+            "a screw joint without its PITCH, joints with no type, with initial conditions, without their markers",
             "joints
 PART/1, GROUND
 MARKER/1, PART = 1
 PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
-JOINT/1, UNIVERSAL, I = 3, J = 1
+JOINT/1, SCREW, I = 3, J = 1
 JOINT/2, I = 3, J = 1
 JOINT/3, REVOLUTE, I = 3, J = 1, IC = 0, 0
 JOINT/4, SPHERICAL, I = 3

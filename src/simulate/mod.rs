@@ -56,7 +56,10 @@ mod run;
 
 pub use constraints::Residuals;
 pub use error::{Place, SimulateError};
-pub use model::{Diff, Expression, Force, Joint, JointKind, MassProperties, Model, Motion, Output};
+pub use model::{
+    Along, Diff, Expression, Force, Joint, JointKind, MarkerMotion, MassProperties, Model, Motion,
+    Output,
+};
 pub use read::{
     ModelFormat, Unread, format_of_path, from_scene, is_scene_path, run_settings,
     run_settings_beside,
@@ -79,7 +82,7 @@ pub fn from_dataset(
     report: &crate::model::ModelCheck,
 ) -> Result<Model, Vec<SimulateError>> {
     let mut model = read::from_dataset(dataset, report)?;
-    if !model.joints.is_empty() {
+    if model.is_constrained() {
         let y = initial::initial_state(&model);
         let offsets = run::body_offsets(&model);
         constraints::leave_out_redundant(&mut model, &y, &offsets);
@@ -146,7 +149,7 @@ impl<'m> Simulation<'m> {
             .map(|output| output.expression)
             .collect();
         let mut errors = Vec::new();
-        let functions: Vec<usize> = model.motions.iter().map(|motion| motion.function).collect();
+        let functions: Vec<usize> = model.motion_functions().collect();
         if !functions.is_empty() && compile(model, &functions, &no_reaction, &mut errors).is_some()
         {
             let mut read: Vec<String> = constraints::Drives::states_read(model)
@@ -155,13 +158,12 @@ impl<'m> Simulation<'m> {
                 .collect();
             read.dedup();
             if !read.is_empty() {
-                errors.extend(model.motions.iter().map(|motion| SimulateError::Model {
+                errors.extend(model.motion_statements().map(|(id, span)| SimulateError::Model {
                     message: format!(
-                        "MOTION/{}: a motion's FUNCTION must be a function of time only (the motions read the state of {})",
-                        motion.id,
+                        "MOTION/{id}: a motion's FUNCTION must be a function of time only (the motions read the state of {})",
                         read.join(", ")
                     ),
-                    span: motion.span,
+                    span,
                 }));
             }
         }

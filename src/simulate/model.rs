@@ -27,6 +27,9 @@ pub struct Model {
     pub joints: Vec<Joint>,
     /// The motions imposed on joints.
     pub motions: Vec<Motion>,
+    /// The motions imposed between two markers (their equations and
+    /// FUNCTIONs after those of [`Model::motions`]).
+    pub marker_motions: Vec<MarkerMotion>,
     /// The acceleration of gravity, in ground.
     pub gravity: Vector3<f64>,
     /// Every expression of the model: the DIFF functions, the force
@@ -44,6 +47,34 @@ pub struct Model {
 }
 
 impl Model {
+    /// Whether anything holds the bodies by multipliers: a joint, a
+    /// primitive or a motion between markers (a motion on a joint comes
+    /// with its joint).
+    pub(crate) fn is_constrained(&self) -> bool {
+        !self.joints.is_empty() || !self.marker_motions.is_empty()
+    }
+
+    /// The FUNCTION of every motion: those on joints, then those between
+    /// markers (the order of the drives and of the motions' equations).
+    pub(crate) fn motion_functions(&self) -> impl Iterator<Item = usize> + '_ {
+        self.motions
+            .iter()
+            .map(|motion| motion.function)
+            .chain(self.marker_motions.iter().map(|motion| motion.function))
+    }
+
+    /// The id and statement of every motion, in the same order.
+    pub(crate) fn motion_statements(&self) -> impl Iterator<Item = (u64, Span)> + '_ {
+        self.motions
+            .iter()
+            .map(|motion| (motion.id, motion.span))
+            .chain(
+                self.marker_motions
+                    .iter()
+                    .map(|motion| (motion.id, motion.span)),
+            )
+    }
+
     /// The inverse inertia of each body, in its own axes.
     pub(crate) fn inverse_inertia(&self) -> Vec<Matrix3<f64>> {
         self.masses
@@ -196,6 +227,24 @@ pub enum JointKind {
     /// z axes parallel, I's origin in J's x-y plane: a rotation about z
     /// and a translation in the plane (3).
     Planar,
+    /// Origins together, I's z axis perpendicular to J's (the two arms of
+    /// the cross): a rotation about each (4).
+    Universal,
+    /// Origins together, I's x axis perpendicular to J's y axis (the two
+    /// arms of the cross), the z axes down the shafts (4).
+    Hooke,
+    /// Origins together, the z axes down the shafts away from the centre,
+    /// the rotation of I about its z axis equal and opposite to J's about
+    /// its own: `x_i · y_j + y_i · x_j = 0` (4).
+    Convel,
+    /// The translation of I's origin along J's z axis (the rack) is the
+    /// pitch radius times I's rotation about its own z axis (the pinion;
+    /// [`Joint::pitch`] its pitch diameter), the rack on the side
+    /// `z_i × z_j` of the pinion (1).
+    RackPin,
+    /// The translation of I's origin along J's z axis is [`Joint::pitch`]
+    /// per turn of I's x axis about J's z axis (1).
+    Screw,
     /// `JPRIM`, ATPOINT: origins together (3).
     AtPoint,
     /// `JPRIM`, INLINE: I's origin on J's z axis (2).
@@ -212,13 +261,18 @@ pub enum JointKind {
 
 impl JointKind {
     /// Every kind with its keyword.
-    pub const ALL: [(JointKind, &'static str); 6] = [
+    pub const ALL: [(JointKind, &'static str); 11] = [
         (JointKind::Fixed, "FIXED"),
         (JointKind::Revolute, "REVOLUTE"),
         (JointKind::Translational, "TRANSLATIONAL"),
         (JointKind::Spherical, "SPHERICAL"),
         (JointKind::Cylindrical, "CYLINDRICAL"),
         (JointKind::Planar, "PLANAR"),
+        (JointKind::Universal, "UNIVERSAL"),
+        (JointKind::Hooke, "HOOKE"),
+        (JointKind::Convel, "CONVEL"),
+        (JointKind::RackPin, "RACKPIN"),
+        (JointKind::Screw, "SCREW"),
     ];
 
     /// Every kind of joint primitive (`JPRIM`) with its keyword.
@@ -236,13 +290,19 @@ impl JointKind {
         match self {
             JointKind::Fixed => 6,
             JointKind::Revolute | JointKind::Translational => 5,
-            JointKind::Cylindrical => 4,
+            JointKind::Cylindrical
+            | JointKind::Universal
+            | JointKind::Hooke
+            | JointKind::Convel => 4,
             JointKind::Spherical
             | JointKind::Planar
             | JointKind::AtPoint
             | JointKind::Orientation => 3,
             JointKind::InLine | JointKind::ParallelAxes => 2,
-            JointKind::InPlane | JointKind::Perpendicular => 1,
+            JointKind::InPlane
+            | JointKind::Perpendicular
+            | JointKind::RackPin
+            | JointKind::Screw => 1,
         }
     }
 
@@ -273,6 +333,10 @@ pub struct Joint {
     pub i: Target,
     /// The J marker.
     pub j: Target,
+    /// The length its kind needs: a SCREW's PITCH (the translation per
+    /// turn), a RACKPIN's PD (the pinion's pitch diameter); 0 for the
+    /// others.
+    pub pitch: f64,
     /// Its equations (indices below [`JointKind::equations`]) that repeat
     /// other joints' at the initial state, left out of the run.
     pub redundant: Vec<usize>,
@@ -291,6 +355,36 @@ pub struct Motion {
     /// About the z axis (the angle of I's x axis from J's, towards J's y
     /// axis) rather than along it (I's origin from J's).
     pub rotation: bool,
+    /// Its FUNCTION, an index into [`Model::expressions`].
+    pub function: usize,
+    /// The statement.
+    pub span: Span,
+}
+
+/// What a [`MarkerMotion`] sets of its I marker relative to its J marker.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Along {
+    /// `X`, `Y`, `Z`: I's origin from J's, along J's axis 0, 1 or 2.
+    Axis(usize),
+    /// `B1`, `B2`, `B3`: the body 1-2-3 angle 1, 2 or 3 of I's axes
+    /// from J's (the rotation from J's axes to I's is `Rx(b1) Ry(b2)
+    /// Rz(b3)` in J's; B2 is held through its sine, so within a quarter
+    /// turn).
+    Angle(usize),
+}
+
+/// A `MOTION` between markers (`I =`, `J =`): one of I's displacements
+/// from J, a function of time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MarkerMotion {
+    /// The statement id.
+    pub id: u64,
+    /// The I marker.
+    pub i: Target,
+    /// The J marker.
+    pub j: Target,
+    /// The displacement it sets.
+    pub along: Along,
     /// Its FUNCTION, an index into [`Model::expressions`].
     pub function: usize,
     /// The statement.

@@ -29,9 +29,8 @@ impl Drives {
     /// FUNCTIONs have compiled in the model's program already.
     pub(crate) fn new(model: &Model) -> Drives {
         let trees: Vec<&crate::Checked> = model
-            .motions
-            .iter()
-            .map(|motion| &model.expressions[motion.function].checked)
+            .motion_functions()
+            .map(|function| &model.expressions[function].checked)
             .collect();
         let mut names = vec!["TIME".to_string()];
         names.extend(model.scene.variables.iter().map(|(name, _)| name.clone()));

@@ -40,7 +40,7 @@ pub(crate) use solve::{Tolerance, constraint_loads, find_redundant, project};
 use nalgebra::Vector3;
 
 use crate::scene::Target;
-use crate::simulate::model::{Joint, JointKind};
+use crate::simulate::model::{Along, Joint, JointKind};
 use rows::{Moving, Row};
 
 /// A marker's frame in motion: its origin and its three axes.
@@ -86,7 +86,7 @@ fn joint_rows<T: crate::number::Number>(
     let i = frame(model, &joint.i, bodies);
     let j = frame(model, &joint.j, bodies);
     let apart = i.origin.minus(&j.origin);
-    let [xi, _, zi] = &i.axes;
+    let [xi, yi, zi] = &i.axes;
     let [xj, yj, zj] = &j.axes;
     let together = || (0..3).map(|axis| apart.component(axis));
     let parallel = || [zi.dot(xj), zi.dot(yj)];
@@ -104,6 +104,28 @@ fn joint_rows<T: crate::number::Number>(
             .chain([xi.dot(yj)])
             .collect(),
         JointKind::Planar => [zj.dot(&apart)].into_iter().chain(parallel()).collect(),
+        JointKind::Universal => together().chain([zi.dot(zj)]).collect(),
+        JointKind::Hooke => together().chain([xi.dot(yj)]).collect(),
+        JointKind::Convel => together()
+            .chain([xi.dot(yj).plus_scaled(yi.dot(xj), 1.0)])
+            .collect(),
+        JointKind::RackPin => {
+            // The pinion's turn about z_i, less a constant: minus the
+            // angle of the rack's direction in the pinion's x-y plane.
+            let radius = 0.5 * joint.pitch;
+            let turned = Row::angle(yi.dot(zj), xi.dot(zj));
+            let mut row = zj.dot(&apart).plus_scaled(turned, radius);
+            row.wrap(std::f64::consts::TAU * radius);
+            vec![row]
+        }
+        JointKind::Screw => {
+            let turned = Row::angle(xi.dot(yj), xi.dot(xj));
+            let mut row = zj
+                .dot(&apart)
+                .plus_scaled(turned, -joint.pitch / std::f64::consts::TAU);
+            row.wrap(joint.pitch);
+            vec![row]
+        }
         JointKind::AtPoint => together().collect(),
         JointKind::InLine => vec![xj.dot(&apart), yj.dot(&apart)],
         JointKind::InPlane => vec![zj.dot(&apart)],
@@ -133,8 +155,44 @@ fn motion_row<T: crate::number::Number>(
     row.value -= T::from(drive.value);
     if motion.rotation {
         // The angle's value modulo a turn, nearest the displacement.
-        let turns = (row.value.value() / std::f64::consts::TAU).round();
-        row.value -= T::from(turns * std::f64::consts::TAU);
+        row.wrap(std::f64::consts::TAU);
+    }
+    row.rate -= T::from(drive.rate);
+    row.bias -= T::from(drive.acceleration);
+    row
+}
+
+/// The equation of `motion` between markers at the displacement `drive`
+/// gives.
+fn marker_motion_row<T: crate::number::Number>(
+    model: &super::Model,
+    motion: &super::model::MarkerMotion,
+    drive: &Drive,
+    bodies: &[BodyMotion<T>],
+) -> Row<T> {
+    let i = frame(model, &motion.i, bodies);
+    let j = frame(model, &motion.j, bodies);
+    let [xi, yi, zi] = &i.axes;
+    let [xj, yj, zj] = &j.axes;
+    // Entry (a, b) of the rotation from J's axes to I's is J's axis a
+    // dotted with I's axis b.
+    let mut row = match motion.along {
+        Along::Axis(axis) => j.axes[axis].dot(&i.origin.minus(&j.origin)),
+        Along::Angle(0) => Row::angle(yj.dot(zi).scaled(-1.0), zj.dot(zi)),
+        Along::Angle(2) => Row::angle(xj.dot(yi).scaled(-1.0), xj.dot(xi)),
+        Along::Angle(_) => {
+            // sin b2 = R02, less the sine of the displacement.
+            let mut row = xj.dot(zi);
+            let (sine, cosine) = drive.value.sin_cos();
+            row.value -= T::from(sine);
+            row.rate -= T::from(cosine * drive.rate);
+            row.bias -= T::from(cosine * drive.acceleration - sine * drive.rate * drive.rate);
+            return row;
+        }
+    };
+    row.value -= T::from(drive.value);
+    if matches!(motion.along, Along::Angle(_)) {
+        row.wrap(std::f64::consts::TAU);
     }
     row.rate -= T::from(drive.rate);
     row.bias -= T::from(drive.acceleration);
@@ -160,6 +218,10 @@ fn active_rows<T: crate::number::Number>(
     }
     for (motion, drive) in model.motions.iter().zip(drives) {
         rows.push(motion_row(model, motion, drive, bodies));
+    }
+    let marker_drives = drives.get(model.motions.len()..).unwrap_or_default();
+    for (motion, drive) in model.marker_motions.iter().zip(marker_drives) {
+        rows.push(marker_motion_row(model, motion, drive, bodies));
     }
     rows
 }

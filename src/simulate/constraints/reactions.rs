@@ -61,6 +61,16 @@ impl Component {
                 .map(Holder::Joint),
         };
         let Some(holder) = holder else {
+            if call.function == Function::Motion
+                && model
+                    .marker_motions
+                    .iter()
+                    .any(|motion| motion.id == call.id)
+            {
+                return Err(format!(
+                    "{written}: the reactions of a MOTION between markers are not computed yet (those of a MOTION on a joint are)"
+                ));
+            }
             return Err(format!(
                 "{written}: the model has no {}/{} that is simulated",
                 call.function.name(),

@@ -209,6 +209,43 @@ pub(crate) struct Row<T: Number> {
 }
 
 impl<T: Number> Row<T> {
+    /// The row of `self + factor · other`.
+    pub(crate) fn plus_scaled(mut self, other: Row<T>, factor: f64) -> Row<T> {
+        self.value += other.value * factor;
+        self.rate += other.rate * factor;
+        self.bias += other.bias * factor;
+        for (body, columns) in other.coefficients {
+            add_coefficients(
+                &mut self.coefficients,
+                body,
+                columns.map(|entry| entry * factor),
+            );
+        }
+        self
+    }
+
+    /// The row of `factor · self`.
+    pub(crate) fn scaled(self, factor: f64) -> Row<T> {
+        Row {
+            value: self.value * factor,
+            rate: self.rate * factor,
+            bias: self.bias * factor,
+            coefficients: self
+                .coefficients
+                .into_iter()
+                .map(|(body, columns)| (body, columns.map(|entry| entry * factor)))
+                .collect(),
+        }
+    }
+
+    /// Its value less the whole number of `period`s that brings it nearest
+    /// zero: an equation on an angle known modulo a turn (`period` the
+    /// equation's change over one turn), its rate and bias unchanged.
+    pub(crate) fn wrap(&mut self, period: f64) {
+        let turns = (self.value.value() / period).round();
+        self.value -= T::from(turns * period);
+    }
+
     /// The row of the angle `atan2(s, c)`: rate `(c s' − s c') / r²`, bias
     /// `(c b_s − s b_c) / r² − 2 θ' (c c' + s s') / r²` (`r² = s² + c²`).
     pub(crate) fn angle(s: Row<T>, c: Row<T>) -> Row<T> {

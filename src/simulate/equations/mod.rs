@@ -473,7 +473,7 @@ impl Equations<'_> {
             forces::apply(model, force, &kinematics, &value, &mut loads);
         }
         let mut multipliers = None;
-        if !model.joints.is_empty() {
+        if model.is_constrained() {
             let motions = body_motions(&kinematics);
             let drives = self.drives.at(t).ok_or_else(joints_singular)?;
             multipliers = Some(

@@ -20,7 +20,8 @@ use crate::model::{
 use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{
-    Diff, Expression, Force, Joint, JointKind, MassProperties, Model, Motion, Output,
+    Along, Diff, Expression, Force, Joint, JointKind, MarkerMotion, MassProperties, Model, Motion,
+    Output,
 };
 use crate::span::Span;
 
@@ -228,7 +229,7 @@ impl Reader<'_> {
         let diffs = self.diffs();
         let forces = self.forces();
         let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
-        let motions = self.motions(&joints);
+        let (motions, marker_motions) = self.motions(&joints);
         let gravity = self.gravity();
         let outputs = self.outputs(&mut notes);
         Model {
@@ -238,6 +239,7 @@ impl Reader<'_> {
             forces,
             joints,
             motions,
+            marker_motions,
             gravity,
             expressions: std::mem::take(&mut self.expressions),
             outputs,
@@ -246,11 +248,13 @@ impl Reader<'_> {
         }
     }
 
-    /// The MOTION statements, each on one of `joints`.
-    fn motions(&mut self, joints: &[Joint]) -> Vec<Motion> {
+    /// The MOTION statements: those on one of `joints`, and those between
+    /// markers.
+    fn motions(&mut self, joints: &[Joint]) -> (Vec<Motion>, Vec<MarkerMotion>) {
         let indices: Vec<usize> = self.statements("MOTION").map(|(index, _)| index).collect();
         let dataset = self.dataset;
         let mut motions = Vec::new();
+        let mut marker_motions = Vec::new();
         for index in indices {
             let statement = &dataset.statements[index];
             let label = statement.label();
@@ -261,13 +265,6 @@ impl Reader<'_> {
                     span: statement.span,
                 });
             };
-            if statement.argument("I", 1).is_some() || statement.argument("J", 1).is_some() {
-                refuse(
-                    &mut self.errors,
-                    "is between markers (I, J): mbexpr simulates a MOTION on a joint (JOINT = id)",
-                );
-                continue;
-            }
             if statement.argument("VELOCITY", 1).is_some()
                 || statement.argument("ACCELERATION", 1).is_some()
             {
@@ -275,6 +272,10 @@ impl Reader<'_> {
                     &mut self.errors,
                     "is a VELOCITY or ACCELERATION: mbexpr simulates a DISPLACEMENT motion",
                 );
+                continue;
+            }
+            if statement.argument("I", 1).is_some() || statement.argument("J", 1).is_some() {
+                marker_motions.extend(self.marker_motion(index));
                 continue;
             }
             let id = number(statement, "JOINT", f64::NAN).unwrap_or(f64::NAN);
@@ -321,7 +322,73 @@ impl Reader<'_> {
                 span: statement.span,
             });
         }
-        motions
+        (motions, marker_motions)
+    }
+
+    /// A MOTION between its I and J markers (J ground when not given):
+    /// one of X, Y, Z, B1, B2, B3, its FUNCTION the displacement.
+    fn marker_motion(&mut self, index: usize) -> Option<MarkerMotion> {
+        let dataset = self.dataset;
+        let statement = &dataset.statements[index];
+        let components = ["X", "Y", "Z", "B1", "B2", "B3"];
+        let given: Vec<usize> = components
+            .iter()
+            .enumerate()
+            .filter(|(_, name)| {
+                statement
+                    .arguments
+                    .iter()
+                    .any(|argument| argument.keyword.eq_ignore_ascii_case(name))
+            })
+            .map(|(k, _)| k)
+            .collect();
+        let i = self.marker(statement, "I");
+        let j = match statement.argument("J", 1) {
+            Some(_) => self.marker(statement, "J"),
+            None => Some(Target::Ground),
+        };
+        if statement.argument("I", 1).is_none() {
+            self.refuse(
+                format!(
+                    "{}: a MOTION between markers needs I = the id of a MARKER",
+                    statement.label()
+                ),
+                statement.span,
+            );
+        }
+        let [component] = given[..] else {
+            self.refuse(
+                format!(
+                    "{}: a MOTION between markers sets one of {}",
+                    statement.label(),
+                    components.join(", ")
+                ),
+                statement.span,
+            );
+            return None;
+        };
+        let function = self.expression(index, "FUNCTION");
+        if function.is_none() && statement.argument("FUNCTION", 4).is_none() {
+            self.refuse(
+                format!(
+                    "{}: a MOTION needs FUNCTION = the displacement, a function of time",
+                    statement.label()
+                ),
+                statement.span,
+            );
+        }
+        Some(MarkerMotion {
+            id: statement.id.unwrap_or(0),
+            i: i?,
+            j: j?,
+            along: if component < 3 {
+                Along::Axis(component)
+            } else {
+                Along::Angle(component - 3)
+            },
+            function: function?,
+            span: statement.span,
+        })
     }
 
     /// The expression `keyword` of statement `index`, added to the model's
@@ -385,6 +452,28 @@ impl Reader<'_> {
         masses
     }
 
+    /// Refuses a PART's VM or WM (the marker whose velocity VX, VY, VZ
+    /// give, or about whose axes WX, WY, WZ turn) naming another marker
+    /// than its CM: the velocities are read as the centre of mass's, in
+    /// ground.
+    fn velocities_at_the_centre(&mut self, statement: &Statement) {
+        let centre = number(statement, "CM", f64::NAN).ok();
+        for keyword in ["VM", "WM"] {
+            let Some(argument) = statement.argument(keyword, 2) else {
+                continue;
+            };
+            if number(statement, keyword, f64::NAN).ok() != centre {
+                self.errors.push(SimulateError::Unsupported {
+                    statement: statement.label(),
+                    reason: format!(
+                        "sets {keyword}: initial velocities given at another marker than the CM are not simulated"
+                    ),
+                    span: argument.span,
+                });
+            }
+        }
+    }
+
     fn mass(&mut self, statement: &Statement) -> MassProperties {
         let label = statement.label();
         let fail = |errors: &mut Vec<SimulateError>, message: String| {
@@ -410,6 +499,7 @@ impl Reader<'_> {
                 ),
             );
         }
+        self.velocities_at_the_centre(statement);
         let marker_of = |keyword: &str| {
             number(statement, keyword, f64::NAN)
                 .ok()

@@ -7,9 +7,6 @@ use crate::scene::{Scene, Target};
 use crate::simulate::SimulateError;
 use crate::simulate::model::{Joint, JointKind};
 
-/// Joint types of Adams that are not simulated yet.
-const NOT_YET: [&str; 5] = ["UNIVERSAL", "HOOKE", "CONVEL", "RACKPIN", "SCREW"];
-
 /// The JOINT statements of `dataset`, their markers found in `scene`; every
 /// problem added to `errors` at its place.
 pub(crate) fn joints(
@@ -39,19 +36,9 @@ fn joint(statement: &Statement, scene: &Scene, errors: &mut Vec<SimulateError>) 
         .find(|(_, name)| statement.argument(name, 3).is_some())
         .map(|(kind, _)| *kind);
     let Some(kind) = kind else {
-        let other = NOT_YET
-            .iter()
-            .find(|name| statement.argument(name, 2).is_some());
         errors.push(SimulateError::Unsupported {
             statement: label,
-            reason: match other {
-                Some(name) => format!(
-                    "is a {} joint: mbexpr simulates {} joints",
-                    name,
-                    names.join(", ")
-                ),
-                None => format!("needs its type: one of {}", names.join(", ")),
-            },
+            reason: format!("needs its type: one of {}", names.join(", ")),
             span: statement.span,
         });
         return None;
@@ -75,7 +62,38 @@ fn joint(statement: &Statement, scene: &Scene, errors: &mut Vec<SimulateError>) 
             });
         }
     }
-    between_markers(statement, kind, scene, errors)
+    let pitch = match kind {
+        JointKind::RackPin => length(statement, "PD", "the pinion's pitch diameter", errors)?,
+        JointKind::Screw => length(statement, "PITCH", "the translation per turn", errors)?,
+        _ => 0.0,
+    };
+    between_markers(statement, kind, scene, errors).map(|joint| Joint { pitch, ..joint })
+}
+
+/// The length `keyword` of a RACKPIN or SCREW joint (`what` it is): a
+/// number, not zero (a pitch diameter positive).
+fn length(
+    statement: &Statement,
+    keyword: &str,
+    what: &str,
+    errors: &mut Vec<SimulateError>,
+) -> Option<f64> {
+    let value = number(statement, keyword, f64::NAN)
+        .ok()
+        .filter(|value| value.is_finite() && *value != 0.0 && (keyword != "PD" || *value > 0.0));
+    if value.is_none() {
+        errors.push(SimulateError::Model {
+            message: format!(
+                "{}: this joint needs {keyword} = {what}, a nonzero number{}",
+                statement.label(),
+                if keyword == "PD" { " above zero" } else { "" }
+            ),
+            span: statement
+                .argument(keyword, keyword.len())
+                .map_or(statement.span, |argument| argument.span),
+        });
+    }
+    value
 }
 
 /// A `JPRIM` statement: one of the joint primitives, between its markers.
@@ -119,6 +137,7 @@ fn between_markers(
         kind,
         i,
         j,
+        pitch: 0.0,
         redundant: Vec::new(),
         span: statement.span,
     })

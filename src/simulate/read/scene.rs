@@ -148,6 +148,7 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
     Ok(Model {
         joints: Vec::new(),
         motions: Vec::new(),
+        marker_motions: Vec::new(),
         scene: reader.scene,
         masses,
         diffs,

@@ -372,7 +372,7 @@ impl Simulation<'_> {
             rtol: settings.rtol,
             atol: settings.atol,
         };
-        let initial_residuals = if model.joints.is_empty() {
+        let initial_residuals = if !model.is_constrained() {
             Residuals::default()
         } else {
             assemble(
@@ -494,7 +494,7 @@ impl Simulation<'_> {
                     start_values.copy_from_slice(&switching);
                     stepper.set_h_max(settings.h_max.min(floor(limit, t1)));
                     stepper.set_smooth(limit.is_infinite());
-                    if !model.joints.is_empty() {
+                    if model.is_constrained() {
                         dense.copy_from_slice(stepper.y());
                         let found = assemble(&mut dense, t1, tolerance)?;
                         summary.residuals = summary.residuals.max(found);
@@ -519,7 +519,7 @@ impl Simulation<'_> {
                 slope,
             )?;
             dense.copy_from_slice(&state);
-            if !model.joints.is_empty() {
+            if model.is_constrained() {
                 let found = assemble(&mut dense, right, tolerance)?;
                 summary.residuals = summary.residuals.max(found);
                 summary.projections += usize::from(dense != state);
