@@ -437,23 +437,37 @@ def interpolate(points, accuracy):
 def auto_against_better(results):
     """Auto's time against the better of radau and dop853 at auto's own
     error, at each rtol (issue 22 item 3: at most 1.3x)."""
+    def auto(name, rtol):
+        found = results[f"{name}|mbexpr auto|{rtol:.0e}"]
+        return (found["time"], found["max_x"]) if "time" in found else None
+
+    def better(name, accuracy):
+        return [time_to(results, name, label, accuracy) for label in ("mbexpr radau", "mbexpr dop853")]
+
+    return ratio_table(TOLERANCES, auto, better)
+
+
+def ratio_table(tolerances, auto, better):
+    """A row per scene of auto's cost over the better method's at auto's
+    error, at each of `tolerances`: `auto(name, rtol)` gives auto's (cost,
+    error) or None, `better(name, accuracy)` each method's cost to reach
+    the accuracy (None where it does not)."""
     lines = [
-        "| scene | " + " | ".join(f"{rtol:.0e}" for rtol in TOLERANCES) + " | worst |",
-        "|---|" + "---|" * (len(TOLERANCES) + 1),
+        "| scene | " + " | ".join(f"{rtol:.0e}" for rtol in tolerances) + " | worst |",
+        "|---|" + "---|" * (len(tolerances) + 1),
     ]
     for scene in SCENES:
-        name, cells, worst = scene[0], [], 0.0
-        for rtol in TOLERANCES:
-            auto = results[f"{name}|mbexpr auto|{rtol:.0e}"]
-            if "time" not in auto:
+        cells, worst = [], 0.0
+        for rtol in tolerances:
+            found = auto(scene[0], rtol)
+            if found is None:
                 cells.append("–")
                 continue
-            better = [time for time in (time_to(results, name, label, auto["max_x"])
-                                        for label in ("mbexpr radau", "mbexpr dop853")) if time is not None]
-            if not better:
+            costs = [cost for cost in better(scene[0], found[1]) if cost is not None]
+            if not costs:
                 cells.append("best")
                 continue
-            ratio = auto["time"] / min(better)
+            ratio = found[0] / min(costs)
             worst = max(worst, ratio)
             cells.append(f"{ratio:.2f}")
         lines.append(f"| {scene[1]} | " + " | ".join(cells) + f" | {worst:.2f} |")
@@ -634,32 +648,18 @@ def auto_instructions():
                 store.write_text(json.dumps(results, indent=1))
                 print(key, results[key], flush=True)
                 given_up = "skipped" in results[key]
-    lines = [
-        "| scene | " + " | ".join(f"{rtol:.0e}" for rtol in AUTO_TOLERANCES) + " | worst |",
-        "|---|" + "---|" * (len(AUTO_TOLERANCES) + 1),
-    ]
-    for scene in SCENES:
-        cells, worst = [], 0.0
-        for rtol in AUTO_TOLERANCES:
-            auto = results[f"{scene[0]}|auto|{rtol:.0e}"]
-            if "instructions" not in auto:
-                cells.append("–")
-                continue
-            better = []
-            for method in ("radau", "dop853"):
-                points = [(results[f"{scene[0]}|{method}|{r:.0e}"]["max_x"],
-                           results[f"{scene[0]}|{method}|{r:.0e}"]["instructions"])
-                          for r in AUTO_TOLERANCES if "instructions" in results[f"{scene[0]}|{method}|{r:.0e}"]]
-                found = interpolate(points, auto["max_x"])
-                if found is not None:
-                    better.append(found)
-            if not better:
-                cells.append("best")
-                continue
-            ratio = auto["instructions"] / min(better)
-            worst = max(worst, ratio)
-            cells.append(f"{ratio:.2f}")
-        lines.append(f"| {scene[1]} | " + " | ".join(cells) + f" | {worst:.2f} |")
+    def auto(name, rtol):
+        found = results[f"{name}|auto|{rtol:.0e}"]
+        return (found["instructions"], found["max_x"]) if "instructions" in found else None
+
+    def better(name, accuracy):
+        return [interpolate([(results[f"{name}|{method}|{r:.0e}"]["max_x"],
+                              results[f"{name}|{method}|{r:.0e}"]["instructions"])
+                             for r in AUTO_TOLERANCES if "instructions" in results[f"{name}|{method}|{r:.0e}"]],
+                            accuracy)
+                for method in ("radau", "dop853")]
+
+    lines = ratio_table(AUTO_TOLERANCES, auto, better)
     table_text = "\n".join(lines) + "\n"
     (OUT / "auto_instructions.md").write_text(table_text)
     print(table_text)
