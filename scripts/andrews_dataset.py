@@ -67,4 +67,5 @@ for n,(I,J) in enumerate(joints):
 out.append(f"SFORCE/1, TRANSLATIONAL, I = {dm}, J = 4, FUNCTION = -{c0} * (DM({dm}, 4) - {f(l0)})")
 out.append(f"SFORCE/2, ROTATIONAL, I = 201, J = 1, FUNCTION = {mom}")
 out.append("END")
-print("\n".join(out))
+if __name__ == "__main__":
+    print("\n".join(out))
