@@ -208,13 +208,7 @@ fn active_rows<T: crate::number::Number>(
 ) -> Vec<Row<T>> {
     let mut rows = Vec::new();
     for joint in &model.joints {
-        rows.extend(
-            joint_rows(model, joint, bodies)
-                .into_iter()
-                .enumerate()
-                .filter(|(index, _)| !joint.redundant.contains(index))
-                .map(|(_, row)| row),
-        );
+        rows.extend(kept_rows(model, joint, bodies));
     }
     for (motion, drive) in model.motions.iter().zip(drives) {
         rows.push(motion_row(model, motion, drive, bodies));
@@ -224,6 +218,20 @@ fn active_rows<T: crate::number::Number>(
         rows.push(marker_motion_row(model, motion, drive, bodies));
     }
     rows
+}
+
+/// The equations of `joint` held in the run: its rows but the redundant
+/// ones, in order.
+fn kept_rows<T: crate::number::Number>(
+    model: &super::Model,
+    joint: &super::Joint,
+    bodies: &[BodyMotion<T>],
+) -> impl Iterator<Item = Row<T>> {
+    joint_rows(model, joint, bodies)
+        .into_iter()
+        .enumerate()
+        .filter(|(index, _)| !joint.redundant.contains(index))
+        .map(|(_, row)| row)
 }
 
 /// Finds the equations of `model`'s joints that repeat others at state

@@ -18,7 +18,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::rows::BodyMotion;
-use super::{Drive, joint_rows, motion_row};
+use super::{Drive, kept_rows, motion_row};
 use crate::catalog::Function;
 use crate::compile::SolverCall;
 use crate::scene::Target;
@@ -163,12 +163,11 @@ impl Reactions {
             .iter()
             .map(|joint| {
                 let mut loads = Vec::new();
-                let kept = joint_rows(model, joint, bodies)
-                    .into_iter()
-                    .enumerate()
-                    .filter(|(index, _)| !joint.redundant.contains(index))
-                    .map(|(_, row)| row);
-                add_loads(kept, &mut multipliers, &mut loads);
+                add_loads(
+                    kept_rows(model, joint, bodies),
+                    &mut multipliers,
+                    &mut loads,
+                );
                 loads
             })
             .collect();
