@@ -17,6 +17,7 @@ mod joint_kinds;
 mod joints;
 mod magnitudes;
 mod model;
+mod motions;
 mod numerics;
 mod parse;
 mod plot;

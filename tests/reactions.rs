@@ -80,6 +80,21 @@ fn a_pendulum_pulls_its_pivot_as_newtons_law_says_with_adams_sign() {
     assert!(worst < 1e-7, "{worst}");
 }
 
+/// The driven crank's mass, arm and moment about its centre of mass.
+pub(super) const CRANK: (f64, f64, f64) = (2.5, 0.4, 0.03);
+
+/// The driven crank's angle `θ = 0.3 t + 0.4 sin 2t` at `t` and the torque
+/// that turns it so, `(Izz + m d²) θ'' + m g d cos θ`.
+pub(super) fn crank_angle_and_torque(t: f64) -> (f64, f64) {
+    let (m, d, izz) = CRANK;
+    let theta = 0.3 * t + 0.4 * (2.0 * t).sin();
+    let acceleration = -1.6 * (2.0 * t).sin();
+    (
+        theta,
+        (izz + m * d * d) * acceleration + m * G * d * theta.cos(),
+    )
+}
+
 /// The joints tests' compound pendulum as a crank on its revolute joint
 /// (gravity along −y) driven by a MOTION `θ = 0.3 t + 0.4 sin 2t`,
 /// gravity along −y: the MOTION's reaction torque on the crank about z,
@@ -87,7 +102,7 @@ fn a_pendulum_pulls_its_pivot_as_newtons_law_says_with_adams_sign() {
 /// cos θ`, and the joint's torque about z is zero.
 #[test]
 fn a_driven_cranks_motion_torque_is_its_inverse_dynamics() {
-    let (m, d, izz) = (2.5, 0.4, 0.03);
+    let (m, d, izz) = CRANK;
     let text = pendulum(m, d, izz).replace(
         "END",
         "MOTION/1, JOINT = 1, ROTATION, FUNCTION = 0.3 * TIME + 0.4 * SIN(2 * TIME)
@@ -104,10 +119,7 @@ END",
         let run = run(&text, &settings).expect("the crank runs");
         let mut worst: f64 = 0.0;
         for row in &run.rows {
-            let t = row[0];
-            let theta = 0.3 * t + 0.4 * (2.0 * t).sin();
-            let acceleration = -1.6 * (2.0 * t).sin();
-            let torque = (izz + m * d * d) * acceleration + m * G * d * theta.cos();
+            let (_, torque) = crank_angle_and_torque(row[0]);
             let columns = &row[FIRST..];
             worst = worst
                 .max((columns[0] - torque).abs())

@@ -114,7 +114,7 @@ MARKER/3, PART = 2
 JOINT/1, REVOLUTE, I = 3, J = 1
 JOINT/2, SPHERICAL, I = 3, J = 1
 MOTION/1, JOINT = 1, TRANSLATION, FUNCTION = TIME
-MOTION/2, JOINT = 1, VELOCITY, FUNCTION = TIME
+MOTION/2, JOINT = 1, VELOCITY, ICVEL = 1, FUNCTION = TIME
 MOTION/3, I = 3, J = 1, B3, X, FUNCTION = TIME
 MOTION/4, JOINT = 2, FUNCTION = TIME
 MOTION/5, JOINT = 9, FUNCTION = TIME
@@ -1254,5 +1254,45 @@ fn units_change_the_numbers_not_the_motion() {
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f64::max);
         assert!(worst < 1e-7, "{}: off by {worst:e}", system.0);
+    }
+}
+
+/// A free part whose CM marker is turned (its z axis along ground x) and
+/// away from the part's origin, given `WZ` and `VX`, `VY`: Adams reads WX,
+/// WY, WZ about the CM marker's axes and VX, VY, VZ along ground's, so the
+/// part spins about ground x at 2 rad/s, a principal axis (the inertia is
+/// symmetric about the CM marker's z), its orientation `Rx(2t)` and its
+/// centre of mass moving in a straight line.
+#[test]
+fn initial_angular_velocity_is_about_the_cm_marker_axes() {
+    let text = "spinning top
+PART/1, GROUND
+PART/2, MASS = 1.5, CM = 3, IP = 0.1, 0.1, 0.3, WZ = 2, VX = 0.5, VY = 0.3
+MARKER/3, PART = 2, QP = 0, 0.2, 0, REULER = 90D, 90D, 0
+";
+    let run = run(text, &settings(3.0, 30, 1e-10)).unwrap_or_else(|error| panic!("{error}"));
+    for row in &run.rows {
+        let t = row[0];
+        let turn = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+            row[4], row[5], row[6], row[7],
+        ));
+        // The columns give the part's origin; the CM is 0.2 up its y.
+        let centre = Vector3::new(row[1], row[2], row[3]) + turn * Vector3::new(0.0, 0.2, 0.0);
+        let exact_centre = Vector3::new(0.5 * t, 0.2 + 0.3 * t, 0.0);
+        assert!(
+            (centre - exact_centre).norm() < 1e-9,
+            "t = {t}: the centre is at {centre}, not {exact_centre}"
+        );
+        let exact = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 2.0 * t);
+        assert!(
+            turn.angle_to(&exact) < 1e-9,
+            "t = {t}: the part is turned {} rad from Rx(2t)",
+            turn.angle_to(&exact)
+        );
+        let omega = Vector3::new(row[11], row[12], row[13]);
+        assert!(
+            (omega - Vector3::new(2.0, 0.0, 0.0)).norm() < 1e-9,
+            "t = {t}: spins at {omega}"
+        );
     }
 }

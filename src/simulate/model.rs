@@ -63,6 +63,14 @@ impl Model {
             .chain(self.marker_motions.iter().map(|motion| motion.function))
     }
 
+    /// What the FUNCTION of every motion gives, in the same order.
+    pub(crate) fn motion_givens(&self) -> impl Iterator<Item = Given> + '_ {
+        self.motions
+            .iter()
+            .map(|motion| motion.given)
+            .chain(self.marker_motions.iter().map(|motion| motion.given))
+    }
+
     /// The id and statement of every motion, in the same order.
     pub(crate) fn motion_statements(&self) -> impl Iterator<Item = (u64, Span)> + '_ {
         self.motions
@@ -357,8 +365,32 @@ pub struct Motion {
     pub rotation: bool,
     /// Its FUNCTION, an index into [`Model::expressions`].
     pub function: usize,
+    /// What the FUNCTION gives: the displacement or one of its derivatives.
+    pub given: Given,
     /// The statement.
     pub span: Span,
+}
+
+/// What a motion's FUNCTION gives (Adams' `DISPLACEMENT`, `VELOCITY`,
+/// `ACCELERATION`): a velocity or an acceleration is integrated in time to
+/// the displacement, from `ICDISP` (and `ICVEL`) at time 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Given {
+    /// The displacement itself.
+    Displacement,
+    /// Its rate: the displacement is `icdisp + ∫₀ᵗ f`.
+    Velocity {
+        /// The displacement at time 0 (`ICDISP`).
+        icdisp: f64,
+    },
+    /// Its second derivative: the displacement is
+    /// `icdisp + icvel·t + ∫₀ᵗ (t - s)·f(s) ds`.
+    Acceleration {
+        /// The displacement at time 0 (`ICDISP`).
+        icdisp: f64,
+        /// The rate at time 0 (`ICVEL`).
+        icvel: f64,
+    },
 }
 
 /// What a [`MarkerMotion`] sets of its I marker relative to its J marker.
@@ -387,6 +419,8 @@ pub struct MarkerMotion {
     pub along: Along,
     /// Its FUNCTION, an index into [`Model::expressions`].
     pub function: usize,
+    /// What the FUNCTION gives: the displacement or one of its derivatives.
+    pub given: Given,
     /// The statement.
     pub span: Span,
 }

@@ -1,11 +1,16 @@
 //! The displacements the motions impose, with their first two time
-//! derivatives (from dual numbers seeded in time).
+//! derivatives (from dual numbers seeded in time). A VELOCITY or
+//! ACCELERATION motion's displacement is its FUNCTION integrated from time
+//! 0 by adaptive quadrature (the FUNCTION depends on time only, so its
+//! integral needs no state of the run), to rounding error.
 
 use num_dual::Dual2Vec;
 
+use super::quadrature::integrate;
 use crate::compile::{Program, compile_outputs};
 use crate::number::Directional;
 use crate::simulate::Model;
+use crate::simulate::model::Given;
 
 /// A motion's displacement at a time, and its first two derivatives.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -22,6 +27,8 @@ pub(crate) struct Drives {
     program: Option<Program>,
     /// Each input's value: `None` for `TIME`, a constant otherwise.
     inputs: Vec<Option<f64>>,
+    /// What each FUNCTION gives.
+    givens: Vec<Given>,
 }
 
 impl Drives {
@@ -47,7 +54,11 @@ impl Drives {
                 })
                 .collect()
         });
-        Drives { program, inputs }
+        Drives {
+            program,
+            inputs,
+            givens: model.motion_givens().collect(),
+        }
     }
 
     /// The names a motion's FUNCTION reads besides time and constants
@@ -86,15 +97,56 @@ impl Drives {
             .evaluator::<TimeDual>()
             .outputs(&inputs, None, &mut outputs)
             .ok()?;
-        Some(
-            outputs
-                .iter()
-                .map(|output| Drive {
-                    value: output.re,
-                    rate: output.gradient(1)[0],
-                    acceleration: output.hessian(1).map_or(0.0, |hessian| hessian[(0, 0)]),
-                })
-                .collect(),
-        )
+        let mut drives: Vec<Drive> = outputs
+            .iter()
+            .map(|output| Drive {
+                value: output.re,
+                rate: output.gradient(1)[0],
+                acceleration: output.hessian(1).map_or(0.0, |hessian| hessian[(0, 0)]),
+            })
+            .collect();
+        if self
+            .givens
+            .iter()
+            .any(|given| !matches!(given, Given::Displacement))
+        {
+            let n = drives.len();
+            // ∫₀ᵗ f and ∫₀ᵗ (t - s)·f(s) ds of every FUNCTION.
+            let mut evaluator = program.evaluator::<f64>();
+            let mut inputs: Vec<f64> = self.inputs.iter().map(|v| v.unwrap_or(0.0)).collect();
+            let mut values = vec![0.0; n];
+            let integrals = integrate(0.0, t, 2 * n, &mut |s, out| {
+                for (input, given) in inputs.iter_mut().zip(&self.inputs) {
+                    if given.is_none() {
+                        *input = s;
+                    }
+                }
+                if evaluator.outputs(&inputs, None, &mut values).is_err() {
+                    return false;
+                }
+                for (k, value) in values.iter().enumerate() {
+                    out[k] = *value;
+                    out[n + k] = (t - s) * value;
+                }
+                true
+            })?;
+            for (k, (drive, given)) in drives.iter_mut().zip(&self.givens).enumerate() {
+                let (once, twice) = (integrals[k], integrals[n + k]);
+                *drive = match *given {
+                    Given::Displacement => *drive,
+                    Given::Velocity { icdisp } => Drive {
+                        value: icdisp + once,
+                        rate: drive.value,
+                        acceleration: drive.rate,
+                    },
+                    Given::Acceleration { icdisp, icvel } => Drive {
+                        value: icdisp + icvel * t + twice,
+                        rate: icvel + once,
+                        acceleration: drive.value,
+                    },
+                };
+            }
+        }
+        Some(drives)
     }
 }

@@ -27,6 +27,7 @@
 //! state, and left out ([`Joint::redundant`]), as Adams removes them.
 
 mod drives;
+mod quadrature;
 mod reactions;
 mod rows;
 mod solve;

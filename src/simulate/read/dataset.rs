@@ -10,7 +10,7 @@ use std::collections::HashMap;
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::units;
+use super::{motions, units};
 use crate::Shown;
 use crate::check::Reference;
 use crate::model::initial::{number, numbers};
@@ -20,8 +20,8 @@ use crate::model::{
 use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{
-    Along, Diff, Expression, Force, Joint, JointKind, MarkerMotion, MassProperties, Model, Motion,
-    Output,
+    Along, Diff, Expression, Force, Given, Joint, JointKind, MarkerMotion, MassProperties, Model,
+    Motion, Output,
 };
 use crate::span::Span;
 
@@ -265,17 +265,11 @@ impl Reader<'_> {
                     span: statement.span,
                 });
             };
-            if statement.argument("VELOCITY", 1).is_some()
-                || statement.argument("ACCELERATION", 1).is_some()
-            {
-                refuse(
-                    &mut self.errors,
-                    "is a VELOCITY or ACCELERATION: mbexpr simulates a DISPLACEMENT motion",
-                );
+            let Some(given) = motions::given(statement, &mut self.errors) else {
                 continue;
-            }
+            };
             if statement.argument("I", 1).is_some() || statement.argument("J", 1).is_some() {
-                marker_motions.extend(self.marker_motion(index));
+                marker_motions.extend(self.marker_motion(index, given));
                 continue;
             }
             let id = number(statement, "JOINT", f64::NAN).unwrap_or(f64::NAN);
@@ -319,6 +313,7 @@ impl Reader<'_> {
                 joint,
                 rotation,
                 function,
+                given,
                 span: statement.span,
             });
         }
@@ -327,7 +322,7 @@ impl Reader<'_> {
 
     /// A MOTION between its I and J markers (J ground when not given):
     /// one of X, Y, Z, B1, B2, B3, its FUNCTION the displacement.
-    fn marker_motion(&mut self, index: usize) -> Option<MarkerMotion> {
+    fn marker_motion(&mut self, index: usize, kind: Given) -> Option<MarkerMotion> {
         let dataset = self.dataset;
         let statement = &dataset.statements[index];
         let components = ["X", "Y", "Z", "B1", "B2", "B3"];
@@ -387,6 +382,7 @@ impl Reader<'_> {
                 Along::Angle(component - 3)
             },
             function: function?,
+            given: kind,
             span: statement.span,
         })
     }

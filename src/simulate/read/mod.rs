@@ -5,6 +5,7 @@
 
 mod dataset;
 mod joints;
+mod motions;
 mod scene;
 mod units;
 

@@ -1,0 +1,98 @@
+//! MOTIONs given as a VELOCITY or an ACCELERATION, integrated from their
+//! `ICDISP` (and `ICVEL`): the displacement and the motion's reaction
+//! against closed forms.
+
+use std::f64::consts::{PI, TAU};
+
+use super::joints::pendulum;
+use super::reactions::{CRANK, crank_angle_and_torque};
+use super::simulate::{run, settings};
+use mbexpr::integrate::Method;
+
+const G: f64 = 9.80665;
+
+/// A slider on a TRANSLATIONAL joint along ground z, gravity along −z,
+/// driven by `VELOCITY = 2·t` from `ICDISP = 0.1`: it is at `0.1 + t²`,
+/// and the motion's force on it along z, `MOTION(1, 0, 4, 0)`, is
+/// Newton's `m (2 + g)`.
+#[test]
+fn a_velocity_motion_reaches_the_integral_of_its_function() {
+    let m = 1.5;
+    let text = format!(
+        "slider
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = {m}, CM = 20, IP = 1, 2, 3, QG = 0, 0, 0.1
+MARKER/20, PART = 2, QP = 0.3, 0.1, 0
+MARKER/21, PART = 2
+JOINT/1, TRANSLATIONAL, I = 21, J = 1
+MOTION/1, JOINT = 1, TRANSLATION, VELOCITY, ICDISP = 0.1, FUNCTION = 2 * TIME
+REQUEST/1, F1 = MOTION(1,0,4,0), F2 = VZ(21, 1)
+ACCGRAV/KGRAV = -{G}
+END
+"
+    );
+    for method in [Method::Radau5, Method::Dop853] {
+        let mut settings = settings(2.0, 20, 1e-9);
+        settings.method = method;
+        let run = run(&text, &settings).unwrap_or_else(|error| panic!("{error}"));
+        let mut worst: f64 = 0.0;
+        for row in &run.rows {
+            let t = row[0];
+            worst = worst
+                .max((row[3] - (0.1 + t * t)).abs())
+                .max((row[14] - m * (2.0 + G)).abs())
+                .max((row[15] - 2.0 * t).abs());
+        }
+        println!("{method:?}: largest difference {worst:.2e}");
+        assert!(worst < 1e-7, "{method:?}: {worst:e}");
+    }
+}
+
+/// The reactions tests' crank driven by `ACCELERATION = −1.6 sin 2t` from
+/// `ICDISP = 0`, `ICVEL = 1.1`: its angle and the motion's torque are
+/// those of the displacement form `0.3 t + 0.4 sin 2t`.
+#[test]
+fn an_acceleration_motion_turns_a_crank_as_its_double_integral() {
+    let (m, d, izz) = CRANK;
+    let text = pendulum(m, d, izz).replace(
+        "END",
+        "MOTION/1, JOINT = 1, ROTATION, ACCELERATION, ICDISP = 0, ICVEL = 1.1
+, FUNCTION = -1.6 * SIN(2 * TIME)
+REQUEST/1, F1 = MOTION(1,0,8,0), F2 = AZ(21, 1)
+END",
+    );
+    let run = run(&text, &settings(4.0, 40, 1e-9)).unwrap_or_else(|error| panic!("{error}"));
+    let mut worst: f64 = 0.0;
+    for row in &run.rows {
+        let (theta, torque) = crank_angle_and_torque(row[0]);
+        let wrapped = (theta + PI).rem_euclid(TAU) - PI;
+        worst = worst
+            .max((row[14] - torque).abs())
+            .max((row[15] - wrapped).abs());
+    }
+    println!("crank: largest difference {worst:.2e}");
+    assert!(worst < 1e-6, "{worst:e}");
+}
+
+/// A part held in x by a MOTION between markers, `X` given as `VELOCITY =
+/// 0.6 cos 2t` from `ICDISP = 0.2`: its marker is at `0.2 + 0.3 sin 2t`
+/// along x; nothing else moves it.
+#[test]
+fn a_velocity_motion_between_markers_moves_its_marker() {
+    let text = "held
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 20, IP = 1, 1, 1, QG = 0.2, 0, 0
+MARKER/20, PART = 2
+MOTION/1, I = 20, J = 1, X, VELOCITY, ICDISP = 0.2, FUNCTION = 0.6 * COS(2 * TIME)
+END
+";
+    let run = run(text, &settings(3.0, 30, 1e-10)).unwrap_or_else(|error| panic!("{error}"));
+    let worst = run
+        .rows
+        .iter()
+        .map(|row| (row[1] - (0.2 + 0.3 * (2.0 * row[0]).sin())).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-8, "{worst:e}");
+}
