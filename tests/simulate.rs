@@ -162,7 +162,7 @@ ACCGRAV/JGRAV = -9.8
             short.clone(),
         ),
         (
-            "a rotational springdamper and a bushing run",
+            "a rotational springdamper is refused, a bushing runs",
             "bushing
 PART/1, GROUND
 MARKER/1, PART = 1
@@ -1294,38 +1294,5 @@ MARKER/3, PART = 2, QP = 0, 0.2, 0, REULER = 90D, 90D, 0
             (omega - Vector3::new(2.0, 0.0, 0.0)).norm() < 1e-9,
             "t = {t}: spins at {omega}"
         );
-    }
-}
-
-/// A torsion pendulum: a free part (Izz = 0.25 about its CM marker's z, on
-/// ground's z) on a rotational SPRINGDAMPER to ground, KT = 9 about the
-/// free angle 0.5, spun at 120 rad/s: `θ = 0.5 − 0.5 cos 6t + 20 sin 6t`,
-/// a swing of more than three turns each way, which holds only if the
-/// spring's angle counts the whole turns.
-#[test]
-fn a_torsion_pendulum_swings_past_several_turns_as_the_exact_cosine() {
-    let text = "torsion
-PART/1, GROUND
-MARKER/1, PART = 1
-PART/2, MASS = 1, CM = 3, IP = 1, 1, 0.25, WZ = 120
-MARKER/3, PART = 2
-SPRINGDAMPER/1, ROTATIONAL, I = 3, J = 1, KT = 9, ANGLE = 0.5
-";
-    for method in [Method::Radau5, Method::Dop853] {
-        let mut settings = settings(3.0, 1500, 1e-10);
-        settings.method = method;
-        let run = run(text, &settings).unwrap_or_else(|error| panic!("{error}"));
-        let (mut worst, mut angle): (f64, f64) = (0.0, 0.0);
-        for row in &run.rows {
-            let t = row[0];
-            angle = super::joints::angle(row, 4, angle);
-            let exact = 0.5 - 0.5 * (6.0 * t).cos() + 20.0 * (6.0 * t).sin();
-            let rate = 3.0 * (6.0 * t).sin() + 120.0 * (6.0 * t).cos();
-            worst = worst
-                .max((angle - exact).abs())
-                .max((row[13] - rate).abs() / 6.0);
-        }
-        println!("{method:?}: largest difference {worst:.2e} rad");
-        assert!(worst < 1e-6, "{method:?}: {worst:e}");
     }
 }

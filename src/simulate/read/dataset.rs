@@ -694,10 +694,10 @@ impl Reader<'_> {
     ///   reaction on J's part at I's origin, which is Adams' torque on J with
     ///   the moment arm of the deformation;
     /// - SPRINGDAMPER, TRANSLATIONAL: along the line from J to I, repelling
-    ///   when positive, `-C·VR(I,J) - K·(DM(I,J) - LENGTH) + FORCE`;
-    /// - SPRINGDAMPER, ROTATIONAL: on I about J's z axis (the opposite on
-    ///   J), `-CT·WZ(I,J,J) - KT·(AZ(I,J) - ANGLE) + TORQUE`, the angle
-    ///   counting whole turns as AZ does over a run.
+    ///   when positive, `-C·VR(I,J) - K·(DM(I,J) - LENGTH) + FORCE`.
+    ///
+    /// A rotational SPRINGDAMPER is refused: its angle past half a turn
+    /// is not settled here.
     fn linear_element(&mut self, index: usize, i: Target, j: Target) -> Option<Force> {
         let statement = &self.dataset.statements[index];
         let ids = [number(statement, "I", 0.0), number(statement, "J", 0.0)];
@@ -708,33 +708,26 @@ impl Reader<'_> {
         let values = |keyword: &str| numbers(statement, keyword, [0.0; 3]);
         let value = |keyword: &str| number(statement, keyword, 0.0);
         if is_kind(&statement.name, "SPRINGDAMPER") {
-            // Its keywords, rate and displacement measures, and what it applies.
-            let rotational = statement.argument("ROTATIONAL", 3).is_some();
-            let (keywords, rate, displacement, what) = if rotational {
-                (["CT", "KT", "ANGLE", "TORQUE"], "WZ", "AZ", "torque")
-            } else {
-                (["C", "K", "LENGTH", "FORCE"], "VR", "DM", "force")
-            };
-            let read = keywords.map(value);
-            let [c, k, free, preload] = match read {
-                [Ok(c), Ok(k), Ok(free), Ok(preload)] => [c, k, free, preload],
+            if statement.argument("ROTATIONAL", 3).is_some() {
+                self.errors.push(SimulateError::Unsupported {
+                    statement: statement.label(),
+                    reason: "is ROTATIONAL: its angle past half a turn is not settled in mbexpr; write it as SFORCE, ROTATIONAL with AZ(I,J) and WZ(I,J,J)".to_string(),
+                    span: statement.span,
+                });
+                return None;
+            }
+            let read = ["C", "K", "LENGTH", "FORCE"].map(value);
+            let [c, k, length, force] = match read {
+                [Ok(c), Ok(k), Ok(length), Ok(force)] => [c, k, length, force],
                 _ => return self.refuse_numbers(read.into_iter().find_map(Result::err)),
             };
-            let rate_of = if rotational {
-                format!("{rate}({i_id},{j_id},{j_id})")
-            } else {
-                format!("{rate}({i_id},{j_id})")
-            };
             let text = linear_sum(&[
-                (-c, rate_of),
-                (
-                    -k,
-                    format!("({displacement}({i_id},{j_id}) - {})", literal(free)),
-                ),
-                (preload, String::new()),
+                (-c, format!("VR({i_id},{j_id})")),
+                (-k, format!("(DM({i_id},{j_id}) - {})", literal(length))),
+                (force, String::new()),
             ]);
-            let magnitude = self.written(index, what, &text)?;
-            return Some(Force::single(rotational, i, j, magnitude, false));
+            let magnitude = self.written(index, "force", &text)?;
+            return Some(Force::single(false, i, j, magnitude, false));
         }
         let read = ["K", "C", "FORCE", "KT", "CT", "TORQUE"].map(values);
         let [k, c, force, kt, ct, torque] = match read {
