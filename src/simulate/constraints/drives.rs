@@ -2,7 +2,10 @@
 //! derivatives (from dual numbers seeded in time). A VELOCITY or
 //! ACCELERATION motion's displacement is its FUNCTION integrated from time
 //! 0 by adaptive quadrature (the FUNCTION depends on time only, so its
-//! integral needs no state of the run), to rounding error.
+//! integral needs no state of the run), to rounding error, each call
+//! going on from the integrals taken at an earlier time.
+
+use std::sync::Mutex;
 
 use num_dual::Dual2Vec;
 
@@ -29,7 +32,15 @@ pub(crate) struct Drives {
     inputs: Vec<Option<f64>>,
     /// What each FUNCTION gives.
     givens: Vec<Given>,
+    /// Integrals already taken: at increasing times `t`, `∫₀ᵗ f` then
+    /// `∫₀ᵗ s·f(s) ds` of every FUNCTION, so that a call integrates only
+    /// from the last one before its time (the latest [`CHECKPOINTS`]).
+    checkpoints: Mutex<Vec<(f64, Vec<f64>)>>,
 }
+
+/// How many integrals [`Drives`] keeps (a run's calls go back at most a
+/// step or so; one before the oldest integrates from time 0).
+const CHECKPOINTS: usize = 64;
 
 impl Drives {
     /// The drives of `model`'s motions (none without motions). The
@@ -58,6 +69,7 @@ impl Drives {
             program,
             inputs,
             givens: model.motion_givens().collect(),
+            checkpoints: Mutex::new(Vec::new()),
         }
     }
 
@@ -111,11 +123,20 @@ impl Drives {
             .any(|given| !matches!(given, Given::Displacement))
         {
             let n = drives.len();
-            // ∫₀ᵗ f and ∫₀ᵗ (t - s)·f(s) ds of every FUNCTION.
+            let mut checkpoints = self
+                .checkpoints
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
+            let from = checkpoints.partition_point(|(time, _)| *time <= t);
+            let (start, mut sums) = match from.checked_sub(1) {
+                Some(last) => checkpoints[last].clone(),
+                None => (0.0, vec![0.0; 2 * n]),
+            };
+            // ∫ f and ∫ s·f from the checkpoint to t.
             let mut evaluator = program.evaluator::<f64>();
             let mut inputs: Vec<f64> = self.inputs.iter().map(|v| v.unwrap_or(0.0)).collect();
             let mut values = vec![0.0; n];
-            let integrals = integrate(0.0, t, 2 * n, &mut |s, out| {
+            let rest = integrate(start, t, 2 * n, &mut |s, out| {
                 for (input, given) in inputs.iter_mut().zip(&self.inputs) {
                     if given.is_none() {
                         *input = s;
@@ -126,12 +147,23 @@ impl Drives {
                 }
                 for (k, value) in values.iter().enumerate() {
                     out[k] = *value;
-                    out[n + k] = (t - s) * value;
+                    out[n + k] = s * value;
                 }
                 true
             })?;
+            for (sum, part) in sums.iter_mut().zip(&rest) {
+                *sum += part;
+            }
+            if from == checkpoints.len() && t > start {
+                if checkpoints.len() == CHECKPOINTS {
+                    checkpoints.remove(0);
+                }
+                checkpoints.push((t, sums.clone()));
+            }
+            drop(checkpoints);
             for (k, (drive, given)) in drives.iter_mut().zip(&self.givens).enumerate() {
-                let (once, twice) = (integrals[k], integrals[n + k]);
+                // ∫₀ᵗ (t - s)·f(s) ds = t·∫₀ᵗ f - ∫₀ᵗ s·f(s) ds.
+                let (once, twice) = (sums[k], t * sums[k] - sums[n + k]);
                 *drive = match *given {
                     Given::Displacement => *drive,
                     Given::Velocity { icdisp } => Drive {
