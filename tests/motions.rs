@@ -11,14 +11,10 @@ use mbexpr::integrate::Method;
 
 const G: f64 = 9.80665;
 
-/// A slider on a TRANSLATIONAL joint along ground z, gravity along −z,
-/// driven by `VELOCITY = 2·t` from `ICDISP = 0.1`: it is at `0.1 + t²`,
-/// and the motion's force on it along z, `MOTION(1, 0, 4, 0)`, is
-/// Newton's `m (2 + g)`.
-#[test]
-fn a_velocity_motion_reaches_the_integral_of_its_function() {
-    let m = 1.5;
-    let text = format!(
+/// A slider on a TRANSLATIONAL joint along ground z (gravity along −z)
+/// driven by `VELOCITY = velocity` from `ICDISP = 0.1`.
+fn slider(m: f64, velocity: &str) -> String {
+    format!(
         "slider
 PART/1, GROUND
 MARKER/1, PART = 1
@@ -26,12 +22,20 @@ PART/2, MASS = {m}, CM = 20, IP = 1, 2, 3, QG = 0, 0, 0.1
 MARKER/20, PART = 2, QP = 0.3, 0.1, 0
 MARKER/21, PART = 2
 JOINT/1, TRANSLATIONAL, I = 21, J = 1
-MOTION/1, JOINT = 1, TRANSLATION, VELOCITY, ICDISP = 0.1, FUNCTION = 2 * TIME
+MOTION/1, JOINT = 1, TRANSLATION, VELOCITY, ICDISP = 0.1, FUNCTION = {velocity}
 REQUEST/1, F1 = MOTION(1,0,4,0), F2 = VZ(21, 1)
 ACCGRAV/KGRAV = -{G}
 END
 "
-    );
+    )
+}
+
+/// The slider at `VELOCITY = 2·t`: it is at `0.1 + t²`, and the motion's
+/// force on it along z, `MOTION(1, 0, 4, 0)`, is Newton's `m (2 + g)`.
+#[test]
+fn a_velocity_motion_reaches_the_integral_of_its_function() {
+    let m = 1.5;
+    let text = slider(m, "2 * TIME");
     for method in [Method::Radau5, Method::Dop853] {
         let mut settings = settings(2.0, 20, 1e-9);
         settings.method = method;
@@ -47,6 +51,26 @@ END
         println!("{method:?}: largest difference {worst:.2e}");
         assert!(worst < 1e-7, "{method:?}: {worst:e}");
     }
+}
+
+/// The slider at `VELOCITY = STEP(TIME, 1, 0, 2, 3)`, Adams' cubic blend
+/// `3 Δ² (3 − 2Δ)` for `Δ = t − 1` in [0, 1], its second derivative
+/// jumping at both ends: the displacement is `0.1` until 1, `0.1 + 3 (Δ³
+/// − Δ⁴/2)` on the blend and `1.6 + 3 (t − 2)` after it (the integral of
+/// the cubic, by hand), which the quadrature reaches across the kinks.
+#[test]
+fn a_velocity_motion_integrates_a_step_across_its_kinks() {
+    let text = slider(1.5, "STEP(TIME, 1, 0, 2, 3)");
+    let run = run(&text, &settings(3.0, 60, 1e-9)).unwrap_or_else(|error| panic!("{error}"));
+    let mut worst: f64 = 0.0;
+    for row in &run.rows {
+        let t: f64 = row[0];
+        let delta = (t - 1.0).clamp(0.0, 1.0);
+        let exact = 0.1 + 3.0 * (delta.powi(3) - delta.powi(4) / 2.0) + 3.0 * (t - 2.0).max(0.0);
+        worst = worst.max((row[3] - exact).abs());
+    }
+    println!("step: largest difference {worst:.2e}");
+    assert!(worst < 1e-8, "{worst:e}");
 }
 
 /// The reactions tests' crank driven by `ACCELERATION = −1.6 sin 2t` from
