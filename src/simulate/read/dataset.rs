@@ -450,8 +450,9 @@ impl Reader<'_> {
 
     /// Refuses a PART's VM or WM (the marker whose velocity VX, VY, VZ
     /// give, or about whose axes WX, WY, WZ turn) naming another marker
-    /// than its CM: the velocities are read as the centre of mass's, in
-    /// ground.
+    /// than its CM: the velocities are read as Adams reads them without
+    /// VM and WM, VX, VY, VZ the centre of mass's along ground's axes and
+    /// WX, WY, WZ about the CM marker's axes.
     fn velocities_at_the_centre(&mut self, statement: &Statement) {
         let centre = number(statement, "CM", f64::NAN).ok();
         for keyword in ["VM", "WM"] {
