@@ -816,8 +816,9 @@ const CONVERGENCE: &[Convergence] = &[
     ("b_slider", 5.0, Method::Radau5, [(1e-5, 5e-5), (1e-8, 5e-7), (1e-13, 5e-10)]),
 ];
 
-/// Rows of a reference CSV (`time,DIF(1),DIF(2)`).
-fn reference(name: &str) -> Vec<Vec<f64>> {
+/// Rows of a reference CSV of `tests/data/simulate/` (`time,DIF(1),DIF(2)`
+/// for the study scenes), after its header.
+pub(super) fn reference(name: &str) -> Vec<Vec<f64>> {
     let path = format!(
         "{}/tests/data/simulate/{name}.csv",
         env!("CARGO_MANIFEST_DIR")
