@@ -463,6 +463,18 @@ fn the_slider_in_a_turning_slot_moves_as_its_diff_form() {
             jointed.summary.projections
         );
         assert_eq!(jointed.events.len(), reference.events.len(), "{case}");
+        // Each switch reports how far its located state was off the joints
+        // before it was assembled again: within the tolerance.
+        for event in &jointed.events {
+            let residuals = event
+                .residuals
+                .expect("a jointed model's event has residuals");
+            assert!(
+                residuals.position.max(residuals.velocity) < 100.0 * rtol,
+                "{case}: t = {}: {residuals:?}",
+                event.time
+            );
+        }
         assert!(worst < 100.0 * rtol, "{case}: {worst}");
         assert!(slot_worst < 10.0 * rtol, "{case}: {slot_worst}");
     }

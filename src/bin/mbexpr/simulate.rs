@@ -88,7 +88,7 @@ pub struct Args {
     /// Row format (default: csv on a pipe, text on a terminal).
     #[arg(long, value_enum)]
     format: Option<RowFormat>,
-    /// List every located branch switch (and change of method) on standard error, as it is found; with --format jsonl, one JSON object each.
+    /// List every located branch switch (and change of method) on standard error, as it is found, with how far a jointed model was off its joints there before assembly; with --format jsonl, one JSON object each.
     #[arg(long)]
     events: bool,
     /// Write every located branch switch (and change of method) into a file, one JSON object per line.
@@ -448,7 +448,7 @@ impl Events<'_> {
                 .zip(&event.values)
                 .map(|(name, value)| (name.clone(), json!(value)))
                 .collect();
-            json!({
+            let mut object = json!({
                 "time": event.time,
                 "function": event.function,
                 "file": self.source.path,
@@ -458,11 +458,22 @@ impl Events<'_> {
                 "from": event.from,
                 "to": event.to,
                 "state": state,
-            })
+            });
+            if let Some(residuals) = event.residuals {
+                object["residuals"] =
+                    json!({"position": residuals.position, "velocity": residuals.velocity});
+            }
+            object
         };
         self.write(object, || {
+            let assembled = event.residuals.map_or(String::new(), |residuals| {
+                format!(
+                    "; off the joints by {:.1e} (positions), {:.1e} (velocities) before assembly",
+                    residuals.position, residuals.velocity
+                )
+            });
             format!(
-                "event t = {}: {} at {}:{}:{} ({}): {} -> {}",
+                "event t = {}: {} at {}:{}:{} ({}): {} -> {}{assembled}",
                 Shown(event.time),
                 event.function,
                 self.source.path,

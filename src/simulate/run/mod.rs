@@ -132,6 +132,10 @@ pub struct Event {
     /// The values of the columns after `time` ([`crate::simulate::columns`])
     /// at the switch, on the branches it takes.
     pub values: Vec<f64>,
+    /// In a model with constraints, how far the state located at the
+    /// switch was off the joints before it was assembled again (the
+    /// consistent state the run goes on from); `None` without constraints.
+    pub residuals: Option<Residuals>,
 }
 
 /// What a run cost and found.
@@ -519,10 +523,12 @@ impl Simulation<'_> {
                 slope,
             )?;
             dense.copy_from_slice(&state);
+            let mut residuals = None;
             if model.is_constrained() {
                 let found = assemble(&mut dense, right, tolerance)?;
                 summary.residuals = summary.residuals.max(found);
                 summary.projections += usize::from(dense != state);
+                residuals = Some(found);
             }
             system
                 .mechanics
@@ -543,6 +549,7 @@ impl Simulation<'_> {
             let values = rows.at(right, &dense).map_err(|error| fail(right, error))?;
             for event in &mut summary.events[first_event..] {
                 event.values = values.to_vec();
+                event.residuals = residuals;
                 if sink.event(event).is_break() {
                     summary.stopped = true;
                 }
@@ -677,6 +684,7 @@ impl Simulation<'_> {
             from,
             to,
             values: Vec::new(),
+            residuals: None,
         }
     }
 
