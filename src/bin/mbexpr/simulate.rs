@@ -144,7 +144,10 @@ impl Source {
 
 /// Reads the model of `path` (`-`: standard input), reporting every problem
 /// at its place.
-fn read_model(path: &str, kind: Option<ModelKind>) -> Result<(Source, Model), Fatal> {
+fn read_model(
+    path: &str,
+    kind: Option<ModelKind>,
+) -> Result<(Source, Model, Option<String>), Fatal> {
     let format = kind.map(|kind| match kind {
         ModelKind::Adm => ModelFormat::Dataset,
         ModelKind::Scene => ModelFormat::Scene,
@@ -172,11 +175,15 @@ fn read_model(path: &str, kind: Option<ModelKind>) -> Result<(Source, Model), Fa
             )));
         }
     };
+    // Why the .acf gives no run: an error only for a run that needs it.
+    let mut run_problem = None;
     if format == ModelFormat::Dataset {
-        model.run = simulate::run_settings_beside(path)
-            .map_err(|message| Fatal::usage(format!("error: {message}")))?;
+        match simulate::run_settings_beside(path) {
+            Ok(run) => model.run = run,
+            Err(problem) => run_problem = Some(problem),
+        }
     }
-    Ok((source, model))
+    Ok((source, model, run_problem))
 }
 
 /// A progress bar on standard error, shown once a run has taken a second
@@ -267,9 +274,12 @@ fn check_writable(option: &str, path: &str) -> Result<(), Fatal> {
 
 /// Runs `mbexpr simulate`.
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
-    let (source, model) = read_model(&args.file, args.kind)?;
+    let (source, model, run_problem) = read_model(&args.file, args.kind)?;
     let (end, steps) = match (args.end, args.steps, model.run) {
         (Some(end), Some(steps), _) => (end, steps),
+        _ if let Some(problem) = run_problem => {
+            return Err(Fatal::usage(format!("error: {problem}")));
+        }
         (end, steps, Some((file_end, file_steps))) => {
             (end.unwrap_or(file_end), steps.unwrap_or(file_steps))
         }
