@@ -6,6 +6,10 @@ use crate::model::initial::number;
 use crate::model::vocabulary::{COMMANDS, statement_name};
 use crate::span::Span;
 
+/// The most output steps a command file may ask for (a hundred million
+/// rows; DTOUT = 1e-300 would otherwise ask for a run without end).
+pub const MOST_OUTPUT_STEPS: usize = 100_000_000;
+
 /// A command file's run: its end time, its number of output steps and the
 /// span of its last SIMULATE command.
 pub type RunCommands = (f64, usize, Span);
@@ -87,8 +91,17 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
         end = segment_end;
         last = Some(statement.span);
     }
-    Ok(match (interval, last) {
-        (Some(step), Some(span)) => Some((end, (end / step).round() as usize, span)),
-        _ => None,
-    })
+    let (Some(step), Some(span)) = (interval, last) else {
+        return Ok(None);
+    };
+    let steps = (end / step).round();
+    if steps > MOST_OUTPUT_STEPS as f64 {
+        return Err((
+            format!(
+                "SIMULATE: {steps:.3e} output steps to END = {end} (at most {MOST_OUTPUT_STEPS}: give fewer STEPS or a larger DTOUT)"
+            ),
+            span,
+        ));
+    }
+    Ok(Some((end, steps as usize, span)))
 }
