@@ -459,6 +459,9 @@ pub use crate::simulate::ModelFormat;
 pub struct LoadedModel {
     text: String,
     model: Model,
+    /// Why the `.acf` beside the dataset gives no run (a command mbexpr
+    /// does not carry out): the error of a run that needs its settings.
+    run_problem: Option<String>,
 }
 
 /// How to run a simulation; `None` takes the model's own (END and STEPS
@@ -528,8 +531,10 @@ impl LoadedModel {
         let text = read_text(path).map_err(|error| vec![error])?;
         let mut loaded = LoadedModel::read(text, format, kind)?;
         if format == ModelFormat::Dataset {
-            loaded.model.run = simulate::run_settings_beside(path)
-                .map_err(|message| vec![Located::nowhere(message)])?;
+            match simulate::run_settings_beside(path) {
+                Ok(run) => loaded.model.run = run,
+                Err(problem) => loaded.run_problem = Some(problem),
+            }
         }
         Ok(loaded)
     }
@@ -546,7 +551,11 @@ impl LoadedModel {
         kind: FileKind,
     ) -> Result<LoadedModel, Vec<Located>> {
         match simulate::from_text(&text, format, kind) {
-            Ok(model) => Ok(LoadedModel { text, model }),
+            Ok(model) => Ok(LoadedModel {
+                text,
+                model,
+                run_problem: None,
+            }),
             Err(Unread::Unchecked(problems)) => Err(placed_problems(&text, &problems)),
             Err(Unread::Refused(errors)) => Err(errors
                 .iter()
@@ -571,6 +580,9 @@ impl LoadedModel {
             (Some(end), Some(steps), _) => (end, steps),
             (end, steps, Some((file_end, file_steps))) => {
                 (end.unwrap_or(file_end), steps.unwrap_or(file_steps))
+            }
+            _ if let Some(problem) = &self.run_problem => {
+                return Err(Located::nowhere(problem.clone()));
             }
             (Some(end), None, None) => (end, Settings::default().steps),
             _ => {

@@ -15,6 +15,7 @@ mod integrate;
 mod integrate_problems;
 mod joint_kinds;
 mod joints;
+mod joints_random;
 mod magnitudes;
 mod model;
 mod motions;

@@ -816,8 +816,9 @@ const CONVERGENCE: &[Convergence] = &[
     ("b_slider", 5.0, Method::Radau5, [(1e-5, 5e-5), (1e-8, 5e-7), (1e-13, 5e-10)]),
 ];
 
-/// Rows of a reference CSV (`time,DIF(1),DIF(2)`).
-fn reference(name: &str) -> Vec<Vec<f64>> {
+/// Rows of a reference CSV of `tests/data/simulate/` (`time,DIF(1),DIF(2)`
+/// for the study scenes), after its header.
+pub(super) fn reference(name: &str) -> Vec<Vec<f64>> {
     let path = format!(
         "{}/tests/data/simulate/{name}.csv",
         env!("CARGO_MANIFEST_DIR")
@@ -1294,5 +1295,63 @@ MARKER/3, PART = 2, QP = 0, 0.2, 0, REULER = 90D, 90D, 0
             (omega - Vector3::new(2.0, 0.0, 0.0)).norm() < 1e-9,
             "t = {t}: spins at {omega}"
         );
+    }
+}
+
+/// The run a command file's SIMULATE commands ask for, as `END STEPS` or
+/// the error's first words.
+fn check_commands(commands: &str) -> String {
+    let text = format!("model\nmodel\n{}\nstop\n", commands.replace(';', "\n"));
+    let dataset = model::read(&text, FileKind::Acf);
+    match simulate::run_settings(&dataset) {
+        Ok(Some((end, steps, _))) => format!("{end} {steps}"),
+        Ok(None) => "none".to_string(),
+        Err((message, _)) => message.split(':').take(2).collect::<Vec<_>>().join(":"),
+    }
+}
+
+#[test]
+fn command_files_give_one_run_of_equally_spaced_outputs() {
+    let cases = [
+        ("SIMULATE/DYNAMIC, END = 2, STEPS = 40", "2 40"),
+        ("sim/dyn, end = 2, steps = 40", "2 40"),
+        ("SIMULATE/TRANSIENT, END = 1, DTOUT = 0.01", "1 100"),
+        ("SIMULATE/KINEMATIC, DURATION = 0.5, STEPS = 5", "0.5 5"),
+        (
+            "sim/dyn, end = 1, steps = 10; sim/dyn, end = 2, dtout = 0.1",
+            "2 20",
+        ),
+        (
+            "sim/dyn, end = 1, steps = 10; sim/tran, duration = 0.5, steps = 5",
+            "1.5 15",
+        ),
+        (
+            "SIMULATE/INITIAL_CONDITIONS; sim/dyn, end = 1, steps = 4",
+            "1 4",
+        ),
+        ("", "none"),
+        (
+            "sim/stat; sim/dyn, end = 1, steps = 10",
+            "SIMULATE/STATICS: mbexpr does not compute a static equilibrium; its dynamics start from the model's initial conditions, assembled on the joints (delete the command to run them so, or give --end and --steps)",
+        ),
+        (
+            "sim/dyn, end = 1, steps = 10; sim/dyn, end = 2, steps = 5",
+            "SIMULATE: its outputs are 0.2 apart, the commands' before it 0.1",
+        ),
+        (
+            "sim/dyn, end = 1",
+            "SIMULATE: give STEPS = a whole number of output steps (or DTOUT = the time between outputs), and an END after the last command's",
+        ),
+        (
+            "sim/dyn, steps = 10",
+            "SIMULATE: give END = the end time (or DURATION = how long)",
+        ),
+        (
+            "sim/dyn, end = 1, steps = 2.5",
+            "SIMULATE: give STEPS = a whole number of output steps (or DTOUT = the time between outputs), and an END after the last command's",
+        ),
+    ];
+    for (commands, expected) in cases {
+        assert_eq!(check_commands(commands), expected, "{commands}");
     }
 }

@@ -743,7 +743,22 @@ pub const COMMANDS: &[&str] = &[
 /// The known name `name` stands for: itself or the name it abbreviates (four
 /// letters or more, as the solver reads statement names).
 pub fn statement_name<'a>(name: &str, known: &[&'a str]) -> Option<&'a str> {
-    known.iter().copied().find(|known| is_kind(name, known))
+    known
+        .iter()
+        .copied()
+        .find(|known| is_kind(name, known))
+        .or_else(|| {
+            // Three letters that begin one name only (`SIM/DYN` for
+            // SIMULATE/DYNAMIC, as command files are often written).
+            let mut starting = known
+                .iter()
+                .copied()
+                .filter(|known| known.starts_with(name));
+            match (name.len() == 3, starting.next(), starting.next()) {
+                (true, Some(only), None) => Some(only),
+                _ => None,
+            }
+        })
 }
 
 /// The keywords of the dataset statement `name` (itself or an abbreviation),

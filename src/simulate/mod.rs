@@ -61,7 +61,7 @@ pub use model::{
     Motion, Output,
 };
 pub use read::{
-    ModelFormat, Unread, format_of_path, from_scene, is_scene_path, run_settings,
+    ModelFormat, RunCommands, Unread, format_of_path, from_scene, is_scene_path, run_settings,
     run_settings_beside,
 };
 pub use run::{

@@ -88,7 +88,7 @@ pub struct Args {
     /// Row format (default: csv on a pipe, text on a terminal).
     #[arg(long, value_enum)]
     format: Option<RowFormat>,
-    /// List every located branch switch (and change of method) on standard error, as it is found; with --format jsonl, one JSON object each.
+    /// List every located branch switch (and change of method) on standard error, as it is found, with how far a jointed model was off its joints there before assembly; with --format jsonl, one JSON object each.
     #[arg(long)]
     events: bool,
     /// Write every located branch switch (and change of method) into a file, one JSON object per line.
@@ -144,7 +144,10 @@ impl Source {
 
 /// Reads the model of `path` (`-`: standard input), reporting every problem
 /// at its place.
-fn read_model(path: &str, kind: Option<ModelKind>) -> Result<(Source, Model), Fatal> {
+fn read_model(
+    path: &str,
+    kind: Option<ModelKind>,
+) -> Result<(Source, Model, Option<String>), Fatal> {
     let format = kind.map(|kind| match kind {
         ModelKind::Adm => ModelFormat::Dataset,
         ModelKind::Scene => ModelFormat::Scene,
@@ -172,11 +175,15 @@ fn read_model(path: &str, kind: Option<ModelKind>) -> Result<(Source, Model), Fa
             )));
         }
     };
+    // Why the .acf gives no run: an error only for a run that needs it.
+    let mut run_problem = None;
     if format == ModelFormat::Dataset {
-        model.run = simulate::run_settings_beside(path)
-            .map_err(|message| Fatal::usage(format!("error: {message}")))?;
+        match simulate::run_settings_beside(path) {
+            Ok(run) => model.run = run,
+            Err(problem) => run_problem = Some(problem),
+        }
     }
-    Ok((source, model))
+    Ok((source, model, run_problem))
 }
 
 /// A progress bar on standard error, shown once a run has taken a second
@@ -267,9 +274,12 @@ fn check_writable(option: &str, path: &str) -> Result<(), Fatal> {
 
 /// Runs `mbexpr simulate`.
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
-    let (source, model) = read_model(&args.file, args.kind)?;
+    let (source, model, run_problem) = read_model(&args.file, args.kind)?;
     let (end, steps) = match (args.end, args.steps, model.run) {
         (Some(end), Some(steps), _) => (end, steps),
+        _ if let Some(problem) = run_problem => {
+            return Err(Fatal::usage(format!("error: {problem}")));
+        }
         (end, steps, Some((file_end, file_steps))) => {
             (end.unwrap_or(file_end), steps.unwrap_or(file_steps))
         }
@@ -448,7 +458,7 @@ impl Events<'_> {
                 .zip(&event.values)
                 .map(|(name, value)| (name.clone(), json!(value)))
                 .collect();
-            json!({
+            let mut object = json!({
                 "time": event.time,
                 "function": event.function,
                 "file": self.source.path,
@@ -458,11 +468,22 @@ impl Events<'_> {
                 "from": event.from,
                 "to": event.to,
                 "state": state,
-            })
+            });
+            if let Some(residuals) = event.residuals {
+                object["residuals"] =
+                    json!({"position": residuals.position, "velocity": residuals.velocity});
+            }
+            object
         };
         self.write(object, || {
+            let assembled = event.residuals.map_or(String::new(), |residuals| {
+                format!(
+                    "; off the joints by {:.1e} (positions), {:.1e} (velocities) before assembly",
+                    residuals.position, residuals.velocity
+                )
+            });
             format!(
-                "event t = {}: {} at {}:{}:{} ({}): {} -> {}",
+                "event t = {}: {} at {}:{}:{} ({}): {} -> {}{assembled}",
                 Shown(event.time),
                 event.function,
                 self.source.path,

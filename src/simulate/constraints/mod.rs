@@ -36,7 +36,9 @@ pub(crate) use drives::{Drive, Drives};
 pub(crate) use reactions::{Component, Reactions};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
-pub(crate) use solve::{Tolerance, constraint_loads, find_redundant, project};
+pub(crate) use solve::{
+    Tolerance, Unassembled, constraint_loads, disagreeing_redundant, find_redundant, project,
+};
 
 use nalgebra::Vector3;
 
@@ -219,6 +221,28 @@ fn active_rows<T: crate::number::Number>(
         rows.push(marker_motion_row(model, motion, drive, bodies));
     }
     rows
+}
+
+/// The statement (`JOINT/3`, `MOTION/1`) whose equation is `row` of the
+/// held equations ([`active_rows`]' order).
+pub(crate) fn owner_of_row(model: &super::Model, row: usize) -> String {
+    let mut first = 0;
+    for joint in &model.joints {
+        let held = joint.kind.equations() - joint.redundant.len();
+        if row < first + held {
+            return format!("{}/{}", joint.kind.statement(), joint.id);
+        }
+        first += held;
+    }
+    let motions = model
+        .motions
+        .iter()
+        .map(|motion| motion.id)
+        .chain(model.marker_motions.iter().map(|motion| motion.id));
+    motions
+        .enumerate()
+        .find(|(index, _)| first + index == row)
+        .map_or_else(|| "a joint".to_string(), |(_, id)| format!("MOTION/{id}"))
 }
 
 /// The equations of `joint` held in the run: its rows but the redundant

@@ -242,7 +242,38 @@ fn least_change(
 }
 
 /// Newton iterations on the positions at most.
-const POSITION_ITERATIONS: usize = 12;
+const POSITION_ITERATIONS: usize = 40;
+
+/// Halvings of a Newton step that does not lower the residual, at most.
+const STEP_HALVINGS: usize = 12;
+
+/// The tolerance a state assembled with a zero tolerance must meet in the
+/// end: `ASSEMBLED · (1 + |largest coordinate|)` on each state's least
+/// change (rounding leaves about 1e-15 of it).
+const ASSEMBLED: f64 = 1e-10;
+
+/// Why a state could not be put on the constraints.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Unassembled {
+    /// The equations are dependent at the state (a singular
+    /// configuration).
+    Singular,
+    /// Newton's iterations ended with equation `row` (in the order of
+    /// [`active_rows`]) still off by `residual`: the parts cannot be
+    /// placed as the joints and motions ask.
+    Apart {
+        /// The equation's index among the held equations.
+        row: usize,
+        /// Its value `Φ` left.
+        residual: f64,
+    },
+}
+
+impl From<Singular> for Unassembled {
+    fn from(_: Singular) -> Unassembled {
+        Unassembled::Singular
+    }
+}
 
 /// The integrator's error tolerance on a state: `atol + rtol |y|` for
 /// each component (zero: put every state on the constraints).
@@ -284,9 +315,13 @@ fn scaled(
 
 /// Puts state `y` back on the constraints when the least change that does
 /// it is larger than `tolerance` allows: the positions by Newton's method
-/// on the least change (until it is a thousandth of the tolerance, or as
-/// far as rounding allows), then the velocities by one least change. The
-/// residuals found before.
+/// on the least change, each step halved until it lowers the largest
+/// residual (a large correction, a part turned by tens of degrees, is not
+/// linear), until the change is a thousandth of the tolerance or rounding
+/// stops the residual from falling; then the velocities by one least
+/// change. The residuals found before; an error when the positions end
+/// further off than the tolerance (with a zero tolerance, than
+/// [`ASSEMBLED`] of the state's size).
 pub(crate) fn project(
     model: &Model,
     y: &mut [f64],
@@ -294,7 +329,7 @@ pub(crate) fn project(
     drives: &[Drive],
     inverse_inertia: &[Matrix3<f64>],
     tolerance: Tolerance,
-) -> Result<Residuals, Singular> {
+) -> Result<Residuals, Unassembled> {
     let bodies = motions(y, offsets);
     let rows = active_rows(model, &bodies, drives);
     let before = Residuals::of(&rows);
@@ -305,30 +340,62 @@ pub(crate) fn project(
     {
         return Ok(before);
     }
-    let mut last = f64::INFINITY;
-    for _ in 0..POSITION_ITERATIONS {
+    let fine = Tolerance {
+        rtol: 1e-3 * tolerance.rtol,
+        atol: 1e-3 * tolerance.atol,
+    };
+    let largest_residual = |y: &[f64]| {
         let bodies = motions(y, offsets);
-        let rows = active_rows(model, &bodies, drives);
-        let residual = Residuals::of(&rows).position;
-        // Stop where rounding stops the residual from falling.
-        if residual == 0.0 || residual >= 0.5 * last {
+        Residuals::of(&active_rows(model, &bodies, drives)).position
+    };
+    let mut residual = before.position;
+    for _ in 0..POSITION_ITERATIONS {
+        if residual == 0.0 {
             break;
         }
-        last = residual;
+        let bodies = motions(y, offsets);
+        let rows = active_rows(model, &bodies, drives);
         let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
-        for (change, &offset) in change.iter().zip(offsets) {
-            let s = &mut y[offset..];
-            for k in 0..3 {
-                s[k] += change[k];
+        if scaled(y, offsets, &change, 0, fine) <= 1.0 {
+            break;
+        }
+        let start = y.to_vec();
+        let mut fraction = 1.0;
+        let mut lowered = false;
+        for _ in 0..STEP_HALVINGS {
+            moved(y, &start, offsets, &change, fraction);
+            let now = largest_residual(y);
+            if now < residual {
+                residual = now;
+                lowered = true;
+                break;
             }
-            let turn =
-                UnitQuaternion::from_scaled_axis(Vector3::new(change[3], change[4], change[5]));
-            let q = turn * quaternion(s);
-            s[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k]);
+            fraction *= 0.5;
+        }
+        if !lowered {
+            // Rounding (or a fold of the equations) stops the residual
+            // from falling: the state as it was.
+            y.copy_from_slice(&start);
+            break;
         }
     }
     let bodies = motions(y, offsets);
     let rows = active_rows(model, &bodies, drives);
+    let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
+    let size = 1.0 + y.iter().fold(0.0_f64, |most, value| most.max(value.abs()));
+    let allowed = Tolerance {
+        rtol: tolerance.rtol,
+        atol: tolerance.atol.max(ASSEMBLED * size),
+    };
+    if scaled(y, offsets, &change, 0, allowed) > 1.0 {
+        let (row, residual) = rows.iter().map(|row| row.value.abs()).enumerate().fold(
+            (0, 0.0),
+            |most, (index, value)| {
+                if value > most.1 { (index, value) } else { most }
+            },
+        );
+        return Err(Unassembled::Apart { row, residual });
+    }
     let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
     for ((change, motion), &offset) in change.iter().zip(&bodies).zip(offsets) {
         let s = &mut y[offset..];
@@ -340,6 +407,23 @@ pub(crate) fn project(
         s[10..13].copy_from_slice(in_body.as_slice());
     }
     Ok(before)
+}
+
+/// `y` set to `start` moved by `fraction` of the positions' `change` (per
+/// body, `[displacement | small rotation]` in ground).
+fn moved(y: &mut [f64], start: &[f64], offsets: &[usize], change: &[[f64; 6]], fraction: f64) {
+    y.copy_from_slice(start);
+    for (change, &offset) in change.iter().zip(offsets) {
+        let s = &mut y[offset..];
+        for k in 0..3 {
+            s[k] += fraction * change[k];
+        }
+        let turn = UnitQuaternion::from_scaled_axis(
+            fraction * Vector3::new(change[3], change[4], change[5]),
+        );
+        let q = turn * quaternion(s);
+        s[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k]);
+    }
 }
 
 /// The equations, each as (joint, equation), that repeat earlier ones at
@@ -373,4 +457,40 @@ pub(crate) fn find_redundant(model: &Model, y: &[f64], offsets: &[usize]) -> Vec
         }
     }
     redundant
+}
+
+/// The left-out equation (see [`find_redundant`]) furthest from zero at
+/// state `y`, when it is further than [`ASSEMBLED`] of the state's size:
+/// its joint (an index into the model's joints) and its value. An
+/// equation that repeats others to first order must also agree with them:
+/// a pin 0.4 m from where a second pin holds the same part is no
+/// redundancy but a model that cannot be assembled.
+pub(crate) fn disagreeing_redundant(
+    model: &Model,
+    y: &[f64],
+    offsets: &[usize],
+) -> Option<(usize, f64)> {
+    let bodies = motions(y, offsets);
+    let size = 1.0 + y.iter().fold(0.0_f64, |most, value| most.max(value.abs()));
+    model
+        .joints
+        .iter()
+        .enumerate()
+        .filter(|(_, joint)| !joint.redundant.is_empty())
+        .flat_map(|(index, joint)| {
+            let rows = joint_rows(model, joint, &bodies);
+            joint
+                .redundant
+                .iter()
+                .map(move |&equation| (index, rows[equation].value.abs()))
+                .collect::<Vec<_>>()
+        })
+        .filter(|(_, value)| *value > ASSEMBLED * size)
+        .fold(
+            None,
+            |most: Option<(usize, f64)>, (joint, value)| match most {
+                Some((_, largest)) if largest >= value => most,
+                _ => Some((joint, value)),
+            },
+        )
 }

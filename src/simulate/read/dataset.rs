@@ -189,19 +189,6 @@ fn linear_sum(terms: &[(f64, String)]) -> String {
     }
 }
 
-/// The end time and the number of output steps of a command file's
-/// `SIMULATE/DYNAMIC, END = ..., STEPS = ...`, with the statement's span.
-pub fn run_settings(commands: &Dataset) -> Option<(f64, usize, Span)> {
-    commands.statements.iter().find_map(|statement| {
-        if !is_kind(&statement.name, "SIMULATE") {
-            return None;
-        }
-        let end = number(statement, "END", f64::NAN).ok()?;
-        let steps = number(statement, "STEPS", f64::NAN).ok()?;
-        (steps.fract() == 0.0 && steps >= 0.0).then_some((end, steps as usize, statement.span))
-    })
-}
-
 struct Reader<'d> {
     dataset: &'d Dataset,
     report: &'d ModelCheck,

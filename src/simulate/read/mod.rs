@@ -3,13 +3,15 @@
 //! reported at its place. The command line and the embedding layer both
 //! read models here.
 
+mod commands;
 mod dataset;
 mod joints;
 mod motions;
 mod scene;
 mod units;
 
-pub use dataset::{from_dataset, run_settings};
+pub use commands::{RunCommands, run_settings};
+pub use dataset::from_dataset;
 pub use scene::from_scene;
 
 use std::path::Path;
@@ -76,5 +78,10 @@ pub fn run_settings_beside(path: &str) -> Result<Option<(f64, usize)>, String> {
     let text = std::fs::read_to_string(&commands)
         .map_err(|error| format!("cannot read {}: {error}", commands.display()))?;
     let dataset = model::read(&text, FileKind::Acf);
-    Ok(run_settings(&dataset).map(|(end, steps, _)| (end, steps)))
+    run_settings(&dataset)
+        .map(|run| run.map(|(end, steps, _)| (end, steps)))
+        .map_err(|(message, span)| {
+            let at = crate::Location::of(&text, span.start);
+            format!("{}:{at}: {message}", commands.display())
+        })
 }

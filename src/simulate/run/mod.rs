@@ -14,7 +14,10 @@ mod switch;
 pub use estimate::ErrorEstimate;
 pub use sink::{MethodChange, Sink};
 
-use super::constraints::{Component, Drives, JOINTS, Residuals, Tolerance, project};
+use super::constraints::{
+    Component, Drives, JOINTS, Residuals, Tolerance, Unassembled, disagreeing_redundant,
+    owner_of_row, project,
+};
 use super::equations::{BODY_STATES, Mechanics, body_offset};
 use super::error::SimulateError;
 use super::initial::initial_state;
@@ -132,6 +135,10 @@ pub struct Event {
     /// The values of the columns after `time` ([`crate::simulate::columns`])
     /// at the switch, on the branches it takes.
     pub values: Vec<f64>,
+    /// In a model with constraints, how far the state located at the
+    /// switch was off the joints before it was assembled again (the
+    /// consistent state the run goes on from); `None` without constraints.
+    pub residuals: Option<Residuals>,
 }
 
 /// What a run cost and found.
@@ -360,10 +367,17 @@ impl Simulation<'_> {
         let drives = Drives::new(model);
         let assemble = |y: &mut [f64], time: f64, tolerance: Tolerance| {
             let at = drives.at(time).unwrap_or_default();
-            project(model, y, &offsets, &at, &inverse_inertia, tolerance).map_err(|_| {
+            project(model, y, &offsets, &at, &inverse_inertia, tolerance).map_err(|error| {
+                let message = match error {
+                    Unassembled::Singular => "the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(),
+                    Unassembled::Apart { row, residual } => format!(
+                        "the joints cannot be assembled: {} stays off by {residual:.3e} after Newton's iterations (the parts cannot be placed as the joints and motions ask: check the markers' places and axes and the motions' values at this time)",
+                        owner_of_row(model, row)
+                    ),
+                };
                 SimulateError::Integration {
                     time,
-                    message: "the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(),
+                    message,
                     cause: None,
                 }
             })
@@ -375,14 +389,27 @@ impl Simulation<'_> {
         let initial_residuals = if !model.is_constrained() {
             Residuals::default()
         } else {
-            assemble(
+            let found = assemble(
                 &mut y0,
                 0.0,
                 Tolerance {
                     rtol: 0.0,
                     atol: 0.0,
                 },
-            )?
+            )?;
+            if let Some((joint, residual)) = disagreeing_redundant(model, &y0, &offsets) {
+                let joint = &model.joints[joint];
+                return Err(SimulateError::Integration {
+                    time: 0.0,
+                    message: format!(
+                        "the joints cannot be assembled: {}/{} repeats other joints' equations but disagrees with them by {residual:.3e} once they hold (its markers are not where the other joints put them)",
+                        joint.kind.statement(),
+                        joint.id
+                    ),
+                    cause: None,
+                });
+            }
+            found
         };
         let mut natural = vec![None; program.sites().len()];
         let mut switching = vec![0.0; program.switch_count()];
@@ -519,10 +546,12 @@ impl Simulation<'_> {
                 slope,
             )?;
             dense.copy_from_slice(&state);
+            let mut residuals = None;
             if model.is_constrained() {
                 let found = assemble(&mut dense, right, tolerance)?;
                 summary.residuals = summary.residuals.max(found);
                 summary.projections += usize::from(dense != state);
+                residuals = Some(found);
             }
             system
                 .mechanics
@@ -543,6 +572,7 @@ impl Simulation<'_> {
             let values = rows.at(right, &dense).map_err(|error| fail(right, error))?;
             for event in &mut summary.events[first_event..] {
                 event.values = values.to_vec();
+                event.residuals = residuals;
                 if sink.event(event).is_break() {
                     summary.stopped = true;
                 }
@@ -677,6 +707,7 @@ impl Simulation<'_> {
             from,
             to,
             values: Vec::new(),
+            residuals: None,
         }
     }
 

@@ -1,0 +1,107 @@
+//! The run a command file (`.acf`) asks for: its `SIMULATE` commands in
+//! order, as one run from time 0 with equally spaced outputs.
+
+use crate::model::Dataset;
+use crate::model::initial::number;
+use crate::model::vocabulary::{COMMANDS, statement_name};
+use crate::span::Span;
+
+/// The most output steps a command file may ask for (a hundred million
+/// rows; DTOUT = 1e-300 would otherwise ask for a run without end).
+pub const MOST_OUTPUT_STEPS: usize = 100_000_000;
+
+/// A command file's run: its end time, its number of output steps and the
+/// span of its last SIMULATE command.
+pub type RunCommands = (f64, usize, Span);
+
+/// The end time and the number of output steps of a command file's
+/// `SIMULATE/DYNAMIC` (or `TRANSIENT`, `KINEMATIC`) commands, with the span
+/// of the last: `END = t` or `DURATION = d` (from the end of the command
+/// before), and `STEPS = n` or `DTOUT = dt`. Several commands run on one
+/// after the other, so they make one run when their outputs are equally
+/// spaced. `Ok(None)` when no command gives a run; an error, with the
+/// command's place, for a command mbexpr does not carry out:
+/// `SIMULATE/STATICS` (a static equilibrium), commands whose output steps
+/// differ, or a command without its end or its steps.
+pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, Span)> {
+    let mut end = 0.0;
+    let mut interval: Option<f64> = None;
+    let mut last = None;
+    for statement in &commands.statements {
+        if statement_name(&statement.name, COMMANDS) != Some("SIMULATE") {
+            continue;
+        }
+        let label = "SIMULATE";
+        if statement.argument("STATICS", 4).is_some() || statement.argument("STATIC", 4).is_some() {
+            return Err((
+                format!(
+                    "{label}/STATICS: mbexpr does not compute a static equilibrium; its dynamics start from the model's initial conditions, assembled on the joints (delete the command to run them so, or give --end and --steps)"
+                ),
+                statement.span,
+            ));
+        }
+        let dynamic = ["DYNAMIC", "TRANSIENT", "KINEMATIC"]
+            .iter()
+            .any(|kind| statement.argument(kind, 3).is_some());
+        if !dynamic {
+            // SIMULATE/INITIAL_CONDITIONS: mbexpr assembles the start anyway.
+            continue;
+        }
+        let given = |keyword: &str| {
+            statement
+                .argument(keyword, keyword.len())
+                .and_then(|_| number(statement, keyword, f64::NAN).ok())
+        };
+        let segment_end = match (given("END"), given("DURATION")) {
+            (Some(at), _) => at,
+            (None, Some(duration)) => end + duration,
+            (None, None) => {
+                return Err((
+                    format!("{label}: give END = the end time (or DURATION = how long)"),
+                    statement.span,
+                ));
+            }
+        };
+        let length = segment_end - end;
+        let step = match (given("STEPS"), given("DTOUT")) {
+            (Some(steps), _) if steps >= 1.0 && steps.fract() == 0.0 && length > 0.0 => {
+                length / steps
+            }
+            (None, Some(dtout)) if dtout > 0.0 && length > 0.0 => dtout,
+            _ => {
+                return Err((
+                    format!(
+                        "{label}: give STEPS = a whole number of output steps (or DTOUT = the time between outputs), and an END after the last command's"
+                    ),
+                    statement.span,
+                ));
+            }
+        };
+        if let Some(before) = interval
+            && (step - before).abs() > 1e-9 * before
+        {
+            return Err((
+                format!(
+                    "{label}: its outputs are {step} apart, the commands' before it {before}: mbexpr writes one run's outputs equally spaced (give the commands one output step, or --end and --steps)"
+                ),
+                statement.span,
+            ));
+        }
+        interval = Some(step);
+        end = segment_end;
+        last = Some(statement.span);
+    }
+    let (Some(step), Some(span)) = (interval, last) else {
+        return Ok(None);
+    };
+    let steps = (end / step).round();
+    if steps > MOST_OUTPUT_STEPS as f64 {
+        return Err((
+            format!(
+                "SIMULATE: {steps:.3e} output steps to END = {end} (at most {MOST_OUTPUT_STEPS}: give fewer STEPS or a larger DTOUT)"
+            ),
+            span,
+        ));
+    }
+    Ok(Some((end, steps as usize, span)))
+}
