@@ -3,6 +3,7 @@
 //! Each stage has a module with one `check(input) -> String` helper and its
 //! cases as data, one per line.
 
+mod accelerations;
 mod architecture;
 mod checker;
 mod cli;

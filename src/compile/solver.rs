@@ -1,7 +1,8 @@
 //! Results of a running solver as program inputs: a call such as
 //! `JOINT(1, 0, 4, 0)` compiled by [`super::compile_run_outputs`] becomes
 //! the input of that name, whose value the simulation gives at each
-//! evaluation.
+//! evaluation; so does a measure of accelerations, `ACCY(3, 1)`
+//! ([`AccelerationCall`]).
 
 use crate::catalog::Function;
 use crate::check::{Argument, Reference};
@@ -92,5 +93,93 @@ impl SolverCall {
     /// The marker `rm` in `scene`.
     pub fn rm_in(&self, scene: &Scene) -> Option<Target> {
         scene.find_marker(&self.rm).ok()
+    }
+}
+
+/// A measure of the bodies' accelerations, `ACCX` ... `WDTM`, that a
+/// running solver gives: the accelerations come from the right-hand side
+/// (after the joints' solve), which no scene of a model holds.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct AccelerationCall {
+    /// `ACCX ACCY ACCZ ACCM WDTX WDTY WDTZ WDTM`.
+    pub function: Function,
+    /// The markers `i, j, k, l` as written, as many as the signature has;
+    /// an omitted one is `0` (ground).
+    pub markers: Vec<Reference>,
+}
+
+impl AccelerationCall {
+    /// The functions whose calls become inputs.
+    pub const FUNCTIONS: [Function; 8] = [
+        Function::Accx,
+        Function::Accy,
+        Function::Accz,
+        Function::Accm,
+        Function::Wdtx,
+        Function::Wdty,
+        Function::Wdtz,
+        Function::Wdtm,
+    ];
+
+    /// The input's name: the call with every marker, `ACCY(3,1,0,0)`.
+    pub fn input_name(&self) -> String {
+        let markers: Vec<String> = self.markers.iter().map(ToString::to_string).collect();
+        format!("{}({})", self.function.name(), markers.join(","))
+    }
+
+    /// The markers in `scene`, or the first one it does not have.
+    pub fn markers_in(&self, scene: &Scene) -> Result<Vec<Target>, String> {
+        self.markers
+            .iter()
+            .map(|marker| {
+                scene
+                    .find_marker(marker)
+                    .map_err(|_| format!("the model has no marker {marker}"))
+            })
+            .collect()
+    }
+}
+
+/// A value a running solver gives a program as an input.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum RunCall {
+    /// A reaction or a force element's force.
+    Reaction(SolverCall),
+    /// A measure of accelerations.
+    Acceleration(AccelerationCall),
+}
+
+impl RunCall {
+    /// The input's name (no name of the language has a parenthesis).
+    pub fn input_name(&self) -> String {
+        match self {
+            RunCall::Reaction(call) => call.input_name(),
+            RunCall::Acceleration(call) => call.input_name(),
+        }
+    }
+
+    /// The call an input named by [`RunCall::input_name`] stands for.
+    pub fn parse(name: &str) -> Option<RunCall> {
+        if let Some(call) = SolverCall::parse(name) {
+            return Some(RunCall::Reaction(call));
+        }
+        let (function, rest) = name.split_once('(')?;
+        let function = Function::lookup(function)?;
+        if !AccelerationCall::FUNCTIONS.contains(&function) {
+            return None;
+        }
+        let markers = rest
+            .strip_suffix(')')?
+            .split(',')
+            .map(|marker| {
+                marker
+                    .parse()
+                    .map_or_else(|_| Reference::Name(marker.to_string()), Reference::Id)
+            })
+            .collect();
+        Some(RunCall::Acceleration(AccelerationCall {
+            function,
+            markers,
+        }))
     }
 }
