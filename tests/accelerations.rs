@@ -22,6 +22,29 @@ fn turned(row: &[f64]) -> (UnitQuaternion<f64>, Vector3<f64>) {
     (q, Vector3::new(row[11], row[12], row[13]))
 }
 
+/// The largest difference between the outputs of each row and what
+/// `expected` gives for the row, each over the scale it gives with them.
+fn worst<const N: usize>(rows: &[Vec<f64>], expected: impl Fn(&[f64]) -> ([f64; N], f64)) -> f64 {
+    let mut worst: f64 = 0.0;
+    for row in rows {
+        let (expected, scale) = expected(row);
+        for (found, expected) in row[FIRST..].iter().zip(expected) {
+            worst = worst.max((found - expected).abs() / scale);
+        }
+    }
+    worst
+}
+
+/// The pendulum's centre of mass from the pivot, its angular velocity and
+/// its angular acceleration `r × m g / (Izz + m d²)` (the moment of gravity
+/// along −y about the pivot), from a row's state columns.
+fn swing(row: &[f64], m: f64, d: f64, izz: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+    let (q, omega) = turned(row);
+    let r = q * Vector3::new(d, 0.0, 0.0);
+    let alpha = r.cross(&Vector3::new(0.0, -G * m, 0.0)) / (izz + m * d * d);
+    (r, omega, alpha)
+}
+
 /// A ball thrown from ground's origin at (3, 4, 0) m/s under gravity along
 /// −y, spinning at ω = (1, 0, 2) rad/s (a sphere's inertia: ω stays).
 /// Its centre accelerates at `g` in ground, with no angular acceleration;
@@ -44,8 +67,7 @@ END
     let run = run(text, &settings(1.0, 10, 1e-11)).expect("the ball flies");
     let omega = Vector3::new(1.0, 0.0, 2.0);
     let g = Vector3::new(0.0, -G, 0.0);
-    let mut worst: f64 = 0.0;
-    for row in &run.rows {
+    let worst = worst(&run.rows, |row| {
         let t = row[0];
         let (q, _) = turned(row);
         let p = Vector3::new(3.0 * t, 4.0 * t - G * t * t / 2.0, 0.0);
@@ -62,10 +84,8 @@ END
             spinning.dot(&(q * Vector3::y())),
             -G,
         ];
-        for (found, expected) in row[FIRST..].iter().zip(expected) {
-            worst = worst.max((found - expected).abs());
-        }
-    }
+        (expected, 1.0)
+    });
     println!("falling ball: largest difference {worst:.2e} m/s²");
     assert!(worst < 1e-8, "{worst}");
 }
@@ -87,12 +107,8 @@ fn a_pendulums_centre_accelerates_centripetally_and_tangentially() {
 END",
     );
     let run = run(&text, &settings(2.0, 40, 1e-10)).expect("the pendulum swings");
-    let g = Vector3::new(0.0, -G, 0.0);
-    let mut worst: f64 = 0.0;
-    for row in &run.rows {
-        let (q, omega) = turned(row);
-        let r = q * Vector3::new(d, 0.0, 0.0);
-        let alpha = r.cross(&(g * m)) / (izz + m * d * d);
+    let worst = worst(&run.rows, |row| {
+        let (r, omega, alpha) = swing(row, m, d, izz);
         let a = alpha.cross(&r) + omega.cross(&omega.cross(&r));
         let expected = [
             a.x,
@@ -104,11 +120,8 @@ END",
             0.0,
             alpha.z,
         ];
-        let scale = 1.0 + a.norm();
-        for (found, expected) in row[FIRST..].iter().zip(expected) {
-            worst = worst.max((found - expected).abs() / scale);
-        }
-    }
+        (expected, 1.0 + a.norm())
+    });
     println!("pendulum accelerations: worst relative difference {worst:.2e}");
     assert!(worst < 1e-7, "{worst}");
 }
@@ -139,17 +152,12 @@ END
     let last = turned(&run.rows[run.rows.len() - 1]).1.z;
     let alpha = (last - first) / duration;
     assert!((alpha.abs() - 2.5).abs() < 1e-8, "{alpha}");
-    let mut worst: f64 = 0.0;
-    for row in &run.rows {
+    let worst = worst(&run.rows, |row| {
         let (q, omega) = turned(row);
         let r = q * Vector3::new(0.5, 0.0, 0.0);
         let a = Vector3::new(0.0, 0.0, alpha).cross(&r) + omega.cross(&omega.cross(&r));
-        let expected = [a.x, a.y, a.norm(), 0.0, 0.0, alpha, 0.0];
-        let scale = 1.0 + a.norm();
-        for (found, expected) in row[FIRST..].iter().zip(expected) {
-            worst = worst.max((found - expected).abs() / scale);
-        }
-    }
+        ([a.x, a.y, a.norm(), 0.0, 0.0, alpha, 0.0], 1.0 + a.norm())
+    });
     println!("spun-up part: worst relative difference {worst:.2e}");
     assert!(worst < 1e-8, "{worst}");
 }
@@ -168,4 +176,37 @@ fn a_force_reading_an_acceleration_is_refused_at_the_call() {
         error.contains("ACCX(20,0,0,0): a force, DIFF or MOTION that reads an acceleration"),
         "{error}"
     );
+}
+
+/// A REQUEST of ACCELERATION gives Adams' columns `ACCM ACCX ACCY ACCZ
+/// WDTM WDTX WDTY WDTZ` of I against J (derivatives in ground) along RM's
+/// axes: the pendulum's centre against the pivot, along the part's own
+/// axes, is `(−ω² d, α d, 0)` with `α` from the moment about the pivot.
+#[test]
+fn a_request_of_acceleration_gives_adams_columns() {
+    let (m, d, izz) = (2.0, 0.5, 0.03);
+    let text = pendulum(m, d, izz).replace(
+        "END",
+        "REQUEST/1, ACCELERATION, I = 20, J = 1, RM = 20\nEND",
+    );
+    let model = super::simulate::model_of(&text).expect("the pendulum reads");
+    insta::assert_snapshot!(mbexpr::simulate::columns(&model)[FIRST..].join(" "));
+    let run = run(&text, &settings(2.0, 40, 1e-10)).expect("the pendulum swings");
+    let worst = worst(&run.rows, |row| {
+        let (_, omega, alpha) = swing(row, m, d, izz);
+        let (radial, tangential) = (-omega.norm_squared() * d, alpha.z * d);
+        let expected = [
+            radial.hypot(tangential),
+            radial,
+            tangential,
+            0.0,
+            alpha.z.abs(),
+            0.0,
+            0.0,
+            alpha.z,
+        ];
+        (expected, 1.0)
+    });
+    println!("REQUEST of ACCELERATION: largest difference {worst:.2e}");
+    assert!(worst < 1e-9, "{worst}");
 }

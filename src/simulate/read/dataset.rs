@@ -846,9 +846,10 @@ impl Reader<'_> {
     /// 0 or left out), the vectors along RM's axes (ground's when 0 or left
     /// out): DISPLACEMENT `DM DX DY DZ PSI THETA PHI` (the body-fixed 3-1-3
     /// angles of I from J, in radians), VELOCITY `VM VX VY VZ WM WX WY WZ`
-    /// (derivatives in ground). ACCELERATION and FORCE are refused at the
-    /// statement: their measures have no value during a run yet. `false`
-    /// when it is of no standard kind.
+    /// (derivatives in ground), ACCELERATION `ACCM ACCX ACCY ACCZ WDTM WDTX
+    /// WDTY WDTZ` (derivatives in ground). FORCE is refused at the
+    /// statement: the net forces between markers have no value during a run
+    /// yet. `false` when it is of no standard kind.
     fn standard_request(&mut self, index: usize, outputs: &mut Vec<Output>) -> bool {
         let dataset = self.dataset;
         let statement = &dataset.statements[index];
@@ -890,15 +891,20 @@ impl Reader<'_> {
                 ("WY", true),
                 ("WZ", true),
             ],
+            "ACCELERATION" => &[
+                ("ACCM", false),
+                ("ACCX", true),
+                ("ACCY", true),
+                ("ACCZ", true),
+                ("WDTM", false),
+                ("WDTX", true),
+                ("WDTY", true),
+                ("WDTZ", true),
+            ],
             _ => {
-                let missing = if kind == "FORCE" {
-                    "the net forces between markers (FX ...)"
-                } else {
-                    "the accelerations of markers (ACCX ...)"
-                };
                 self.refuse(
                     format!(
-                        "{}: a REQUEST of {kind} is not computed: {missing} have no value during a run yet (write its F1 ... F8 with the reactions JOINT(...), MOTION(...) or the measures instead)",
+                        "{}: a REQUEST of {kind} is not computed: the net forces between markers (FX ...) have no value during a run yet (write its F1 ... F8 with the reactions JOINT(...), MOTION(...) or the measures instead)",
                         statement.label()
                     ),
                     statement.span,
@@ -947,7 +953,7 @@ impl Reader<'_> {
             }
             if !any && !self.standard_request(index, &mut outputs) {
                 notes.push((
-                    format!("{label} is not computed: simulate writes a REQUEST's F1 ... F8 expressions, or its DISPLACEMENT or VELOCITY (write DX(i, j), VX(i, j) ... there)"),
+                    format!("{label} is not computed: simulate writes a REQUEST's F1 ... F8 expressions, or its DISPLACEMENT, VELOCITY or ACCELERATION (write DX(i, j), VX(i, j) ... there)"),
                     statement.span,
                 ));
             }
