@@ -22,9 +22,13 @@ fn turned(row: &[f64]) -> (UnitQuaternion<f64>, Vector3<f64>) {
     (q, Vector3::new(row[11], row[12], row[13]))
 }
 
-/// The largest difference between the outputs of each row and what
-/// `expected` gives for the row, each over the scale it gives with them.
-fn worst<const N: usize>(rows: &[Vec<f64>], expected: impl Fn(&[f64]) -> ([f64; N], f64)) -> f64 {
+/// The largest difference between the outputs of each row (the columns
+/// after one part's) and what `expected` gives for the row, each over the
+/// scale it gives with them.
+pub(super) fn worst<const N: usize>(
+    rows: &[Vec<f64>],
+    expected: impl Fn(&[f64]) -> ([f64; N], f64),
+) -> f64 {
     let mut worst: f64 = 0.0;
     for row in rows {
         let (expected, scale) = expected(row);

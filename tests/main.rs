@@ -12,6 +12,7 @@ mod diagnostics;
 mod documents;
 mod eval;
 mod ffi;
+mod force_values;
 mod integrate;
 mod integrate_problems;
 mod joint_kinds;

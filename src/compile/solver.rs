@@ -8,13 +8,14 @@ use crate::catalog::Function;
 use crate::check::{Argument, Reference};
 use crate::scene::{Scene, Target};
 
-/// A reaction a running solver computes: `JOINT`, `JPRIM` or `MOTION` with
-/// its statement id, `jflag` (0: on the I marker, 1: on the J marker),
+/// A reaction or a force a running solver computes: `JOINT`, `JPRIM` or
+/// `MOTION`, `SFORCE`, `VFORCE`, `VTORQ`, `GFORCE` or `BUSH`, with its
+/// statement id, `jflag` (0: on the I marker, 1: on the J marker),
 /// component (1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty Tz`) and the
 /// marker `rm` whose axes the components are along.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct SolverCall {
-    /// `JOINT`, `JPRIM` or `MOTION`.
+    /// `JOINT`, `JPRIM`, `MOTION` or a force element's function.
     pub function: Function,
     /// The statement id.
     pub id: u64,
@@ -28,7 +29,16 @@ pub struct SolverCall {
 
 impl SolverCall {
     /// The functions whose calls become inputs.
-    pub const FUNCTIONS: [Function; 3] = [Function::Joint, Function::Jprim, Function::Motion];
+    pub const FUNCTIONS: [Function; 8] = [
+        Function::Joint,
+        Function::Jprim,
+        Function::Motion,
+        Function::Sforce,
+        Function::Vforce,
+        Function::Vtorq,
+        Function::Gforce,
+        Function::Bush,
+    ];
 
     /// The call of `function` with `args`, when it is one of
     /// [`SolverCall::FUNCTIONS`] with an id, two flags and a marker.

@@ -195,10 +195,23 @@ impl<'m> Simulation<'m> {
     }
 }
 
-/// Refuses a reaction or an acceleration read by a motion, a force or a
-/// DIFF.
+/// Refuses a reaction, a force element's value or an acceleration read by
+/// a motion, a force or a DIFF.
 fn no_reaction(call: &crate::compile::RunCall) -> Result<(), String> {
     Err(match call {
+        crate::compile::RunCall::Reaction(reaction)
+            if !matches!(
+                reaction.function,
+                crate::catalog::Function::Joint
+                    | crate::catalog::Function::Jprim
+                    | crate::catalog::Function::Motion
+            ) =>
+        {
+            format!(
+                "{}: a force, DIFF or MOTION that reads a force element's value is not simulated: the forces are applied together, not in an order one could read another's in; REQUESTs and VARIABLEs read them",
+                call.input_name()
+            )
+        }
         crate::compile::RunCall::Reaction(_) => format!(
             "{}: a force, DIFF or MOTION that reads a reaction (joint friction) is not simulated: its value and the multipliers would have to be solved together; REQUESTs and VARIABLEs read reactions",
             call.input_name()

@@ -77,36 +77,60 @@ impl Component {
                 call.id
             ));
         };
-        let on_j = match call.jflag {
-            0 => false,
-            1 => true,
-            other => {
-                return Err(format!(
-                    "{written}: jflag must be 0 (the reaction on the I marker) or 1 (on the J marker), not {other}"
-                ));
-            }
-        };
-        let component = match usize::try_from(call.component) {
-            Ok(component @ 1..=8) => component,
-            _ => {
-                return Err(format!(
-                    "{written}: comp must be 1 to 8 (|F|, Fx, Fy, Fz, |T|, Tx, Ty, Tz), not {}",
-                    call.component
-                ));
-            }
-        };
-        let Some(rm) = call.rm_in(&model.scene) else {
-            return Err(format!(
-                "{written}: the model has no marker {} (rm)",
-                call.rm
-            ));
-        };
+        let (on_j, component, rm) = flags(model, call, "reaction")?;
         Ok(Component {
             holder,
             on_j,
             component,
             rm,
         })
+    }
+}
+
+/// The side (`true` for jflag 1, the J marker), component and `rm` marker
+/// of `call` in `model`, or why they cannot be had; `what` is what is on
+/// the marker ("reaction", "force").
+pub(crate) fn flags(
+    model: &Model,
+    call: &SolverCall,
+    what: &str,
+) -> Result<(bool, usize, Target), String> {
+    let written = call.input_name();
+    let on_j = match call.jflag {
+        0 => false,
+        1 => true,
+        other => {
+            return Err(format!(
+                "{written}: jflag must be 0 (the {what} on the I marker) or 1 (on the J marker), not {other}"
+            ));
+        }
+    };
+    let component = match usize::try_from(call.component) {
+        Ok(component @ 1..=8) => component,
+        _ => {
+            return Err(format!(
+                "{written}: comp must be 1 to 8 (|F|, Fx, Fy, Fz, |T|, Tx, Ty, Tz), not {}",
+                call.component
+            ));
+        }
+    };
+    let Some(rm) = call.rm_in(&model.scene) else {
+        return Err(format!(
+            "{written}: the model has no marker {} (rm)",
+            call.rm
+        ));
+    };
+    Ok((on_j, component, rm))
+}
+
+/// Component `component` (1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty
+/// Tz`) of `force` and `torque`.
+pub(crate) fn pick(force: &Vector3<f64>, torque: &Vector3<f64>, component: usize) -> f64 {
+    match component {
+        1 => force.norm(),
+        5 => torque.norm(),
+        component @ 2..=4 => force[component - 2],
+        component => torque[component - 6],
     }
 }
 
@@ -249,11 +273,6 @@ impl Reactions {
             axes.transpose() * force * sign,
             axes.transpose() * torque * sign,
         );
-        match component.component {
-            1 => force.norm(),
-            5 => torque.norm(),
-            component @ 2..=4 => force[component - 2],
-            component => torque[component - 6],
-        }
+        pick(&force, &torque, component.component)
     }
 }

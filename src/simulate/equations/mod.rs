@@ -23,6 +23,7 @@
 
 mod accelerations;
 mod bodies;
+mod element_values;
 mod forces;
 mod sparsity;
 
@@ -43,6 +44,7 @@ use crate::simulate::model::Model;
 use accelerations::{Accelerations, Measure};
 pub(crate) use bodies::{BODY_STATES, body_offset};
 use bodies::{Kinematics, Loads};
+use element_values::{ELEMENT_FUNCTIONS, ElementComponent};
 use sparsity::Sparsity;
 
 /// Where a program input's value comes from.
@@ -262,10 +264,28 @@ impl<'m> Mechanics<'m> {
         } else {
             None
         };
-        let model = self.equations.model;
+        // The force elements' values: the program's outputs at (t, y).
+        let equations = &self.equations;
+        let kinematics = equations.kinematics(y);
+        if values
+            .iter()
+            .any(|value| matches!(value, RunValue::Element(_)))
+        {
+            let inputs = &mut self.buffers.inputs;
+            fill_inputs(&equations.sources, t, y, &kinematics, &[], inputs);
+            reorient(&mut self.values, &kinematics);
+            self.values
+                .outputs(inputs, None, &mut self.buffers.outputs)?;
+        }
+        let outputs = &self.buffers.outputs;
+        let expression_value = |expression| equations.value_of(outputs, expression);
+        let model = equations.model;
         values
             .iter()
             .map(|value| match (value, &reactions, &accelerations) {
+                (RunValue::Element(component), _, _) => {
+                    Ok(component.value(model, &kinematics, &expression_value))
+                }
                 (RunValue::Reaction(component), Some(reactions), _) => {
                     Ok(reactions.value(model, component))
                 }
@@ -377,12 +397,21 @@ pub(crate) enum RunValue {
     Reaction(Component),
     /// A measure of accelerations.
     Acceleration(Measure),
+    /// A force element's force or torque.
+    Element(ElementComponent),
 }
 
 impl RunValue {
     /// The value `call` asks of `model`, or why it has none.
     pub(crate) fn of(model: &Model, call: &RunCall) -> Result<RunValue, String> {
         match call {
+            RunCall::Reaction(call)
+                if ELEMENT_FUNCTIONS
+                    .iter()
+                    .any(|(function, _)| *function == call.function) =>
+            {
+                ElementComponent::of(model, call).map(RunValue::Element)
+            }
             RunCall::Reaction(call) => Component::of(model, call).map(RunValue::Reaction),
             RunCall::Acceleration(call) => Measure::of(model, call).map(RunValue::Acceleration),
         }
@@ -473,6 +502,14 @@ struct Equations<'m> {
 }
 
 impl Equations<'_> {
+    /// The value of `expression` among the program's `outputs` (zero for
+    /// no expression).
+    fn value_of<T: Number>(&self, outputs: &[T], expression: Option<usize>) -> T {
+        expression
+            .and_then(|expression| self.output_of[expression])
+            .map_or_else(T::zero, |output| outputs[output].clone())
+    }
+
     fn kinematics<T: Number>(&self, y: &[T]) -> Vec<Kinematics<T>> {
         if self.model.scene.bodies.is_empty() {
             return Vec::new();
@@ -540,11 +577,7 @@ impl Equations<'_> {
             force: vec![Vector3::zeros(); bodies],
             torque: vec![Vector3::zeros(); bodies],
         };
-        let value = |expression: Option<usize>| {
-            expression
-                .and_then(|expression| self.output_of[expression])
-                .map_or_else(T::zero, |output| outputs[output].clone())
-        };
+        let value = |expression: Option<usize>| self.value_of(outputs, expression);
         for force in &model.forces {
             forces::apply(model, force, &kinematics, &value, &mut loads);
         }

@@ -64,25 +64,20 @@ const LEFT_ASIDE: [&str; 20] = [
 /// Solver settings that the simulator's own settings replace.
 const SOLVER_SETTINGS: [&str; 3] = ["INTEGRATOR", "DYNAMICS", "SIMULATE"];
 
-/// The statements the simulator reads.
-const SIMULATED: [&str; 17] = [
-    "PART",
-    "MARKER",
-    "DIFF",
+/// The force elements' statements, as the model names them.
+const FORCE_ELEMENTS: [&str; 6] = [
     "SFORCE",
     "VFORCE",
     "VTORQUE",
     "GFORCE",
     "BUSHING",
     "SPRINGDAMPER",
-    "ACCGRAV",
-    "VARIABLE",
-    "ARRAY",
-    "SPLINE",
-    "REQUEST",
-    "JOINT",
-    "JPRIM",
-    "MOTION",
+];
+
+/// The statements the simulator reads besides [`FORCE_ELEMENTS`].
+const SIMULATED: [&str; 11] = [
+    "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
+    "JPRIM", "MOTION",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -105,7 +100,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
                 ),
                 statement.span,
             ));
-        } else if !kind(&SIMULATED) && !kind(&LEFT_ASIDE) {
+        } else if !kind(&SIMULATED) && !kind(&FORCE_ELEMENTS) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
                 reason: "is not among the elements mbexpr integrates (PART, JOINT, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, ACCGRAV)"
@@ -227,7 +222,7 @@ impl Reader<'_> {
     fn model(&mut self, mut notes: Vec<(String, Span)>) -> Model {
         let masses = self.masses();
         let diffs = self.diffs();
-        let forces = self.forces();
+        let (forces, force_statements) = self.forces();
         let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
         let (motions, marker_motions) = self.motions(&joints);
         let gravity = self.gravity();
@@ -237,6 +232,7 @@ impl Reader<'_> {
             masses,
             diffs,
             forces,
+            force_statements,
             joints,
             motions,
             marker_motions,
@@ -592,30 +588,30 @@ impl Reader<'_> {
         diffs
     }
 
-    fn forces(&mut self) -> Vec<Force> {
+    /// The force elements, with the statement (its kind as
+    /// [`FORCE_ELEMENTS`] spells it) and id of each.
+    fn forces(&mut self) -> (Vec<Force>, Vec<(&'static str, u64)>) {
         let floating: HashMap<u64, Option<usize>> = self.floating_markers();
         let mut forces = Vec::new();
-        let elements: Vec<usize> = self
+        let elements: Vec<(usize, &'static str)> = self
             .dataset
             .statements
             .iter()
             .enumerate()
-            .filter(|(_, statement)| {
-                [
-                    "SFORCE",
-                    "VFORCE",
-                    "VTORQUE",
-                    "GFORCE",
-                    "BUSHING",
-                    "SPRINGDAMPER",
-                ]
-                .iter()
-                .any(|kind| is_kind(&statement.name, kind))
+            .filter_map(|(index, statement)| {
+                FORCE_ELEMENTS
+                    .into_iter()
+                    .find(|kind| is_kind(&statement.name, kind))
+                    .map(|kind| (index, kind))
             })
-            .map(|(index, _)| index)
             .collect();
-        for index in elements {
+        // The statement of each force, filled as the next element starts.
+        let mut statements = Vec::new();
+        let mut current = ("", 0);
+        for (index, kind) in elements {
+            statements.resize(forces.len(), current);
             let dataset = self.dataset;
+            current = (kind, dataset.statements[index].id.unwrap_or(0));
             let statement = &dataset.statements[index];
             let Some(i) = self.marker(statement, "I") else {
                 continue;
@@ -685,7 +681,8 @@ impl Reader<'_> {
                 torque,
             });
         }
-        forces
+        statements.resize(forces.len(), current);
+        (forces, statements)
     }
 
     /// A BUSHING or a SPRINGDAMPER between markers `i` and `j` of
