@@ -214,3 +214,29 @@ fn a_request_of_acceleration_gives_adams_columns() {
     println!("REQUEST of ACCELERATION: largest difference {worst:.2e}");
     assert!(worst < 1e-9, "{worst}");
 }
+
+/// `DIF1(id)` in a run is the rate the right-hand side computes for the
+/// DIFF: a DIFF `2 t + DX(20)` beside a part moving at 3 m/s along x
+/// integrates to `2.5 t²`, and VARIABLE/1 = DIF1(1) is `5 t`.
+#[test]
+fn dif1_in_a_run_is_the_diffs_rate() {
+    let text = "rate
+PART/1, GROUND
+PART/2, MASS = 1, CM = 20, IP = 1, 1, 1, VX = 3
+MARKER/20, PART = 2
+DIFF/1, IC = 0, FUNCTION = 2 * TIME + DX(20)
+VARIABLE/1, FUNCTION = DIF1(1)
+END
+";
+    let run = run(text, &settings(2.0, 20, 1e-11)).expect("the DIFF runs");
+    let mut worst: f64 = 0.0;
+    for row in &run.rows {
+        let t = row[0];
+        // time, DIF(1), 13 of the part, VARIABLE/1.
+        worst = worst
+            .max((row[1] - 2.5 * t * t).abs())
+            .max((row[15] - 5.0 * t).abs());
+    }
+    println!("DIF1: largest difference {worst:.2e}");
+    assert!(worst < 1e-9, "{worst}");
+}
