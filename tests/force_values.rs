@@ -4,6 +4,8 @@
 //! `−K d` and the moment arm `−(I − J) × F` of its reaction on J), and
 //! refused in a force.
 
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+
 use super::accelerations::worst;
 use super::simulate::{run, settings};
 
@@ -95,4 +97,68 @@ END
         let error = run(&text, &settings(1.0, 1, 1e-8)).err().expect("refused");
         assert!(error.contains(expected), "{line}: {error}");
     }
+}
+
+/// The joints tests' pendulum (2 kg, centre 0.5 m from its revolute pivot,
+/// Izz 0.03, gravity along −y) turned by a constant torque of 0.3 N·m
+/// about z (SFORCE/1, ROTATIONAL, I = 21 on the pendulum at the pivot, J =
+/// 1 on ground): the net force at 21 from 1 (the joint's and the torque's)
+/// is Newton's `m (a − g)` with `α = (r × m g + 0.3) / (Izz + m d²)`, its
+/// torque about z the applied 0.3 (the revolute takes none about its
+/// axis); at 1 from 21 the opposite; FM(21) with J left out sums all at 21.
+/// REQUEST/2, FORCE gives the same at 21 from 1 in Adams' columns `FM FX
+/// FY FZ TM TX TY TZ` (the motion is planar: no force along z, no torque
+/// across it).
+#[test]
+fn the_net_force_between_markers_sums_the_joint_and_the_torque() {
+    let (m, d, izz) = (2.0, 0.5, 0.03);
+    let text = super::joints::pendulum(m, d, izz).replace(
+        "END",
+        "SFORCE/1, ROTATIONAL, I = 21, J = 1, FUNCTION = 0.3
+REQUEST/1, F1 = FX(21, 1), F2 = FY(21, 1), F3 = TZ(21, 1), F4 = FX(1, 21)
+, F5 = FY(1, 21), F6 = TZ(1, 21), F7 = FM(21), F8 = TM(21, 1)
+REQUEST/2, FORCE, I = 21, J = 1
+END",
+    );
+    let model = super::simulate::model_of(&text).expect("the pendulum reads");
+    insta::assert_snapshot!(mbexpr::simulate::columns(&model)[FIRST + 8..].join(" "));
+    let swinging = run(&text, &settings(2.0, 40, 1e-10)).expect("the pendulum swings");
+    let gravity = Vector3::new(0.0, -9.80665, 0.0);
+    let worst = worst(&swinging.rows, |row| {
+        let q = UnitQuaternion::from_quaternion(Quaternion::new(row[4], row[5], row[6], row[7]));
+        let omega = Vector3::new(row[11], row[12], row[13]);
+        let r = q * Vector3::new(d, 0.0, 0.0);
+        let alpha = (r.cross(&(gravity * m)) + Vector3::new(0.0, 0.0, 0.3)) / (izz + m * d * d);
+        let a = alpha.cross(&r) + omega.cross(&omega.cross(&r));
+        let joint = (a - gravity) * m;
+        let expected = [
+            joint.x,
+            joint.y,
+            0.3,
+            -joint.x,
+            -joint.y,
+            -0.3,
+            joint.norm(),
+            0.3,
+            joint.norm(),
+            joint.x,
+            joint.y,
+            0.0,
+            0.3,
+            0.0,
+            0.0,
+            0.3,
+        ];
+        (expected, 1.0 + joint.norm())
+    });
+    println!("net force: worst relative difference {worst:.2e}");
+    assert!(worst < 1e-7, "{worst}");
+    let reading = text.replace("FUNCTION = 0.3", "FUNCTION = 0.3 + 0.01 * FX(21, 1)");
+    let error = run(&reading, &settings(1.0, 1, 1e-8))
+        .err()
+        .expect("refused");
+    assert!(
+        error.contains("FX(21,1,0): a force, DIFF or MOTION that reads a reaction"),
+        "{error}"
+    );
 }

@@ -13,7 +13,7 @@ pub use crate::ops::{FrameArg, Op, Slot};
 pub use error::CompileError;
 pub(crate) use program::{InputNames, NO_SITE};
 pub use program::{InputSlot, Instruction, Program, Site, SiteKind};
-pub use solver::{AccelerationCall, RunCall, SolverCall};
+pub use solver::{MarkerCall, RunCall, SolverCall};
 
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
@@ -396,6 +396,16 @@ impl Compiler<'_> {
                 },
                 None => Some(model_data_error(function, args, span, None)),
             },
+            Family::Solver
+                if MarkerCall::NET_FORCES.contains(&function)
+                    && let Some(reactions) = self.reactions =>
+            {
+                let call = RunCall::NetForce(MarkerCall::of(function, args));
+                match reactions(&call) {
+                    Ok(()) => return self.reaction(&call, span),
+                    Err(message) => Some(CompileError::Reaction { message, span }),
+                }
+            }
             Family::Solver => match (self.reactions, SolverCall::of(function, args)) {
                 (Some(reactions), Some(call)) => {
                     let call = RunCall::Reaction(call);
@@ -749,13 +759,7 @@ impl Compiler<'_> {
         args: &[Argument],
         span: Span,
     ) -> Slot {
-        let markers = (0..function.signature().max)
-            .map(|position| match args.get(position) {
-                Some(Argument::Marker(reference, _)) => reference.clone(),
-                _ => Reference::Id(0),
-            })
-            .collect();
-        let call = RunCall::Acceleration(AccelerationCall { function, markers });
+        let call = RunCall::Acceleration(MarkerCall::of(function, args));
         match reactions(&call) {
             Ok(()) => self.reaction(&call, span),
             Err(message) => {

@@ -2,7 +2,7 @@
 //! `JOINT(1, 0, 4, 0)` compiled by [`super::compile_run_outputs`] becomes
 //! the input of that name, whose value the simulation gives at each
 //! evaluation; so does a measure of accelerations, `ACCY(3, 1)`
-//! ([`AccelerationCall`]).
+//! ([`MarkerCall`]).
 
 use crate::catalog::Function;
 use crate::check::{Argument, Reference};
@@ -106,20 +106,21 @@ impl SolverCall {
     }
 }
 
-/// A measure of the bodies' accelerations, `ACCX` ... `WDTM`, that a
-/// running solver gives: the accelerations come from the right-hand side
-/// (after the joints' solve), which no scene of a model holds.
+/// A function of markers whose value a running solver gives: a measure of
+/// the bodies' accelerations, `ACCX` ... `WDTM` (from the right-hand side,
+/// after the joints' solve, which no scene of a model holds), or the net
+/// force between markers, `FX` ... `TM`.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
-pub struct AccelerationCall {
-    /// `ACCX ACCY ACCZ ACCM WDTX WDTY WDTZ WDTM`.
+pub struct MarkerCall {
+    /// One of [`MarkerCall::FUNCTIONS`] or [`MarkerCall::NET_FORCES`].
     pub function: Function,
     /// The markers `i, j, k, l` as written, as many as the signature has;
     /// an omitted one is `0` (ground).
     pub markers: Vec<Reference>,
 }
 
-impl AccelerationCall {
-    /// The functions whose calls become inputs.
+impl MarkerCall {
+    /// The measures of accelerations whose calls become inputs.
     pub const FUNCTIONS: [Function; 8] = [
         Function::Accx,
         Function::Accy,
@@ -130,6 +131,30 @@ impl AccelerationCall {
         Function::Wdtz,
         Function::Wdtm,
     ];
+
+    /// The net forces between markers whose calls become inputs.
+    pub const NET_FORCES: [Function; 8] = [
+        Function::Fx,
+        Function::Fy,
+        Function::Fz,
+        Function::Fm,
+        Function::Tx,
+        Function::Ty,
+        Function::Tz,
+        Function::Tm,
+    ];
+
+    /// The call of `function` with marker arguments `args`, every marker
+    /// of its signature (an omitted one `0`).
+    pub(crate) fn of(function: Function, args: &[Argument]) -> MarkerCall {
+        let markers = (0..function.signature().max)
+            .map(|position| match args.get(position) {
+                Some(Argument::Marker(reference, _)) => reference.clone(),
+                _ => Reference::Id(0),
+            })
+            .collect();
+        MarkerCall { function, markers }
+    }
 
     /// The input's name: the call with every marker, `ACCY(3,1,0,0)`.
     pub fn input_name(&self) -> String {
@@ -156,7 +181,9 @@ pub enum RunCall {
     /// A reaction or a force element's force.
     Reaction(SolverCall),
     /// A measure of accelerations.
-    Acceleration(AccelerationCall),
+    Acceleration(MarkerCall),
+    /// A net force between markers.
+    NetForce(MarkerCall),
 }
 
 impl RunCall {
@@ -164,7 +191,7 @@ impl RunCall {
     pub fn input_name(&self) -> String {
         match self {
             RunCall::Reaction(call) => call.input_name(),
-            RunCall::Acceleration(call) => call.input_name(),
+            RunCall::Acceleration(call) | RunCall::NetForce(call) => call.input_name(),
         }
     }
 
@@ -175,7 +202,8 @@ impl RunCall {
         }
         let (function, rest) = name.split_once('(')?;
         let function = Function::lookup(function)?;
-        if !AccelerationCall::FUNCTIONS.contains(&function) {
+        let net_force = MarkerCall::NET_FORCES.contains(&function);
+        if !net_force && !MarkerCall::FUNCTIONS.contains(&function) {
             return None;
         }
         let markers = rest
@@ -187,9 +215,11 @@ impl RunCall {
                     .map_or_else(|_| Reference::Name(marker.to_string()), Reference::Id)
             })
             .collect();
-        Some(RunCall::Acceleration(AccelerationCall {
-            function,
-            markers,
-        }))
+        let call = MarkerCall { function, markers };
+        Some(if net_force {
+            RunCall::NetForce(call)
+        } else {
+            RunCall::Acceleration(call)
+        })
     }
 }

@@ -212,7 +212,7 @@ fn no_reaction(call: &crate::compile::RunCall) -> Result<(), String> {
                 call.input_name()
             )
         }
-        crate::compile::RunCall::Reaction(_) => format!(
+        crate::compile::RunCall::Reaction(_) | crate::compile::RunCall::NetForce(_) => format!(
             "{}: a force, DIFF or MOTION that reads a reaction (joint friction) is not simulated: its value and the multipliers would have to be solved together; REQUESTs and VARIABLEs read reactions",
             call.input_name()
         ),

@@ -237,14 +237,26 @@ impl Reactions {
 
     /// The value of `component` of `model`.
     pub(crate) fn value(&self, model: &Model, component: &Component) -> f64 {
-        let (loads, joint) = match component.holder {
+        let (force, torque) = self.load(model, component.holder, component.on_j);
+        let axes = self.place(model, &component.rm).1;
+        pick(
+            &(axes.transpose() * force),
+            &(axes.transpose() * torque),
+            component.component,
+        )
+    }
+
+    /// The force and the torque about the marker's origin, in ground, that
+    /// `holder` applies on its I marker (J when `on_j`).
+    fn load(&self, model: &Model, holder: Holder, on_j: bool) -> (Vector3<f64>, Vector3<f64>) {
+        let (loads, joint) = match holder {
             Holder::Joint(index) => (&self.joints[index], &model.joints[index]),
             Holder::Motion(index) => (
                 &self.motions[index],
                 &model.joints[model.motions[index].joint],
             ),
         };
-        let (marker, other) = if component.on_j {
+        let (marker, other) = if on_j {
             (&joint.j, &joint.i)
         } else {
             (&joint.i, &joint.j)
@@ -268,11 +280,38 @@ impl Reactions {
             }
             torque += (self.bodies[body].0 - origin).cross(&force);
         }
-        let axes = self.place(model, &component.rm).1;
-        let (force, torque) = (
-            axes.transpose() * force * sign,
-            axes.transpose() * torque * sign,
-        );
-        pick(&force, &torque, component.component)
+        (force * sign, torque * sign)
+    }
+
+    /// The force and the torque about `i`'s origin, in ground, that the
+    /// joints, primitives and motions between markers `i` and `j` (every
+    /// other marker when `j` is ground, id 0) apply on `i`.
+    pub(crate) fn between(
+        &self,
+        model: &Model,
+        i: &Target,
+        j: &Target,
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        let holders = (0..model.joints.len())
+            .map(|index| (Holder::Joint(index), index))
+            .chain(
+                model
+                    .motions
+                    .iter()
+                    .enumerate()
+                    .map(|(index, motion)| (Holder::Motion(index), motion.joint)),
+            );
+        let mut sum = (Vector3::zeros(), Vector3::zeros());
+        for (holder, joint) in holders {
+            let joint = &model.joints[joint];
+            for (on_j, marker, other) in [(false, &joint.i, &joint.j), (true, &joint.j, &joint.i)] {
+                if marker == i && (*j == Target::Ground || other == j) {
+                    let (force, torque) = self.load(model, holder, on_j);
+                    sum.0 += force;
+                    sum.1 += torque;
+                }
+            }
+        }
+        sum
     }
 }

@@ -11,7 +11,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use super::bodies::Kinematics;
 use crate::catalog::Function;
-use crate::compile::AccelerationCall;
+use crate::compile::MarkerCall;
 use crate::kinematics::{Frame, measure};
 use crate::laws::LawError;
 use crate::scene::Target;
@@ -28,7 +28,7 @@ pub(crate) struct Measure {
 
 impl Measure {
     /// The measure `call` asks of `model`, or why it has none.
-    pub(crate) fn of(model: &Model, call: &AccelerationCall) -> Result<Measure, String> {
+    pub(crate) fn of(model: &Model, call: &MarkerCall) -> Result<Measure, String> {
         let markers = call
             .markers_in(&model.scene)
             .map_err(|why| format!("{}: {why}", call.input_name()))?;

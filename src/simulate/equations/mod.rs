@@ -44,7 +44,7 @@ use crate::simulate::model::Model;
 use accelerations::{Accelerations, Measure};
 pub(crate) use bodies::{BODY_STATES, body_offset};
 use bodies::{Kinematics, Loads};
-use element_values::{ELEMENT_FUNCTIONS, ElementComponent};
+use element_values::{ELEMENT_FUNCTIONS, ElementComponent, NetForce};
 use sparsity::Sparsity;
 
 /// Where a program input's value comes from.
@@ -242,7 +242,7 @@ impl<'m> Mechanics<'m> {
     ) -> Result<Vec<f64>, OutputError> {
         let reactions = if values
             .iter()
-            .any(|value| matches!(value, RunValue::Reaction(_)))
+            .any(|value| matches!(value, RunValue::Reaction(_) | RunValue::NetForce(_)))
         {
             Some(self.reactions(t, y)?)
         } else {
@@ -269,7 +269,7 @@ impl<'m> Mechanics<'m> {
         let kinematics = equations.kinematics(y);
         if values
             .iter()
-            .any(|value| matches!(value, RunValue::Element(_)))
+            .any(|value| matches!(value, RunValue::Element(_) | RunValue::NetForce(_)))
         {
             let inputs = &mut self.buffers.inputs;
             fill_inputs(&equations.sources, t, y, &kinematics, &[], inputs);
@@ -285,6 +285,9 @@ impl<'m> Mechanics<'m> {
             .map(|value| match (value, &reactions, &accelerations) {
                 (RunValue::Element(component), _, _) => {
                     Ok(component.value(model, &kinematics, &expression_value))
+                }
+                (RunValue::NetForce(net), Some(reactions), _) => {
+                    Ok(net.value(model, &kinematics, reactions, &expression_value))
                 }
                 (RunValue::Reaction(component), Some(reactions), _) => {
                     Ok(reactions.value(model, component))
@@ -399,6 +402,8 @@ pub(crate) enum RunValue {
     Acceleration(Measure),
     /// A force element's force or torque.
     Element(ElementComponent),
+    /// The net force between markers.
+    NetForce(NetForce),
 }
 
 impl RunValue {
@@ -414,6 +419,7 @@ impl RunValue {
             }
             RunCall::Reaction(call) => Component::of(model, call).map(RunValue::Reaction),
             RunCall::Acceleration(call) => Measure::of(model, call).map(RunValue::Acceleration),
+            RunCall::NetForce(call) => NetForce::of(model, call).map(RunValue::NetForce),
         }
     }
 }

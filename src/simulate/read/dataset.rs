@@ -844,9 +844,9 @@ impl Reader<'_> {
     /// out): DISPLACEMENT `DM DX DY DZ PSI THETA PHI` (the body-fixed 3-1-3
     /// angles of I from J, in radians), VELOCITY `VM VX VY VZ WM WX WY WZ`
     /// (derivatives in ground), ACCELERATION `ACCM ACCX ACCY ACCZ WDTM WDTX
-    /// WDTY WDTZ` (derivatives in ground). FORCE is refused at the
-    /// statement: the net forces between markers have no value during a run
-    /// yet. `false` when it is of no standard kind.
+    /// WDTY WDTZ` (derivatives in ground), FORCE `FM FX FY FZ TM TX TY TZ`
+    /// (the net force at I from J, the torque about I's origin). `false`
+    /// when it is of no standard kind.
     fn standard_request(&mut self, index: usize, outputs: &mut Vec<Output>) -> bool {
         let dataset = self.dataset;
         let statement = &dataset.statements[index];
@@ -898,16 +898,16 @@ impl Reader<'_> {
                 ("WDTY", true),
                 ("WDTZ", true),
             ],
-            _ => {
-                self.refuse(
-                    format!(
-                        "{}: a REQUEST of {kind} is not computed: the net forces between markers (FX ...) have no value during a run yet (write its F1 ... F8 with the reactions JOINT(...), MOTION(...) or the measures instead)",
-                        statement.label()
-                    ),
-                    statement.span,
-                );
-                return true;
-            }
+            _ => &[
+                ("FM", false),
+                ("FX", true),
+                ("FY", true),
+                ("FZ", true),
+                ("TM", false),
+                ("TX", true),
+                ("TY", true),
+                ("TZ", true),
+            ],
         };
         let columns = measures.iter().map(|&(heading, along_rm)| {
             let text = if along_rm {
@@ -950,7 +950,7 @@ impl Reader<'_> {
             }
             if !any && !self.standard_request(index, &mut outputs) {
                 notes.push((
-                    format!("{label} is not computed: simulate writes a REQUEST's F1 ... F8 expressions, or its DISPLACEMENT, VELOCITY or ACCELERATION (write DX(i, j), VX(i, j) ... there)"),
+                    format!("{label} is not computed: simulate writes a REQUEST's F1 ... F8 expressions, or its DISPLACEMENT, VELOCITY, ACCELERATION or FORCE (write DX(i, j), VX(i, j) ... there)"),
                     statement.span,
                 ));
             }
