@@ -158,7 +158,9 @@ END",
         .err()
         .expect("refused");
     assert!(
-        error.contains("FX(21,1,0): a force, DIFF or MOTION that reads a reaction"),
+        error.contains(
+            "FX(21,1,0): a force, DIFF or MOTION that reads the net force between markers"
+        ),
         "{error}"
     );
 }

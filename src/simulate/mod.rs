@@ -212,7 +212,11 @@ fn no_reaction(call: &crate::compile::RunCall) -> Result<(), String> {
                 call.input_name()
             )
         }
-        crate::compile::RunCall::Reaction(_) | crate::compile::RunCall::NetForce(_) => format!(
+        crate::compile::RunCall::NetForce(_) => format!(
+            "{}: a force, DIFF or MOTION that reads the net force between markers is not simulated: it sums the joints' reactions, which would have to be solved together with the multipliers; REQUESTs and VARIABLEs read it",
+            call.input_name()
+        ),
+        crate::compile::RunCall::Reaction(_) => format!(
             "{}: a force, DIFF or MOTION that reads a reaction (joint friction) is not simulated: its value and the multipliers would have to be solved together; REQUESTs and VARIABLEs read reactions",
             call.input_name()
         ),
