@@ -3,6 +3,7 @@
 //! Each stage has a module with one `check(input) -> String` helper and its
 //! cases as data, one per line.
 
+mod accelerations;
 mod architecture;
 mod checker;
 mod cli;
@@ -11,6 +12,7 @@ mod diagnostics;
 mod documents;
 mod eval;
 mod ffi;
+mod force_values;
 mod integrate;
 mod integrate_problems;
 mod joint_kinds;

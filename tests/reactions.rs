@@ -253,7 +253,7 @@ fn the_spiked_models_motion_torque_takes_the_pulse() {
 /// the pendulum's centre-of-mass marker against the pivot (DISPLACEMENT:
 /// `r = R (2, 0, 0)`) and against ground along its own axes (VELOCITY:
 /// `v = ω × r` turned into the marker's axes), checked against the run's
-/// own state columns; FORCE and ACCELERATION are refused before the run.
+/// own state columns.
 #[test]
 fn standard_requests_write_adams_columns() {
     let text = PENDULUM.replace(
@@ -300,17 +300,4 @@ fn standard_requests_write_adams_columns() {
         }
     }
     assert!(worst < 1e-9, "{worst}");
-    for kind in ["FORCE", "ACCELERATION"] {
-        let refused = PENDULUM.replace(
-            "REQUEST/1",
-            &format!("REQUEST/2, {kind}, I = 20, J = 1\nREQUEST/1"),
-        );
-        let error = run(&refused, &settings(1.0, 1, 1e-8))
-            .err()
-            .expect("refused");
-        assert!(
-            error.contains(&format!("a REQUEST of {kind} is not computed")),
-            "{error}"
-        );
-    }
 }

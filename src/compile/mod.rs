@@ -13,7 +13,7 @@ pub use crate::ops::{FrameArg, Op, Slot};
 pub use error::CompileError;
 pub(crate) use program::{InputNames, NO_SITE};
 pub use program::{InputSlot, Instruction, Program, Site, SiteKind};
-pub use solver::SolverCall;
+pub use solver::{MarkerCall, RunCall, SolverCall};
 
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
@@ -85,15 +85,17 @@ pub fn compile_outputs<S: AsRef<str>>(
     compile_all(trees, inputs, scene, false, None)
 }
 
-/// Whether a program may read a reaction of a running solver: `Ok`, or
-/// why not (the message of the error at the call).
-pub type Reactions<'r> = &'r dyn Fn(&SolverCall) -> Result<(), String>;
+/// Whether a program may read a value of a running solver (a reaction, a
+/// measure of accelerations): `Ok`, or why not (the message of the error
+/// at the call).
+pub type Reactions<'r> = &'r dyn Fn(&RunCall) -> Result<(), String>;
 
 /// Compiles several trees into one program like [`compile_outputs`], for
-/// a running solver: each call of `JOINT`, `JPRIM` or `MOTION` that
+/// a running solver: each call of `JOINT`, `JPRIM` or `MOTION`, and each
+/// measure of accelerations on a body the scene gives none for, that
 /// `reactions` accepts becomes the input named by
-/// [`SolverCall::input_name`], whose value the solver gives; one it
-/// refuses is an error at the call with its message.
+/// [`RunCall::input_name`], whose value the solver gives; one it refuses
+/// is an error at the call with its message.
 pub fn compile_run_outputs<S: AsRef<str>>(
     trees: &[&Checked],
     inputs: &[S],
@@ -394,11 +396,24 @@ impl Compiler<'_> {
                 },
                 None => Some(model_data_error(function, args, span, None)),
             },
-            Family::Solver => match (self.reactions, SolverCall::of(function, args)) {
-                (Some(reactions), Some(call)) => match reactions(&call) {
+            Family::Solver
+                if MarkerCall::NET_FORCES.contains(&function)
+                    && let Some(reactions) = self.reactions =>
+            {
+                let call = RunCall::NetForce(MarkerCall::of(function, args));
+                match reactions(&call) {
                     Ok(()) => return self.reaction(&call, span),
                     Err(message) => Some(CompileError::Reaction { message, span }),
-                },
+                }
+            }
+            Family::Solver => match (self.reactions, SolverCall::of(function, args)) {
+                (Some(reactions), Some(call)) => {
+                    let call = RunCall::Reaction(call);
+                    match reactions(&call) {
+                        Ok(()) => return self.reaction(&call, span),
+                        Err(message) => Some(CompileError::Reaction { message, span }),
+                    }
+                }
                 _ => Some(CompileError::NeedsSolver {
                     function: function.name(),
                     span,
@@ -456,7 +471,7 @@ impl Compiler<'_> {
     }
 
     /// The input that holds the value of the solver's `call`, added when new.
-    fn reaction(&mut self, call: &SolverCall, span: Span) -> Slot {
+    fn reaction(&mut self, call: &RunCall, span: Span) -> Slot {
         let name = call.input_name();
         let index = self
             .input_index(&name)
@@ -713,6 +728,9 @@ impl Compiler<'_> {
                 && let Some(body) = scene.markers[index].body.map(|body| &scene.bodies[body])
                 && (body.acceleration.is_none() || body.angular_acceleration.is_none())
             {
+                if let Some(reactions) = self.reactions {
+                    return self.run_acceleration(reactions, function, args, span);
+                }
                 self.errors.push(CompileError::NoAcceleration {
                     place: scene.kind.noun(),
                     function: function.name(),
@@ -730,6 +748,25 @@ impl Compiler<'_> {
             },
             span,
         )
+    }
+
+    /// A measure of accelerations as the input a running solver gives, when
+    /// `reactions` accepts it; an error at the call when not.
+    fn run_acceleration(
+        &mut self,
+        reactions: Reactions<'_>,
+        function: Function,
+        args: &[Argument],
+        span: Span,
+    ) -> Slot {
+        let call = RunCall::Acceleration(MarkerCall::of(function, args));
+        match reactions(&call) {
+            Ok(()) => self.reaction(&call, span),
+            Err(message) => {
+                self.errors.push(CompileError::Reaction { message, span });
+                self.constant(0.0)
+            }
+        }
     }
 
     /// The frame argument of a marker: its constants once per program, and

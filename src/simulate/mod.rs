@@ -169,7 +169,7 @@ impl<'m> Simulation<'m> {
         }
         let dynamics = compile(model, &computed, &no_reaction, &mut errors);
         let reaction =
-            |call: &crate::compile::SolverCall| constraints::Component::of(model, call).map(|_| ());
+            |call: &crate::compile::RunCall| equations::RunValue::of(model, call).map(|_| ());
         let outputs = compile(model, &output_expressions, &reaction, &mut errors);
         match (dynamics, outputs) {
             (Some(dynamics), Some(outputs)) if errors.is_empty() => Ok(Simulation {
@@ -195,12 +195,36 @@ impl<'m> Simulation<'m> {
     }
 }
 
-/// Refuses a reaction read by a motion, a force or a DIFF.
-fn no_reaction(call: &crate::compile::SolverCall) -> Result<(), String> {
-    Err(format!(
-        "{}: a force, DIFF or MOTION that reads a reaction (joint friction) is not simulated: its value and the multipliers would have to be solved together; REQUESTs and VARIABLEs read reactions",
-        call.input_name()
-    ))
+/// Refuses a reaction, a force element's value or an acceleration read by
+/// a motion, a force or a DIFF.
+fn no_reaction(call: &crate::compile::RunCall) -> Result<(), String> {
+    Err(match call {
+        crate::compile::RunCall::Reaction(reaction)
+            if !matches!(
+                reaction.function,
+                crate::catalog::Function::Joint
+                    | crate::catalog::Function::Jprim
+                    | crate::catalog::Function::Motion
+            ) =>
+        {
+            format!(
+                "{}: a force, DIFF or MOTION that reads a force element's value is not simulated: the forces are applied together, not in an order one could read another's in; REQUESTs and VARIABLEs read them",
+                call.input_name()
+            )
+        }
+        crate::compile::RunCall::NetForce(_) => format!(
+            "{}: a force, DIFF or MOTION that reads the net force between markers is not simulated: it sums the joints' reactions, which would have to be solved together with the multipliers; REQUESTs and VARIABLEs read it",
+            call.input_name()
+        ),
+        crate::compile::RunCall::Reaction(_) => format!(
+            "{}: a force, DIFF or MOTION that reads a reaction (joint friction) is not simulated: its value and the multipliers would have to be solved together; REQUESTs and VARIABLEs read reactions",
+            call.input_name()
+        ),
+        crate::compile::RunCall::Acceleration(_) => format!(
+            "{}: a force, DIFF or MOTION that reads an acceleration is not simulated: the accelerations come from the forces (an algebraic loop); REQUESTs and VARIABLEs read accelerations",
+            call.input_name()
+        ),
+    })
 }
 
 /// `expressions` of `model` compiled together, the reactions `reactions`

@@ -22,6 +22,10 @@ pub struct Model {
     pub diffs: Vec<Diff>,
     /// The force elements.
     pub forces: Vec<Force>,
+    /// The statement (`SFORCE`, `VFORCE`, `VTORQUE`, `GFORCE`, `BUSHING`,
+    /// `SPRINGDAMPER`) and id of each force element, in the order of
+    /// [`Model::forces`]; empty for a scene, whose forces have no id.
+    pub force_statements: Vec<(&'static str, u64)>,
     /// The joints, held by Lagrange multipliers
     /// ([`crate::simulate::Joint`]).
     pub joints: Vec<Joint>,

@@ -33,7 +33,7 @@ mod rows;
 mod solve;
 
 pub(crate) use drives::{Drive, Drives};
-pub(crate) use reactions::{Component, Reactions};
+pub(crate) use reactions::{Component, Reactions, flags, pick};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
 pub(crate) use solve::{

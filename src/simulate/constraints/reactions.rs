@@ -77,36 +77,60 @@ impl Component {
                 call.id
             ));
         };
-        let on_j = match call.jflag {
-            0 => false,
-            1 => true,
-            other => {
-                return Err(format!(
-                    "{written}: jflag must be 0 (the reaction on the I marker) or 1 (on the J marker), not {other}"
-                ));
-            }
-        };
-        let component = match usize::try_from(call.component) {
-            Ok(component @ 1..=8) => component,
-            _ => {
-                return Err(format!(
-                    "{written}: comp must be 1 to 8 (|F|, Fx, Fy, Fz, |T|, Tx, Ty, Tz), not {}",
-                    call.component
-                ));
-            }
-        };
-        let Some(rm) = call.rm_in(&model.scene) else {
-            return Err(format!(
-                "{written}: the model has no marker {} (rm)",
-                call.rm
-            ));
-        };
+        let (on_j, component, rm) = flags(model, call, "reaction")?;
         Ok(Component {
             holder,
             on_j,
             component,
             rm,
         })
+    }
+}
+
+/// The side (`true` for jflag 1, the J marker), component and `rm` marker
+/// of `call` in `model`, or why they cannot be had; `what` is what is on
+/// the marker ("reaction", "force").
+pub(crate) fn flags(
+    model: &Model,
+    call: &SolverCall,
+    what: &str,
+) -> Result<(bool, usize, Target), String> {
+    let written = call.input_name();
+    let on_j = match call.jflag {
+        0 => false,
+        1 => true,
+        other => {
+            return Err(format!(
+                "{written}: jflag must be 0 (the {what} on the I marker) or 1 (on the J marker), not {other}"
+            ));
+        }
+    };
+    let component = match usize::try_from(call.component) {
+        Ok(component @ 1..=8) => component,
+        _ => {
+            return Err(format!(
+                "{written}: comp must be 1 to 8 (|F|, Fx, Fy, Fz, |T|, Tx, Ty, Tz), not {}",
+                call.component
+            ));
+        }
+    };
+    let Some(rm) = call.rm_in(&model.scene) else {
+        return Err(format!(
+            "{written}: the model has no marker {} (rm)",
+            call.rm
+        ));
+    };
+    Ok((on_j, component, rm))
+}
+
+/// Component `component` (1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty
+/// Tz`) of `force` and `torque`.
+pub(crate) fn pick(force: &Vector3<f64>, torque: &Vector3<f64>, component: usize) -> f64 {
+    match component {
+        1 => force.norm(),
+        5 => torque.norm(),
+        component @ 2..=4 => force[component - 2],
+        component => torque[component - 6],
     }
 }
 
@@ -213,14 +237,26 @@ impl Reactions {
 
     /// The value of `component` of `model`.
     pub(crate) fn value(&self, model: &Model, component: &Component) -> f64 {
-        let (loads, joint) = match component.holder {
+        let (force, torque) = self.load(model, component.holder, component.on_j);
+        let axes = self.place(model, &component.rm).1;
+        pick(
+            &(axes.transpose() * force),
+            &(axes.transpose() * torque),
+            component.component,
+        )
+    }
+
+    /// The force and the torque about the marker's origin, in ground, that
+    /// `holder` applies on its I marker (J when `on_j`).
+    fn load(&self, model: &Model, holder: Holder, on_j: bool) -> (Vector3<f64>, Vector3<f64>) {
+        let (loads, joint) = match holder {
             Holder::Joint(index) => (&self.joints[index], &model.joints[index]),
             Holder::Motion(index) => (
                 &self.motions[index],
                 &model.joints[model.motions[index].joint],
             ),
         };
-        let (marker, other) = if component.on_j {
+        let (marker, other) = if on_j {
             (&joint.j, &joint.i)
         } else {
             (&joint.i, &joint.j)
@@ -244,16 +280,38 @@ impl Reactions {
             }
             torque += (self.bodies[body].0 - origin).cross(&force);
         }
-        let axes = self.place(model, &component.rm).1;
-        let (force, torque) = (
-            axes.transpose() * force * sign,
-            axes.transpose() * torque * sign,
-        );
-        match component.component {
-            1 => force.norm(),
-            5 => torque.norm(),
-            component @ 2..=4 => force[component - 2],
-            component => torque[component - 6],
+        (force * sign, torque * sign)
+    }
+
+    /// The force and the torque about `i`'s origin, in ground, that the
+    /// joints, primitives and motions between markers `i` and `j` (every
+    /// other marker when `j` is ground, id 0) apply on `i`.
+    pub(crate) fn between(
+        &self,
+        model: &Model,
+        i: &Target,
+        j: &Target,
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        let holders = (0..model.joints.len())
+            .map(|index| (Holder::Joint(index), index))
+            .chain(
+                model
+                    .motions
+                    .iter()
+                    .enumerate()
+                    .map(|(index, motion)| (Holder::Motion(index), motion.joint)),
+            );
+        let mut sum = (Vector3::zeros(), Vector3::zeros());
+        for (holder, joint) in holders {
+            let joint = &model.joints[joint];
+            for (on_j, marker, other) in [(false, &joint.i, &joint.j), (true, &joint.j, &joint.i)] {
+                if marker == i && (*j == Target::Ground || other == j) {
+                    let (force, torque) = self.load(model, holder, on_j);
+                    sum.0 += force;
+                    sum.1 += torque;
+                }
+            }
         }
+        sum
     }
 }

@@ -10,13 +10,17 @@ use crate::scene::Target;
 use crate::simulate::model::{Force, Model};
 
 /// A marker's origin in ground and the body it is on.
-struct Placed<T: Number> {
-    origin: Vector3<T>,
-    body: Option<usize>,
+pub(super) struct Placed<T: Number> {
+    pub(super) origin: Vector3<T>,
+    pub(super) body: Option<usize>,
 }
 
 /// A marker's origin in ground and its body.
-fn place<T: Number>(model: &Model, target: &Target, kinematics: &[Kinematics<T>]) -> Placed<T> {
+pub(super) fn place<T: Number>(
+    model: &Model,
+    target: &Target,
+    kinematics: &[Kinematics<T>],
+) -> Placed<T> {
     let Target::Marker(index) = target else {
         return Placed {
             origin: Vector3::zeros(),
@@ -50,7 +54,11 @@ pub(super) fn body_of(model: &Model, target: &Target) -> Option<usize> {
 
 /// A marker's axes in ground (worked out only for the elements that read
 /// them: most forces act along the line between their markers).
-fn axes<T: Number>(model: &Model, target: &Target, kinematics: &[Kinematics<T>]) -> Matrix3<T> {
+pub(super) fn axes<T: Number>(
+    model: &Model,
+    target: &Target,
+    kinematics: &[Kinematics<T>],
+) -> Matrix3<T> {
     let Target::Marker(index) = target else {
         return Matrix3::identity();
     };
@@ -62,6 +70,15 @@ fn axes<T: Number>(model: &Model, target: &Target, kinematics: &[Kinematics<T>])
     }
 }
 
+/// What a force element applies on one side: `force` at `point` and a
+/// free `torque`, in ground, on `body` (`None`: ground).
+pub(super) struct Action<T: Number> {
+    pub(super) body: Option<usize>,
+    pub(super) point: Vector3<T>,
+    pub(super) force: Option<Vector3<T>>,
+    pub(super) torque: Option<Vector3<T>>,
+}
+
 /// Adds what `force` applies to the bodies.
 pub(super) fn apply<T: Number>(
     model: &Model,
@@ -70,6 +87,29 @@ pub(super) fn apply<T: Number>(
     value: &impl Fn(Option<usize>) -> T,
     loads: &mut Loads<T>,
 ) {
+    for action in actions(model, force, kinematics, value)
+        .into_iter()
+        .flatten()
+    {
+        if let Some(push) = &action.force {
+            loads.push(action.body, &action.point, push, kinematics);
+        }
+        if let Some(turn) = &action.torque {
+            loads.turn(action.body, turn);
+        }
+    }
+}
+
+/// What `force` applies on its I marker's side and on its other side (J's
+/// body, or the floating marker's; ground's too, which takes nothing),
+/// `None` where it applies nothing (an action-only element's other side, a
+/// translational force between coincident markers).
+pub(super) fn actions<T: Number>(
+    model: &Model,
+    force: &Force,
+    kinematics: &[Kinematics<T>],
+    value: &impl Fn(Option<usize>) -> T,
+) -> [Option<Action<T>>; 2] {
     match force {
         Force::Translational {
             i,
@@ -81,19 +121,18 @@ pub(super) fn apply<T: Number>(
             if *action_only {
                 let along = axes(model, j, kinematics).column(2).into_owned() * magnitude;
                 let i = place(model, i, kinematics);
-                loads.push(i.body, &i.origin, &along, kinematics);
-                return;
+                return [Some(Action::at(i, along)), None];
             }
             let (i, j) = (place(model, i, kinematics), place(model, j, kinematics));
             let line = &i.origin - &j.origin;
             let length = line.dot(&line).sqrt();
             if length.value() == 0.0 {
                 // Coincident markers: no line of action, no force.
-                return;
+                return [None, None];
             }
             let push = line / length * magnitude;
-            loads.push(i.body, &i.origin, &push, kinematics);
-            loads.push(j.body, &j.origin, &-push, kinematics);
+            let pull = -push.clone();
+            [Some(Action::at(i, push)), Some(Action::at(j, pull))]
         }
         Force::Rotational {
             i,
@@ -103,11 +142,14 @@ pub(super) fn apply<T: Number>(
         } => {
             let torque =
                 axes(model, j, kinematics).column(2).into_owned() * value(Some(*magnitude));
-            let (i, j) = (body_of(model, i), body_of(model, j));
-            loads.turn(i, &torque);
-            if !*action_only {
-                loads.turn(j, &-torque);
-            }
+            let turn = |target: &Target, torque: Vector3<T>| Action {
+                body: body_of(model, target),
+                point: place(model, target, kinematics).origin,
+                force: None,
+                torque: Some(torque),
+            };
+            let reaction = (!*action_only).then(|| turn(j, -torque.clone()));
+            [Some(turn(i, torque)), reaction]
         }
         Force::Vector {
             i,
@@ -127,12 +169,31 @@ pub(super) fn apply<T: Number>(
                 &axes * local
             };
             let (push, turn) = (along(force), along(torque));
-            loads.push(i.body, &i.origin, &push, kinematics);
-            loads.turn(i.body, &turn);
-            if reaction.is_some() {
-                loads.push(*reaction, &i.origin, &-push, kinematics);
-                loads.turn(*reaction, &-turn);
-            }
+            let other = Action {
+                body: *reaction,
+                point: i.origin.clone(),
+                force: Some(-push.clone()),
+                torque: Some(-turn.clone()),
+            };
+            let on_i = Action {
+                body: i.body,
+                point: i.origin,
+                force: Some(push),
+                torque: Some(turn),
+            };
+            [Some(on_i), Some(other)]
+        }
+    }
+}
+
+impl<T: Number> Action<T> {
+    /// `force` at the placed marker, on its body.
+    fn at(marker: Placed<T>, force: Vector3<T>) -> Action<T> {
+        Action {
+            body: marker.body,
+            point: marker.origin,
+            force: Some(force),
+            torque: None,
         }
     }
 }

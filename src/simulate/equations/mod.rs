@@ -21,25 +21,30 @@
 //! their derivative parts, so the program's derivatives flow into the
 //! Jacobian by the chain rule with no hand-written derivative.
 
+mod accelerations;
 mod bodies;
+mod element_values;
 mod forces;
 mod sparsity;
 
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use num_dual::{DualDVec64, DualSVec64};
 
-use crate::compile::{Program, SolverCall};
+use crate::compile::{Program, RunCall};
+use crate::eval::EvalError;
 use crate::eval::{Evaluator, OutputError};
 use crate::integrate::linalg::Pattern;
 use crate::laws::branch::Code;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input};
 use crate::simulate::constraints::{
-    BodyMotion, Drives, Reactions, constraint_loads, joints_singular,
+    BodyMotion, Component, Drives, Reactions, constraint_loads, joints_singular,
 };
 use crate::simulate::model::Model;
+use accelerations::{Accelerations, Measure};
 pub(crate) use bodies::{BODY_STATES, body_offset};
 use bodies::{Kinematics, Loads};
+use element_values::{ELEMENT_FUNCTIONS, ElementComponent, NetForce};
 use sparsity::Sparsity;
 
 /// Where a program input's value comes from.
@@ -53,9 +58,9 @@ pub(crate) enum Source {
     State(usize),
     /// A body's state input.
     Body(usize, StateComponent),
-    /// A reaction of the running solver, the one at this index of
-    /// [`Mechanics::solver_calls`] (only in the programs of output columns,
-    /// which have no Jacobian).
+    /// A value of the running solver (a reaction, a measure of
+    /// accelerations), the one at this index of [`Mechanics::solver_calls`]
+    /// (only in the programs of output columns, which have no Jacobian).
     Solver(usize),
 }
 
@@ -113,7 +118,7 @@ impl<'m> Mechanics<'m> {
             .inputs()
             .iter()
             .map(|name| {
-                if let Some(call) = SolverCall::parse(name) {
+                if let Some(call) = RunCall::parse(name) {
                     solver_calls.push(call);
                     Source::Solver(solver_calls.len() - 1)
                 } else if name.eq_ignore_ascii_case("TIME") {
@@ -202,9 +207,9 @@ impl<'m> Mechanics<'m> {
         )
     }
 
-    /// The reactions of the running solver the program reads, in the order
+    /// The values of the running solver the program reads, in the order
     /// their values are given to [`outputs`](Mechanics::outputs).
-    pub(crate) fn solver_calls(&self) -> &[SolverCall] {
+    pub(crate) fn solver_calls(&self) -> &[RunCall] {
         &self.equations.solver_calls
     }
 
@@ -226,9 +231,84 @@ impl<'m> Mechanics<'m> {
         self.values.outputs(inputs, None, outputs)
     }
 
+    /// The values `values` of the running solver at `(t, y)`, all branches
+    /// natural: the reactions solved and the accelerations of the
+    /// right-hand side worked out once each, when some value needs them.
+    pub(crate) fn run_values(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        values: &[RunValue],
+    ) -> Result<Vec<f64>, OutputError> {
+        let reactions = if values
+            .iter()
+            .any(|value| matches!(value, RunValue::Reaction(_) | RunValue::NetForce(_)))
+        {
+            Some(self.reactions(t, y)?)
+        } else {
+            None
+        };
+        let accelerations = if values
+            .iter()
+            .any(|value| matches!(value, RunValue::Acceleration(_)))
+        {
+            let mut rates = vec![0.0; self.dimension()];
+            self.rates(t, y, None, &mut rates)?;
+            let model = self.equations.model;
+            let offsets = (0..model.scene.bodies.len()).map(|body| body_offset(model, body));
+            Some(Accelerations::new(
+                &self.equations.kinematics(y),
+                &rates,
+                offsets,
+            ))
+        } else {
+            None
+        };
+        // The force elements' values: the program's outputs at (t, y).
+        let equations = &self.equations;
+        let kinematics = equations.kinematics(y);
+        if values
+            .iter()
+            .any(|value| matches!(value, RunValue::Element(_) | RunValue::NetForce(_)))
+        {
+            let inputs = &mut self.buffers.inputs;
+            fill_inputs(&equations.sources, t, y, &kinematics, &[], inputs);
+            reorient(&mut self.values, &kinematics);
+            self.values
+                .outputs(inputs, None, &mut self.buffers.outputs)?;
+        }
+        let outputs = &self.buffers.outputs;
+        let expression_value = |expression| equations.value_of(outputs, expression);
+        let model = equations.model;
+        values
+            .iter()
+            .map(|value| match (value, &reactions, &accelerations) {
+                (RunValue::Element(component), _, _) => {
+                    Ok(component.value(model, &kinematics, &expression_value))
+                }
+                (RunValue::NetForce(net), Some(reactions), _) => {
+                    Ok(net.value(model, &kinematics, reactions, &expression_value))
+                }
+                (RunValue::Reaction(component), Some(reactions), _) => {
+                    Ok(reactions.value(model, component))
+                }
+                (RunValue::Acceleration(measure), _, Some(accelerations)) => accelerations
+                    .value(model, measure)
+                    .map_err(|error| OutputError {
+                        output: 0,
+                        error: EvalError::Law {
+                            error,
+                            span: crate::Span::default(),
+                        },
+                    }),
+                _ => unreachable!("worked out above for each kind asked for"),
+            })
+            .collect()
+    }
+
     /// The reactions of the joints, primitives and motions at `(t, y)`, all
     /// branches natural.
-    pub(crate) fn reactions(&mut self, t: f64, y: &[f64]) -> Result<Reactions, OutputError> {
+    fn reactions(&mut self, t: f64, y: &[f64]) -> Result<Reactions, OutputError> {
         let equations = &self.equations;
         let solved = equations.solve(&mut self.values, t, y, None, &mut self.buffers)?;
         let drives = equations.drives.at(t).ok_or_else(joints_singular)?;
@@ -313,6 +393,37 @@ impl<'m> Mechanics<'m> {
     }
 }
 
+/// A value of the running solver an output reads, found in the model.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum RunValue {
+    /// A reaction of a joint, primitive or motion.
+    Reaction(Component),
+    /// A measure of accelerations.
+    Acceleration(Measure),
+    /// A force element's force or torque.
+    Element(ElementComponent),
+    /// The net force between markers.
+    NetForce(NetForce),
+}
+
+impl RunValue {
+    /// The value `call` asks of `model`, or why it has none.
+    pub(crate) fn of(model: &Model, call: &RunCall) -> Result<RunValue, String> {
+        match call {
+            RunCall::Reaction(call)
+                if ELEMENT_FUNCTIONS
+                    .iter()
+                    .any(|(function, _)| *function == call.function) =>
+            {
+                ElementComponent::of(model, call).map(RunValue::Element)
+            }
+            RunCall::Reaction(call) => Component::of(model, call).map(RunValue::Reaction),
+            RunCall::Acceleration(call) => Measure::of(model, call).map(RunValue::Acceleration),
+            RunCall::NetForce(call) => NetForce::of(model, call).map(RunValue::NetForce),
+        }
+    }
+}
+
 /// The program input values from the state and the solver's reactions
 /// `solved`, into `inputs`.
 fn fill_inputs<T: Number>(
@@ -392,11 +503,19 @@ struct Equations<'m> {
     inverse_inertia: Vec<Matrix3<f64>>,
     /// The motions' displacements in time.
     drives: Drives,
-    /// The reactions of the running solver the program reads.
-    solver_calls: Vec<SolverCall>,
+    /// The values of the running solver the program reads.
+    solver_calls: Vec<RunCall>,
 }
 
 impl Equations<'_> {
+    /// The value of `expression` among the program's `outputs` (zero for
+    /// no expression).
+    fn value_of<T: Number>(&self, outputs: &[T], expression: Option<usize>) -> T {
+        expression
+            .and_then(|expression| self.output_of[expression])
+            .map_or_else(T::zero, |output| outputs[output].clone())
+    }
+
     fn kinematics<T: Number>(&self, y: &[T]) -> Vec<Kinematics<T>> {
         if self.model.scene.bodies.is_empty() {
             return Vec::new();
@@ -464,11 +583,7 @@ impl Equations<'_> {
             force: vec![Vector3::zeros(); bodies],
             torque: vec![Vector3::zeros(); bodies],
         };
-        let value = |expression: Option<usize>| {
-            expression
-                .and_then(|expression| self.output_of[expression])
-                .map_or_else(T::zero, |output| outputs[output].clone())
-        };
+        let value = |expression: Option<usize>| self.value_of(outputs, expression);
         for force in &model.forces {
             forces::apply(model, force, &kinematics, &value, &mut loads);
         }

@@ -64,25 +64,20 @@ const LEFT_ASIDE: [&str; 20] = [
 /// Solver settings that the simulator's own settings replace.
 const SOLVER_SETTINGS: [&str; 3] = ["INTEGRATOR", "DYNAMICS", "SIMULATE"];
 
-/// The statements the simulator reads.
-const SIMULATED: [&str; 17] = [
-    "PART",
-    "MARKER",
-    "DIFF",
+/// The force elements' statements, as the model names them.
+const FORCE_ELEMENTS: [&str; 6] = [
     "SFORCE",
     "VFORCE",
     "VTORQUE",
     "GFORCE",
     "BUSHING",
     "SPRINGDAMPER",
-    "ACCGRAV",
-    "VARIABLE",
-    "ARRAY",
-    "SPLINE",
-    "REQUEST",
-    "JOINT",
-    "JPRIM",
-    "MOTION",
+];
+
+/// The statements the simulator reads besides [`FORCE_ELEMENTS`].
+const SIMULATED: [&str; 11] = [
+    "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
+    "JPRIM", "MOTION",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -105,7 +100,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
                 ),
                 statement.span,
             ));
-        } else if !kind(&SIMULATED) && !kind(&LEFT_ASIDE) {
+        } else if !kind(&SIMULATED) && !kind(&FORCE_ELEMENTS) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
                 reason: "is not among the elements mbexpr integrates (PART, JOINT, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, ACCGRAV)"
@@ -214,7 +209,7 @@ impl Reader<'_> {
     fn model(&mut self, mut notes: Vec<(String, Span)>) -> Model {
         let masses = self.masses();
         let diffs = self.diffs();
-        let forces = self.forces();
+        let (forces, force_statements) = self.forces();
         let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
         let (motions, marker_motions) = self.motions(&joints);
         let gravity = self.gravity();
@@ -224,6 +219,7 @@ impl Reader<'_> {
             masses,
             diffs,
             forces,
+            force_statements,
             joints,
             motions,
             marker_motions,
@@ -576,30 +572,30 @@ impl Reader<'_> {
         diffs
     }
 
-    fn forces(&mut self) -> Vec<Force> {
+    /// The force elements, with the statement (its kind as
+    /// [`FORCE_ELEMENTS`] spells it) and id of each.
+    fn forces(&mut self) -> (Vec<Force>, Vec<(&'static str, u64)>) {
         let floating: HashMap<u64, Option<usize>> = self.floating_markers();
         let mut forces = Vec::new();
-        let elements: Vec<usize> = self
+        let elements: Vec<(usize, &'static str)> = self
             .dataset
             .statements
             .iter()
             .enumerate()
-            .filter(|(_, statement)| {
-                [
-                    "SFORCE",
-                    "VFORCE",
-                    "VTORQUE",
-                    "GFORCE",
-                    "BUSHING",
-                    "SPRINGDAMPER",
-                ]
-                .iter()
-                .any(|kind| is_kind(&statement.name, kind))
+            .filter_map(|(index, statement)| {
+                FORCE_ELEMENTS
+                    .into_iter()
+                    .find(|kind| is_kind(&statement.name, kind))
+                    .map(|kind| (index, kind))
             })
-            .map(|(index, _)| index)
             .collect();
-        for index in elements {
+        // The statement of each force, filled as the next element starts.
+        let mut statements = Vec::new();
+        let mut current = ("", 0);
+        for (index, kind) in elements {
+            statements.resize(forces.len(), current);
             let dataset = self.dataset;
+            current = (kind, dataset.statements[index].id.unwrap_or(0));
             let statement = &dataset.statements[index];
             let Some(i) = self.marker(statement, "I") else {
                 continue;
@@ -669,7 +665,8 @@ impl Reader<'_> {
                 torque,
             });
         }
-        forces
+        statements.resize(forces.len(), current);
+        (forces, statements)
     }
 
     /// A BUSHING or a SPRINGDAMPER between markers `i` and `j` of
@@ -830,8 +827,9 @@ impl Reader<'_> {
     /// 0 or left out), the vectors along RM's axes (ground's when 0 or left
     /// out): DISPLACEMENT `DM DX DY DZ PSI THETA PHI` (the body-fixed 3-1-3
     /// angles of I from J, in radians), VELOCITY `VM VX VY VZ WM WX WY WZ`
-    /// (derivatives in ground). ACCELERATION and FORCE are refused at the
-    /// statement: their measures have no value during a run yet. `false`
+    /// (derivatives in ground), ACCELERATION `ACCM ACCX ACCY ACCZ WDTM WDTX
+    /// WDTY WDTZ` (derivatives in ground), FORCE `FM FX FY FZ TM TX TY TZ`
+    /// (the net force at I from J, the torque about I's origin). `false`
     /// when it is of no standard kind.
     fn standard_request(&mut self, index: usize, outputs: &mut Vec<Output>) -> bool {
         let dataset = self.dataset;
@@ -874,21 +872,26 @@ impl Reader<'_> {
                 ("WY", true),
                 ("WZ", true),
             ],
-            _ => {
-                let missing = if kind == "FORCE" {
-                    "the net forces between markers (FX ...)"
-                } else {
-                    "the accelerations of markers (ACCX ...)"
-                };
-                self.refuse(
-                    format!(
-                        "{}: a REQUEST of {kind} is not computed: {missing} have no value during a run yet (write its F1 ... F8 with the reactions JOINT(...), MOTION(...) or the measures instead)",
-                        statement.label()
-                    ),
-                    statement.span,
-                );
-                return true;
-            }
+            "ACCELERATION" => &[
+                ("ACCM", false),
+                ("ACCX", true),
+                ("ACCY", true),
+                ("ACCZ", true),
+                ("WDTM", false),
+                ("WDTX", true),
+                ("WDTY", true),
+                ("WDTZ", true),
+            ],
+            _ => &[
+                ("FM", false),
+                ("FX", true),
+                ("FY", true),
+                ("FZ", true),
+                ("TM", false),
+                ("TX", true),
+                ("TY", true),
+                ("TZ", true),
+            ],
         };
         let columns = measures.iter().map(|&(heading, along_rm)| {
             let text = if along_rm {
@@ -931,7 +934,7 @@ impl Reader<'_> {
             }
             if !any && !self.standard_request(index, &mut outputs) {
                 notes.push((
-                    format!("{label} is not computed: simulate writes a REQUEST's F1 ... F8 expressions, or its DISPLACEMENT or VELOCITY (write DX(i, j), VX(i, j) ... there)"),
+                    format!("{label} is not computed: simulate writes a REQUEST's F1 ... F8 expressions, or its DISPLACEMENT, VELOCITY, ACCELERATION or FORCE (write DX(i, j), VX(i, j) ... there)"),
                     statement.span,
                 ));
             }

@@ -153,6 +153,7 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         masses,
         diffs,
         forces,
+        force_statements: Vec::new(),
         gravity,
         expressions: reader.expressions,
         outputs,

@@ -15,10 +15,9 @@ pub use estimate::ErrorEstimate;
 pub use sink::{MethodChange, Sink};
 
 use super::constraints::{
-    Component, Drives, JOINTS, Residuals, Tolerance, Unassembled, disagreeing_redundant,
-    owner_of_row, project,
+    Drives, JOINTS, Residuals, Tolerance, Unassembled, disagreeing_redundant, owner_of_row, project,
 };
-use super::equations::{BODY_STATES, Mechanics, body_offset};
+use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
 use super::error::SimulateError;
 use super::initial::initial_state;
 use super::{Model, Simulation};
@@ -199,9 +198,9 @@ const CHATTER_COUNT: usize = 100;
 struct Rows<'m> {
     model: &'m Model,
     outputs: Mechanics<'m>,
-    /// The equations of motion and the reactions the outputs read, when
-    /// they read any.
-    reactions: Option<(Mechanics<'m>, Vec<Component>)>,
+    /// The equations of motion and the values of the running solver the
+    /// outputs read, when they read any.
+    reactions: Option<(Mechanics<'m>, Vec<RunValue>)>,
     values: Vec<f64>,
 }
 
@@ -230,13 +229,7 @@ impl Rows<'_> {
         if !model.outputs.is_empty() {
             let solved: Vec<f64> = match &mut self.reactions {
                 None => Vec::new(),
-                Some((dynamics, components)) => {
-                    let reactions = dynamics.reactions(t, y)?;
-                    components
-                        .iter()
-                        .map(|component| reactions.value(model, component))
-                        .collect()
-                }
+                Some((dynamics, values)) => dynamics.run_values(t, y, values)?,
             };
             self.outputs
                 .outputs(t, y, &solved, &mut self.values[start..])?;
@@ -343,10 +336,10 @@ impl Simulation<'_> {
             before_end: None,
         };
         let outputs = Mechanics::new(model, &self.outputs, &self.output_expressions);
-        let components: Vec<Component> = outputs
+        let components: Vec<RunValue> = outputs
             .solver_calls()
             .iter()
-            .map(|call| Component::of(model, call).expect("checked when compiled"))
+            .map(|call| RunValue::of(model, call).expect("checked when compiled"))
             .collect();
         let reactions = (!components.is_empty())
             .then(|| (Mechanics::new(model, program, &self.computed), components));

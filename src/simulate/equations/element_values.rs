@@ -1,0 +1,195 @@
+//! The values of force elements during a run, as the functions
+//! `SFORCE(id, jflag, comp, rm)`, `VFORCE`, `VTORQ`, `GFORCE` and `BUSH`
+//! give them (Adams' convention): the force and the torque the element
+//! applies on its I marker (jflag 0) or its J marker (jflag 1, the floating
+//! marker of a VFORCE, VTORQUE or GFORCE, which sits at I), the torque
+//! about that marker's origin, along the axes of marker `rm` (ground's
+//! when 0); comp 1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty Tz`.
+//!
+//! What the element applies is [`super::forces::actions`], the one place
+//! its geometry is written: so a BUSHING's torque on J carries the moment
+//! arm of the deformation, `−T − (I − J) × F`, and an action-only
+//! element's J side is zero.
+
+use nalgebra::Vector3;
+
+use super::bodies::Kinematics;
+use super::forces::{Action, actions, axes, place};
+use crate::catalog::Function;
+use crate::compile::{MarkerCall, SolverCall};
+use crate::scene::Target;
+use crate::simulate::constraints::Reactions;
+use crate::simulate::constraints::{flags, pick};
+use crate::simulate::model::{Force, Model};
+
+/// The force elements' functions and the statements they read.
+pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 5] = [
+    (Function::Sforce, "SFORCE"),
+    (Function::Vforce, "VFORCE"),
+    (Function::Vtorq, "VTORQUE"),
+    (Function::Gforce, "GFORCE"),
+    (Function::Bush, "BUSHING"),
+];
+
+/// A force element's component a model's expression asks for, found in
+/// the model.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ElementComponent {
+    /// The element's index in [`Model::forces`].
+    force: usize,
+    /// On the J marker (jflag 1) rather than the I marker.
+    on_j: bool,
+    /// The marker about whose origin the torque is.
+    marker: Target,
+    /// 1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty Tz`.
+    component: usize,
+    /// The marker whose axes the components are along.
+    rm: Target,
+}
+
+impl ElementComponent {
+    /// The component `call` asks of `model`, or why it has none.
+    pub(crate) fn of(model: &Model, call: &SolverCall) -> Result<ElementComponent, String> {
+        let written = call.input_name();
+        let kind = ELEMENT_FUNCTIONS
+            .iter()
+            .find(|(function, _)| *function == call.function)
+            .map_or("", |(_, kind)| *kind);
+        let Some(force) = model
+            .force_statements
+            .iter()
+            .position(|&(statement, id)| statement == kind && id == call.id)
+        else {
+            return Err(format!(
+                "{written}: the model has no {kind}/{} that is simulated",
+                call.id
+            ));
+        };
+        let (on_j, component, rm) = flags(model, call, "force")?;
+        let (i, j) = markers(model, force);
+        // A floating marker sits at I.
+        let marker = if on_j { j.unwrap_or(i) } else { i };
+        Ok(ElementComponent {
+            force,
+            on_j,
+            marker,
+            component,
+            rm,
+        })
+    }
+
+    /// The value of this component with the bodies at `kinematics` and the
+    /// model's expressions' values `value`.
+    pub(super) fn value(
+        &self,
+        model: &Model,
+        kinematics: &[Kinematics<f64>],
+        value: &impl Fn(Option<usize>) -> f64,
+    ) -> f64 {
+        let [on_i, on_j] = actions(model, &model.forces[self.force], kinematics, value);
+        let action = if self.on_j { on_j } else { on_i };
+        let origin = place(model, &self.marker, kinematics).origin;
+        let (force, torque) = about(action, &origin);
+        let along = axes(model, &self.rm, kinematics).transpose();
+        let (force, torque) = (along * force, along * torque);
+        pick(&force, &torque, self.component)
+    }
+}
+
+/// The I marker of force element `index` of `model` and its J marker: the
+/// J of an SFORCE, the J of a BUSHING (the marker of its axes); `None` for
+/// the floating marker of a VFORCE, VTORQUE or GFORCE (and any vector
+/// force of a scene), which the model does not keep.
+fn markers(model: &Model, index: usize) -> (Target, Option<Target>) {
+    match &model.forces[index] {
+        Force::Translational { i, j, .. } | Force::Rotational { i, j, .. } => (*i, Some(*j)),
+        Force::Vector { i, axes, .. } => {
+            let bushing = model
+                .force_statements
+                .get(index)
+                .is_some_and(|(kind, _)| *kind == "BUSHING");
+            (*i, bushing.then_some(*axes))
+        }
+    }
+}
+
+/// The force of `action` and its torque about `origin`, in ground (zero
+/// for no action).
+fn about(action: Option<Action<f64>>, origin: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let Some(action) = action else {
+        return (Vector3::zeros(), Vector3::zeros());
+    };
+    let force = action.force.unwrap_or_else(Vector3::zeros);
+    let torque =
+        action.torque.unwrap_or_else(Vector3::zeros) + (action.point - origin).cross(&force);
+    (force, torque)
+}
+
+/// The net force between two markers, `FX FY FZ FM TX TY TZ TM (i, j,
+/// k)`, found in the model: the sum at marker I of what the force elements
+/// and the joints, primitives and motions between I and J apply on it (all
+/// that act at I when J is 0), the torque about I's origin, along K's axes.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct NetForce {
+    function: Function,
+    i: Target,
+    j: Target,
+    k: Target,
+}
+
+impl NetForce {
+    /// The net force `call` asks of `model`, or why it has none.
+    pub(crate) fn of(model: &Model, call: &MarkerCall) -> Result<NetForce, String> {
+        let markers = call
+            .markers_in(&model.scene)
+            .map_err(|why| format!("{}: {why}", call.input_name()))?;
+        let marker = |position: usize| markers.get(position).copied().unwrap_or(Target::Ground);
+        Ok(NetForce {
+            function: call.function,
+            i: marker(0),
+            j: marker(1),
+            k: marker(2),
+        })
+    }
+
+    /// Its value with the bodies at `kinematics`, the joints' `reactions`
+    /// and the model's expressions' values `value`.
+    pub(super) fn value(
+        &self,
+        model: &Model,
+        kinematics: &[Kinematics<f64>],
+        reactions: &Reactions,
+        value: &impl Fn(Option<usize>) -> f64,
+    ) -> f64 {
+        let (mut force, mut torque) = reactions.between(model, &self.i, &self.j);
+        let origin = place(model, &self.i, kinematics).origin;
+        let any = self.j == Target::Ground;
+        for index in 0..model.forces.len() {
+            let (i, j) = markers(model, index);
+            let [on_i, on_j] = actions(model, &model.forces[index], kinematics, value);
+            let mut add = |action| {
+                let (push, turn) = about(action, &origin);
+                force += push;
+                torque += turn;
+            };
+            if i == self.i && (any || j == Some(self.j)) {
+                add(on_i);
+            }
+            if j == Some(self.i) && (any || i == self.j) {
+                add(on_j);
+            }
+        }
+        let along = axes(model, &self.k, kinematics).transpose();
+        let (force, torque) = (along * force, along * torque);
+        match self.function {
+            Function::Fx => force.x,
+            Function::Fy => force.y,
+            Function::Fz => force.z,
+            Function::Fm => force.norm(),
+            Function::Tx => torque.x,
+            Function::Ty => torque.y,
+            Function::Tz => torque.z,
+            _ => torque.norm(),
+        }
+    }
+}
