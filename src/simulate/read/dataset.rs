@@ -26,9 +26,10 @@ use crate::simulate::model::{
 use crate::span::Span;
 
 /// Statements that need a constraint solver.
-const CONSTRAINTS: [&str; 7] = [
+const CONSTRAINTS: [&str; 8] = [
     "COUPLER",
     "GEAR",
+    "GCON",
     "UCON",
     "PTCV",
     "CVCV",
@@ -103,7 +104,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&FORCE_ELEMENTS) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, JOINT, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, ACCGRAV)"
+                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, ACCGRAV)"
                     .to_string(),
                 span: statement.span,
             });
