@@ -5,6 +5,7 @@
 
 mod accelerations;
 mod architecture;
+mod beams;
 mod checker;
 mod cli;
 mod corpus;

@@ -9,7 +9,8 @@ use crate::check::{Argument, Reference};
 use crate::scene::{Scene, Target};
 
 /// A reaction or a force a running solver computes: `JOINT`, `JPRIM` or
-/// `MOTION`, `SFORCE`, `VFORCE`, `VTORQ`, `GFORCE` or `BUSH`, with its
+/// `MOTION`, `SFORCE`, `VFORCE`, `VTORQ`, `GFORCE`, `BUSH`, `BEAM` or
+/// `FIELD`, with its
 /// statement id, `jflag` (0: on the I marker, 1: on the J marker),
 /// component (1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty Tz`) and the
 /// marker `rm` whose axes the components are along.
@@ -29,7 +30,7 @@ pub struct SolverCall {
 
 impl SolverCall {
     /// The functions whose calls become inputs.
-    pub const FUNCTIONS: [Function; 8] = [
+    pub const FUNCTIONS: [Function; 10] = [
         Function::Joint,
         Function::Jprim,
         Function::Motion,
@@ -38,6 +39,8 @@ impl SolverCall {
         Function::Vtorq,
         Function::Gforce,
         Function::Bush,
+        Function::Beam,
+        Function::Field,
     ];
 
     /// The call of `function` with `args`, when it is one of

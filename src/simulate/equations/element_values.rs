@@ -1,5 +1,6 @@
 //! The values of force elements during a run, as the functions
-//! `SFORCE(id, jflag, comp, rm)`, `VFORCE`, `VTORQ`, `GFORCE` and `BUSH`
+//! `SFORCE(id, jflag, comp, rm)`, `VFORCE`, `VTORQ`, `GFORCE`, `BUSH`,
+//! `BEAM` and `FIELD`
 //! give them (Adams' convention): the force and the torque the element
 //! applies on its I marker (jflag 0) or its J marker (jflag 1, the floating
 //! marker of a VFORCE, VTORQUE or GFORCE, which sits at I), the torque
@@ -23,12 +24,14 @@ use crate::simulate::constraints::{flags, pick};
 use crate::simulate::model::{Force, Model};
 
 /// The force elements' functions and the statements they read.
-pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 5] = [
+pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 7] = [
     (Function::Sforce, "SFORCE"),
     (Function::Vforce, "VFORCE"),
     (Function::Vtorq, "VTORQUE"),
     (Function::Gforce, "GFORCE"),
     (Function::Bush, "BUSHING"),
+    (Function::Beam, "BEAM"),
+    (Function::Field, "FIELD"),
 ];
 
 /// A force element's component a model's expression asks for, found in
@@ -97,7 +100,7 @@ impl ElementComponent {
 }
 
 /// The I marker of force element `index` of `model` and its J marker: the
-/// J of an SFORCE, the J of a BUSHING (the marker of its axes); `None` for
+/// J of an SFORCE, the J of a BUSHING, BEAM or FIELD (the marker of its axes); `None` for
 /// the floating marker of a VFORCE, VTORQUE or GFORCE (and any vector
 /// force of a scene), which the model does not keep.
 fn markers(model: &Model, index: usize) -> (Target, Option<Target>) {
@@ -107,7 +110,7 @@ fn markers(model: &Model, index: usize) -> (Target, Option<Target>) {
             let bushing = model
                 .force_statements
                 .get(index)
-                .is_some_and(|(kind, _)| *kind == "BUSHING");
+                .is_some_and(|(kind, _)| ["BUSHING", "BEAM", "FIELD"].contains(kind));
             (*i, bushing.then_some(*axes))
         }
     }

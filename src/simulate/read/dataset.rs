@@ -10,7 +10,7 @@ use std::collections::HashMap;
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::{motions, units};
+use super::{linear, motions, units};
 use crate::Shown;
 use crate::check::Reference;
 use crate::model::initial::{number, numbers};
@@ -66,13 +66,15 @@ const LEFT_ASIDE: [&str; 20] = [
 const SOLVER_SETTINGS: [&str; 3] = ["INTEGRATOR", "DYNAMICS", "SIMULATE"];
 
 /// The force elements' statements, as the model names them.
-const FORCE_ELEMENTS: [&str; 6] = [
+const FORCE_ELEMENTS: [&str; 8] = [
     "SFORCE",
     "VFORCE",
     "VTORQUE",
     "GFORCE",
     "BUSHING",
     "SPRINGDAMPER",
+    "BEAM",
+    "FIELD",
 ];
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`].
@@ -104,7 +106,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&FORCE_ELEMENTS) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, ACCGRAV)"
+                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, ACCGRAV)"
                     .to_string(),
                 span: statement.span,
             });
@@ -601,7 +603,10 @@ impl Reader<'_> {
             let Some(i) = self.marker(statement, "I") else {
                 continue;
             };
-            if is_kind(&statement.name, "BUSHING") || is_kind(&statement.name, "SPRINGDAMPER") {
+            if ["BUSHING", "SPRINGDAMPER", "BEAM", "FIELD"]
+                .iter()
+                .any(|kind| is_kind(&statement.name, kind))
+            {
                 let Some(j) = self.marker(statement, "J") else {
                     continue;
                 };
@@ -670,15 +675,17 @@ impl Reader<'_> {
         (forces, statements)
     }
 
-    /// A BUSHING or a SPRINGDAMPER between markers `i` and `j` of
-    /// statement `index`, as the force element its Adams definition is, with
-    /// the expressions of its components written out:
+    /// A BUSHING, BEAM, FIELD or SPRINGDAMPER between markers `i` and `j`
+    /// of statement `index`, as the force element its Adams definition is,
+    /// with the expressions of its components written out:
     ///
-    /// - BUSHING: on I, in J's axes, `F = -K·(DX, DY, DZ)(I,J,J) -
-    ///   C·(VX, VY, VZ)(I,J,J,J) + FORCE` and `T = -KT·(AX, AY, AZ)(I,J) -
-    ///   CT·(WX, WY, WZ)(I,J,J) + TORQUE` (the projected angles), the
-    ///   reaction on J's part at I's origin, which is Adams' torque on J with
-    ///   the moment arm of the deformation;
+    /// - BUSHING, BEAM, FIELD: on I, in J's axes, `F = −K (X − L) − C V +
+    ///   F₀` with the matrices of [`linear`] (a BUSHING's
+    ///   `-K·(DX, DY, DZ)(I,J,J) - C·(VX, VY, VZ)(I,J,J,J) + FORCE` and
+    ///   `-KT·(AX, AY, AZ)(I,J) - CT·(WX, WY, WZ)(I,J,J) + TORQUE`, the
+    ///   projected angles), the reaction on J's part at I's origin, which is
+    ///   Adams' torque on J with the moment arm of the deformation; a FIELD
+    ///   given by `FUNCTION = USER(...)` is refused as its subroutine;
     /// - SPRINGDAMPER, TRANSLATIONAL: along the line from J to I, repelling
     ///   when positive, `-C·VR(I,J) - K·(DM(I,J) - LENGTH) + FORCE`.
     ///
@@ -691,7 +698,6 @@ impl Reader<'_> {
             return None;
         };
         let (i_id, j_id) = (i_id as u64, j_id as u64);
-        let values = |keyword: &str| numbers(statement, keyword, [0.0; 3]);
         let value = |keyword: &str| number(statement, keyword, 0.0);
         if is_kind(&statement.name, "SPRINGDAMPER") {
             if statement.argument("ROTATIONAL", 3).is_some() {
@@ -715,25 +721,52 @@ impl Reader<'_> {
             let magnitude = self.written(index, "force", &text)?;
             return Some(Force::single(false, i, j, magnitude, false));
         }
-        let read = ["K", "C", "FORCE", "KT", "CT", "TORQUE"].map(values);
-        let [k, c, force, kt, ct, torque] = match read {
-            [Ok(k), Ok(c), Ok(f), Ok(kt), Ok(ct), Ok(t)] => [k, c, f, kt, ct, t],
-            _ => return self.refuse_numbers(read.into_iter().find_map(Result::err)),
+        if is_kind(&statement.name, "FIELD") && statement.argument("FUNCTION", 4).is_some() {
+            // Its USER(...) is refused where the expression compiles.
+            self.expression(index, "FUNCTION");
+            return None;
+        }
+        let matrices = if is_kind(&statement.name, "BEAM") {
+            linear::beam(statement)
+        } else if is_kind(&statement.name, "FIELD") {
+            linear::field(statement)
+        } else {
+            linear::bushing(statement)
         };
+        let linear = match matrices {
+            Ok(linear) => linear,
+            Err((message, span)) => {
+                self.refuse(message, span);
+                return None;
+            }
+        };
+        let displacement = ["DX", "DY", "DZ"]
+            .map(|name| format!("{name}({i_id},{j_id},{j_id})"))
+            .into_iter()
+            .chain(["AX", "AY", "AZ"].map(|name| format!("{name}({i_id},{j_id})")));
+        let displacement: Vec<String> = displacement
+            .zip(linear.free)
+            .map(|(measure, free)| {
+                if free == 0.0 {
+                    measure
+                } else {
+                    format!("({measure} - {})", literal(free))
+                }
+            })
+            .collect();
+        let rate: Vec<String> = ["VX", "VY", "VZ"]
+            .map(|name| format!("{name}({i_id},{j_id},{j_id},{j_id})"))
+            .into_iter()
+            .chain(["WX", "WY", "WZ"].map(|name| format!("{name}({i_id},{j_id},{j_id})")))
+            .collect();
         let mut components = [None; 6];
-        for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
-            let push = linear_sum(&[
-                (-k[axis], format!("D{name}({i_id},{j_id},{j_id})")),
-                (-c[axis], format!("V{name}({i_id},{j_id},{j_id},{j_id})")),
-                (force[axis], String::new()),
-            ]);
-            let turn = linear_sum(&[
-                (-kt[axis], format!("A{name}({i_id},{j_id})")),
-                (-ct[axis], format!("W{name}({i_id},{j_id},{j_id})")),
-                (torque[axis], String::new()),
-            ]);
-            components[axis] = Some(self.written(index, &format!("F{name}"), &push)?);
-            components[axis + 3] = Some(self.written(index, &format!("T{name}"), &turn)?);
+        for (row, name) in ["FX", "FY", "FZ", "TX", "TY", "TZ"].iter().enumerate() {
+            let terms: Vec<(f64, String)> = (0..6)
+                .map(|column| (-linear.stiffness[row][column], displacement[column].clone()))
+                .chain((0..6).map(|column| (-linear.damping[row][column], rate[column].clone())))
+                .chain([(linear.preload[row], String::new())])
+                .collect();
+            components[row] = Some(self.written(index, name, &linear_sum(&terms))?);
         }
         let reaction = match j {
             Target::Marker(marker) => self.scene.markers[marker].body,

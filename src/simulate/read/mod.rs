@@ -6,6 +6,7 @@
 mod commands;
 mod dataset;
 mod joints;
+mod linear;
 mod motions;
 mod scene;
 mod units;
