@@ -20,6 +20,7 @@ mod joint_kinds;
 mod joints;
 mod joints_random;
 mod magnitudes;
+mod massless;
 mod model;
 mod motions;
 mod numerics;

@@ -99,7 +99,8 @@ impl Model {
 /// The mass, centre of mass and inertia of a body.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MassProperties {
-    /// The mass (positive).
+    /// The mass: positive, or 0 for a massless part (which the joints
+    /// hold: its accelerations come with the reactions).
     pub mass: f64,
     /// The centre of mass in the body frame.
     pub centre: Vector3<f64>,
@@ -108,6 +109,13 @@ pub struct MassProperties {
     pub inertia: Matrix3<f64>,
     /// Where the body is defined (for messages).
     pub span: Span,
+}
+
+impl MassProperties {
+    /// A massless part: no mass, no inertia.
+    pub fn is_massless(&self) -> bool {
+        self.mass == 0.0
+    }
 }
 
 /// A differential state `DIFF/id`: `d DIF(id)/dt = FUNCTION`.

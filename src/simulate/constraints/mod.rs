@@ -291,10 +291,34 @@ pub(crate) const JOINTS: usize = usize::MAX;
 /// multipliers unbounded), or a motion's FUNCTION fails: the integrator
 /// rejects the trial step.
 pub(crate) fn joints_singular() -> crate::eval::OutputError {
+    singular_because("their equations are dependent at this state: a singular configuration")
+}
+
+/// The error of joints whose multipliers cannot be solved in `model`: with
+/// massless parts, the likelier cause is a freedom the joints leave one of
+/// them, which no mass follows.
+pub(crate) fn joints_singular_in(model: &super::Model) -> crate::eval::OutputError {
+    let massless: Vec<&str> = model
+        .masses
+        .iter()
+        .zip(&model.scene.bodies)
+        .filter(|(mass, _)| mass.is_massless())
+        .map(|(_, body)| body.name.as_str())
+        .collect();
+    if massless.is_empty() {
+        return joints_singular();
+    }
+    singular_because(&format!(
+        "their equations are singular: the joints leave a massless part ({}) a freedom no mass follows, or the configuration is singular; give the part MASS or hold it",
+        massless.join(", ")
+    ))
+}
+
+fn singular_because(reason: &str) -> crate::eval::OutputError {
     crate::eval::OutputError {
         output: JOINTS,
         error: crate::eval::EvalError::NotFinite {
-            operation: "the joints' multipliers (their equations are dependent at this state: a singular configuration)".to_string(),
+            operation: format!("the joints' multipliers ({reason})"),
             value: f64::INFINITY,
             span: crate::span::Span::default(),
         },

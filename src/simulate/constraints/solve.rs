@@ -21,20 +21,53 @@ struct Inverse<T: Number> {
     angular: Matrix3<T>,
 }
 
+/// The bodies' inverse masses. A massless part weighs, in the metric of
+/// the least change (projection, redundancy), as the heaviest part of the
+/// model with the largest inertia; in the dynamics (`massless_free`
+/// false) it weighs nothing: [`constraint_loads`] solves its
+/// accelerations with the multipliers.
 fn inverses<T: Number>(
     model: &Model,
     bodies: &[BodyMotion<T>],
     inverse_inertia: &[Matrix3<f64>],
+    massless_free: bool,
 ) -> Vec<Inverse<T>> {
+    let stand_in = massless_free.then(|| stand_in(model));
     bodies
         .iter()
         .zip(&model.masses)
         .zip(inverse_inertia)
-        .map(|((body, mass), inverse)| Inverse {
-            linear: 1.0 / mass.mass,
-            angular: &body.rotation * inverse.map(T::from) * body.rotation.transpose(),
+        .map(|((body, mass), inverse)| {
+            let (linear, inverse) = match (mass.is_massless(), &stand_in) {
+                (false, _) => (1.0 / mass.mass, *inverse),
+                (true, Some((linear, angular))) => (*linear, *angular),
+                (true, None) => (0.0, Matrix3::zeros()),
+            };
+            Inverse {
+                linear,
+                angular: &body.rotation * inverse.map(T::from) * body.rotation.transpose(),
+            }
         })
         .collect()
+}
+
+/// The inverse mass and inertia a massless part has in the metric of the
+/// least change: the heaviest part's mass, the largest principal inertia
+/// (1 when every part is massless).
+fn stand_in(model: &Model) -> (f64, Matrix3<f64>) {
+    let heaviest = model
+        .masses
+        .iter()
+        .map(|mass| mass.mass)
+        .fold(0.0_f64, f64::max);
+    let inertia = model
+        .masses
+        .iter()
+        .map(|mass| mass.inertia.symmetric_eigenvalues().max())
+        .fold(0.0_f64, f64::max);
+    let linear = if heaviest > 0.0 { 1.0 / heaviest } else { 1.0 };
+    let angular = if inertia > 0.0 { 1.0 / inertia } else { 1.0 };
+    (linear, Matrix3::identity() * angular)
 }
 
 /// `M⁻¹ c` for one row's coefficients `c` on one body.
@@ -57,12 +90,8 @@ fn dot6<T: Number>(a: &[T; 6], b: &[T; 6]) -> T {
         .fold(T::zero(), |sum, term| sum + term)
 }
 
-/// The multipliers `λ` of `W λ = rhs`, `W = G M⁻¹ Gᵀ`.
-fn multipliers<T: Number>(
-    rows: &[Row<T>],
-    inverse: &[Inverse<T>],
-    rhs: DVector<T>,
-) -> Result<DVector<T>, Singular> {
+/// `W = G M⁻¹ Gᵀ` of the held equations `rows`.
+fn schur<T: Number>(rows: &[Row<T>], inverse: &[Inverse<T>]) -> DMatrix<T> {
     let weighted_rows: Vec<Vec<(usize, [T; 6])>> = rows
         .iter()
         .map(|row| {
@@ -86,12 +115,26 @@ fn multipliers<T: Number>(
             w[(k, l)] = sum;
         }
     }
-    let solution = w.lu().solve(&rhs).ok_or(Singular)?;
+    w
+}
+
+/// The solution of `matrix x = rhs`, when it is regular.
+fn solved<T: Number>(matrix: DMatrix<T>, rhs: DVector<T>) -> Result<DVector<T>, Singular> {
+    let solution = matrix.lu().solve(&rhs).ok_or(Singular)?;
     if solution.iter().all(|value| value.value().is_finite()) {
         Ok(solution)
     } else {
         Err(Singular)
     }
+}
+
+/// The multipliers `λ` of `W λ = rhs`, `W = G M⁻¹ Gᵀ`.
+fn multipliers<T: Number>(
+    rows: &[Row<T>],
+    inverse: &[Inverse<T>],
+    rhs: DVector<T>,
+) -> Result<DVector<T>, Singular> {
+    solved(schur(rows, inverse), rhs)
 }
 
 /// `Gᵀ λ` on each body: a force and a torque (about its centre of mass), in
@@ -108,11 +151,31 @@ fn generalised<T: Number>(rows: &[Row<T>], multipliers: &DVector<T>, bodies: usi
     loads
 }
 
+/// What holding the joints gives: the multipliers `λ`, one for each held
+/// equation in the order of [`active_rows`], and the accelerations of the
+/// massless parts the equations reach (`[v' | ω']` of the centre, in
+/// ground), which no mass gives.
+pub(crate) struct Held<T: Number> {
+    /// `λ`.
+    pub(crate) multipliers: DVector<T>,
+    /// Each massless part's index and accelerations.
+    pub(crate) massless: Vec<(usize, [T; 6])>,
+}
+
 /// Adds the joints' reactions to the applied `force` and `torque` (about
 /// each body's centre of mass, in ground): the loads `−Gᵀ λ` whose
-/// accelerations keep every held equation's second derivative zero. The
-/// multipliers `λ`, one for each held equation in the order of
-/// [`active_rows`].
+/// accelerations keep every held equation's second derivative zero.
+///
+/// A massless part's six equations are a balance, `f₀ − G₀ᵀ λ = 0`, and
+/// its accelerations `a₀` are unknowns beside `λ`:
+///
+/// ```text
+/// [ W   −G₀ ] [ λ  ]   [ G a_free + bias ]
+/// [ G₀ᵀ  0  ] [ a₀ ] = [ f₀              ]
+/// ```
+///
+/// (`W` over the parts with mass); singular when the joints leave a
+/// massless part a freedom no mass follows.
 pub(crate) fn constraint_loads<T: Number>(
     model: &Model,
     bodies: &[BodyMotion<T>],
@@ -120,18 +183,25 @@ pub(crate) fn constraint_loads<T: Number>(
     inverse_inertia: &[Matrix3<f64>],
     force: &mut [Vector3<T>],
     torque: &mut [Vector3<T>],
-) -> Result<DVector<T>, Singular> {
+) -> Result<Held<T>, Singular> {
     let rows = active_rows(model, bodies, drives);
     if rows.is_empty() {
-        return Ok(DVector::zeros(0));
+        return Ok(Held {
+            multipliers: DVector::zeros(0),
+            massless: Vec::new(),
+        });
     }
-    let inverse = inverses(model, bodies, inverse_inertia);
-    // The accelerations under the applied loads alone.
+    let inverse = inverses(model, bodies, inverse_inertia, false);
+    // The accelerations under the applied loads alone (none for a
+    // massless part).
     let free: Vec<[T; 6]> = bodies
         .iter()
         .enumerate()
         .map(|(index, body)| {
             let mass = &model.masses[index];
+            if mass.is_massless() {
+                return std::array::from_fn(|_| T::zero());
+            }
             let linear =
                 &force[index] * T::from(inverse[index].linear) + model.gravity.map(T::from);
             let inertia = mass.inertia.map(T::from);
@@ -158,8 +228,22 @@ pub(crate) fn constraint_loads<T: Number>(
                 })
         }),
     );
-    let lambda = multipliers(&rows, &inverse, rhs)?;
-    for (body, load) in generalised(&rows, &lambda, bodies.len())
+    let mut massless: Vec<usize> = rows
+        .iter()
+        .flat_map(|row| row.coefficients.iter().map(|(body, _)| *body))
+        .filter(|&body| model.masses[body].is_massless())
+        .collect();
+    massless.sort_unstable();
+    massless.dedup();
+    let held = if massless.is_empty() {
+        Held {
+            multipliers: multipliers(&rows, &inverse, rhs)?,
+            massless: Vec::new(),
+        }
+    } else {
+        balanced(&rows, &inverse, rhs, &massless, force, torque)?
+    };
+    for (body, load) in generalised(&rows, &held.multipliers, bodies.len())
         .into_iter()
         .enumerate()
     {
@@ -168,7 +252,62 @@ pub(crate) fn constraint_loads<T: Number>(
             torque[body][k] -= load[k + 3].clone();
         }
     }
-    Ok(lambda)
+    Ok(held)
+}
+
+/// The multipliers and the accelerations of the `massless` parts, from the
+/// system of [`constraint_loads`].
+fn balanced<T: Number>(
+    rows: &[Row<T>],
+    inverse: &[Inverse<T>],
+    rhs: DVector<T>,
+    massless: &[usize],
+    force: &[Vector3<T>],
+    torque: &[Vector3<T>],
+) -> Result<Held<T>, Singular> {
+    let m = rows.len();
+    let size = m + 6 * massless.len();
+    let mut matrix = DMatrix::<T>::zeros(size, size);
+    matrix
+        .view_mut((0, 0), (m, m))
+        .copy_from(&schur(rows, inverse));
+    for (r, row) in rows.iter().enumerate() {
+        for (body, c) in &row.coefficients {
+            let Ok(slot) = massless.binary_search(body) else {
+                continue;
+            };
+            for (k, c) in c.iter().enumerate() {
+                let column = m + 6 * slot + k;
+                matrix[(r, column)] = -c.clone();
+                matrix[(column, r)] = c.clone();
+            }
+        }
+    }
+    let applied = massless.iter().flat_map(|&body| {
+        (0..6).map(move |k| {
+            if k < 3 {
+                force[body][k].clone()
+            } else {
+                torque[body][k - 3].clone()
+            }
+        })
+    });
+    let rhs = DVector::from_iterator(size, rhs.iter().cloned().chain(applied));
+    let solution = solved(matrix, rhs)?;
+    let accelerations = massless
+        .iter()
+        .enumerate()
+        .map(|(slot, &body)| {
+            (
+                body,
+                std::array::from_fn(|k| solution[m + 6 * slot + k].clone()),
+            )
+        })
+        .collect();
+    Ok(Held {
+        multipliers: solution.rows(0, m).into_owned(),
+        massless: accelerations,
+    })
 }
 
 /// The largest constraint residuals of a state: of the positions (`Φ`)
@@ -231,7 +370,7 @@ fn least_change(
     inverse_inertia: &[Matrix3<f64>],
     residual: impl Fn(&Row<f64>) -> f64,
 ) -> Result<Vec<[f64; 6]>, Singular> {
-    let inverse = inverses(model, bodies, inverse_inertia);
+    let inverse = inverses(model, bodies, inverse_inertia, true);
     let rhs = DVector::from_iterator(rows.len(), rows.iter().map(residual));
     let lambda = multipliers(rows, &inverse, rhs)?;
     Ok(generalised(rows, &lambda, bodies.len())

@@ -97,7 +97,13 @@ impl<T: Number> Kinematics<T> {
         rates: &mut [T],
     ) {
         let inertia = mass.inertia.map(T::from);
-        let acceleration = force / T::from(mass.mass) + gravity.map(T::from);
+        // A massless part's accelerations are the joints' solve's
+        // (`Mechanics::rates` puts them in); none here.
+        let acceleration = if mass.is_massless() {
+            Vector3::zeros()
+        } else {
+            force / T::from(mass.mass) + gravity.map(T::from)
+        };
         let omega = &self.omega;
         let body_torque = self.rotation.transpose() * torque;
         let angular =

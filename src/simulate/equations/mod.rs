@@ -38,7 +38,7 @@ use crate::laws::branch::Code;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input};
 use crate::simulate::constraints::{
-    BodyMotion, Component, Drives, Reactions, constraint_loads, joints_singular,
+    BodyMotion, Component, Drives, Reactions, constraint_loads, joints_singular, joints_singular_in,
 };
 use crate::simulate::model::Model;
 use accelerations::{Accelerations, Measure};
@@ -463,6 +463,9 @@ struct Solved<T: Number> {
     loads: Loads<T>,
     /// The joints' multipliers (`None`: the model has no joint).
     multipliers: Option<nalgebra::DVector<T>>,
+    /// The accelerations of the massless parts, which the joints' solve
+    /// gives (`[v' | ω']` of the centre, in ground).
+    massless: Vec<(usize, [T; 6])>,
 }
 
 /// The program's inputs and outputs, kept from call to call.
@@ -558,6 +561,27 @@ impl Equations<'_> {
                 &mut rates[offset..offset + BODY_STATES],
             );
         }
+        for (body, accelerations) in &solved.massless {
+            // The angular acceleration in the body's axes: `ω_b = Rᵀ ω`
+            // and `Ṙᵀ ω = −ω_b × ω_b = 0`.
+            let angular = solved.kinematics[*body].rotation.transpose()
+                * Vector3::new(
+                    accelerations[3].clone(),
+                    accelerations[4].clone(),
+                    accelerations[5].clone(),
+                );
+            let offset = body_offset(model, *body);
+            let given = accelerations[..3]
+                .iter()
+                .cloned()
+                .chain(angular.iter().cloned());
+            for (rate, value) in rates[offset + 7..offset + BODY_STATES]
+                .iter_mut()
+                .zip(given)
+            {
+                *rate = value;
+            }
+        }
         Ok(())
     }
 
@@ -588,25 +612,27 @@ impl Equations<'_> {
             forces::apply(model, force, &kinematics, &value, &mut loads);
         }
         let mut multipliers = None;
+        let mut massless = Vec::new();
         if model.is_constrained() {
             let motions = body_motions(&kinematics);
             let drives = self.drives.at(t).ok_or_else(joints_singular)?;
-            multipliers = Some(
-                constraint_loads(
-                    model,
-                    &motions,
-                    &drives,
-                    &self.inverse_inertia,
-                    &mut loads.force,
-                    &mut loads.torque,
-                )
-                .map_err(|_| joints_singular())?,
-            );
+            let held = constraint_loads(
+                model,
+                &motions,
+                &drives,
+                &self.inverse_inertia,
+                &mut loads.force,
+                &mut loads.torque,
+            )
+            .map_err(|_| joints_singular_in(model))?;
+            multipliers = Some(held.multipliers);
+            massless = held.massless;
         }
         Ok(Solved {
             kinematics,
             loads,
             multipliers,
+            massless,
         })
     }
 

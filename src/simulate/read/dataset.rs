@@ -131,6 +131,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
     };
     let units = units::consistency_factor(dataset);
     let mut model = reader.model(notes);
+    reader.refuse_loose_massless_parts(&model);
     match units {
         Ok((factor, note)) => {
             for mass in &mut model.masses {
@@ -196,6 +197,45 @@ struct Reader<'d> {
 }
 
 impl Reader<'_> {
+    /// Refuses each massless part no joint, primitive or motion holds: no
+    /// force can move it.
+    fn refuse_loose_massless_parts(&mut self, model: &Model) {
+        let body = |target: &Target| match target {
+            Target::Marker(marker) => model.scene.markers[*marker].body,
+            Target::Ground => None,
+        };
+        let held: Vec<usize> = model
+            .joints
+            .iter()
+            .flat_map(|joint| [body(&joint.i), body(&joint.j)])
+            .chain(
+                model
+                    .marker_motions
+                    .iter()
+                    .flat_map(|motion| [body(&motion.i), body(&motion.j)]),
+            )
+            .flatten()
+            .collect();
+        for (index, mass) in model.masses.iter().enumerate() {
+            // A part refused for an inertia without mass is not named twice.
+            let massless = mass.is_massless() && mass.inertia == Matrix3::zeros();
+            if massless && !held.contains(&index) {
+                let label = self
+                    .dataset
+                    .statements
+                    .iter()
+                    .find(|statement| statement.span == mass.span)
+                    .map_or_else(|| "a PART".to_string(), Statement::label);
+                self.refuse(
+                    format!(
+                        "{label} has no MASS and no joint, primitive or motion holds it: give MASS = a positive number (a massless part moves only as the joints take it)"
+                    ),
+                    mass.span,
+                );
+            }
+        }
+    }
+
     /// Records what is wrong with the model at `span`.
     fn refuse(&mut self, message: String, span: Span) {
         self.errors.push(SimulateError::Model { message, span });
@@ -465,19 +505,13 @@ impl Reader<'_> {
                 span: statement.span,
             });
         };
-        let mass = number(statement, "MASS", f64::NAN).unwrap_or(f64::NAN);
-        if statement.argument("MASS", 2).is_none() {
+        // No MASS, or MASS = 0: a massless part, which joints must hold.
+        let mass = number(statement, "MASS", 0.0).unwrap_or(f64::NAN);
+        if !(mass >= 0.0 && mass.is_finite()) {
             fail(
                 &mut self.errors,
                 format!(
-                    "{label} has no MASS: give MASS = a positive number (a part without mass cannot move under forces)"
-                ),
-            );
-        } else if !(mass > 0.0 && mass.is_finite()) {
-            fail(
-                &mut self.errors,
-                format!(
-                    "{label}: MASS must be a positive number, not {} (a part without mass cannot move under forces)",
+                    "{label}: MASS must be a positive number, or 0 for a massless part, not {}",
                     Shown(mass)
                 ),
             );
@@ -519,7 +553,14 @@ impl Reader<'_> {
         let d = origin - centre;
         let shift = (Matrix3::identity() * d.dot(&d) - d * d.transpose()) * mass;
         let inertia = about_origin - shift;
-        if mass > 0.0 && inertia.cholesky().is_none() {
+        if mass == 0.0 && inertia.iter().any(|entry| *entry != 0.0) {
+            fail(
+                &mut self.errors,
+                format!(
+                    "{label} has no MASS but an inertia: give MASS = a positive number, or leave IP out for a massless part"
+                ),
+            );
+        } else if mass > 0.0 && inertia.cholesky().is_none() {
             fail(
                 &mut self.errors,
                 format!(
