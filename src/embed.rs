@@ -483,6 +483,8 @@ pub struct RunOptions {
     pub h_max: Option<f64>,
     /// The most integration steps (default [`simulate::DEFAULT_MAX_STEPS`]).
     pub max_steps: Option<usize>,
+    /// Start from a static equilibrium (default: as the `.acf` says).
+    pub statics: Option<bool>,
 }
 
 impl Default for RunOptions {
@@ -495,6 +497,7 @@ impl Default for RunOptions {
             atol: None,
             h_max: None,
             max_steps: None,
+            statics: None,
         }
     }
 }
@@ -532,7 +535,10 @@ impl LoadedModel {
         let mut loaded = LoadedModel::read(text, format, kind)?;
         if format == ModelFormat::Dataset {
             match simulate::run_settings_beside(path) {
-                Ok(run) => loaded.model.run = run,
+                Ok(run) => {
+                    loaded.model.run = run.map(|run| (run.end, run.steps));
+                    loaded.model.statics = run.is_some_and(|run| run.statics);
+                }
                 Err(problem) => loaded.run_problem = Some(problem),
             }
         }
@@ -599,6 +605,7 @@ impl LoadedModel {
             atol: options.atol.unwrap_or(options.rtol * 1e-3),
             h_max: options.h_max.unwrap_or(f64::INFINITY),
             max_steps: options.max_steps.unwrap_or(simulate::DEFAULT_MAX_STEPS),
+            statics: options.statics.unwrap_or(self.model.statics),
         })
     }
 

@@ -36,6 +36,7 @@ mod simulate;
 mod simulate_variants;
 mod span;
 mod spline;
+mod statics;
 
 /// `case\n  => check(case)\n` for every non-blank line of `cases`: the
 /// snapshot form of a data-driven test.

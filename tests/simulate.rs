@@ -1304,7 +1304,8 @@ fn check_commands(commands: &str) -> String {
     let text = format!("model\nmodel\n{}\nstop\n", commands.replace(';', "\n"));
     let dataset = model::read(&text, FileKind::Acf);
     match simulate::run_settings(&dataset) {
-        Ok(Some((end, steps, _))) => format!("{end} {steps}"),
+        Ok(Some(run)) if run.statics => format!("statics, then {} {}", run.end, run.steps),
+        Ok(Some(run)) => format!("{} {}", run.end, run.steps),
         Ok(None) => "none".to_string(),
         Err((message, _)) => message.split(':').take(2).collect::<Vec<_>>().join(":"),
     }
@@ -1332,7 +1333,15 @@ fn command_files_give_one_run_of_equally_spaced_outputs() {
         ("", "none"),
         (
             "sim/stat; sim/dyn, end = 1, steps = 10",
-            "SIMULATE/STATICS: mbexpr does not compute a static equilibrium; its dynamics start from the model's initial conditions, assembled on the joints (delete the command to run them so, or give --end and --steps)",
+            "statics, then 1 10",
+        ),
+        (
+            "sim/dyn, end = 1, steps = 10; simulate/statics",
+            "SIMULATE/STATICS after a dynamic command: mbexpr computes a static equilibrium only at the start of a run (put it before the dynamic commands, or give --end and --steps)",
+        ),
+        (
+            "sim/statics",
+            "SIMULATE/STATICS alone: mbexpr computes a static equilibrium as the start of a dynamic run (add a SIMULATE/DYNAMIC command after it, or give --end, --steps and --statics)",
         ),
         (
             "sim/dyn, end = 1, steps = 10; sim/dyn, end = 2, steps = 5",

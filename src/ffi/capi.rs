@@ -1009,6 +1009,8 @@ fn options(settings: &CSettings) -> Result<RunOptions, Located> {
         atol: given(settings.atol),
         h_max: given(settings.h_max),
         max_steps: (settings.max_steps != 0).then_some(settings.max_steps),
+        // As the model's command file says.
+        statics: None,
     })
 }
 

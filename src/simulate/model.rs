@@ -48,6 +48,9 @@ pub struct Model {
     /// The end time and number of output steps the file gives (a
     /// `SIMULATE/DYNAMIC` command), when it gives them.
     pub run: Option<(f64, usize)>,
+    /// Whether the file asks for a static equilibrium before the dynamics
+    /// (`SIMULATE/STATICS` first in the `.acf`).
+    pub statics: bool,
 }
 
 impl Model {

@@ -85,6 +85,9 @@ pub struct Args {
     /// The most integration steps, accepted and rejected; past them the run stops with an error.
     #[arg(long, default_value_t = simulate::DEFAULT_MAX_STEPS)]
     max_steps: usize,
+    /// Start from a static equilibrium: the parts at rest where the forces balance, found from the initial conditions by Newton's method (as SIMULATE/STATICS before the dynamics in the .acf does).
+    #[arg(long)]
+    statics: bool,
     /// Row format (default: csv on a pipe, text on a terminal).
     #[arg(long, value_enum)]
     format: Option<RowFormat>,
@@ -179,7 +182,10 @@ fn read_model(
     let mut run_problem = None;
     if format == ModelFormat::Dataset {
         match simulate::run_settings_beside(path) {
-            Ok(run) => model.run = run,
+            Ok(run) => {
+                model.run = run.map(|run| (run.end, run.steps));
+                model.statics = run.is_some_and(|run| run.statics);
+            }
             Err(problem) => run_problem = Some(problem),
         }
     }
@@ -297,6 +303,7 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         atol: args.atol.unwrap_or(args.rtol * 1e-3),
         h_max: args.hmax.unwrap_or(f64::INFINITY),
         max_steps: args.max_steps,
+        statics: args.statics || model.statics,
     };
     // Every output is checked before the first step.
     settings
@@ -574,6 +581,13 @@ impl Report<'_> {
                 Counted(summary.projections, "projection"),
             );
         }
+        if let Some(equilibrium) = summary.equilibrium {
+            text += &format!(
+                "static equilibrium: {}, largest acceleration left {:.1e}\n",
+                Counted(equilibrium.iterations, "newton iteration"),
+                equilibrium.residual
+            );
+        }
         if let Some(estimate) = self.estimate {
             let columns: Vec<String> = self.columns[1..]
                 .iter()
@@ -641,6 +655,10 @@ impl Report<'_> {
                 "initial_residuals": {"position": summary.initial_residuals.position, "velocity": summary.initial_residuals.velocity},
                 "largest_residuals": {"position": summary.residuals.position, "velocity": summary.residuals.velocity},
                 "projections": summary.projections,
+            })),
+            "static_equilibrium": summary.equilibrium.map(|equilibrium| json!({
+                "iterations": equilibrium.iterations,
+                "residual": equilibrium.residual,
             })),
         })
     }

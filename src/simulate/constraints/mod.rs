@@ -37,7 +37,8 @@ pub(crate) use reactions::{Component, Reactions, flags, pick};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
 pub(crate) use solve::{
-    Tolerance, Unassembled, constraint_loads, disagreeing_redundant, find_redundant, project,
+    Tolerance, Unassembled, constraint_loads, disagreeing_redundant, find_redundant,
+    held_equations, project,
 };
 
 use nalgebra::Vector3;

@@ -338,6 +338,30 @@ impl Residuals {
     }
 }
 
+/// The held equations at state `y`: each one's value `Φ` and its row of
+/// `G` over the bodies' `[δc | δθ]` (a displacement of the centre and a
+/// turn, in ground), six columns a body.
+pub(crate) fn held_equations(
+    model: &Model,
+    y: &[f64],
+    offsets: &[usize],
+    drives: &[Drive],
+) -> (DVector<f64>, DMatrix<f64>) {
+    let bodies = motions(y, offsets);
+    let rows = active_rows(model, &bodies, drives);
+    let mut values = DVector::zeros(rows.len());
+    let mut g = DMatrix::zeros(rows.len(), 6 * offsets.len());
+    for (r, row) in rows.iter().enumerate() {
+        values[r] = row.value;
+        for (body, c) in &row.coefficients {
+            for (k, c) in c.iter().enumerate() {
+                g[(r, 6 * body + k)] += c;
+            }
+        }
+    }
+    (values, g)
+}
+
 /// The bodies' motions at state `y`, where each body's states start at
 /// its entry of `offsets` (its centre of mass, quaternion `w x y z`,
 /// velocity and angular velocity in its own axes).

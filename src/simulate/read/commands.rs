@@ -10,35 +10,51 @@ use crate::span::Span;
 /// rows; DTOUT = 1e-300 would otherwise ask for a run without end).
 pub const MOST_OUTPUT_STEPS: usize = 100_000_000;
 
-/// A command file's run: its end time, its number of output steps and the
-/// span of its last SIMULATE command.
-pub type RunCommands = (f64, usize, Span);
+/// A command file's run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunCommands {
+    /// The end time.
+    pub end: f64,
+    /// The number of output steps.
+    pub steps: usize,
+    /// Whether a static equilibrium comes first (`SIMULATE/STATICS`
+    /// before the dynamic commands).
+    pub statics: bool,
+    /// The span of the last SIMULATE command.
+    pub span: Span,
+}
 
 /// The end time and the number of output steps of a command file's
 /// `SIMULATE/DYNAMIC` (or `TRANSIENT`, `KINEMATIC`) commands, with the span
 /// of the last: `END = t` or `DURATION = d` (from the end of the command
 /// before), and `STEPS = n` or `DTOUT = dt`. Several commands run on one
 /// after the other, so they make one run when their outputs are equally
-/// spaced. `Ok(None)` when no command gives a run; an error, with the
+/// spaced; a `SIMULATE/STATICS` before them starts the run from a static
+/// equilibrium. `Ok(None)` when no command gives a run; an error, with the
 /// command's place, for a command mbexpr does not carry out:
-/// `SIMULATE/STATICS` (a static equilibrium), commands whose output steps
-/// differ, or a command without its end or its steps.
+/// `SIMULATE/STATICS` after a dynamic command or alone, commands whose
+/// output steps differ, or a command without its end or its steps.
 pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, Span)> {
     let mut end = 0.0;
     let mut interval: Option<f64> = None;
     let mut last = None;
+    let mut statics = None;
     for statement in &commands.statements {
         if statement_name(&statement.name, COMMANDS) != Some("SIMULATE") {
             continue;
         }
         let label = "SIMULATE";
         if statement.argument("STATICS", 4).is_some() || statement.argument("STATIC", 4).is_some() {
-            return Err((
-                format!(
-                    "{label}/STATICS: mbexpr does not compute a static equilibrium; its dynamics start from the model's initial conditions, assembled on the joints (delete the command to run them so, or give --end and --steps)"
-                ),
-                statement.span,
-            ));
+            if last.is_some() {
+                return Err((
+                    format!(
+                        "{label}/STATICS after a dynamic command: mbexpr computes a static equilibrium only at the start of a run (put it before the dynamic commands, or give --end and --steps)"
+                    ),
+                    statement.span,
+                ));
+            }
+            statics = Some(statement.span);
+            continue;
         }
         let dynamic = ["DYNAMIC", "TRANSIENT", "KINEMATIC"]
             .iter()
@@ -92,6 +108,12 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
         last = Some(statement.span);
     }
     let (Some(step), Some(span)) = (interval, last) else {
+        if let Some(span) = statics {
+            return Err((
+                "SIMULATE/STATICS alone: mbexpr computes a static equilibrium as the start of a dynamic run (add a SIMULATE/DYNAMIC command after it, or give --end, --steps and --statics)".to_string(),
+                span,
+            ));
+        }
         return Ok(None);
     };
     let steps = (end / step).round();
@@ -103,5 +125,10 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
             span,
         ));
     }
-    Ok(Some((end, steps as usize, span)))
+    Ok(Some(RunCommands {
+        end,
+        steps: steps as usize,
+        statics: statics.is_some(),
+        span,
+    }))
 }

@@ -271,6 +271,7 @@ impl Reader<'_> {
             outputs,
             notes,
             run: None,
+            statics: false,
         }
     }
 

@@ -68,10 +68,10 @@ pub fn format_of_path(
     }
 }
 
-/// END and STEPS of `SIMULATE/DYNAMIC` in the `.acf` beside the dataset at
-/// `path`; none for an `.acf` itself, for standard input (`-`) or when
-/// there is no such file.
-pub fn run_settings_beside(path: &str) -> Result<Option<(f64, usize)>, String> {
+/// The run of the `.acf` beside the dataset at `path` ([`run_settings`]);
+/// none for an `.acf` itself, for standard input (`-`) or when there is no
+/// such file.
+pub fn run_settings_beside(path: &str) -> Result<Option<RunCommands>, String> {
     let commands = Path::new(path).with_extension("acf");
     if path == "-" || FileKind::of_path(path) == Some(FileKind::Acf) || !commands.exists() {
         return Ok(None);
@@ -79,10 +79,8 @@ pub fn run_settings_beside(path: &str) -> Result<Option<(f64, usize)>, String> {
     let text = std::fs::read_to_string(&commands)
         .map_err(|error| format!("cannot read {}: {error}", commands.display()))?;
     let dataset = model::read(&text, FileKind::Acf);
-    run_settings(&dataset)
-        .map(|run| run.map(|(end, steps, _)| (end, steps)))
-        .map_err(|(message, span)| {
-            let at = crate::Location::of(&text, span.start);
-            format!("{}:{at}: {message}", commands.display())
-        })
+    run_settings(&dataset).map_err(|(message, span)| {
+        let at = crate::Location::of(&text, span.start);
+        format!("{}:{at}: {message}", commands.display())
+    })
 }

@@ -159,6 +159,7 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         outputs,
         notes,
         run,
+        statics: false,
     })
 }
 

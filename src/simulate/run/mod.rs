@@ -9,10 +9,12 @@ use std::time::{Duration, Instant};
 
 mod estimate;
 mod sink;
+mod statics;
 mod switch;
 
 pub use estimate::ErrorEstimate;
 pub use sink::{MethodChange, Sink};
+pub use statics::Equilibrium;
 
 use super::constraints::{
     Drives, JOINTS, Residuals, Tolerance, Unassembled, disagreeing_redundant, owner_of_row, project,
@@ -50,6 +52,10 @@ pub struct Settings {
     /// The most integration steps, accepted and rejected, the run may take
     /// (past them it stops with an error rather than run on for hours).
     pub max_steps: usize,
+    /// Start from a static equilibrium (`SIMULATE/STATICS` before the
+    /// dynamics): the parts at rest where the forces balance, found from
+    /// the initial conditions.
+    pub statics: bool,
 }
 
 impl Default for Settings {
@@ -62,6 +68,7 @@ impl Default for Settings {
             atol: 1e-9,
             h_max: f64::INFINITY,
             max_steps: DEFAULT_MAX_STEPS,
+            statics: false,
         }
     }
 }
@@ -169,6 +176,9 @@ pub struct Summary {
     /// With joints: how many times a state was projected back onto the
     /// constraints (a residual past the absolute tolerance).
     pub projections: usize,
+    /// With [`Settings::statics`]: how the static equilibrium the run
+    /// starts from was found.
+    pub equilibrium: Option<Equilibrium>,
 }
 
 /// A step limit of the sites, raised to what the integrator can take at
@@ -404,6 +414,38 @@ impl Simulation<'_> {
             }
             found
         };
+        let equilibrium = if settings.statics {
+            let at = drives.at(0.0).unwrap_or_default();
+            let mut put_back = |y: &mut [f64]| {
+                if model.is_constrained() {
+                    assemble(
+                        y,
+                        0.0,
+                        Tolerance {
+                            rtol: 0.0,
+                            atol: 0.0,
+                        },
+                    )
+                    .map(|_| ())
+                } else {
+                    Ok(())
+                }
+            };
+            let found = statics::settle(
+                model,
+                &mut system.mechanics,
+                &mut y0,
+                &offsets,
+                &at,
+                &mut put_back,
+            )
+            .map_err(|unsettled| self.unsettled(unsettled))?;
+            // Motions moving at time 0 set their joints' velocities.
+            put_back(&mut y0)?;
+            Some(found)
+        } else {
+            None
+        };
         let mut natural = vec![None; program.sites().len()];
         let mut switching = vec![0.0; program.switch_count()];
         let limit = system
@@ -448,6 +490,7 @@ impl Simulation<'_> {
             residuals: Residuals::default(),
             initial_residuals,
             projections: 0,
+            equilibrium,
         };
         let output_time = |index: usize| settings.end * index as f64 / settings.steps as f64;
         let values = rows.at(0.0, &y0).map_err(|error| fail(0.0, error))?;
@@ -729,6 +772,40 @@ impl Simulation<'_> {
                 settings.max_steps
             ),
             cause: None,
+        }
+    }
+
+    /// The error of a static equilibrium that is not found.
+    fn unsettled(&self, unsettled: statics::Unsettled) -> SimulateError {
+        let program = &self.dynamics;
+        match unsettled {
+            statics::Unsettled::Evaluation(error) => SimulateError::Evaluation {
+                time: 0.0,
+                expression: self.expression_of(program, error.output),
+                error: error.error,
+            },
+            statics::Unsettled::Assembly(error) => error,
+            statics::Unsettled::Moving { state, residual } => {
+                let model = self.model;
+                let what = if state < model.diffs.len() {
+                    format!("DIFF/{}'s rate", model.diffs[state].id)
+                } else {
+                    let body = (state - model.diffs.len()) / BODY_STATES;
+                    let angular = (state - model.diffs.len()) % BODY_STATES >= 10;
+                    format!(
+                        "{}'s {} acceleration",
+                        model.scene.bodies[body].name,
+                        if angular { "angular" } else { "linear" }
+                    )
+                };
+                SimulateError::Integration {
+                    time: 0.0,
+                    message: format!(
+                        "no static equilibrium found from the initial conditions: Newton's iterations end with {what} at {residual:.3e} (the forces may have no balance near the start, or a freedom no force holds: start the dynamics from the initial conditions without SIMULATE/STATICS or --statics)"
+                    ),
+                    cause: None,
+                }
+            }
         }
     }
 
