@@ -289,6 +289,8 @@ fn simulate<'py>(
         atol,
         h_max,
         max_steps,
+        // As the model's command file says.
+        statics: None,
     };
     let outcome = py.detach(|| {
         let loaded = if is_path {
