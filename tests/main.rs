@@ -37,6 +37,7 @@ mod simulate_variants;
 mod span;
 mod spline;
 mod statics;
+mod turns;
 
 /// `case\n  => check(case)\n` for every non-blank line of `cases`: the
 /// snapshot form of a data-driven test.

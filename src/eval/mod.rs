@@ -67,8 +67,51 @@ pub struct Evaluator<'p, T> {
     slots: Vec<T>,
     /// The last value of each AX, AY, AZ instruction (empty until one runs).
     angles: Vec<Option<f64>>,
+    /// In a simulation, their values at the last accepted states, which
+    /// settle their whole turns ([`Evaluator::accept_angles`]).
+    turns: Option<Box<Turns>>,
     /// The marker frames of the current run, shared by its measures.
     frames: SharedFrames<T>,
+}
+
+/// The values of AX, AY, AZ at a simulation's last accepted states: an
+/// evaluation anywhere inside a step (a stage, a rejected try, a look for
+/// a switch) takes the whole turns nearest the value extrapolated from
+/// them to its time, so a part that turns several radians a step keeps its
+/// turns, however its steps' trial evaluations fall.
+#[derive(Clone, Debug, Default)]
+struct Turns {
+    /// The time of the evaluation under way.
+    time: f64,
+    /// Per instruction, up to [`ACCEPTED_ANGLES`] `(time, value)` at
+    /// accepted states, oldest first.
+    accepted: Vec<Vec<(f64, f64)>>,
+}
+
+/// The accepted values an angle's extrapolation passes through: three, a
+/// parabola.
+const ACCEPTED_ANGLES: usize = 3;
+
+impl Turns {
+    /// The value of instruction `index` extrapolated to the time under way
+    /// from its accepted values (Newton's divided differences), if any.
+    fn expected(&self, index: usize) -> Option<f64> {
+        let points = self.accepted.get(index)?;
+        let &(_, last) = points.last()?;
+        let mut table: Vec<f64> = points.iter().map(|&(_, value)| value).collect();
+        let times: Vec<f64> = points.iter().map(|&(time, _)| time).collect();
+        // The divided differences, in place: table[k] = f[t_0 .. t_k].
+        for order in 1..table.len() {
+            for k in (order..table.len()).rev() {
+                table[k] = (table[k] - table[k - 1]) / (times[k] - times[k - order]);
+            }
+        }
+        let mut value = table[table.len() - 1];
+        for k in (0..table.len() - 1).rev() {
+            value = value * (self.time - times[k]) + table[k];
+        }
+        Some(if value.is_finite() { value } else { last })
+    }
 }
 
 /// Evaluations of one program at a sequence of points, in order (the steps
@@ -151,6 +194,7 @@ impl Program {
             turned: None,
             slots,
             angles: Vec::new(),
+            turns: None,
             frames: SharedFrames::new(),
         }
     }
@@ -348,6 +392,38 @@ impl<T: Number> Evaluator<'_, T> {
             .map_or_else(T::zero, |&slot| self.slots[slot as usize].clone()))
     }
 
+    /// Whether the program has an AX, AY or AZ, whose turns a simulation
+    /// settles at its accepted states.
+    pub(crate) fn continues_angles(&self) -> bool {
+        self.program.continues_from_point_to_point()
+    }
+
+    /// The time of the evaluations that follow, in a simulation (the
+    /// angles' turns are extrapolated to it).
+    pub(crate) fn at_time(&mut self, time: f64) {
+        if let Some(turns) = &mut self.turns {
+            turns.time = time;
+        }
+    }
+
+    /// The last evaluation was at a simulation's accepted state at `time`:
+    /// its AX, AY, AZ values settle their turns from there on.
+    pub(crate) fn accept_angles(&mut self, time: f64) {
+        let turns = self.turns.get_or_insert_with(Box::default);
+        turns.time = time;
+        turns.accepted.resize(self.angles.len(), Vec::new());
+        for (points, angle) in turns.accepted.iter_mut().zip(&self.angles) {
+            let Some(value) = angle else { continue };
+            while points.last().is_some_and(|&(at, _)| at >= time) {
+                points.pop();
+            }
+            if points.len() == ACCEPTED_ANGLES {
+                points.remove(0);
+            }
+            points.push((time, *value));
+        }
+    }
+
     /// `result` of instruction `index`, moved by whole turns to the value
     /// nearest its last one when `op` is AX, AY or AZ.
     fn continue_angle(&mut self, op: &Op, index: usize, result: T) -> T {
@@ -358,7 +434,12 @@ impl<T: Number> Evaluator<'_, T> {
             self.angles = vec![None; self.program.code.len()];
         }
         let turn = std::f64::consts::TAU;
-        let result = match self.angles[index] {
+        let reference = self
+            .turns
+            .as_ref()
+            .and_then(|turns| turns.expected(index))
+            .or(self.angles[index]);
+        let result = match reference {
             Some(previous) => {
                 let turns = ((previous - result.value()) / turn).round();
                 if turns == 0.0 {

@@ -170,8 +170,39 @@ impl<'m> Mechanics<'m> {
         held: Option<&[Option<Code>]>,
         rates: &mut [f64],
     ) -> Result<(), OutputError> {
+        self.values.at_time(t);
         self.equations
             .rates(&mut self.values, t, y, held, rates, &mut self.buffers)
+    }
+
+    /// `(t, y)` is an accepted state of the run: the program's AX, AY, AZ
+    /// evaluated there settle their whole turns
+    /// ([`Evaluator::accept_angles`]). Nothing to do for a program
+    /// without them.
+    pub(crate) fn accept(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+    ) -> Result<(), OutputError> {
+        if self.values.continues_angles() {
+            let mut rates = vec![0.0; y.len()];
+            self.rates(t, y, held, &mut rates)?;
+            self.values.accept_angles(t);
+        }
+        Ok(())
+    }
+
+    /// Whether the program has an AX, AY or AZ, whose turns the run
+    /// settles at its accepted states.
+    pub(crate) fn continues_angles(&self) -> bool {
+        self.values.continues_angles()
+    }
+
+    /// The program's AX, AY, AZ evaluated last were at an accepted state
+    /// at `t` ([`Mechanics::accept`] for a program evaluated otherwise).
+    pub(crate) fn accept_angles(&mut self, t: f64) {
+        self.values.accept_angles(t);
     }
 
     /// The natural branch of every site and their switching values at
@@ -186,6 +217,7 @@ impl<'m> Mechanics<'m> {
         branches: (&mut [Option<Code>], &mut [f64]),
         tolerance: Option<f64>,
     ) -> Result<f64, OutputError> {
+        self.values.at_time(t);
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
         let buffers = &mut self.buffers;
@@ -223,6 +255,7 @@ impl<'m> Mechanics<'m> {
         solved: &[f64],
         outputs: &mut [f64],
     ) -> Result<(), OutputError> {
+        self.values.at_time(t);
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
         let inputs = &mut self.buffers.inputs;
@@ -240,6 +273,7 @@ impl<'m> Mechanics<'m> {
         y: &[f64],
         values: &[RunValue],
     ) -> Result<Vec<f64>, OutputError> {
+        self.values.at_time(t);
         let reactions = if values
             .iter()
             .any(|value| matches!(value, RunValue::Reaction(_) | RunValue::NetForce(_)))

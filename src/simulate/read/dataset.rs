@@ -729,10 +729,10 @@ impl Reader<'_> {
     ///   Adams' torque on J with the moment arm of the deformation; a FIELD
     ///   given by `FUNCTION = USER(...)` is refused as its subroutine;
     /// - SPRINGDAMPER, TRANSLATIONAL: along the line from J to I, repelling
-    ///   when positive, `-C·VR(I,J) - K·(DM(I,J) - LENGTH) + FORCE`.
-    ///
-    /// A rotational SPRINGDAMPER is refused: its angle past half a turn
-    /// is not settled here.
+    ///   when positive, `-C·VR(I,J) - K·(DM(I,J) - LENGTH) + FORCE`;
+    /// - SPRINGDAMPER, ROTATIONAL: about J's z axis, on I and the opposite
+    ///   on J, `-CT·WZ(I,J,J) - KT·(AZ(I,J) - ANGLE) + TORQUE`, AZ wound
+    ///   through its whole turns over the run.
     fn linear_element(&mut self, index: usize, i: Target, j: Target) -> Option<Force> {
         let statement = &self.dataset.statements[index];
         let ids = [number(statement, "I", 0.0), number(statement, "J", 0.0)];
@@ -742,26 +742,36 @@ impl Reader<'_> {
         let (i_id, j_id) = (i_id as u64, j_id as u64);
         let value = |keyword: &str| number(statement, keyword, 0.0);
         if is_kind(&statement.name, "SPRINGDAMPER") {
-            if statement.argument("ROTATIONAL", 3).is_some() {
-                self.errors.push(SimulateError::Unsupported {
-                    statement: statement.label(),
-                    reason: "is ROTATIONAL: its angle past half a turn is not settled in mbexpr; write it as SFORCE, ROTATIONAL with AZ(I,J) and WZ(I,J,J)".to_string(),
-                    span: statement.span,
-                });
-                return None;
-            }
-            let read = ["C", "K", "LENGTH", "FORCE"].map(value);
-            let [c, k, length, force] = match read {
-                [Ok(c), Ok(k), Ok(length), Ok(force)] => [c, k, length, force],
+            // A rotational one's AZ keeps its whole turns over the run: a
+            // spring wound several turns pulls back by all of them.
+            let rotational = statement.argument("ROTATIONAL", 3).is_some();
+            let (keywords, rate, place, what) = if rotational {
+                (
+                    ["CT", "KT", "ANGLE", "TORQUE"],
+                    format!("WZ({i_id},{j_id},{j_id})"),
+                    format!("AZ({i_id},{j_id})"),
+                    "torque",
+                )
+            } else {
+                (
+                    ["C", "K", "LENGTH", "FORCE"],
+                    format!("VR({i_id},{j_id})"),
+                    format!("DM({i_id},{j_id})"),
+                    "force",
+                )
+            };
+            let read = keywords.map(value);
+            let [c, k, free, preload] = match read {
+                [Ok(c), Ok(k), Ok(free), Ok(preload)] => [c, k, free, preload],
                 _ => return self.refuse_numbers(read.into_iter().find_map(Result::err)),
             };
             let text = linear_sum(&[
-                (-c, format!("VR({i_id},{j_id})")),
-                (-k, format!("(DM({i_id},{j_id}) - {})", literal(length))),
-                (force, String::new()),
+                (-c, rate),
+                (-k, format!("({place} - {})", literal(free))),
+                (preload, String::new()),
             ]);
-            let magnitude = self.written(index, "force", &text)?;
-            return Some(Force::single(false, i, j, magnitude, false));
+            let magnitude = self.written(index, what, &text)?;
+            return Some(Force::single(rotational, i, j, magnitude, false));
         }
         if is_kind(&statement.name, "FIELD") && statement.argument("FUNCTION", 4).is_some() {
             // Its USER(...) is refused where the expression compiles.

@@ -215,6 +215,23 @@ struct Rows<'m> {
 }
 
 impl Rows<'_> {
+    /// `(t, y)` is an accepted state: the AX, AY, AZ the outputs (and the
+    /// forces whose values they read) evaluate settle their turns there.
+    fn accept(&mut self, t: f64, y: &[f64]) -> Result<(), OutputError> {
+        let reactions = self
+            .reactions
+            .as_ref()
+            .is_some_and(|(dynamics, _)| dynamics.continues_angles());
+        if reactions || self.outputs.continues_angles() {
+            self.at(t, y)?;
+            self.outputs.accept_angles(t);
+            if let Some((dynamics, _)) = &mut self.reactions {
+                dynamics.accept_angles(t);
+            }
+        }
+        Ok(())
+    }
+
     fn at(&mut self, t: f64, y: &[f64]) -> Result<&[f64], OutputError> {
         let model = self.model;
         self.values.clear();
@@ -459,6 +476,11 @@ impl Simulation<'_> {
             )
             .map_err(|error| fail(0.0, error))?;
         system.held.clone_from(&natural);
+        let accept = |system: &mut Held<'_>, rows: &mut Rows<'_>, t: f64, y: &[f64]| {
+            system.mechanics.accept(t, y, Some(&system.held))?;
+            rows.accept(t, y)
+        };
+        accept(&mut system, &mut rows, 0.0, &y0).map_err(|error| fail(0.0, error))?;
         // A stepper's budget: what the steppers before it left.
         let options = |limit: f64, spent: Stats| Options {
             rtol: settings.rtol,
@@ -566,6 +588,8 @@ impl Simulation<'_> {
                             stepper.restart(t1, &dense);
                         }
                     }
+                    dense.copy_from_slice(stepper.y());
+                    accept(&mut system, &mut rows, t1, &dense).map_err(|error| fail(t1, error))?;
                     continue;
                 }
             };
@@ -605,6 +629,7 @@ impl Simulation<'_> {
                 }
             }
             system.held.clone_from(&natural);
+            accept(&mut system, &mut rows, right, &dense).map_err(|error| fail(right, error))?;
             let values = rows.at(right, &dense).map_err(|error| fail(right, error))?;
             for event in &mut summary.events[first_event..] {
                 event.values = values.to_vec();
