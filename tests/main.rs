@@ -9,6 +9,7 @@ mod beams;
 mod checker;
 mod cli;
 mod corpus;
+mod couplers;
 mod diagnostics;
 mod documents;
 mod eval;

@@ -34,6 +34,9 @@ pub struct Model {
     /// The motions imposed between two markers (their equations and
     /// FUNCTIONs after those of [`Model::motions`]).
     pub marker_motions: Vec<MarkerMotion>,
+    /// The couplers between joints' displacements (their equations after
+    /// the motions').
+    pub couplers: Vec<Coupler>,
     /// The acceleration of gravity, in ground.
     pub gravity: Vector3<f64>,
     /// Every expression of the model: the DIFF functions, the force
@@ -58,7 +61,7 @@ impl Model {
     /// primitive or a motion between markers (a motion on a joint comes
     /// with its joint).
     pub(crate) fn is_constrained(&self) -> bool {
-        !self.joints.is_empty() || !self.marker_motions.is_empty()
+        !self.joints.is_empty() || !self.marker_motions.is_empty() || !self.couplers.is_empty()
     }
 
     /// The FUNCTION of every motion: those on joints, then those between
@@ -437,5 +440,18 @@ pub struct MarkerMotion {
     /// What the FUNCTION gives: the displacement or one of its derivatives.
     pub given: Given,
     /// The statement.
+    pub span: Span,
+}
+
+/// A `COUPLER`: two or three joints' displacements tied, `Σ scale·q = 0`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Coupler {
+    /// The statement id.
+    pub id: u64,
+    /// Each coupled joint (an index into [`Model::joints`]), whether its
+    /// rotation (about J's z) or its translation (along J's z) is coupled,
+    /// and its scale.
+    pub joints: Vec<(usize, bool, f64)>,
+    /// The statement's place in the file.
     pub span: Span,
 }

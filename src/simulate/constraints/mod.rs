@@ -221,7 +221,43 @@ fn active_rows<T: crate::number::Number>(
     for (motion, drive) in model.marker_motions.iter().zip(marker_drives) {
         rows.push(marker_motion_row(model, motion, drive, bodies));
     }
+    for coupler in &model.couplers {
+        rows.push(coupler_row(model, coupler, bodies));
+    }
     rows
+}
+
+/// The equation of `coupler`, `Σ s q = 0`, held at the level of the
+/// velocities: its rate and its bias are the displacements', its value
+/// zero. A joint's rotation is known only modulo a turn (and a coupler's
+/// scales need not divide one another), so the displacement relation is
+/// kept by integrating its rate, not put back by the projection: it drifts
+/// by the integration error alone.
+fn coupler_row<T: crate::number::Number>(
+    model: &super::Model,
+    coupler: &super::model::Coupler,
+    bodies: &[BodyMotion<T>],
+) -> Row<T> {
+    let mut sum: Option<Row<T>> = None;
+    for &(index, rotation, scale) in &coupler.joints {
+        let joint = &model.joints[index];
+        let i = frame(model, &joint.i, bodies);
+        let j = frame(model, &joint.j, bodies);
+        let displacement = if rotation {
+            let [xi, _, _] = &i.axes;
+            let [xj, yj, _] = &j.axes;
+            Row::angle(xi.dot(yj), xi.dot(xj))
+        } else {
+            j.axes[2].dot(&i.origin.minus(&j.origin))
+        };
+        sum = Some(match sum {
+            None => displacement.scaled(scale),
+            Some(sum) => sum.plus_scaled(displacement, scale),
+        });
+    }
+    let mut row = sum.expect("a coupler couples two joints or three");
+    row.value = T::zero();
+    row
 }
 
 /// The statement (`JOINT/3`, `MOTION/1`) whose equation is `row` of the
@@ -238,12 +274,23 @@ pub(crate) fn owner_of_row(model: &super::Model, row: usize) -> String {
     let motions = model
         .motions
         .iter()
-        .map(|motion| motion.id)
-        .chain(model.marker_motions.iter().map(|motion| motion.id));
+        .map(|motion| format!("MOTION/{}", motion.id))
+        .chain(
+            model
+                .marker_motions
+                .iter()
+                .map(|motion| format!("MOTION/{}", motion.id)),
+        )
+        .chain(
+            model
+                .couplers
+                .iter()
+                .map(|coupler| format!("COUPLER/{}", coupler.id)),
+        );
     motions
         .enumerate()
         .find(|(index, _)| first + index == row)
-        .map_or_else(|| "a joint".to_string(), |(_, id)| format!("MOTION/{id}"))
+        .map_or_else(|| "a joint".to_string(), |(_, owner)| owner)
 }
 
 /// The equations of `joint` held in the run: its rows but the redundant

@@ -231,9 +231,32 @@ fn joined(model: &Model) -> Vec<Vec<usize>> {
         body
     }
     let body_of = |target: &Target| body_of(model, target);
-    for joint in &model.joints {
-        if let (Some(i), Some(j)) = (body_of(&joint.i), body_of(&joint.j)) {
-            let (a, b) = (find(&mut root, i), find(&mut root, j));
+    // Each holder's bodies: a joint's, a motion's between markers, and
+    // those of every joint a coupler ties.
+    let held = model
+        .joints
+        .iter()
+        .map(|joint| vec![body_of(&joint.i), body_of(&joint.j)])
+        .chain(
+            model
+                .marker_motions
+                .iter()
+                .map(|motion| vec![body_of(&motion.i), body_of(&motion.j)]),
+        )
+        .chain(model.couplers.iter().map(|coupler| {
+            coupler
+                .joints
+                .iter()
+                .flat_map(|&(index, _, _)| {
+                    let joint = &model.joints[index];
+                    [body_of(&joint.i), body_of(&joint.j)]
+                })
+                .collect()
+        }));
+    for bodies in held {
+        let bodies: Vec<usize> = bodies.into_iter().flatten().collect();
+        for pair in bodies.windows(2) {
+            let (a, b) = (find(&mut root, pair[0]), find(&mut root, pair[1]));
             root[a] = b;
         }
     }

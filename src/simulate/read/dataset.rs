@@ -26,8 +26,7 @@ use crate::simulate::model::{
 use crate::span::Span;
 
 /// Statements that need a constraint solver.
-const CONSTRAINTS: [&str; 8] = [
-    "COUPLER",
+const CONSTRAINTS: [&str; 7] = [
     "GEAR",
     "GCON",
     "UCON",
@@ -78,9 +77,9 @@ const FORCE_ELEMENTS: [&str; 8] = [
 ];
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`].
-const SIMULATED: [&str; 11] = [
+const SIMULATED: [&str; 12] = [
     "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
-    "JPRIM", "MOTION",
+    "JPRIM", "MOTION", "COUPLER",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -255,6 +254,7 @@ impl Reader<'_> {
         let (forces, force_statements) = self.forces();
         let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
         let (motions, marker_motions) = self.motions(&joints);
+        let couplers = super::couplers::couplers(self.dataset, &joints, &mut self.errors);
         let gravity = self.gravity();
         let outputs = self.outputs(&mut notes);
         Model {
@@ -266,6 +266,7 @@ impl Reader<'_> {
             joints,
             motions,
             marker_motions,
+            couplers,
             gravity,
             expressions: std::mem::take(&mut self.expressions),
             outputs,

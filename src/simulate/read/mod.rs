@@ -4,6 +4,7 @@
 //! read models here.
 
 mod commands;
+mod couplers;
 mod dataset;
 mod joints;
 mod linear;

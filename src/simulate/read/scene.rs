@@ -149,6 +149,7 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         joints: Vec::new(),
         motions: Vec::new(),
         marker_motions: Vec::new(),
+        couplers: Vec::new(),
         scene: reader.scene,
         masses,
         diffs,
