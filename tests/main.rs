@@ -33,6 +33,7 @@ mod reactions;
 mod reference;
 mod repl;
 mod scene;
+mod sensors;
 mod simulate;
 mod simulate_variants;
 mod span;

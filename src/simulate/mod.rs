@@ -65,8 +65,8 @@ pub use read::{
     run_settings_beside,
 };
 pub use run::{
-    DEFAULT_MAX_STEPS, Equations, ErrorEstimate, Event, MethodChange, SMALLEST_RTOL, Settings,
-    Sink, Summary,
+    DEFAULT_MAX_STEPS, Equations, ErrorEstimate, Event, MethodChange, SMALLEST_RTOL, SensorTrip,
+    Settings, Sink, Summary,
 };
 
 use crate::compile::{Program, compile_run_outputs};
@@ -143,10 +143,12 @@ impl<'m> Simulation<'m> {
                 }
             }
         }
+        // The output columns, then the sensors' functions.
         let output_expressions: Vec<usize> = model
             .outputs
             .iter()
             .map(|output| output.expression)
+            .chain(model.sensors.iter().map(|sensor| sensor.function))
             .collect();
         let mut errors = Vec::new();
         let functions: Vec<usize> = model.motion_functions().collect();

@@ -37,6 +37,8 @@ pub struct Model {
     /// The couplers between joints' displacements (their equations after
     /// the motions').
     pub couplers: Vec<Coupler>,
+    /// The sensors, watched after every accepted step.
+    pub sensors: Vec<Sensor>,
     /// The acceleration of gravity, in ground.
     pub gravity: Vector3<f64>,
     /// Every expression of the model: the DIFF functions, the force
@@ -454,4 +456,64 @@ pub struct Coupler {
     pub joints: Vec<(usize, bool, f64)>,
     /// The statement's place in the file.
     pub span: Span,
+}
+
+/// A `SENSOR`: a function of the run watched after every accepted step;
+/// when it becomes active (`relation` to `value` within `error`), the run
+/// does what `action` says at the located time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sensor {
+    /// The statement id.
+    pub id: u64,
+    /// Its FUNCTION (or `VARVAL` of its VARIABLE), an index into
+    /// [`Model::expressions`].
+    pub function: usize,
+    /// How the function is compared with `value`.
+    pub relation: Relation,
+    /// The value it is compared with.
+    pub value: f64,
+    /// The tolerance of the comparison (Adams' ERROR, 1e-3 by default).
+    pub error: f64,
+    /// What the run does when the sensor becomes active.
+    pub action: SensorAction,
+    /// The statement's place in the file.
+    pub span: Span,
+}
+
+/// A sensor's comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Relation {
+    /// `EQ`: active within `error` of the value.
+    Equal,
+    /// `NE`: active further than `error` from the value.
+    NotEqual,
+    /// `GE`: active at or above the value, less `error`.
+    AtLeast,
+    /// `LE`: active at or below the value, plus `error`.
+    AtMost,
+}
+
+/// What a sensor does when it becomes active.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SensorAction {
+    /// `HALT`: the run ends there.
+    Halt,
+    /// `RETURN`: the run ends there (an Adams solver returns to its
+    /// commands).
+    Return,
+    /// `PRINT`: the time is reported and the run goes on.
+    Print,
+}
+
+impl Sensor {
+    /// Whether the sensor is active with its function at `value`.
+    pub fn is_active(&self, value: f64) -> bool {
+        let off = value - self.value;
+        match self.relation {
+            Relation::Equal => off.abs() <= self.error,
+            Relation::NotEqual => off.abs() > self.error,
+            Relation::AtLeast => off >= -self.error,
+            Relation::AtMost => off <= self.error,
+        }
+    }
 }

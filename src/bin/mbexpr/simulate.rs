@@ -581,6 +581,18 @@ impl Report<'_> {
                 Counted(summary.projections, "projection"),
             );
         }
+        for trip in &summary.sensor_trips {
+            text += &format!(
+                "SENSOR/{} became active at t = {}{}\n",
+                trip.sensor,
+                Shown(trip.time),
+                if trip.halted {
+                    ": the run ends there"
+                } else {
+                    ""
+                }
+            );
+        }
         if let Some(equilibrium) = summary.equilibrium {
             text += &format!(
                 "static equilibrium: {}, largest acceleration left {:.1e}\n",
@@ -656,6 +668,11 @@ impl Report<'_> {
                 "largest_residuals": {"position": summary.residuals.position, "velocity": summary.residuals.velocity},
                 "projections": summary.projections,
             })),
+            "sensors": summary.sensor_trips.iter().map(|trip| json!({
+                "sensor": trip.sensor,
+                "time": trip.time,
+                "halted": trip.halted,
+            })).collect::<Vec<_>>(),
             "static_equilibrium": summary.equilibrium.map(|equilibrium| json!({
                 "iterations": equilibrium.iterations,
                 "residual": equilibrium.residual,

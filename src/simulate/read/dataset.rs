@@ -21,7 +21,7 @@ use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{
     Along, Diff, Expression, Force, Given, Joint, JointKind, MarkerMotion, MassProperties, Model,
-    Motion, Output,
+    Motion, Output, Sensor,
 };
 use crate::span::Span;
 
@@ -77,9 +77,9 @@ const FORCE_ELEMENTS: [&str; 8] = [
 ];
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`].
-const SIMULATED: [&str; 12] = [
+const SIMULATED: [&str; 13] = [
     "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
-    "JPRIM", "MOTION", "COUPLER",
+    "JPRIM", "MOTION", "COUPLER", "SENSOR",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -105,7 +105,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&FORCE_ELEMENTS) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, ACCGRAV)"
+                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, COUPLER, SENSOR, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, ACCGRAV)"
                     .to_string(),
                 span: statement.span,
             });
@@ -257,6 +257,7 @@ impl Reader<'_> {
         let couplers = super::couplers::couplers(self.dataset, &joints, &mut self.errors);
         let gravity = self.gravity();
         let outputs = self.outputs(&mut notes);
+        let sensors = self.sensors();
         Model {
             scene: std::mem::take(&mut self.scene),
             masses,
@@ -267,6 +268,7 @@ impl Reader<'_> {
             motions,
             marker_motions,
             couplers,
+            sensors,
             gravity,
             expressions: std::mem::take(&mut self.expressions),
             outputs,
@@ -866,6 +868,53 @@ impl Reader<'_> {
             text: Embedded::pinned(text, statement.span.start),
         });
         Some(self.expressions.len() - 1)
+    }
+
+    /// The SENSOR statements ([`super::sensors`] reads their settings).
+    fn sensors(&mut self) -> Vec<Sensor> {
+        let indices: Vec<usize> = self.statements("SENSOR").map(|(index, _)| index).collect();
+        let mut sensors = Vec::new();
+        for index in indices {
+            let statement = &self.dataset.statements[index];
+            let settings = match super::sensors::settings(statement) {
+                Ok(settings) => settings,
+                Err((message, span)) => {
+                    self.refuse(message, span);
+                    continue;
+                }
+            };
+            let function = if statement.argument("FUNCTION", 4).is_some() {
+                self.expression(index, "FUNCTION")
+            } else {
+                match number(statement, "VARIABLE", f64::NAN) {
+                    Ok(id) if id.is_finite() && id > 0.0 => {
+                        self.written(index, "VARIABLE", &format!("VARVAL({})", id as u64))
+                    }
+                    _ => {
+                        let label = statement.label();
+                        self.refuse(
+                            format!(
+                                "{label}: give FUNCTION = what it watches (or VARIABLE = its id)"
+                            ),
+                            statement.span,
+                        );
+                        None
+                    }
+                }
+            };
+            let Some(function) = function else { continue };
+            let (relation, value, error, action) = settings;
+            sensors.push(Sensor {
+                id: statement.id.unwrap_or(0),
+                function,
+                relation,
+                value,
+                error,
+                action,
+                span: statement.span,
+            });
+        }
+        sensors
     }
 
     /// Floating markers by id, with the body they are on (`None`: ground).

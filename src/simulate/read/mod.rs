@@ -10,6 +10,7 @@ mod joints;
 mod linear;
 mod motions;
 mod scene;
+mod sensors;
 mod units;
 
 pub use commands::{RunCommands, run_settings};

@@ -150,6 +150,7 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         motions: Vec::new(),
         marker_motions: Vec::new(),
         couplers: Vec::new(),
+        sensors: Vec::new(),
         scene: reader.scene,
         masses,
         diffs,

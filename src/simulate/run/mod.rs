@@ -22,6 +22,7 @@ use super::constraints::{
 use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
 use super::error::SimulateError;
 use super::initial::initial_state;
+use super::model::SensorAction;
 use super::{Model, Simulation};
 use crate::Shown;
 use crate::compile::{Program, SiteKind};
@@ -123,6 +124,9 @@ impl Settings {
     }
 }
 
+/// How many times a step is looked at for a sensor becoming active.
+const SENSOR_LOOKS: usize = 4;
+
 /// A located branch switch.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Event {
@@ -179,6 +183,20 @@ pub struct Summary {
     /// With [`Settings::statics`]: how the static equilibrium the run
     /// starts from was found.
     pub equilibrium: Option<Equilibrium>,
+    /// Every time a SENSOR became active, in time order; a HALT or RETURN
+    /// one ends the run there.
+    pub sensor_trips: Vec<SensorTrip>,
+}
+
+/// A SENSOR that became active.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SensorTrip {
+    /// The statement id.
+    pub sensor: u64,
+    /// The time it became active (located on the step's continuous output).
+    pub time: f64,
+    /// Whether it ended the run (HALT or RETURN).
+    pub halted: bool,
 }
 
 /// A step limit of the sites, raised to what the integrator can take at
@@ -252,8 +270,9 @@ impl Rows<'_> {
             self.values.extend(omega.iter());
         }
         let start = self.values.len();
-        self.values.resize(start + model.outputs.len(), 0.0);
-        if !model.outputs.is_empty() {
+        let columns = start + model.outputs.len();
+        self.values.resize(columns + model.sensors.len(), 0.0);
+        if columns + model.sensors.len() > start {
             let solved: Vec<f64> = match &mut self.reactions {
                 None => Vec::new(),
                 Some((dynamics, values)) => dynamics.run_values(t, y, values)?,
@@ -261,7 +280,36 @@ impl Rows<'_> {
             self.outputs
                 .outputs(t, y, &solved, &mut self.values[start..])?;
         }
-        Ok(&self.values)
+        Ok(&self.values[..columns])
+    }
+
+    /// The sensors' functions at the state [`Rows::at`] last looked at.
+    fn sensed(&self) -> &[f64] {
+        &self.values[self.values.len() - self.model.sensors.len()..]
+    }
+
+    /// The first sensor that is active at `(t, y)` and was not at the last
+    /// look (`active`, updated), or none.
+    fn tripped(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        active: &mut [bool],
+    ) -> Result<Option<usize>, OutputError> {
+        if self.model.sensors.is_empty() {
+            return Ok(None);
+        }
+        self.at(t, y)?;
+        let now: Vec<bool> = self
+            .model
+            .sensors
+            .iter()
+            .zip(self.sensed())
+            .map(|(sensor, &value)| sensor.is_active(value))
+            .collect();
+        let first = (0..now.len()).find(|&k| now[k] && !active[k]);
+        active.copy_from_slice(&now);
+        Ok(first)
     }
 }
 
@@ -513,7 +561,9 @@ impl Simulation<'_> {
             initial_residuals,
             projections: 0,
             equilibrium,
+            sensor_trips: Vec::new(),
         };
+        let mut active = vec![false; model.sensors.len()];
         let output_time = |index: usize| settings.end * index as f64 / settings.steps as f64;
         let values = rows.at(0.0, &y0).map_err(|error| fail(0.0, error))?;
         summary.stopped = sink.row(0.0, values).is_break();
@@ -560,7 +610,43 @@ impl Simulation<'_> {
                 &mut switching,
             )
             .map_err(|(time, error)| fail(time, error))?;
-            let reached = switch.map_or(t1, |located| located.right);
+            let mut reached = switch.map_or(t1, |located| located.right);
+            // A sensor that becomes active in a step without a switch, at
+            // the time located on the step's continuous output.
+            let mut trip = None;
+            // Looked at four times in the step, so that a sensor active
+            // only inside it is seen.
+            let mut tripped = None;
+            if switch.is_err() && !model.sensors.is_empty() {
+                let mut before = t0;
+                for look in 1..=SENSOR_LOOKS {
+                    let time = if look == SENSOR_LOOKS {
+                        t1
+                    } else {
+                        t0 + (t1 - t0) * look as f64 / SENSOR_LOOKS as f64
+                    };
+                    stepper.dense(time, &mut dense);
+                    let state = if time == t1 { stepper.y() } else { &dense };
+                    if let Some(sensor) = rows
+                        .tripped(time, state, &mut active)
+                        .map_err(|error| fail(time, error))?
+                    {
+                        tripped = Some((sensor, before, time));
+                        break;
+                    }
+                    before = time;
+                }
+            }
+            if let Some((sensor, before, after)) = tripped {
+                let time = self
+                    .locate_trip(&mut rows, &stepper, sensor, before, after, &mut dense)
+                    .map_err(|(time, error)| fail(time, error))?;
+                let halts = model.sensors[sensor].action != SensorAction::Print;
+                if halts {
+                    reached = time;
+                }
+                trip = Some((sensor, time, halts));
+            }
             while next_output <= settings.steps && output_time(next_output) <= reached {
                 let time = output_time(next_output);
                 stepper.dense(time, &mut dense);
@@ -571,6 +657,26 @@ impl Simulation<'_> {
                     break;
                 }
                 next_output += 1;
+            }
+            if let Some((sensor, time, halts)) = trip {
+                summary.sensor_trips.push(SensorTrip {
+                    sensor: model.sensors[sensor].id,
+                    time,
+                    halted: halts,
+                });
+                if halts {
+                    // The run ends at the sensor: its last row is there.
+                    if !summary.stopped
+                        && next_output <= settings.steps
+                        && output_time(next_output - 1) < time
+                    {
+                        stepper.dense(time, &mut dense);
+                        let values = rows.at(time, &dense).map_err(|error| fail(time, error))?;
+                        let _ = sink.row(time, values);
+                    }
+                    summary.stopped = true;
+                    break;
+                }
             }
             let located = match switch {
                 Ok(located) => located,
@@ -630,6 +736,23 @@ impl Simulation<'_> {
             }
             system.held.clone_from(&natural);
             accept(&mut system, &mut rows, right, &dense).map_err(|error| fail(right, error))?;
+            if let Some(sensor) = rows
+                .tripped(right, &dense, &mut active)
+                .map_err(|error| fail(right, error))?
+            {
+                let halts = model.sensors[sensor].action != SensorAction::Print;
+                summary.sensor_trips.push(SensorTrip {
+                    sensor: model.sensors[sensor].id,
+                    time: right,
+                    halted: halts,
+                });
+                if halts {
+                    let values = rows.at(right, &dense).map_err(|error| fail(right, error))?;
+                    let _ = sink.row(right, values);
+                    summary.stopped = true;
+                    break;
+                }
+            }
             let values = rows.at(right, &dense).map_err(|error| fail(right, error))?;
             for event in &mut summary.events[first_event..] {
                 event.values = values.to_vec();
@@ -798,6 +921,43 @@ impl Simulation<'_> {
             ),
             cause: None,
         }
+    }
+
+    /// The time in the step `(t0, t1]` at which `sensor` becomes active,
+    /// bisected on the step's continuous output to rounding (it is active
+    /// at `t1`; at `t0` it was not, or the run just started).
+    fn locate_trip(
+        &self,
+        rows: &mut Rows<'_>,
+        stepper: &Stepper,
+        sensor: usize,
+        t0: f64,
+        t1: f64,
+        dense: &mut [f64],
+    ) -> Result<f64, (f64, OutputError)> {
+        let watched = &self.model.sensors[sensor];
+        let index = sensor;
+        let mut active_at = |t: f64, dense: &mut [f64]| {
+            stepper.dense(t, dense);
+            rows.at(t, dense).map_err(|error| (t, error))?;
+            Ok::<bool, (f64, OutputError)>(watched.is_active(rows.sensed()[index]))
+        };
+        if active_at(t0, dense)? {
+            return Ok(t0);
+        }
+        let (mut inactive, mut active) = (t0, t1);
+        while active - inactive > 4.0 * f64::EPSILON * active.abs().max(1e-300) {
+            let middle = 0.5 * (inactive + active);
+            if middle <= inactive || middle >= active {
+                break;
+            }
+            if active_at(middle, dense)? {
+                active = middle;
+            } else {
+                inactive = middle;
+            }
+        }
+        Ok(active)
     }
 
     /// The error of a static equilibrium that is not found.

@@ -1,0 +1,98 @@
+//! SENSOR: a function watched after every accepted step; when it becomes
+//! active (its comparison with VALUE within ERROR) the run halts there or
+//! reports the time, located on the step's continuous output. Checked
+//! against the closed-form times of a falling part and of an oscillator.
+
+use mbexpr::simulate::Settings;
+
+use super::simulate::{run, settings};
+
+/// A part falling from height 10 under gravity 9.81, halted where its
+/// height comes within ERROR 1e-6 of 5: `t = √(2 (5 − 1e-6) / 9.81)`, and
+/// the last row is there.
+#[test]
+fn a_falling_part_halts_where_the_sensor_says() {
+    let text = "falling
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 20, IP = 1, 1, 1, QG = 0, 10, 0
+MARKER/20, PART = 2
+ACCGRAV/JGRAV = -9.81
+SENSOR/1, LE, VALUE = 5, ERROR = 1e-6, HALT, FUNCTION = DY(20, 1)
+REQUEST/1, F1 = DY(20, 1)
+END
+";
+    let run = run(text, &settings(3.0, 10, 1e-8)).expect("it falls");
+    let expected = (2.0 * (5.0 - 1e-6) / 9.81_f64).sqrt();
+    let trip = run.summary.sensor_trips[0];
+    let last = run.rows.last().unwrap();
+    println!("halted at {} against {expected}", trip.time);
+    assert!(trip.halted && run.summary.stopped);
+    assert!((trip.time - expected).abs() < 1e-12, "{}", trip.time);
+    assert!((last[0] - expected).abs() < 1e-12 && (last[14] - (5.0 + 1e-6)).abs() < 1e-9);
+    // The rows before it are the output times 0, 0.3, ..., 0.9.
+    assert_eq!(run.rows.len(), 5);
+}
+
+/// An oscillator `x = cos t` (two DIFFs) with a PRINT sensor `x ≥ 0.5`
+/// (ERROR 1e-6): active from the start, then again each time `x` climbs
+/// back through 0.5 − 1e-6, at `2πk − acos(0.5 − 1e-6)`; the run goes on.
+#[test]
+fn a_print_sensor_reports_each_time_it_becomes_active() {
+    let text = "oscillator
+DIFF/1, IC = 1, FUNCTION = DIF(2)
+DIFF/2, IC = 0, FUNCTION = -DIF(1)
+SENSOR/1, GE, VALUE = 0.5, ERROR = 1e-6, PRINT, FUNCTION = DIF(1)
+END
+";
+    let settings = Settings {
+        end: 13.0,
+        steps: 13,
+        rtol: 1e-10,
+        atol: 1e-13,
+        ..Settings::default()
+    };
+    let run = run(text, &settings).expect("it oscillates");
+    let times: Vec<f64> = run
+        .summary
+        .sensor_trips
+        .iter()
+        .map(|trip| trip.time)
+        .collect();
+    let back = (0.5_f64 - 1e-6).acos();
+    let expected = [
+        0.0,
+        std::f64::consts::TAU - back,
+        2.0 * std::f64::consts::TAU - back,
+    ];
+    println!("{times:?} against {expected:?}");
+    assert_eq!(times.len(), 3, "{times:?}");
+    for (time, expected) in times.iter().zip(expected) {
+        assert!((time - expected).abs() < 1e-8, "{time} {expected}");
+    }
+    assert!(!run.summary.stopped && run.rows.len() == 14);
+}
+
+/// What a sensor statement that cannot be watched reports.
+fn check(sensor: &str) -> String {
+    let text = format!("sensor\nDIFF/1, IC = 1, FUNCTION = -DIF(1)\n{sensor}\nEND\n");
+    match run(&text, &settings(1.0, 1, 1e-6)) {
+        Ok(run) => format!("ran: {} trips", run.summary.sensor_trips.len()),
+        Err(error) => error.trim_end().to_string(),
+    }
+}
+
+#[test]
+fn sensors_that_cannot_be_watched_are_refused_at_their_place() {
+    let cases = "
+        SENSOR/1, VALUE = 0.5, ERROR = 0.1, HALT, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, CODGEN, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, STEPSIZE = 0.1, HALT, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, FUNCTION = DIF(1)
+        SENSOR/1, HALT, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, HALT
+        SENSOR/1, VALUE = 0.5, ERROR = -1, HALT, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, HALT, FUNCTION = USER(1, 2)
+    ";
+    insta::assert_snapshot!(super::table(cases, check));
+}
