@@ -878,8 +878,16 @@ impl Reader<'_> {
             let statement = &self.dataset.statements[index];
             let settings = match super::sensors::settings(statement) {
                 Ok(settings) => settings,
-                Err((message, span)) => {
+                Err(super::sensors::Unread::Setting(message, span)) => {
                     self.refuse(message, span);
+                    continue;
+                }
+                Err(super::sensors::Unread::Action { reason, span }) => {
+                    self.errors.push(SimulateError::Unsupported {
+                        statement: statement.label(),
+                        reason,
+                        span,
+                    });
                     continue;
                 }
             };

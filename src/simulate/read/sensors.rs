@@ -11,10 +11,24 @@ use crate::span::Span;
 /// Adams' ERROR when a sensor gives none.
 const DEFAULT_ERROR: f64 = 1e-3;
 
+/// Why a sensor gives no settings.
+pub(super) enum Unread {
+    /// An action mbexpr does not carry out (`has EVALUATE: ...`), which the
+    /// reader groups with the same refusal of other sensors.
+    Action {
+        /// Why, after the statement's label.
+        reason: String,
+        /// The action's keyword.
+        span: Span,
+    },
+    /// Something missing or out of range: the message and its place.
+    Setting(String, Span),
+}
+
 /// A sensor's comparison, value, tolerance and action, or why it has none.
 pub(super) fn settings(
     statement: &Statement,
-) -> Result<(Relation, f64, f64, SensorAction), (String, Span)> {
+) -> Result<(Relation, f64, f64, SensorAction), Unread> {
     let label = statement.label();
     for keyword in [
         "CODGEN",
@@ -31,12 +45,12 @@ pub(super) fn settings(
             .iter()
             .find(|argument| argument.keyword.eq_ignore_ascii_case(keyword))
         {
-            return Err((
-                format!(
-                    "{label}: {keyword} is not simulated: mbexpr's sensors HALT, RETURN or PRINT"
+            return Err(Unread::Action {
+                reason: format!(
+                    "has {keyword}, an action mbexpr does not carry out (its sensors HALT, RETURN or PRINT)"
                 ),
-                argument.span,
-            ));
+                span: argument.span,
+            });
         }
     }
     let has = |keyword: &str| statement.argument(keyword, keyword.len()).is_some();
@@ -53,15 +67,16 @@ pub(super) fn settings(
     } else if has("PRINT") {
         SensorAction::Print
     } else {
-        return Err((
+        return Err(Unread::Setting(
             format!("{label}: give its action: HALT, RETURN or PRINT"),
             statement.span,
         ));
     };
-    let refusal =
-        |error: crate::model::initial::ConfigurationError| (error.to_string(), error.span());
+    let refusal = |error: crate::model::initial::ConfigurationError| {
+        Unread::Setting(error.to_string(), error.span())
+    };
     if statement.argument("VALUE", 2).is_none() {
-        return Err((
+        return Err(Unread::Setting(
             format!("{label}: give VALUE = what its function is compared with"),
             statement.span,
         ));
@@ -69,7 +84,7 @@ pub(super) fn settings(
     let value = number(statement, "VALUE", f64::NAN).map_err(refusal)?;
     let error = number(statement, "ERROR", DEFAULT_ERROR).map_err(refusal)?;
     if !(value.is_finite() && error.is_finite() && error >= 0.0) {
-        return Err((
+        return Err(Unread::Setting(
             format!("{label}: VALUE must be a number and ERROR a number not below 0"),
             statement.span,
         ));
