@@ -15,6 +15,7 @@ mod documents;
 mod eval;
 mod ffi;
 mod force_values;
+mod initial_conditions;
 mod integrate;
 mod integrate_problems;
 mod joint_kinds;

@@ -123,7 +123,7 @@ JPRIM/2, INPLANE, I = 3, J = 1
             short.clone(),
         ),
         (
-            "a screw joint without its PITCH, joints with no type, with initial conditions, without their markers",
+            "a screw joint without its PITCH, joints with no type, with DELTA_V, with an IC of another joint type, without their markers",
             "joints
 PART/1, GROUND
 MARKER/1, PART = 1
@@ -131,8 +131,9 @@ PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
 JOINT/1, SCREW, I = 3, J = 1
 JOINT/2, I = 3, J = 1
-JOINT/3, REVOLUTE, I = 3, J = 1, IC = 0, 0
+JOINT/3, REVOLUTE, I = 3, J = 1, DELTA_V = 0.1
 JOINT/4, SPHERICAL, I = 3
+JOINT/5, SPHERICAL, I = 3, J = 1, ICROT = 0, 0
 ",
             short.clone(),
         ),

@@ -57,8 +57,8 @@ mod run;
 pub use constraints::Residuals;
 pub use error::{Place, SimulateError};
 pub use model::{
-    Along, Diff, Expression, Force, Given, Joint, JointKind, MarkerMotion, MassProperties, Model,
-    Motion, Output,
+    Along, Diff, ExactPart, Expression, Force, Given, Joint, JointInitial, JointKind, MarkerMotion,
+    MassProperties, Model, Motion, Output,
 };
 pub use read::{
     ModelFormat, RunCommands, Unread, format_of_path, from_scene, is_scene_path, run_settings,

@@ -37,6 +37,12 @@ pub struct Model {
     /// The couplers between joints' displacements (their equations after
     /// the motions').
     pub couplers: Vec<Coupler>,
+    /// The joints' initial conditions (`IC`, `ICTRAN`, `ICROT`), held in
+    /// the initial-conditions analysis only.
+    pub joint_initials: Vec<JointInitial>,
+    /// The parts whose coordinates the initial-conditions analysis keeps
+    /// (`EXACT`).
+    pub exact: Vec<ExactPart>,
     /// The sensors, watched after every accepted step.
     pub sensors: Vec<Sensor>,
     /// The acceleration of gravity, in ground.
@@ -442,6 +448,45 @@ pub struct MarkerMotion {
     /// What the FUNCTION gives: the displacement or one of its derivatives.
     pub given: Given,
     /// The statement.
+    pub span: Span,
+}
+
+/// A joint's initial conditions: `IC` of a REVOLUTE (its rotation) or a
+/// TRANSLATIONAL joint (its translation), `ICROT` or `ICTRAN` of a
+/// CYLINDRICAL one. The initial-conditions analysis puts the joint at the
+/// displacement (and gives it the velocity, when one is given); the run
+/// then leaves the joint free.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointInitial {
+    /// The joint, an index into [`Model::joints`].
+    pub joint: usize,
+    /// The rotation about J's z axis rather than the translation along it
+    /// (measured as a MOTION on the joint measures it).
+    pub rotation: bool,
+    /// The displacement at time 0.
+    pub displacement: f64,
+    /// The velocity at time 0, when given.
+    pub velocity: Option<f64>,
+    /// The argument's place in the file.
+    pub span: Span,
+}
+
+/// A PART's `EXACT`: the coordinates of the part (its centre of mass's
+/// X, Y, Z in ground and its CM marker's body 3-1-3 angles PSI, THETA,
+/// PHI) that the initial-conditions analysis keeps at their drawn values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExactPart {
+    /// The part's body, an index into the scene's bodies.
+    pub body: usize,
+    /// Which of X, Y, Z, PSI, THETA, PHI are kept.
+    pub coordinates: [bool; 6],
+    /// The centre of mass as drawn, in ground.
+    pub centre: Vector3<f64>,
+    /// The CM marker's axes as drawn (columns in ground).
+    pub axes: Matrix3<f64>,
+    /// The CM marker's axes in the body's.
+    pub cm_axes: Matrix3<f64>,
+    /// The argument's place in the file.
     pub span: Span,
 }
 

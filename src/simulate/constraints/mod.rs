@@ -139,6 +139,167 @@ fn joint_rows<T: crate::number::Number>(
     }
 }
 
+/// The displacement of `joint` along (or, `rotation`, about) its J
+/// marker's z axis: I's origin from J's along it, or the angle of I's x
+/// axis from J's towards J's y axis (a MOTION's, a COUPLER's and an IC's
+/// measure).
+fn joint_displacement<T: crate::number::Number>(
+    model: &super::Model,
+    joint: &Joint,
+    rotation: bool,
+    bodies: &[BodyMotion<T>],
+) -> Row<T> {
+    let i = frame(model, &joint.i, bodies);
+    let j = frame(model, &joint.j, bodies);
+    if rotation {
+        let [xi, _, _] = &i.axes;
+        let [xj, yj, _] = &j.axes;
+        Row::angle(xi.dot(yj), xi.dot(xj))
+    } else {
+        j.axes[2].dot(&i.origin.minus(&j.origin))
+    }
+}
+
+/// The initial conditions as equations at `bodies`: with `velocities`
+/// false, each joint's displacement and each PART's EXACT coordinate (to
+/// hold in the analysis of the positions); with `velocities` true, each
+/// joint's given velocity, its value zero (to hold in the analysis of the
+/// velocities).
+fn initial_rows(
+    model: &super::Model,
+    bodies: &[BodyMotion<f64>],
+    velocities: bool,
+) -> Vec<Row<f64>> {
+    let mut rows = Vec::new();
+    for initial in &model.joint_initials {
+        let mut row = joint_displacement(
+            model,
+            &model.joints[initial.joint],
+            initial.rotation,
+            bodies,
+        );
+        if velocities {
+            let Some(velocity) = initial.velocity else {
+                continue;
+            };
+            row.value = 0.0;
+            row.rate -= velocity;
+        } else {
+            row.value -= initial.displacement;
+            if initial.rotation {
+                row.wrap(std::f64::consts::TAU);
+            }
+        }
+        rows.push(row);
+    }
+    if !velocities {
+        for part in &model.exact {
+            rows.extend(exact_rows(part, &bodies[part.body]));
+        }
+    }
+    rows
+}
+
+/// The equations that keep the coordinates `part` lists at their drawn
+/// values (in the analysis of the positions only: their rates and biases
+/// are not used). All three angles are kept together through the turn
+/// from the drawn axes, well defined at any orientation; one or two of
+/// them through the 3-1-3 angles, whose rates `[ψ', θ', φ'] = B⁻¹ ω` with
+/// `B = [z | n | z_F]` (`n` the line of nodes), or, for a part drawn at θ
+/// = 0 or π (a planar model in ground's x-y plane), where `B` is singular,
+/// through its z axis and its turn about it.
+fn exact_rows(part: &super::model::ExactPart, body: &BodyMotion<f64>) -> Vec<Row<f64>> {
+    let along = |value: f64, linear: [f64; 3], angular: [f64; 3]| Row {
+        value,
+        rate: 0.0,
+        bias: 0.0,
+        coefficients: vec![(
+            part.body,
+            [
+                linear[0], linear[1], linear[2], angular[0], angular[1], angular[2],
+            ],
+        )],
+    };
+    let mut rows = Vec::new();
+    for k in 0..3 {
+        if part.coordinates[k] {
+            let mut unit = [0.0; 3];
+            unit[k] = 1.0;
+            rows.push(along(body.centre[k] - part.centre[k], unit, [0.0; 3]));
+        }
+    }
+    let axes = body.rotation * part.cm_axes;
+    let angles = &part.coordinates[3..];
+    if angles.iter().all(|kept| *kept) {
+        let turned =
+            nalgebra::Rotation3::from_matrix_unchecked(axes * part.axes.transpose()).scaled_axis();
+        for k in 0..3 {
+            let mut unit = [0.0; 3];
+            unit[k] = 1.0;
+            rows.push(along(turned[k], [0.0; 3], unit));
+        }
+    } else if part.axes[(2, 2)].abs() > 1.0 - 1e-9 {
+        // Drawn with θ at 0 or π, where ψ and φ turn about the same axis:
+        // THETA keeps the z axis where it was (its x and y components),
+        // PSI or PHI the turn about it (the angle of the x axis in ground's
+        // x-y plane, ψ ± φ).
+        let z = axes.column(2);
+        if angles[1] {
+            rows.push(along(
+                z[0] - part.axes[(0, 2)],
+                [0.0; 3],
+                [0.0, z[2], -z[1]],
+            ));
+            rows.push(along(
+                z[1] - part.axes[(1, 2)],
+                [0.0; 3],
+                [-z[2], 0.0, z[0]],
+            ));
+        }
+        if angles[0] || angles[2] {
+            let x = axes.column(0);
+            let r2 = x[0] * x[0] + x[1] * x[1];
+            let mut change = x[1].atan2(x[0]) - part.axes[(1, 0)].atan2(part.axes[(0, 0)]);
+            change -= (change / std::f64::consts::TAU).round() * std::f64::consts::TAU;
+            rows.push(along(
+                change,
+                [0.0; 3],
+                [-x[2] * x[0] / r2, -x[2] * x[1] / r2, 1.0],
+            ));
+        }
+    } else if angles.contains(&true) {
+        let now = euler_313(&axes);
+        let drawn = euler_313(&part.axes);
+        let (sin_psi, cos_psi) = now[0].sin_cos();
+        let b = nalgebra::Matrix3::from_columns(&[
+            Vector3::z(),
+            Vector3::new(cos_psi, sin_psi, 0.0),
+            axes.column(2).into_owned(),
+        ]);
+        let inverse = b.try_inverse().unwrap_or_else(nalgebra::Matrix3::zeros);
+        for k in 0..3 {
+            if angles[k] {
+                let mut change = now[k] - drawn[k];
+                if k != 1 {
+                    change -= (change / std::f64::consts::TAU).round() * std::f64::consts::TAU;
+                }
+                let row = inverse.row(k);
+                rows.push(along(change, [0.0; 3], [row[0], row[1], row[2]]));
+            }
+        }
+    }
+    rows
+}
+
+/// The body 3-1-3 angles `[ψ, θ, φ]` of `axes` (columns in ground): `axes
+/// = Rz(ψ) Rx(θ) Rz(φ)`.
+fn euler_313(axes: &nalgebra::Matrix3<f64>) -> Vector3<f64> {
+    let theta = axes[(2, 2)].clamp(-1.0, 1.0).acos();
+    let psi = axes[(0, 2)].atan2(-axes[(1, 2)]);
+    let phi = axes[(2, 0)].atan2(axes[(2, 1)]);
+    Vector3::new(psi, theta, phi)
+}
+
 /// The equation of `motion` at the displacement `drive` gives.
 fn motion_row<T: crate::number::Number>(
     model: &super::Model,
@@ -146,16 +307,7 @@ fn motion_row<T: crate::number::Number>(
     drive: &Drive,
     bodies: &[BodyMotion<T>],
 ) -> Row<T> {
-    let joint = &model.joints[motion.joint];
-    let i = frame(model, &joint.i, bodies);
-    let j = frame(model, &joint.j, bodies);
-    let mut row = if motion.rotation {
-        let [xi, _, _] = &i.axes;
-        let [xj, yj, _] = &j.axes;
-        Row::angle(xi.dot(yj), xi.dot(xj))
-    } else {
-        j.axes[2].dot(&i.origin.minus(&j.origin))
-    };
+    let mut row = joint_displacement(model, &model.joints[motion.joint], motion.rotation, bodies);
     row.value -= T::from(drive.value);
     if motion.rotation {
         // The angle's value modulo a turn, nearest the displacement.
@@ -240,16 +392,7 @@ fn coupler_row<T: crate::number::Number>(
 ) -> Row<T> {
     let mut sum: Option<Row<T>> = None;
     for &(index, rotation, scale) in &coupler.joints {
-        let joint = &model.joints[index];
-        let i = frame(model, &joint.i, bodies);
-        let j = frame(model, &joint.j, bodies);
-        let displacement = if rotation {
-            let [xi, _, _] = &i.axes;
-            let [xj, yj, _] = &j.axes;
-            Row::angle(xi.dot(yj), xi.dot(xj))
-        } else {
-            j.axes[2].dot(&i.origin.minus(&j.origin))
-        };
+        let displacement = joint_displacement(model, &model.joints[index], rotation, bodies);
         sum = Some(match sum {
             None => displacement.scaled(scale),
             Some(sum) => sum.plus_scaled(displacement, scale),
@@ -261,7 +404,8 @@ fn coupler_row<T: crate::number::Number>(
 }
 
 /// The statement (`JOINT/3`, `MOTION/1`) whose equation is `row` of the
-/// held equations ([`active_rows`]' order).
+/// held equations ([`active_rows`]' order; in the initial-conditions
+/// analysis, the joints' initial displacements after them).
 pub(crate) fn owner_of_row(model: &super::Model, row: usize) -> String {
     let mut first = 0;
     for joint in &model.joints {
@@ -286,7 +430,30 @@ pub(crate) fn owner_of_row(model: &super::Model, row: usize) -> String {
                 .couplers
                 .iter()
                 .map(|coupler| format!("COUPLER/{}", coupler.id)),
-        );
+        )
+        .chain(model.joint_initials.iter().map(|initial| {
+            let joint = &model.joints[initial.joint];
+            format!(
+                "the initial {} of JOINT/{}",
+                if initial.rotation {
+                    "rotation"
+                } else {
+                    "translation"
+                },
+                joint.id
+            )
+        }))
+        .chain(model.exact.iter().flat_map(|part| {
+            let name = &model.scene.bodies[part.body].name;
+            let angles = &part.coordinates[3..];
+            let count = part.coordinates[..3].iter().filter(|kept| **kept).count()
+                + if angles.iter().all(|kept| *kept) || part.axes[(2, 2)].abs() <= 1.0 - 1e-9 {
+                    angles.iter().filter(|kept| **kept).count()
+                } else {
+                    2 * usize::from(angles[1]) + usize::from(angles[0] || angles[2])
+                };
+            std::iter::repeat_n(format!("the EXACT coordinates of {name}"), count)
+        }));
     motions
         .enumerate()
         .find(|(index, _)| first + index == row)

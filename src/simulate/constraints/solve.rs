@@ -5,7 +5,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
 
 use super::rows::{BodyMotion, Row};
-use super::{Drive, active_rows, joint_rows};
+use super::{Drive, active_rows, initial_rows, joint_rows};
 use crate::number::Number;
 use crate::simulate::Model;
 
@@ -485,6 +485,10 @@ fn scaled(
 /// change. The residuals found before; an error when the positions end
 /// further off than the tolerance (with a zero tolerance, than
 /// [`ASSEMBLED`] of the state's size).
+///
+/// `initial` asks for the initial-conditions analysis: the joints' initial
+/// displacements are held beside the equations while the positions are
+/// found, and their initial velocities while the velocities are.
 pub(crate) fn project(
     model: &Model,
     y: &mut [f64],
@@ -492,11 +496,45 @@ pub(crate) fn project(
     drives: &[Drive],
     inverse_inertia: &[Matrix3<f64>],
     tolerance: Tolerance,
+    initial: bool,
 ) -> Result<Residuals, Unassembled> {
     let bodies = motions(y, offsets);
-    let rows = active_rows(model, &bodies, drives);
-    let before = Residuals::of(&rows);
+    // The initial conditions the equations leave free, found at the state
+    // as given (an EXACT coordinate a joint already fixes yields to it).
+    let free = |velocities: bool| {
+        if initial {
+            independent(
+                &active_rows(model, &bodies, drives),
+                &initial_rows(model, &bodies, velocities),
+                6 * bodies.len(),
+            )
+        } else {
+            Vec::new()
+        }
+    };
+    let (free_positions, free_velocities) = (free(false), free(true));
+    let held = |bodies: &[BodyMotion<f64>], velocities: bool| {
+        let mut rows = active_rows(model, bodies, drives);
+        if initial {
+            let free = if velocities {
+                &free_velocities
+            } else {
+                &free_positions
+            };
+            rows.extend(
+                initial_rows(model, bodies, velocities)
+                    .into_iter()
+                    .zip(free)
+                    .filter(|(_, free)| **free)
+                    .map(|(row, _)| row),
+            );
+        }
+        rows
+    };
+    let before = Residuals::of(&active_rows(model, &bodies, drives));
+    let rows = held(&bodies, false);
     let off_positions = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
+    let rows = held(&bodies, true);
     let off_velocities = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
     if scaled(y, offsets, &off_positions, 0, tolerance) <= 1.0
         && scaled(y, offsets, &off_velocities, 7, tolerance) <= 1.0
@@ -509,15 +547,15 @@ pub(crate) fn project(
     };
     let largest_residual = |y: &[f64]| {
         let bodies = motions(y, offsets);
-        Residuals::of(&active_rows(model, &bodies, drives)).position
+        Residuals::of(&held(&bodies, false)).position
     };
-    let mut residual = before.position;
+    let mut residual = largest_residual(y);
     for _ in 0..POSITION_ITERATIONS {
         if residual == 0.0 {
             break;
         }
         let bodies = motions(y, offsets);
-        let rows = active_rows(model, &bodies, drives);
+        let rows = held(&bodies, false);
         let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
         if scaled(y, offsets, &change, 0, fine) <= 1.0 {
             break;
@@ -543,7 +581,7 @@ pub(crate) fn project(
         }
     }
     let bodies = motions(y, offsets);
-    let rows = active_rows(model, &bodies, drives);
+    let rows = held(&bodies, false);
     let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
     let size = 1.0 + y.iter().fold(0.0_f64, |most, value| most.max(value.abs()));
     let allowed = Tolerance {
@@ -559,6 +597,25 @@ pub(crate) fn project(
         );
         return Err(Unassembled::Apart { row, residual });
     }
+    if initial {
+        // A joint's initial displacement the other equations fix must
+        // agree with them.
+        let active = rows.len() - free_positions.iter().filter(|free| **free).count();
+        let joint_rows = model.joint_initials.len();
+        let size = 1.0 + y.iter().fold(0.0_f64, |most, value| most.max(value.abs()));
+        if let Some((index, row)) = initial_rows(model, &bodies, false)
+            .iter()
+            .enumerate()
+            .take(joint_rows)
+            .find(|(index, row)| !free_positions[*index] && row.value.abs() > 1e-9 * size)
+        {
+            return Err(Unassembled::Apart {
+                row: active + index,
+                residual: row.value.abs(),
+            });
+        }
+    }
+    let rows = held(&bodies, true);
     let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
     for ((change, motion), &offset) in change.iter().zip(&bodies).zip(offsets) {
         let s = &mut y[offset..];
@@ -570,6 +627,36 @@ pub(crate) fn project(
         s[10..13].copy_from_slice(in_body.as_slice());
     }
     Ok(before)
+}
+
+/// Which of `extra` are independent of `rows` and of the `extra` before
+/// them (their rows of `G` over `width` columns; Gram-Schmidt, as
+/// [`find_redundant`]).
+fn independent(rows: &[Row<f64>], extra: &[Row<f64>], width: usize) -> Vec<bool> {
+    let mut kept: Vec<DVector<f64>> = Vec::new();
+    let mut independent = Vec::new();
+    for (index, row) in rows.iter().chain(extra).enumerate() {
+        let mut dense = DVector::zeros(width);
+        for (body, c) in &row.coefficients {
+            for (k, c) in c.iter().enumerate() {
+                dense[6 * body + k] += c;
+            }
+        }
+        let length = dense.norm();
+        for basis in &kept {
+            let along = basis.dot(&dense);
+            dense -= basis * along;
+        }
+        let rest = dense.norm();
+        let free = rest > 1e-6 * length && length > 0.0;
+        if free {
+            kept.push(dense / rest);
+        }
+        if index >= rows.len() {
+            independent.push(free);
+        }
+    }
+    independent
 }
 
 /// `y` set to `start` moved by `fraction` of the positions' `change` (per
@@ -595,31 +682,20 @@ fn moved(y: &mut [f64], start: &[f64], offsets: &[usize], change: &[[f64; 6]], f
 /// order of the joints).
 pub(crate) fn find_redundant(model: &Model, y: &[f64], offsets: &[usize]) -> Vec<(usize, usize)> {
     let bodies = motions(y, offsets);
-    let width = 6 * bodies.len();
-    let mut kept: Vec<DVector<f64>> = Vec::new();
-    let mut redundant = Vec::new();
+    let mut labels = Vec::new();
+    let mut rows = Vec::new();
     for (joint_index, joint) in model.joints.iter().enumerate() {
-        for (equation, row) in joint_rows(model, joint, &bodies).iter().enumerate() {
-            let mut dense = DVector::zeros(width);
-            for (body, c) in &row.coefficients {
-                for (k, c) in c.iter().enumerate() {
-                    dense[6 * body + k] += c;
-                }
-            }
-            let length = dense.norm();
-            for basis in &kept {
-                let along = basis.dot(&dense);
-                dense -= basis * along;
-            }
-            let rest = dense.norm();
-            if rest <= 1e-6 * length || length == 0.0 {
-                redundant.push((joint_index, equation));
-            } else {
-                kept.push(dense / rest);
-            }
+        for (equation, row) in joint_rows(model, joint, &bodies).into_iter().enumerate() {
+            labels.push((joint_index, equation));
+            rows.push(row);
         }
     }
-    redundant
+    independent(&[], &rows, 6 * bodies.len())
+        .into_iter()
+        .zip(labels)
+        .filter(|(independent, _)| !independent)
+        .map(|(_, label)| label)
+        .collect()
 }
 
 /// The left-out equation (see [`find_redundant`]) furthest from zero at

@@ -255,6 +255,14 @@ impl Reader<'_> {
         let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
         let (motions, marker_motions) = self.motions(&joints);
         let couplers = super::couplers::couplers(self.dataset, &joints, &mut self.errors);
+        let joint_initials = super::joints::initials(
+            self.dataset,
+            &joints,
+            &motions,
+            &mut notes,
+            &mut self.errors,
+        );
+        let exact = super::exact::exact_parts(self.dataset, &self.scene, &masses, &mut self.errors);
         let gravity = self.gravity();
         let outputs = self.outputs(&mut notes);
         let sensors = self.sensors();
@@ -268,6 +276,8 @@ impl Reader<'_> {
             motions,
             marker_motions,
             couplers,
+            joint_initials,
+            exact,
             sensors,
             gravity,
             expressions: std::mem::take(&mut self.expressions),

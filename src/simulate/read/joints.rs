@@ -1,11 +1,12 @@
 //! `JOINT` and `JPRIM` statements of a dataset.
 
 use crate::check::Reference;
-use crate::model::initial::number;
+use crate::model::initial::{number, number_list};
 use crate::model::{Dataset, Statement, is_kind};
 use crate::scene::{Scene, Target};
 use crate::simulate::SimulateError;
-use crate::simulate::model::{Joint, JointKind};
+use crate::simulate::model::{Joint, JointInitial, JointKind, Motion};
+use crate::span::Span;
 
 /// The JOINT statements of `dataset`, their markers found in `scene`; every
 /// problem added to `errors` at its place.
@@ -43,21 +44,11 @@ fn joint(statement: &Statement, scene: &Scene, errors: &mut Vec<SimulateError>) 
         });
         return None;
     };
-    for keyword in [
-        "IC",
-        "ICTRAN",
-        "ICROT",
-        "DELTA_V",
-        "MAXIMUM_DEFORMATION",
-        "MU_DYN_ROT",
-        "FRICTION",
-    ] {
+    for keyword in ["DELTA_V", "MAXIMUM_DEFORMATION", "MU_DYN_ROT", "FRICTION"] {
         if let Some(argument) = statement.argument(keyword, keyword.len()) {
             errors.push(SimulateError::Unsupported {
                 statement: label.clone(),
-                reason: format!(
-                    "sets {keyword}: joint initial conditions and friction are not simulated"
-                ),
+                reason: format!("sets {keyword}: joint friction is not simulated"),
                 span: argument.span,
             });
         }
@@ -166,4 +157,87 @@ fn marker(
         });
     }
     found
+}
+
+/// The initial conditions of `joints` (`IC` of a REVOLUTE or TRANSLATIONAL
+/// joint, `ICTRAN` and `ICROT` of a CYLINDRICAL one: the displacement,
+/// then optionally the velocity). A condition on a displacement a MOTION
+/// of `motions` drives is left aside with a note in `notes`, as Adams
+/// does: the motion sets it.
+pub(crate) fn initials(
+    dataset: &Dataset,
+    joints: &[Joint],
+    motions: &[Motion],
+    notes: &mut Vec<(String, Span)>,
+    errors: &mut Vec<SimulateError>,
+) -> Vec<JointInitial> {
+    let mut initials = Vec::new();
+    for statement in &dataset.statements {
+        if !is_kind(&statement.name, "JOINT") {
+            continue;
+        }
+        let id = statement.id.unwrap_or(0);
+        let Some(joint) = joints
+            .iter()
+            .position(|joint| joint.id == id && !joint.kind.is_primitive())
+        else {
+            continue;
+        };
+        let kind = joints[joint].kind;
+        for (keyword, rotation) in [("IC", None), ("ICTRAN", Some(false)), ("ICROT", Some(true))] {
+            let Some(argument) = statement
+                .arguments
+                .iter()
+                .find(|argument| argument.keyword.eq_ignore_ascii_case(keyword))
+            else {
+                continue;
+            };
+            let label = statement.label();
+            let rotation = match (kind, rotation) {
+                (JointKind::Revolute, None) => true,
+                (JointKind::Translational, None) => false,
+                (JointKind::Cylindrical, Some(rotation)) => rotation,
+                _ => {
+                    errors.push(SimulateError::Model {
+                        message: format!(
+                            "{label}: {keyword} is not an argument of this joint: IC sets a REVOLUTE joint's rotation or a TRANSLATIONAL one's translation, ICROT and ICTRAN a CYLINDRICAL one's"
+                        ),
+                        span: argument.span,
+                    });
+                    continue;
+                }
+            };
+            let values = number_list(statement, argument).unwrap_or_default();
+            if !(1..=2).contains(&values.len()) || values.iter().any(|value| !value.is_finite()) {
+                errors.push(SimulateError::Model {
+                    message: format!(
+                        "{label}: {keyword} = the initial displacement [, the initial velocity]: one or two numbers"
+                    ),
+                    span: argument.span,
+                });
+                continue;
+            }
+            if let Some(motion) = motions
+                .iter()
+                .find(|motion| motion.joint == joint && motion.rotation == rotation)
+            {
+                notes.push((
+                    format!(
+                        "{label}: {keyword} is left aside: MOTION/{} drives the same displacement",
+                        motion.id
+                    ),
+                    argument.span,
+                ));
+                continue;
+            }
+            initials.push(JointInitial {
+                joint,
+                rotation,
+                displacement: values[0],
+                velocity: values.get(1).copied(),
+                span: argument.span,
+            });
+        }
+    }
+    initials
 }

@@ -6,6 +6,7 @@
 mod commands;
 mod couplers;
 mod dataset;
+mod exact;
 mod joints;
 mod linear;
 mod motions;

@@ -150,6 +150,8 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         motions: Vec::new(),
         marker_motions: Vec::new(),
         couplers: Vec::new(),
+        joint_initials: Vec::new(),
+        exact: Vec::new(),
         sensors: Vec::new(),
         scene: reader.scene,
         masses,

@@ -433,10 +433,11 @@ impl Simulation<'_> {
         let offsets = body_offsets(model);
         let inverse_inertia = model.inverse_inertia();
         let drives = Drives::new(model);
-        let assemble = |y: &mut [f64], time: f64, tolerance: Tolerance| {
+        let assemble = |y: &mut [f64], time: f64, tolerance: Tolerance, initial: bool| {
             let at = drives.at(time).unwrap_or_default();
-            project(model, y, &offsets, &at, &inverse_inertia, tolerance).map_err(|error| {
+            project(model, y, &offsets, &at, &inverse_inertia, tolerance, initial).map_err(|error| {
                 let message = match error {
+                    Unassembled::Singular if initial && !(model.joint_initials.is_empty() && model.exact.is_empty()) => "the joints cannot be assembled: their equations and the initial conditions (the joints' IC, ICTRAN, ICROT, the parts' EXACT) are dependent at this state (an initial condition may set a coordinate the joints, motions or other initial conditions already set, or the configuration is singular)".to_string(),
                     Unassembled::Singular => "the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(),
                     Unassembled::Apart { row, residual } => format!(
                         "the joints cannot be assembled: {} stays off by {residual:.3e} after Newton's iterations (the parts cannot be placed as the joints and motions ask: check the markers' places and axes and the motions' values at this time)",
@@ -464,6 +465,7 @@ impl Simulation<'_> {
                     rtol: 0.0,
                     atol: 0.0,
                 },
+                true,
             )?;
             if let Some((joint, residual)) = disagreeing_redundant(model, &y0, &offsets) {
                 let joint = &model.joints[joint];
@@ -490,6 +492,7 @@ impl Simulation<'_> {
                             rtol: 0.0,
                             atol: 0.0,
                         },
+                        false,
                     )
                     .map(|_| ())
                 } else {
@@ -687,7 +690,7 @@ impl Simulation<'_> {
                     stepper.set_smooth(limit.is_infinite());
                     if model.is_constrained() {
                         dense.copy_from_slice(stepper.y());
-                        let found = assemble(&mut dense, t1, tolerance)?;
+                        let found = assemble(&mut dense, t1, tolerance, false)?;
                         summary.residuals = summary.residuals.max(found);
                         if dense != stepper.y() {
                             summary.projections += 1;
@@ -714,7 +717,7 @@ impl Simulation<'_> {
             dense.copy_from_slice(&state);
             let mut residuals = None;
             if model.is_constrained() {
-                let found = assemble(&mut dense, right, tolerance)?;
+                let found = assemble(&mut dense, right, tolerance, false)?;
                 summary.residuals = summary.residuals.max(found);
                 summary.projections += usize::from(dense != state);
                 residuals = Some(found);

@@ -1,0 +1,92 @@
+//! `PART ..., EXACT = X:Y:Z:PSI:THETA:PHI`: the part coordinates the
+//! initial-conditions analysis must not change.
+
+use nalgebra::Matrix3;
+
+use crate::model::initial::number;
+use crate::model::{Dataset, Value, is_kind};
+use crate::scene::Scene;
+use crate::simulate::error::SimulateError;
+use crate::simulate::model::{ExactPart, MassProperties};
+
+/// The coordinates `EXACT` may name, in Adams' order.
+const COORDINATES: [&str; 6] = ["X", "Y", "Z", "PSI", "THETA", "PHI"];
+
+/// The parts of `dataset` with `EXACT`, their bodies in `scene` (drawn at
+/// time 0) and `masses`; what cannot be read is added to `errors` at its
+/// place.
+pub(super) fn exact_parts(
+    dataset: &Dataset,
+    scene: &Scene,
+    masses: &[MassProperties],
+    errors: &mut Vec<SimulateError>,
+) -> Vec<ExactPart> {
+    let mut parts = Vec::new();
+    for statement in &dataset.statements {
+        if !is_kind(&statement.name, "PART") {
+            continue;
+        }
+        let Some(argument) = statement
+            .arguments
+            .iter()
+            .find(|argument| argument.keyword.eq_ignore_ascii_case("EXACT"))
+        else {
+            continue;
+        };
+        let label = statement.label();
+        let Some(body) = scene.bodies.iter().position(|body| body.name == label) else {
+            continue;
+        };
+        let mut coordinates = [false; 6];
+        let mut unknown = Vec::new();
+        if let Value::List(items) = &argument.value {
+            for name in items.iter().flat_map(|item| item.text.split(':')) {
+                let name = name.trim().to_ascii_uppercase();
+                match COORDINATES.iter().position(|known| *known == name) {
+                    Some(k) => coordinates[k] = true,
+                    None => unknown.push(name),
+                }
+            }
+        }
+        if !unknown.is_empty() || !coordinates.contains(&true) {
+            errors.push(SimulateError::Model {
+                message: format!(
+                    "{label}: EXACT lists part coordinates among X, Y, Z, PSI, THETA, PHI, joined by ':'{}",
+                    if unknown.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" ({} is none of them)", unknown.join(", "))
+                    }
+                ),
+                span: argument.span,
+            });
+            continue;
+        }
+        let drawn = &scene.bodies[body];
+        let rotation = drawn.orientation.to_rotation_matrix().into_inner();
+        let centre = drawn.position + rotation * masses[body].centre;
+        // The angles are those of the CM marker's axes (the body's when
+        // the CM marker is not found).
+        let cm_axes = number(statement, "CM", f64::NAN)
+            .ok()
+            .and_then(|id| {
+                scene
+                    .markers
+                    .iter()
+                    .find(|marker| marker.id.is_some_and(|marker_id| marker_id as f64 == id))
+            })
+            .map_or_else(Matrix3::identity, |marker| {
+                marker.orientation.to_rotation_matrix().into_inner()
+            });
+        let axes = rotation * cm_axes;
+        parts.push(ExactPart {
+            body,
+            coordinates,
+            centre,
+            axes,
+            cm_axes,
+            span: argument.span,
+        });
+    }
+    parts
+}
