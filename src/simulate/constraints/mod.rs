@@ -238,7 +238,7 @@ fn exact_rows(part: &super::model::ExactPart, body: &BodyMotion<f64>) -> Vec<Row
             unit[k] = 1.0;
             rows.push(along(turned[k], [0.0; 3], unit));
         }
-    } else if part.axes[(2, 2)].abs() > 1.0 - 1e-9 {
+    } else if drawn_level(part) {
         // Drawn with θ at 0 or π, where ψ and φ turn about the same axis:
         // THETA keeps the z axis where it was (its x and y components),
         // PSI or PHI the turn about it (the angle of the x axis in ground's
@@ -289,6 +289,24 @@ fn exact_rows(part: &super::model::ExactPart, body: &BodyMotion<f64>) -> Vec<Row
         }
     }
     rows
+}
+
+/// Whether `part` was drawn with its CM marker's z axis along ground's
+/// (θ at 0 or π), where its 3-1-3 angles ψ and φ are not apart.
+fn drawn_level(part: &super::model::ExactPart) -> bool {
+    part.axes[(2, 2)].abs() > 1.0 - 1e-9
+}
+
+/// How many equations [`exact_rows`] gives for `part`.
+fn exact_row_count(part: &super::model::ExactPart) -> usize {
+    let listed = |coordinates: &[bool]| coordinates.iter().filter(|kept| **kept).count();
+    let angles = &part.coordinates[3..];
+    let angle_rows = if angles.iter().all(|kept| *kept) || !drawn_level(part) {
+        listed(angles)
+    } else {
+        2 * usize::from(angles[1]) + usize::from(angles[0] || angles[2])
+    };
+    listed(&part.coordinates[..3]) + angle_rows
 }
 
 /// The body 3-1-3 angles `[ψ, θ, φ]` of `axes` (columns in ground): `axes
@@ -445,14 +463,10 @@ pub(crate) fn owner_of_row(model: &super::Model, row: usize) -> String {
         }))
         .chain(model.exact.iter().flat_map(|part| {
             let name = &model.scene.bodies[part.body].name;
-            let angles = &part.coordinates[3..];
-            let count = part.coordinates[..3].iter().filter(|kept| **kept).count()
-                + if angles.iter().all(|kept| *kept) || part.axes[(2, 2)].abs() <= 1.0 - 1e-9 {
-                    angles.iter().filter(|kept| **kept).count()
-                } else {
-                    2 * usize::from(angles[1]) + usize::from(angles[0] || angles[2])
-                };
-            std::iter::repeat_n(format!("the EXACT coordinates of {name}"), count)
+            std::iter::repeat_n(
+                format!("the EXACT coordinates of {name}"),
+                exact_row_count(part),
+            )
         }));
     motions
         .enumerate()

@@ -530,12 +530,14 @@ pub(crate) fn project(
     initial: bool,
 ) -> Result<Residuals, Unassembled> {
     let bodies = motions(y, offsets);
+    let active = active_rows(model, &bodies, drives);
+    let before = Residuals::of(&active);
     // The initial conditions the equations leave free, found at the state
     // as given (an EXACT coordinate a joint already fixes yields to it).
     let free = |velocities: bool| {
         if initial {
             independent(
-                &active_rows(model, &bodies, drives),
+                &active,
                 &initial_rows(model, &bodies, velocities),
                 6 * bodies.len(),
             )
@@ -544,8 +546,9 @@ pub(crate) fn project(
         }
     };
     let (free_positions, free_velocities) = (free(false), free(true));
-    let held = |bodies: &[BodyMotion<f64>], velocities: bool| {
-        let mut rows = active_rows(model, bodies, drives);
+    // `rows` with the free initial conditions of the positions' or the
+    // velocities' analysis.
+    let with_initial = |mut rows: Vec<Row<f64>>, bodies: &[BodyMotion<f64>], velocities: bool| {
         if initial {
             let free = if velocities {
                 &free_velocities
@@ -562,11 +565,26 @@ pub(crate) fn project(
         }
         rows
     };
-    let before = Residuals::of(&active_rows(model, &bodies, drives));
-    let rows = held(&bodies, false);
+    let held = |bodies: &[BodyMotion<f64>], velocities: bool| {
+        with_initial(active_rows(model, bodies, drives), bodies, velocities)
+    };
+    let rows = with_initial(active, &bodies, false);
+    let mut residual = Residuals::of(&rows).position;
     let off_positions = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
-    let rows = held(&bodies, true);
-    let off_velocities = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
+    // The least change of the velocities at `bodies`, whose positions'
+    // equations are `rows`: outside the initial analysis the velocities
+    // hold the same equations.
+    let velocity_change = |bodies: &[BodyMotion<f64>], rows: &[Row<f64>]| {
+        let velocity_rows = initial.then(|| held(bodies, true));
+        least_change(
+            model,
+            velocity_rows.as_deref().unwrap_or(rows),
+            bodies,
+            inverse_inertia,
+            |row| row.rate,
+        )
+    };
+    let off_velocities = velocity_change(&bodies, &rows)?;
     if scaled(y, offsets, &off_positions, 0, tolerance) <= 1.0
         && scaled(y, offsets, &off_velocities, 7, tolerance) <= 1.0
     {
@@ -580,7 +598,6 @@ pub(crate) fn project(
         let bodies = motions(y, offsets);
         Residuals::of(&held(&bodies, false)).position
     };
-    let mut residual = largest_residual(y);
     for _ in 0..POSITION_ITERATIONS {
         if residual == 0.0 {
             break;
@@ -633,7 +650,6 @@ pub(crate) fn project(
         // agree with them.
         let active = rows.len() - free_positions.iter().filter(|free| **free).count();
         let joint_rows = model.joint_initials.len();
-        let size = 1.0 + y.iter().fold(0.0_f64, |most, value| most.max(value.abs()));
         if let Some((index, row)) = initial_rows(model, &bodies, false)
             .iter()
             .enumerate()
@@ -646,8 +662,7 @@ pub(crate) fn project(
             });
         }
     }
-    let rows = held(&bodies, true);
-    let change = least_change(model, &rows, &bodies, inverse_inertia, |row| row.rate)?;
+    let change = velocity_change(&bodies, &rows)?;
     for ((change, motion), &offset) in change.iter().zip(&bodies).zip(offsets) {
         let s = &mut y[offset..];
         for k in 0..3 {

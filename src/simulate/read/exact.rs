@@ -26,11 +26,7 @@ pub(super) fn exact_parts(
         if !is_kind(&statement.name, "PART") {
             continue;
         }
-        let Some(argument) = statement
-            .arguments
-            .iter()
-            .find(|argument| argument.keyword.eq_ignore_ascii_case("EXACT"))
-        else {
+        let Some(argument) = statement.argument("EXACT", 5) else {
             continue;
         };
         let label = statement.label();

@@ -185,11 +185,7 @@ pub(crate) fn initials(
         };
         let kind = joints[joint].kind;
         for (keyword, rotation) in [("IC", None), ("ICTRAN", Some(false)), ("ICROT", Some(true))] {
-            let Some(argument) = statement
-                .arguments
-                .iter()
-                .find(|argument| argument.keyword.eq_ignore_ascii_case(keyword))
-            else {
+            let Some(argument) = statement.argument(keyword, keyword.len()) else {
                 continue;
             };
             let label = statement.label();
