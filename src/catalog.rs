@@ -284,8 +284,8 @@ functions! {
     Yaw "YAW" Measure [] Marker 1..=2 ("i", "j") "first body-fixed 3-2-1 angle of i relative to j";
     Pitch "PITCH" Measure [] Marker 1..=2 ("i", "j") "negative second body-fixed 3-2-1 angle of i relative to j";
     Roll "ROLL" Measure [] Marker 1..=2 ("i", "j") "third body-fixed 3-2-1 angle of i relative to j";
-    Incang "INCANG" Measure [] Marker 3..=4 ("i", "j", "k", "l") "included angle between the lines i-j and k-l (or j-k)";
-    Orient "ORIENT" Measure [Flag, Flag, Marker, Marker] Marker 4..=4 ("type", "component", "i", "j") "a component of the orientation of i relative to j";
+    Incang "INCANG" Measure [] Marker 3..=4 ("i", "j", "k", "l") "included angle between the lines j-i and k-l (or j-k), about their normal as the model is drawn";
+    Orient "ORIENT" Measure [Flag, Flag, Marker, Marker] Marker 3..=4 ("type", "component", "i", "j") "a component of the orientation of i relative to j: Euler angles of the body-fixed (1-12) or space-fixed (13-24) sequences 123 231 312 132 213 321 121 131 212 232 313 323, Euler parameters (27), Rodriguez parameters (28), direction cosines (29, by columns)";
     Fx "FX" Solver [] Marker 1..=3 ("i", "j", "k") "x force between markers i and j, along x of k";
     Fy "FY" Solver [] Marker 1..=3 ("i", "j", "k") "y force between markers i and j, along y of k";
     Fz "FZ" Solver [] Marker 1..=3 ("i", "j", "k") "z force between markers i and j, along z of k";

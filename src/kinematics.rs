@@ -214,8 +214,13 @@ fn length<T: Number>(v: &Vector3<T>) -> T {
 }
 
 /// The value of `measure` for frames `i, j, k, l` as its signature orders
-/// them (omitted markers already replaced by ground).
-pub fn measure<T: Number>(function: Function, frames: &[&Frame<T>]) -> Result<T, LawError> {
+/// them (omitted markers already replaced by ground; INCANG's three are
+/// `i, j, j, k`), with the constants `selector` gives ORIENT and INCANG.
+pub fn measure<T: Number>(
+    function: Function,
+    selector: Selector,
+    frames: &[&Frame<T>],
+) -> Result<T, LawError> {
     use Function as F;
     let i = frames[0];
     let j = frames[1];
@@ -289,8 +294,207 @@ pub fn measure<T: Number>(function: Function, frames: &[&Frame<T>]) -> Result<T,
                 _ => atan2(&c(2, 1), &c(2, 2)),
             }
         }
+        F::Orient => match selector {
+            Selector::Orientation(orientation) => orientation.of(&(j.axes.transpose() * &i.axes))?,
+            _ => unreachable!("ORIENT is compiled with its orientation system"),
+        },
+        F::Incang => {
+            let first = d;
+            let second = &frames[3].origin - &frames[2].origin;
+            let normal = match selector {
+                Selector::Normal(bits) => Vector3::from(bits.map(f64::from_bits)),
+                _ => Vector3::zeros(),
+            };
+            let across = first.cross(&second);
+            let sine = if normal == Vector3::zeros() {
+                length(&across)
+            } else {
+                across.dot(&lift_vector(&normal))
+            };
+            let cosine = first.dot(&second);
+            if sine.value() == 0.0 && cosine.value() == 0.0 {
+                return domain(
+                    "INCANG",
+                    "a line has no length: two of its markers coincide".to_string(),
+                );
+            }
+            atan2(&sine, &cosine)
+        }
         _ => unreachable!("{function} is not a measure a scene evaluates"),
     })
+}
+
+/// The constants a measure reads besides its marker frames.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Selector {
+    /// Nothing (every measure but ORIENT and INCANG).
+    #[default]
+    Plain,
+    /// ORIENT's orientation system and component.
+    Orientation(Orientation),
+    /// INCANG's axis: the unit normal of its two lines where the model is
+    /// drawn (the bits of its components), the angle measured about it with
+    /// the right-hand rule; zero where the lines are drawn parallel.
+    Normal([u64; 3]),
+}
+
+/// Which value `ORIENT(system, component, i, j)` gives, checked when the
+/// expression is compiled: an angle of one of the twelve body-fixed (1 to
+/// 12) or space-fixed (13 to 24) Euler sequences, an Euler parameter (27),
+/// a Rodriguez parameter (28) or a direction cosine (29) of the rotation
+/// of `i`'s axes from `j`'s.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Orientation {
+    system: u8,
+    component: u8,
+}
+
+/// The body-fixed sequences of ORIENT's systems 1 to 12 (13 to 24 are the
+/// same sequences about space-fixed axes), as axis indices.
+const SEQUENCES: [[usize; 3]; 12] = [
+    [0, 1, 2],
+    [1, 2, 0],
+    [2, 0, 1],
+    [0, 2, 1],
+    [1, 0, 2],
+    [2, 1, 0],
+    [0, 1, 0],
+    [0, 2, 0],
+    [1, 0, 1],
+    [1, 2, 1],
+    [2, 0, 2],
+    [2, 1, 2],
+];
+
+impl Orientation {
+    /// The orientation system and component as written, or what is wrong
+    /// with them.
+    pub fn new(system: i64, component: i64) -> Result<Orientation, String> {
+        let components = match system {
+            1..=24 | 28 => 3,
+            27 => 4,
+            29 => 9,
+            _ => {
+                return Err(format!(
+                    "orientation system {system} is not one mbexpr evaluates: 1 to 12 are body-fixed Euler sequences, 13 to 24 space-fixed ones, 27 Euler parameters, 28 Rodriguez parameters, 29 direction cosines"
+                ));
+            }
+        };
+        if !(1..=components).contains(&component) {
+            return Err(format!(
+                "orientation system {system} has components 1 to {components}, not {component}"
+            ));
+        }
+        Ok(Orientation {
+            system: system as u8,
+            component: component as u8,
+        })
+    }
+
+    /// The component of the rotation `relative` (`i`'s axes as columns in
+    /// `j`'s).
+    fn of<T: Number>(self, relative: &Matrix3<T>) -> Result<T, LawError> {
+        let component = usize::from(self.component) - 1;
+        match self.system {
+            system @ 1..=12 => euler_angle(relative, SEQUENCES[usize::from(system) - 1], component),
+            system @ 13..=24 => {
+                // About fixed axes p, q, r by a, b, c: the body-fixed
+                // sequence r, q, p by c, b, a.
+                let [p, q, r] = SEQUENCES[usize::from(system) - 13];
+                euler_angle(relative, [r, q, p], 2 - component)
+            }
+            27 => Ok(euler_parameters(relative)[component].clone()),
+            28 => {
+                let parameters = euler_parameters(relative);
+                if parameters[0].value() == 0.0 {
+                    return domain(
+                        "ORIENT",
+                        "Rodriguez parameters are not defined for a half turn".to_string(),
+                    );
+                }
+                Ok(parameters[component + 1].clone() / parameters[0].clone())
+            }
+            _ => Ok(relative[(component % 3, component / 3)].clone()),
+        }
+    }
+}
+
+/// Angle `which` (0, 1, 2) of the body-fixed sequence of rotations about
+/// axes `p, q, r` that gives `relative`. Where the sequence is locked (the
+/// second angle makes the first and third turn about one axis) the first
+/// takes the whole turn and the third is 0, as for PSI and PHI.
+fn euler_angle<T: Number>(
+    relative: &Matrix3<T>,
+    [p, q, r]: [usize; 3],
+    which: usize,
+) -> Result<T, LawError> {
+    let c = |row: usize, column: usize| relative[(row, column)].clone();
+    let zero = |row: usize, column: usize| relative[(row, column)].value() == 0.0;
+    // The third axis, and the sign of e_p x e_q along it.
+    let other = 3 - p - q;
+    let sign = if (p + 1) % 3 == q { 1.0 } else { -1.0 };
+    let locked_first = || atan2(&(c(other, q) * sign), &c(q, q));
+    Ok(if p != r {
+        let locked = zero(q, r) && zero(r, r);
+        match which {
+            0 if locked => locked_first(),
+            0 => atan2(&(c(q, r) * -sign), &c(r, r)),
+            1 => DualNum::asin(&within_unit("ORIENT", c(p, r) * sign)?),
+            _ if locked => T::zero(),
+            _ => atan2(&(c(p, q) * -sign), &c(p, p)),
+        }
+    } else {
+        let locked = zero(q, p) && zero(other, p);
+        match which {
+            0 if locked => locked_first(),
+            0 => atan2(&c(q, p), &(c(other, p) * -sign)),
+            1 => DualNum::acos(&within_unit("ORIENT", c(p, p))?),
+            _ if locked => T::zero(),
+            _ => atan2(&c(p, q), &(c(p, other) * sign)),
+        }
+    })
+}
+
+/// The Euler parameters `e0 e1 e2 e3` of the rotation `a` (Shepperd's
+/// method: the square root taken of the largest, so no division by a small
+/// one), `e0` not negative.
+fn euler_parameters<T: Number>(a: &Matrix3<T>) -> [T; 4] {
+    let c = |row: usize, column: usize| a[(row, column)].clone();
+    let trace = c(0, 0) + c(1, 1) + c(2, 2);
+    let diagonal = [a[(0, 0)].value(), a[(1, 1)].value(), a[(2, 2)].value()];
+    let largest = (0..3).fold(None, |best: Option<usize>, k| match best {
+        Some(b) if diagonal[b] >= diagonal[k] => Some(b),
+        _ => Some(k),
+    });
+    let half_root = |squared: T| DualNum::sqrt(&squared) * 0.5;
+    let parameters = match largest {
+        Some(k) if diagonal[k] > trace.value() => {
+            let (m, n) = ((k + 1) % 3, (k + 2) % 3);
+            let big = half_root(T::one() + c(k, k) * 2.0 - trace);
+            let quarter = big.clone() * 4.0;
+            let mut e = [T::zero(), T::zero(), T::zero(), T::zero()];
+            e[0] = (c(n, m) - c(m, n)) / quarter.clone();
+            e[m + 1] = (c(m, k) + c(k, m)) / quarter.clone();
+            e[n + 1] = (c(n, k) + c(k, n)) / quarter;
+            e[k + 1] = big;
+            e
+        }
+        _ => {
+            let e0 = half_root(T::one() + trace);
+            let quarter = e0.clone() * 4.0;
+            [
+                e0,
+                (c(2, 1) - c(1, 2)) / quarter.clone(),
+                (c(0, 2) - c(2, 0)) / quarter.clone(),
+                (c(1, 0) - c(0, 1)) / quarter,
+            ]
+        }
+    };
+    if parameters[0].value() < 0.0 {
+        parameters.map(|e| -e)
+    } else {
+        parameters
+    }
 }
 
 /// A cosine or sine from rotation matrices, clamped to [-1, 1] against

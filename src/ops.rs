@@ -7,7 +7,7 @@
 use std::fmt;
 
 use crate::catalog::{Function, check_rules_with};
-use crate::kinematics::{self, Frame, FrameData};
+use crate::kinematics::{self, Frame, FrameData, Selector};
 use crate::laws::contact::Stops;
 use crate::laws::spline::Spline;
 use crate::laws::{self, LawError, power};
@@ -41,6 +41,8 @@ pub enum Op {
         function: Function,
         /// One frame per marker of the signature, omitted ones as ground.
         frames: Box<[FrameArg]>,
+        /// ORIENT's orientation system and component, INCANG's axis.
+        selector: Selector,
     },
     /// `AKISPL` or `CUBSPL`: the derivative of order `order` in `x` of a
     /// fitted spline of the program's table at `(x, z)`.
@@ -131,6 +133,7 @@ impl<T: Number> SharedFrames<T> {
     pub fn measure(
         &mut self,
         function: Function,
+        selector: Selector,
         args: &[FrameArg],
         slots: &[T],
         tables: &Tables,
@@ -153,7 +156,7 @@ impl<T: Number> SharedFrames<T> {
         };
         // A measure reads at most four frames (i, j, k, l).
         let frames: [&Frame<T>; 4] = std::array::from_fn(frame);
-        kinematics::measure(function, &frames[..args.len().min(4)])
+        kinematics::measure(function, selector, &frames[..args.len().min(4)])
     }
 }
 
@@ -193,10 +196,11 @@ pub fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Result<T, La
         Op::Measure {
             function,
             frames: args,
+            selector,
         } => {
             let frames: Vec<Frame<T>> = args.iter().map(|arg| arg.frame(slots, tables)).collect();
             let frames: Vec<&Frame<T>> = frames.iter().collect();
-            kinematics::measure(*function, &frames)?
+            kinematics::measure(*function, *selector, &frames)?
         }
         Op::Spline {
             table, x, z, order, ..
@@ -274,7 +278,9 @@ impl fmt::Display for Op {
                 x,
                 v,
             } => write!(f, "{function}(s{x}, s{v}, stops{table})"),
-            Op::Measure { function, frames } => {
+            Op::Measure {
+                function, frames, ..
+            } => {
                 let frames: Vec<String> = frames
                     .iter()
                     .map(|frame| match frame.state {

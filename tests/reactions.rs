@@ -253,7 +253,8 @@ fn the_spiked_models_motion_torque_takes_the_pulse() {
 /// the pendulum's centre-of-mass marker against the pivot (DISPLACEMENT:
 /// `r = R (2, 0, 0)`) and against ground along its own axes (VELOCITY:
 /// `v = ω × r` turned into the marker's axes), checked against the run's
-/// own state columns.
+/// own state columns. The kinds are read from their first letter too, as
+/// Adams View writes them (`REQUEST/1, D, I = 2, J = 1`).
 #[test]
 fn standard_requests_write_adams_columns() {
     let text = PENDULUM.replace(
@@ -261,6 +262,11 @@ fn standard_requests_write_adams_columns() {
         "REQUEST/2, DISPLACEMENT, I = 20, J = 1\nREQUEST/3, VELOCITY, I = 20, RM = 20\nREQUEST/1",
     );
     let swinging = run(&text, &settings(2.0, 20, 1e-10)).expect("the pendulum runs");
+    let abbreviated = text
+        .replace("DISPLACEMENT, I", "D, I")
+        .replace("VELOCITY, I", "V, I");
+    let short = run(&abbreviated, &settings(2.0, 20, 1e-10)).expect("the pendulum runs");
+    assert_eq!(short.rows, swinging.rows);
     let mut worst: f64 = 0.0;
     for row in &swinging.rows {
         let (r, omega, q) = swing(row);

@@ -381,7 +381,6 @@ fn errors_name_what_is_missing() {
         "DX(99)",
         "ACCX(ai)",
         "WDTZ(bj, ai)",
-        "INCANG(ai, bj, gk)",
         "DM(ai, ai)",
         "VR(ai, ai)",
         "DX(ai) + x",
@@ -536,4 +535,174 @@ fn rotation_states_of_every_size() {
     assert!(close(&at(1e-160), &zero, 1e-15));
     let (below, above) = (at(1e-3 * (1.0 - 1e-12)), at(1e-3 * (1.0 + 1e-12)));
     assert!(close(&below, &above, 1e-9), "{below:?} vs {above:?}");
+}
+
+/// ORIENT recovers the angles a part was turned by in each of the twelve
+/// body-fixed and twelve space-fixed sequences, relative to a turned
+/// marker; its Euler parameters, Rodriguez parameters and direction cosines
+/// are nalgebra's quaternion and matrix of the same rotation; its gradient
+/// matches finite differences; systems and components out of range are
+/// refused at the call.
+#[test]
+fn orient_gives_every_orientation_system() {
+    let sequences = [
+        [0, 1, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [0, 2, 1],
+        [1, 0, 2],
+        [2, 1, 0],
+        [0, 1, 0],
+        [0, 2, 0],
+        [1, 0, 1],
+        [1, 2, 1],
+        [2, 0, 2],
+        [2, 1, 2],
+    ];
+    let about = |axis: usize, angle: f64| {
+        let mut direction = [0.0; 3];
+        direction[axis] = 1.0;
+        rotation(direction, angle)
+    };
+    let reference = rotation([0.3, -0.5, 0.8], 0.9);
+    for (index, sequence) in sequences.iter().enumerate() {
+        let [p, q, r] = *sequence;
+        let angles = [0.4, if p == r { 0.7 } else { -0.6 }, -1.1];
+        for space_fixed in [false, true] {
+            let turn = if space_fixed {
+                about(r, angles[2]) * about(q, angles[1]) * about(p, angles[0])
+            } else {
+                about(p, angles[0]) * about(q, angles[1]) * about(r, angles[2])
+            };
+            let mut scene = Scene::default();
+            let mut body = Body::new("turned");
+            body.orientation = reference * turn;
+            scene.bodies.push(body);
+            let mut i = Marker::new(Some(0));
+            i.id = Some(1);
+            let mut j = Marker::new(None);
+            j.id = Some(2);
+            j.orientation = reference;
+            scene.markers = vec![i, j];
+            let system = index + 1 + if space_fixed { 12 } else { 0 };
+            for (component, angle) in angles.iter().enumerate() {
+                let text = format!("ORIENT({system}, {}, 1, 2)", component + 1);
+                let got = value(&scene, &text);
+                assert!((got - angle).abs() < 1e-12, "{text}: {got}, want {angle}");
+            }
+        }
+    }
+    let scene = two_bodies();
+    let relative = (scene.bodies[1].orientation * scene.markers[1].orientation).inverse()
+        * scene.bodies[0].orientation
+        * scene.markers[0].orientation;
+    let sign = relative.w.signum();
+    let parameters = [relative.w, relative.i, relative.j, relative.k].map(|e| e * sign);
+    let matrix = relative.to_rotation_matrix().into_inner();
+    let mut wanted: Vec<(String, f64)> = Vec::new();
+    for (component, parameter) in parameters.iter().enumerate() {
+        wanted.push((format!("ORIENT(27, {}, ai, bj)", component + 1), *parameter));
+        if component > 0 {
+            let rodriguez = parameter / parameters[0];
+            wanted.push((format!("ORIENT(28, {component}, ai, bj)"), rodriguez));
+        }
+    }
+    for component in 0..9 {
+        let cosine = matrix[(component % 3, component / 3)];
+        wanted.push((format!("ORIENT(29, {}, ai, bj)", component + 1), cosine));
+    }
+    for (text, want) in wanted {
+        let got = value(&scene, &text);
+        assert!((got - want).abs() < 1e-12, "{text}: {got}, want {want}");
+    }
+    // The gradient in the turning states of both parts.
+    let expression = "ORIENT(5, 2, ai, bj) + ORIENT(27, 3, ai, bj) * ORIENT(9, 1, ai, bj)";
+    let components = ["a.rx", "a.ry", "a.rz", "b.rx", "b.rz"];
+    let gradient = evaluate(&scene, expression, &components, Order::Gradient)
+        .unwrap()
+        .gradient
+        .unwrap();
+    let h = 1e-6;
+    for (index, component) in components.iter().enumerate() {
+        let shifted = |step: f64| {
+            let mut moved = scene.clone();
+            let body = usize::from(component.starts_with('b'));
+            let mut turn = Vector3::zeros();
+            turn[match component.as_bytes()[3] {
+                b'x' => 0,
+                b'y' => 1,
+                _ => 2,
+            }] = step;
+            moved.bodies[body].orientation =
+                UnitQuaternion::from_scaled_axis(turn) * moved.bodies[body].orientation;
+            value(&moved, expression)
+        };
+        let difference = (shifted(h) - shifted(-h)) / (2.0 * h);
+        assert!(
+            (gradient[index] - difference).abs() < 1e-7,
+            "d/d{component}: {} vs {difference}",
+            gradient[index]
+        );
+    }
+    let refusals: String = [
+        "ORIENT(25, 1, ai, bj)",
+        "ORIENT(27, 5, ai)",
+        "ORIENT(0, 1, ai)",
+    ]
+    .iter()
+    .map(|text| format!("{text}\n  => {}\n", check(&scene, text)))
+    .collect();
+    insta::assert_snapshot!(refusals);
+}
+
+/// INCANG: the angle at j between the lines to i and to k (or between i-j
+/// and k-l), positive where the scene places the markers and measured about
+/// the normal drawn there after, so that it passes pi without a jump in a
+/// run; against the angles a marker is turned to by hand.
+#[test]
+fn incang_measures_about_the_drawn_normal() {
+    let mut scene = Scene::default();
+    let mut arm = Body::new("arm");
+    arm.position = Vector3::new(1.0, 1.0, 0.0);
+    scene.bodies.push(arm);
+    let marker = |id: u64, body: Option<usize>, position: [f64; 3]| {
+        let mut marker = Marker::new(body);
+        marker.id = Some(id);
+        marker.position = Vector3::from(position);
+        marker
+    };
+    // The arm's tip at 0.3 rad from the x axis around its pivot (1, 1, 0).
+    let tip = [0.3f64.cos(), 0.3f64.sin(), 0.0];
+    scene.markers = vec![
+        marker(1, None, [3.0, 1.0, 0.0]),
+        marker(2, Some(0), [0.0, 0.0, 0.0]),
+        marker(3, Some(0), tip),
+        marker(4, None, [0.0, 0.0, 5.0]),
+        marker(5, None, [0.0, 2.0, 5.0]),
+    ];
+    let close = |scene: &Scene, text: &str, want: f64| {
+        let got = value(scene, text);
+        assert!((got - want).abs() < 1e-12, "{text}: {got}, want {want}");
+    };
+    close(&scene, "INCANG(1, 2, 3)", 0.3);
+    close(&scene, "INCANG(3, 2, 1)", 0.3);
+    // Between the x axis and a line along y, four markers.
+    close(&scene, "INCANG(1, 2, 4, 5)", std::f64::consts::FRAC_PI_2);
+    // Turning the arm on: the angle grows past pi in a run.
+    let checked = check_tree(&parse("INCANG(1, 2, 3)").unwrap()).unwrap();
+    let program = compile_in_scene(&checked, &scene.input_names(), &scene).unwrap();
+    let mut values = scene.values(program.inputs()).unwrap();
+    let turn = program.input_index("arm.rz").unwrap();
+    let mut run = program.run();
+    for step in 0..=60 {
+        let angle = f64::from(step) * 0.1;
+        values[turn] = angle;
+        let got = run.evaluate(&values, &[turn], Order::Gradient).unwrap();
+        assert!(
+            (got.value - (0.3 + angle)).abs() < 1e-9,
+            "{angle}: {}",
+            got.value
+        );
+        assert!((got.gradient.unwrap()[0] - 1.0).abs() < 1e-9);
+    }
 }

@@ -117,6 +117,14 @@ pub enum CompileError {
         /// The call.
         span: Span,
     },
+    /// ORIENT's orientation system or component out of its range.
+    #[error("ORIENT: {message}")]
+    Orientation {
+        /// What is wrong.
+        message: String,
+        /// The call.
+        span: Span,
+    },
     /// VARIABLE (or DIFF) functions that read each other in a loop.
     #[error("VARVAL loops: {cycle}")]
     VariableLoop {
@@ -187,6 +195,7 @@ impl CompileError {
             | CompileError::SplineOrder { span, .. }
             | CompileError::NoAcceleration { span, .. }
             | CompileError::NotInScene { span, .. }
+            | CompileError::Orientation { span, .. }
             | CompileError::UserSubroutine { span } => *span,
         }
     }

@@ -18,7 +18,7 @@ pub use solver::{MarkerCall, RunCall, SolverCall};
 use crate::catalog::{Family, Function, SystemVariable, check_rules, closest, did_you_mean};
 use crate::check::{Argument, Checked, Node, NodeKind, Reference};
 use crate::errors::Errors;
-use crate::kinematics::FrameData;
+use crate::kinematics::{FrameData, Orientation, Selector};
 use crate::laws::contact::Stops;
 use crate::laws::power::as_integer;
 use crate::laws::spline::{Method, Spline};
@@ -687,14 +687,26 @@ impl Compiler<'_> {
         args: &[Argument],
         span: Span,
     ) -> Slot {
-        if matches!(function, Function::Incang | Function::Orient) {
-            self.errors.push(CompileError::NotInScene {
-                place: scene_plural(scene),
-                function: function.name(),
-                span,
-            });
-            return self.constant(0.0);
-        }
+        // ORIENT's two flags come first; INCANG's second line starts at j
+        // when it has three markers.
+        let (selector, markers): (Selector, Vec<usize>) = match function {
+            Function::Orient => {
+                let flag = |position: usize| match args.get(position) {
+                    Some(Argument::Flag(value, _)) => *value,
+                    _ => 0,
+                };
+                match Orientation::new(flag(0), flag(1)) {
+                    Ok(orientation) => (Selector::Orientation(orientation), vec![2, 3]),
+                    Err(message) => {
+                        self.errors
+                            .push(CompileError::Orientation { message, span });
+                        return self.constant(0.0);
+                    }
+                }
+            }
+            Function::Incang if args.len() == 3 => (Selector::Plain, vec![0, 1, 1, 2]),
+            _ => (Selector::Plain, (0..function.signature().max).collect()),
+        };
         let needs_accelerations = matches!(
             function,
             Function::Accx
@@ -707,7 +719,8 @@ impl Compiler<'_> {
                 | Function::Wdtm
         );
         let mut frames = Vec::new();
-        for position in 0..function.signature().max {
+        let mut targets = Vec::new();
+        for position in markers {
             let (target, marker_span) = match args.get(position) {
                 Some(Argument::Marker(reference, marker_span)) => {
                     match scene.find_marker(reference) {
@@ -740,11 +753,17 @@ impl Compiler<'_> {
                 return self.constant(0.0);
             }
             frames.push(self.frame(scene, target, marker_span));
+            targets.push(target);
         }
+        let selector = match function {
+            Function::Incang => Selector::Normal(drawn_normal(scene, &targets)),
+            _ => selector,
+        };
         self.compute(
             Op::Measure {
                 function,
                 frames: frames.into(),
+                selector,
             },
             span,
         )
@@ -953,4 +972,20 @@ fn model_data_error(
         statement,
         span,
     }
+}
+
+/// INCANG's axis: the unit normal of its lines `targets[1] -> targets[0]`
+/// and `targets[2] -> targets[3]` where the scene places them (the angle is
+/// positive there and measured about it after), as bits; zero where they
+/// are parallel.
+fn drawn_normal(scene: &Scene, targets: &[Target]) -> [u64; 3] {
+    let origin = |position: usize| scene.origin(targets[position]);
+    let across = (origin(0) - origin(1)).cross(&(origin(3) - origin(2)));
+    let length = across.norm();
+    let normal = if length > 0.0 && length.is_finite() {
+        across / length
+    } else {
+        nalgebra::Vector3::zeros()
+    };
+    normal.map(f64::to_bits).into()
 }

@@ -57,15 +57,17 @@ pub struct Evaluation {
 }
 
 /// Evaluates one program over one number type, reusing its buffers from
-/// call to call: the way to evaluate in a loop. Its calls are a run: AX, AY
-/// and AZ stay continuous through ±π from one call to the next (see [`Run`]).
+/// call to call: the way to evaluate in a loop. Its calls are a run: AX, AY,
+/// AZ and INCANG stay continuous through ±π from one call to the next (see
+/// [`Run`]).
 pub struct Evaluator<'p, T> {
     program: &'p Program,
     /// The program's tables with the bodies turned to their current
     /// orientations ([`Evaluator::reorient`]); `None`: the program's own.
     turned: Option<Box<Tables>>,
     slots: Vec<T>,
-    /// The last value of each AX, AY, AZ instruction (empty until one runs).
+    /// The last value of each AX, AY, AZ, INCANG instruction (empty until
+    /// one runs).
     angles: Vec<Option<f64>>,
     /// In a simulation, their values at the last accepted states, which
     /// settle their whole turns ([`Evaluator::accept_angles`]).
@@ -74,7 +76,7 @@ pub struct Evaluator<'p, T> {
     frames: SharedFrames<T>,
 }
 
-/// The values of AX, AY, AZ at a simulation's last accepted states: an
+/// The values of AX, AY, AZ, INCANG at a simulation's last accepted states: an
 /// evaluation anywhere inside a step (a stage, a rejected try, a look for
 /// a switch) takes the whole turns nearest the value extrapolated from
 /// them to its time, so a part that turns several radians a step keeps its
@@ -115,8 +117,8 @@ impl Turns {
 }
 
 /// Evaluations of one program at a sequence of points, in order (the steps
-/// of a simulation, the samples of a plot). SPEC 4 keeps AX, AY and AZ
-/// continuous through ±π over a run: each of them takes the whole turns that
+/// of a simulation, the samples of a plot). SPEC 4 keeps AX, AY and AZ (and
+/// INCANG) continuous through ±π over a run: each takes the whole turns that
 /// bring it nearest to its value at the previous point (the derivatives are
 /// those of the principal value). [`Program::evaluate`] alone gives the
 /// principal value, in (-π, π].
@@ -200,7 +202,7 @@ impl Program {
     }
 
     /// Whether a result of a [`Run`] can depend on the points before it (an
-    /// AX, AY or AZ, continuous through ±π): if not, the points of a run may
+    /// AX, AY, AZ or INCANG, continuous through ±π): if not, the points of a run may
     /// be evaluated in any order, or in parallel, each on its own.
     pub fn continues_from_point_to_point(&self) -> bool {
         self.code.iter().any(|instruction| {
@@ -336,7 +338,8 @@ impl<T: Number> Evaluator<'_, T> {
                             Op::Measure {
                                 function,
                                 frames: args,
-                            } => frames.measure(*function, args, slots, tables),
+                                selector,
+                            } => frames.measure(*function, *selector, args, slots, tables),
                             _ => execute(op, slots, tables),
                         });
                     match computed {
@@ -392,7 +395,7 @@ impl<T: Number> Evaluator<'_, T> {
             .map_or_else(T::zero, |&slot| self.slots[slot as usize].clone()))
     }
 
-    /// Whether the program has an AX, AY or AZ, whose turns a simulation
+    /// Whether the program has an AX, AY, AZ or INCANG, whose turns a simulation
     /// settles at its accepted states.
     pub(crate) fn continues_angles(&self) -> bool {
         self.program.continues_from_point_to_point()
@@ -407,7 +410,7 @@ impl<T: Number> Evaluator<'_, T> {
     }
 
     /// The last evaluation was at a simulation's accepted state at `time`:
-    /// its AX, AY, AZ values settle their turns from there on.
+    /// its AX, AY, AZ, INCANG values settle their turns from there on.
     pub(crate) fn accept_angles(&mut self, time: f64) {
         let turns = self.turns.get_or_insert_with(Box::default);
         turns.time = time;
@@ -425,7 +428,7 @@ impl<T: Number> Evaluator<'_, T> {
     }
 
     /// `result` of instruction `index`, moved by whole turns to the value
-    /// nearest its last one when `op` is AX, AY or AZ.
+    /// nearest its last one when `op` is AX, AY, AZ or INCANG.
     fn continue_angle(&mut self, op: &Op, index: usize, result: T) -> T {
         if !continues_through_turns(op) || !result.value().is_finite() {
             return result;
@@ -455,13 +458,14 @@ impl<T: Number> Evaluator<'_, T> {
     }
 }
 
-/// Whether `op` is AX, AY or AZ, which a [`Run`] keeps continuous through ±π.
+/// Whether `op` is AX, AY, AZ or INCANG, which a [`Run`] keeps continuous
+/// through ±π.
 fn continues_through_turns(op: &Op) -> bool {
     use crate::catalog::Function as F;
     matches!(
         op,
         Op::Measure {
-            function: F::Ax | F::Ay | F::Az,
+            function: F::Ax | F::Ay | F::Az | F::Incang,
             ..
         }
     )

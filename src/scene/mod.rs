@@ -328,6 +328,21 @@ impl Scene {
         })
     }
 
+    /// Where the origin of `target` is in ground, with its body where the
+    /// scene places it.
+    pub fn origin(&self, target: Target) -> Vector3<f64> {
+        match target {
+            Target::Ground => Vector3::zeros(),
+            Target::Marker(index) => {
+                let marker = &self.markers[index];
+                match marker.body.map(|body| &self.bodies[body]) {
+                    Some(body) => body.position + body.orientation * marker.position,
+                    None => marker.position,
+                }
+            }
+        }
+    }
+
     /// The index of the body named `name` (case-insensitive).
     pub fn find_body(&self, name: &str) -> Option<usize> {
         self.lookup

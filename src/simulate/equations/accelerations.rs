@@ -12,7 +12,7 @@ use nalgebra::{Matrix3, Vector3};
 use super::bodies::Kinematics;
 use crate::catalog::Function;
 use crate::compile::MarkerCall;
-use crate::kinematics::{Frame, measure};
+use crate::kinematics::{Frame, Selector, measure};
 use crate::laws::LawError;
 use crate::scene::Target;
 use crate::simulate::Model;
@@ -119,7 +119,7 @@ impl Accelerations {
             .map(|target| self.frame(model, target))
             .collect();
         let frames: Vec<&Frame<f64>> = frames.iter().collect();
-        measure(measure_of.function, &frames)
+        measure(measure_of.function, Selector::Plain, &frames)
     }
 }
 

@@ -988,9 +988,11 @@ impl Reader<'_> {
     fn standard_request(&mut self, index: usize, outputs: &mut Vec<Output>) -> bool {
         let dataset = self.dataset;
         let statement = &dataset.statements[index];
+        // Adams reads these kinds from their first letter (Adams View
+        // writes `REQUEST/1, D, I = 2, J = 1`).
         let kind = ["DISPLACEMENT", "VELOCITY", "ACCELERATION", "FORCE"]
             .into_iter()
-            .find(|kind| statement.argument(kind, 3).is_some());
+            .find(|kind| statement.argument(kind, 1).is_some());
         let Some(kind) = kind else {
             return false;
         };

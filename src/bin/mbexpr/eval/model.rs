@@ -131,7 +131,7 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
             );
             if not_evaluated > 0 {
                 summary +=
-                    &format!(", {not_evaluated} not evaluated by mbexpr (ORIENT, INCANG, USER)");
+                    &format!(", {not_evaluated} not evaluated by mbexpr (CURVE, INTERP, USER)");
             }
             writeln!(out, "{summary}, {}", Counted(failures, "error"))?;
         }

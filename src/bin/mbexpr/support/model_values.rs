@@ -31,8 +31,8 @@ pub enum Missing {
     /// Nothing is wrong: only a running solver has the value (a result, a
     /// solver state).
     Solver,
-    /// Nothing is wrong: mbexpr does not evaluate the function (ORIENT,
-    /// INCANG, a user subroutine).
+    /// Nothing is wrong: mbexpr does not evaluate the function (CURVE,
+    /// INTERP, a user subroutine).
     NotEvaluated,
 }
 
