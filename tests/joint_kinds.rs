@@ -285,34 +285,60 @@ fn a_crank_slider_driven_by_a_motion_follows_its_closed_form() {
     }
 }
 
-/// A PART's VM or WM naming another marker than its CM is refused at the
-/// argument (the velocities would be read as the centre's); naming the CM
-/// changes nothing.
+/// A PART's VX, VY, VZ are the velocity of its VM marker's origin along
+/// ground's axes and WX, WY, WZ its angular velocity about its WM marker's
+/// axes (the CM marker's when they are left out): a free part (no gravity)
+/// given them at a marker 1 m out along its x and about a marker turned a
+/// quarter turn about z starts with the centre's velocity `v - ω × r` and
+/// `ω` in ground turned by the marker, against the run's own first row.
+/// Naming the CM changes nothing; a marker on another part is refused at
+/// the argument.
 #[test]
-fn velocities_given_at_another_marker_are_refused_at_their_place() {
+fn velocities_given_at_another_marker_are_carried_to_the_centre() {
     let part = |extra: &str| {
         format!(
-            "part\nPART/1, GROUND\nPART/2, MASS = 1, CM = 3, IP = 1, 1, 1, VX = 1{extra}\nMARKER/3, PART = 2\nMARKER/4, PART = 2, QP = 1, 0, 0\n"
+            "part\nPART/1, GROUND\nMARKER/1, PART = 1\nPART/2, MASS = 1, CM = 3, IP = 1, 1, 1, VX = 1, VY = 0.5, WX = 2, WZ = 3{extra}\nMARKER/3, PART = 2\nMARKER/4, PART = 2, QP = 1, 0, 0, REULER = 90D, 0, 0\n"
         )
     };
-    for (extra, keyword) in [(", VM = 4", "VM"), (", WX = 2, WM = 4", "WM")] {
-        let text = part(extra);
-        let line = text.lines().nth(2).expect("the PART line");
+    let first_row = |extra: &str| {
+        let run = run(&part(extra), &settings(1.0, 2, 1e-6))
+            .unwrap_or_else(|error| panic!("{extra}: {error}"));
+        run.rows[0].clone()
+    };
+    // The columns after the time: x y z, q0 q1 q2 q3, vx vy vz, wx wy wz.
+    let close = |row: &[f64], velocity: [f64; 3], omega: [f64; 3]| {
+        for k in 0..3 {
+            assert!((row[8 + k] - velocity[k]).abs() < 1e-12, "{row:?}");
+            assert!((row[11 + k] - omega[k]).abs() < 1e-12, "{row:?}");
+        }
+    };
+    close(&first_row(""), [1.0, 0.5, 0.0], [2.0, 0.0, 3.0]);
+    assert_eq!(first_row(", VM = 3, WM = 3"), first_row(""));
+    // At marker 4, (1, 0, 0) from the centre: v_centre = v - ω × r, with
+    // ω = (2, 0, 3): ω × r = (0, 3, 0).
+    close(&first_row(", VM = 4"), [1.0, -2.5, 0.0], [2.0, 0.0, 3.0]);
+    // About marker 4's axes, a quarter turn about z: (2, 0, 3) is (0, 2, 3)
+    // in ground, and ω × r = (0, 3, -2) at marker 4.
+    close(&first_row(", WM = 4"), [1.0, 0.5, 0.0], [0.0, 2.0, 3.0]);
+    close(
+        &first_row(", VM = 4, WM = 4"),
+        [1.0, -2.5, 2.0],
+        [0.0, 2.0, 3.0],
+    );
+    for keyword in ["VM", "WM"] {
+        let text = part(&format!(", {keyword} = 1"));
+        let line = text.lines().nth(3).expect("the PART line");
         let column = line.find(keyword).expect("the keyword") + 1;
         let Err(error) = run(&text, &settings(1.0, 2, 1e-6)) else {
-            panic!("{extra} runs");
+            panic!("{keyword} on ground runs");
         };
         assert!(
-            error.starts_with(&format!("3:{column}: not simulated: PART/2 sets")),
-            "{extra}: {error}"
+            error.starts_with(&format!(
+                "4:{column}: PART/2: {keyword} must name a MARKER on the part"
+            )),
+            "{keyword}: {error}"
         );
     }
-    let same = run(&part(", VM = 3, WM = 3"), &settings(1.0, 2, 1e-6));
-    let plain = run(&part(""), &settings(1.0, 2, 1e-6));
-    assert_eq!(
-        same.map(|run| run.rows).ok(),
-        plain.map(|run| run.rows).ok()
-    );
 }
 
 /// A part driven in all six directions by MOTIONs between its marker and

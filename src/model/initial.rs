@@ -161,7 +161,7 @@ pub fn initial_scene(
     };
     let mut errors = Vec::new();
     let mut ground_parts = HashSet::new();
-    // PART id -> (body index, CM marker id).
+    // PART id -> (body index, CM marker id, VM marker id, WM marker id).
     let mut parts = std::collections::HashMap::new();
     for statement in dataset
         .statements
@@ -187,15 +187,20 @@ pub fn initial_scene(
                 number(statement, "WY", 0.0)?,
                 number(statement, "WZ", 0.0)?,
             );
-            number(statement, "CM", 0.0)
+            let cm = number(statement, "CM", 0.0)?;
+            Ok([
+                cm,
+                number(statement, "VM", cm)?,
+                number(statement, "WM", cm)?,
+            ])
         })();
         // A part whose data has an error still exists for its markers (no
         // second error at each of them).
-        let cm = read.unwrap_or_else(|error| {
+        let [cm, vm, wm] = read.unwrap_or_else(|error| {
             errors.push(error);
-            0.0
+            [0.0; 3]
         });
-        parts.insert(id, (scene.bodies.len(), cm as u64));
+        parts.insert(id, (scene.bodies.len(), cm as u64, vm as u64, wm as u64));
         scene.bodies.push(body);
     }
     for statement in dataset
@@ -216,7 +221,7 @@ pub fn initial_scene(
         };
         let body = if ground_parts.contains(&part) {
             None
-        } else if let Some(&(index, _)) = parts.get(&part) {
+        } else if let Some(&(index, ..)) = parts.get(&part) {
             Some(index)
         } else {
             errors.push(ConfigurationError::UnknownPart {
@@ -238,17 +243,28 @@ pub fn initial_scene(
         }
     }
     scene.index();
-    // A part's VX ... and WX ... are those of its CM marker (WX ... about the
-    // CM marker's axes): carry them to the part's origin.
-    for &(index, cm) in parts.values() {
-        let Ok(Target::Marker(marker)) = scene.find_marker(&Reference::Id(cm)) else {
+    // A part's VX, VY, VZ are the velocity of its VM marker's origin (its
+    // CM marker's when VM is left out) along ground's axes, and WX, WY, WZ
+    // its angular velocity about its WM marker's axes (the CM marker's):
+    // carry them to the part's origin. A VM or WM on another part is
+    // refused by the simulator; the CM marker stands in for it here.
+    for &(index, cm, vm, wm) in parts.values() {
+        let on_part = |id: u64| match scene.find_marker(&Reference::Id(id)) {
+            Ok(Target::Marker(marker)) if scene.markers[marker].body == Some(index) => {
+                Some(&scene.markers[marker])
+            }
+            _ => None,
+        };
+        let (Some(at), Some(about)) = (
+            on_part(vm).or_else(|| on_part(cm)),
+            on_part(wm).or_else(|| on_part(cm)),
+        ) else {
             continue;
         };
-        let marker = &scene.markers[marker];
+        let (arm, axes) = (at.position, about.orientation);
         let body = &mut scene.bodies[index];
-        let cm_axes = body.orientation * marker.orientation;
-        body.angular_velocity = cm_axes * body.angular_velocity;
-        let arm = body.orientation * marker.position;
+        body.angular_velocity = body.orientation * axes * body.angular_velocity;
+        let arm = body.orientation * arm;
         body.velocity -= body.angular_velocity.cross(&arm);
     }
     for found in &report.expressions {

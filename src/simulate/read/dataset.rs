@@ -488,22 +488,30 @@ impl Reader<'_> {
         masses
     }
 
-    /// Refuses a PART's VM or WM (the marker whose velocity VX, VY, VZ
-    /// give, or about whose axes WX, WY, WZ turn) naming another marker
-    /// than its CM: the velocities are read as Adams reads them without
-    /// VM and WM, VX, VY, VZ the centre of mass's along ground's axes and
-    /// WX, WY, WZ about the CM marker's axes.
-    fn velocities_at_the_centre(&mut self, statement: &Statement) {
-        let centre = number(statement, "CM", f64::NAN).ok();
+    /// Refuses a PART's VM or WM (the marker whose origin's velocity VX,
+    /// VY, VZ give, or about whose axes WX, WY, WZ turn; the scene reads
+    /// them) that names no marker on the part.
+    fn velocity_markers_on_the_part(&mut self, statement: &Statement) {
         for keyword in ["VM", "WM"] {
             let Some(argument) = statement.argument(keyword, 2) else {
                 continue;
             };
-            if number(statement, keyword, f64::NAN).ok() != centre {
-                self.errors.push(SimulateError::Unsupported {
-                    statement: statement.label(),
-                    reason: format!(
-                        "sets {keyword}: initial velocities given at another marker than the CM are not simulated"
+            let part = self.scene.find_body(&statement.label());
+            let on_part = number(statement, keyword, f64::NAN)
+                .ok()
+                .filter(|id| id.fract() == 0.0 && *id >= 0.0)
+                .and_then(|id| self.scene.find_marker(&Reference::Id(id as u64)).ok())
+                .is_some_and(|target| match target {
+                    Target::Marker(index) => {
+                        part.is_some() && self.scene.markers[index].body == part
+                    }
+                    Target::Ground => false,
+                });
+            if !on_part {
+                self.errors.push(SimulateError::Model {
+                    message: format!(
+                        "{}: {keyword} must name a MARKER on the part (the point whose velocity VX, VY, VZ give, or the axes WX, WY, WZ turn about)",
+                        statement.label()
                     ),
                     span: argument.span,
                 });
@@ -530,7 +538,7 @@ impl Reader<'_> {
                 ),
             );
         }
-        self.velocities_at_the_centre(statement);
+        self.velocity_markers_on_the_part(statement);
         let marker_of = |keyword: &str| {
             number(statement, keyword, f64::NAN)
                 .ok()
