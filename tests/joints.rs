@@ -14,7 +14,7 @@ use super::simulate::{Run, run, settings, the_jacobian_agrees_with_finite_differ
 
 /// The complete elliptic integral of the first kind `K(k)`, by the
 /// arithmetic-geometric mean.
-fn elliptic_k(k: f64) -> f64 {
+pub(super) fn elliptic_k(k: f64) -> f64 {
     let (mut a, mut b) = (1.0_f64, (1.0 - k * k).sqrt());
     // Quadratic convergence: ten rounds reach the rounding of a double.
     for _ in 0..10 {

@@ -15,6 +15,7 @@ mod documents;
 mod eval;
 mod ffi;
 mod force_values;
+mod general_constraints;
 mod initial_conditions;
 mod integrate;
 mod integrate_problems;

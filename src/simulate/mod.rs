@@ -57,8 +57,8 @@ mod run;
 pub use constraints::Residuals;
 pub use error::{Place, SimulateError};
 pub use model::{
-    Along, Diff, ExactPart, Expression, Force, Given, Joint, JointInitial, JointKind, MarkerMotion,
-    MassProperties, Model, Motion, Output,
+    Along, Diff, ExactPart, Expression, Force, GeneralConstraint, Given, Joint, JointInitial,
+    JointKind, MarkerMotion, MassProperties, Model, Motion, Output,
 };
 pub use read::{
     ModelFormat, RunCommands, Unread, format_of_path, from_scene, is_scene_path, run_settings,
@@ -168,6 +168,21 @@ impl<'m> Simulation<'m> {
                     span,
                 }));
             }
+        }
+        let general: Vec<usize> = model
+            .general_constraints
+            .iter()
+            .map(|constraint| constraint.function)
+            .collect();
+        if !general.is_empty() && compile(model, &general, &no_reaction, &mut errors).is_some() {
+            errors.extend(
+                constraints::GeneralConstraints::refusals(model)
+                    .into_iter()
+                    .map(|(id, span, reason)| SimulateError::Model {
+                        message: format!("GCON/{id}: {reason}"),
+                        span,
+                    }),
+            );
         }
         let dynamics = compile(model, &computed, &no_reaction, &mut errors);
         let reaction =

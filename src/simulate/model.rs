@@ -37,6 +37,9 @@ pub struct Model {
     /// The couplers between joints' displacements (their equations after
     /// the motions').
     pub couplers: Vec<Coupler>,
+    /// The general constraints (`GCON`), their equations after the
+    /// couplers'.
+    pub general_constraints: Vec<GeneralConstraint>,
     /// The joints' initial conditions (`IC`, `ICTRAN`, `ICROT`), held in
     /// the initial-conditions analysis only.
     pub joint_initials: Vec<JointInitial>,
@@ -69,7 +72,10 @@ impl Model {
     /// primitive or a motion between markers (a motion on a joint comes
     /// with its joint).
     pub(crate) fn is_constrained(&self) -> bool {
-        !self.joints.is_empty() || !self.marker_motions.is_empty() || !self.couplers.is_empty()
+        !self.joints.is_empty()
+            || !self.marker_motions.is_empty()
+            || !self.couplers.is_empty()
+            || !self.general_constraints.is_empty()
     }
 
     /// The FUNCTION of every motion: those on joints, then those between
@@ -499,6 +505,20 @@ pub struct Coupler {
     /// rotation (about J's z) or its translation (along J's z) is coupled,
     /// and its scale.
     pub joints: Vec<(usize, bool, f64)>,
+    /// The statement's place in the file.
+    pub span: Span,
+}
+
+/// A `GCON`: the equation `FUNCTION = 0`, its FUNCTION an expression of
+/// the parts' positions and orientations and of time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GeneralConstraint {
+    /// The statement id.
+    pub id: u64,
+    /// The marker its reaction is reported on.
+    pub i: Target,
+    /// The FUNCTION (an index into [`Model::expressions`]).
+    pub function: usize,
     /// The statement's place in the file.
     pub span: Span,
 }

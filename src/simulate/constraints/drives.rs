@@ -9,6 +9,7 @@ use std::sync::Mutex;
 
 use num_dual::Dual2Vec;
 
+use super::general::GeneralConstraints;
 use super::quadrature::integrate;
 use crate::compile::{Program, compile_outputs};
 use crate::number::Directional;
@@ -25,7 +26,21 @@ pub(crate) struct Drive {
 
 type TimeDual = Dual2Vec<f64, nalgebra::Const<1>>;
 
-/// The motions' FUNCTIONs compiled together, to be evaluated in time.
+/// What the motions and the general constraints impose at one time: each
+/// motion's displacement and its derivatives, and the time the GCONs'
+/// FUNCTIONs are evaluated at.
+pub(crate) struct Imposed<'d> {
+    /// Each motion's displacement: those on joints, then those between
+    /// markers.
+    pub(crate) drives: Vec<Drive>,
+    /// The time.
+    pub(crate) time: f64,
+    /// The general constraints, compiled.
+    pub(crate) general: &'d GeneralConstraints,
+}
+
+/// The motions' FUNCTIONs compiled together, to be evaluated in time, and
+/// the general constraints' FUNCTIONs.
 pub(crate) struct Drives {
     program: Option<Program>,
     /// Each input's value: `None` for `TIME`, a constant otherwise.
@@ -36,6 +51,8 @@ pub(crate) struct Drives {
     /// `∫₀ᵗ s·f(s) ds` of every FUNCTION, so that a call integrates only
     /// from the last one before its time (the latest [`CHECKPOINTS`]).
     checkpoints: Mutex<Vec<(f64, Vec<f64>)>>,
+    /// The GCONs' FUNCTIONs.
+    general: GeneralConstraints,
 }
 
 /// How many integrals [`Drives`] keeps (a run's calls go back at most a
@@ -70,6 +87,7 @@ impl Drives {
             inputs,
             givens: model.motion_givens().collect(),
             checkpoints: Mutex::new(Vec::new()),
+            general: GeneralConstraints::new(model),
         }
     }
 
@@ -90,9 +108,19 @@ impl Drives {
         })
     }
 
+    /// What the motions and general constraints impose at time `t`
+    /// (`None` where a motion's FUNCTION fails).
+    pub(crate) fn at(&self, t: f64) -> Option<Imposed<'_>> {
+        Some(Imposed {
+            drives: self.displacements(t)?,
+            time: t,
+            general: &self.general,
+        })
+    }
+
     /// Each motion's displacement and its derivatives at time `t` (an
     /// empty list without motions; `None` where a FUNCTION fails).
-    pub(crate) fn at(&self, t: f64) -> Option<Vec<Drive>> {
+    fn displacements(&self, t: f64) -> Option<Vec<Drive>> {
         let Some(program) = &self.program else {
             return Some(Vec::new());
         };

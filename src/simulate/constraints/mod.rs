@@ -27,12 +27,14 @@
 //! state, and left out ([`Joint::redundant`]), as Adams removes them.
 
 mod drives;
+mod general;
 mod quadrature;
 mod reactions;
 mod rows;
 mod solve;
 
-pub(crate) use drives::{Drive, Drives};
+pub(crate) use drives::{Drive, Drives, Imposed};
+pub(crate) use general::GeneralConstraints;
 pub(crate) use reactions::{Component, Reactions, flags, pick};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
@@ -374,12 +376,14 @@ fn marker_motion_row<T: crate::number::Number>(
 }
 
 /// The model's equations held in the run (the redundant ones left out),
-/// the motions' last at the displacements `drives` gives.
+/// the motions' at the displacements `imposed` gives, the general
+/// constraints' last at its time.
 fn active_rows<T: crate::number::Number>(
     model: &super::Model,
     bodies: &[BodyMotion<T>],
-    drives: &[Drive],
+    imposed: &Imposed<'_>,
 ) -> Vec<Row<T>> {
+    let drives = &imposed.drives;
     let mut rows = Vec::new();
     for joint in &model.joints {
         rows.extend(kept_rows(model, joint, bodies));
@@ -393,6 +397,9 @@ fn active_rows<T: crate::number::Number>(
     }
     for coupler in &model.couplers {
         rows.push(coupler_row(model, coupler, bodies));
+    }
+    for index in 0..model.general_constraints.len() {
+        rows.push(imposed.general.row(model, index, imposed.time, bodies));
     }
     rows
 }
@@ -448,6 +455,12 @@ pub(crate) fn owner_of_row(model: &super::Model, row: usize) -> String {
                 .couplers
                 .iter()
                 .map(|coupler| format!("COUPLER/{}", coupler.id)),
+        )
+        .chain(
+            model
+                .general_constraints
+                .iter()
+                .map(|constraint| format!("GCON/{}", constraint.id)),
         )
         .chain(model.joint_initials.iter().map(|initial| {
             let joint = &model.joints[initial.joint];

@@ -18,7 +18,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::rows::BodyMotion;
-use super::{Drive, kept_rows, motion_row};
+use super::{Imposed, kept_rows, motion_row};
 use crate::catalog::Function;
 use crate::compile::SolverCall;
 use crate::scene::Target;
@@ -141,6 +141,8 @@ pub(crate) struct Reactions {
     joints: Vec<Vec<(usize, [f64; 6])>>,
     /// The same for each motion.
     motions: Vec<Vec<(usize, [f64; 6])>>,
+    /// The same for each general constraint.
+    general: Vec<Vec<(usize, [f64; 6])>>,
     /// Each body's centre of mass and rotation to ground.
     bodies: Vec<(Vector3<f64>, Matrix3<f64>)>,
 }
@@ -173,14 +175,16 @@ fn add_loads(
 
 impl Reactions {
     /// The reactions with the held equations' `multipliers` (in the order
-    /// of the run's rows: the joints' kept equations, then the motions'),
-    /// the bodies moving as `bodies` say and the motions at `drives`.
+    /// of the run's rows: the joints' kept equations, the motions', the
+    /// couplers', the general constraints'), the bodies moving as `bodies`
+    /// say and the motions and general constraints as `imposed` gives.
     pub(crate) fn new(
         model: &Model,
         bodies: &[BodyMotion<f64>],
-        drives: &[Drive],
+        imposed: &Imposed<'_>,
         multipliers: &[f64],
     ) -> Reactions {
+        let drives = &imposed.drives;
         let mut multipliers = multipliers.iter().copied();
         let joints = model
             .joints
@@ -206,9 +210,21 @@ impl Reactions {
                 loads
             })
             .collect();
+        // The motions between markers and the couplers hold one equation
+        // each, before the general constraints'.
+        let mut multipliers = multipliers.skip(model.marker_motions.len() + model.couplers.len());
+        let general = (0..model.general_constraints.len())
+            .map(|index| {
+                let mut loads = Vec::new();
+                let row = imposed.general.row(model, index, imposed.time, bodies);
+                add_loads(std::iter::once(row), &mut multipliers, &mut loads);
+                loads
+            })
+            .collect();
         Reactions {
             joints,
             motions,
+            general,
             bodies: bodies
                 .iter()
                 .map(|body| (body.centre, body.rotation))
@@ -261,14 +277,10 @@ impl Reactions {
         } else {
             (&joint.i, &joint.j)
         };
-        let body_of = |target: &Target| match target {
-            Target::Ground => None,
-            Target::Marker(index) => model.scene.markers[*index].body,
-        };
         // On ground, the opposite of what the other marker's body takes.
-        let (sign, body) = match body_of(marker) {
+        let (sign, body) = match body_of(model, marker) {
             Some(body) => (1.0, Some(body)),
-            None => (-1.0, body_of(other)),
+            None => (-1.0, body_of(model, other)),
         };
         let origin = self.place(model, marker).0;
         let mut force = Vector3::zeros();
@@ -281,6 +293,35 @@ impl Reactions {
             torque += (self.bodies[body].0 - origin).cross(&force);
         }
         (force * sign, torque * sign)
+    }
+
+    /// The force and the torque about `marker`'s origin, in ground, that
+    /// general constraint `index` applies on `marker`'s body; on ground,
+    /// the opposite of what it applies on every part it holds.
+    fn general_load(
+        &self,
+        model: &Model,
+        index: usize,
+        marker: &Target,
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        let origin = self.place(model, marker).0;
+        let on = body_of(model, marker);
+        let mut force = Vector3::zeros();
+        let mut torque = Vector3::zeros();
+        for (body, load) in &self.general[index] {
+            if on.is_some_and(|on| on != *body) {
+                continue;
+            }
+            let f = Vector3::new(load[0], load[1], load[2]);
+            force += f;
+            torque +=
+                Vector3::new(load[3], load[4], load[5]) + (self.bodies[*body].0 - origin).cross(&f);
+        }
+        if on.is_none() {
+            (-force, -torque)
+        } else {
+            (force, torque)
+        }
     }
 
     /// The force and the torque about `i`'s origin, in ground, that the
@@ -312,6 +353,33 @@ impl Reactions {
                 }
             }
         }
+        // A general constraint acts between its I marker and the parts its
+        // FUNCTION reads.
+        for (index, constraint) in model.general_constraints.iter().enumerate() {
+            // Ground is a party to every general constraint.
+            let holds = |target: &Target| {
+                body_of(model, target)
+                    .is_none_or(|body| self.general[index].iter().any(|(held, _)| *held == body))
+            };
+            let applies = if *i == constraint.i {
+                *j == Target::Ground || holds(j)
+            } else {
+                *j == constraint.i && body_of(model, i).is_some() && holds(i)
+            };
+            if applies {
+                let (force, torque) = self.general_load(model, index, i);
+                sum.0 += force;
+                sum.1 += torque;
+            }
+        }
         sum
+    }
+}
+
+/// The body `target` is on (`None`: ground).
+fn body_of(model: &Model, target: &Target) -> Option<usize> {
+    match target {
+        Target::Ground => None,
+        Target::Marker(index) => model.scene.markers[*index].body,
     }
 }

@@ -5,7 +5,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
 
 use super::rows::{BodyMotion, Row};
-use super::{Drive, active_rows, initial_rows, joint_rows};
+use super::{Imposed, active_rows, initial_rows, joint_rows};
 use crate::number::Number;
 use crate::simulate::Model;
 
@@ -210,12 +210,12 @@ pub(crate) struct Held<T: Number> {
 pub(crate) fn constraint_loads<T: Number>(
     model: &Model,
     bodies: &[BodyMotion<T>],
-    drives: &[Drive],
+    imposed: &Imposed<'_>,
     inverse_inertia: &[Matrix3<f64>],
     force: &mut [Vector3<T>],
     torque: &mut [Vector3<T>],
 ) -> Result<Held<T>, Singular> {
-    let rows = active_rows(model, bodies, drives);
+    let rows = active_rows(model, bodies, imposed);
     if rows.is_empty() {
         return Ok(Held {
             multipliers: DVector::zeros(0),
@@ -376,10 +376,10 @@ pub(crate) fn held_equations(
     model: &Model,
     y: &[f64],
     offsets: &[usize],
-    drives: &[Drive],
+    imposed: &Imposed<'_>,
 ) -> (DVector<f64>, DMatrix<f64>) {
     let bodies = motions(y, offsets);
-    let rows = active_rows(model, &bodies, drives);
+    let rows = active_rows(model, &bodies, imposed);
     let mut values = DVector::zeros(rows.len());
     let mut g = DMatrix::zeros(rows.len(), 6 * offsets.len());
     for (r, row) in rows.iter().enumerate() {
@@ -524,13 +524,13 @@ pub(crate) fn project(
     model: &Model,
     y: &mut [f64],
     offsets: &[usize],
-    drives: &[Drive],
+    imposed: &Imposed<'_>,
     inverse_inertia: &[Matrix3<f64>],
     tolerance: Tolerance,
     initial: bool,
 ) -> Result<Residuals, Unassembled> {
     let bodies = motions(y, offsets);
-    let active = active_rows(model, &bodies, drives);
+    let active = active_rows(model, &bodies, imposed);
     let before = Residuals::of(&active);
     // The initial conditions the equations leave free, found at the state
     // as given (an EXACT coordinate a joint already fixes yields to it).
@@ -566,7 +566,7 @@ pub(crate) fn project(
         rows
     };
     let held = |bodies: &[BodyMotion<f64>], velocities: bool| {
-        with_initial(active_rows(model, bodies, drives), bodies, velocities)
+        with_initial(active_rows(model, bodies, imposed), bodies, velocities)
     };
     let rows = with_initial(active, &bodies, false);
     let mut residual = Residuals::of(&rows).position;

@@ -20,21 +20,13 @@ use crate::model::{
 use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{
-    Along, Diff, Expression, Force, Given, Joint, JointKind, MarkerMotion, MassProperties, Model,
-    Motion, Output, Sensor,
+    Along, Diff, Expression, Force, GeneralConstraint, Given, Joint, JointKind, MarkerMotion,
+    MassProperties, Model, Motion, Output, Sensor,
 };
 use crate::span::Span;
 
 /// Statements that need a constraint solver.
-const CONSTRAINTS: [&str; 7] = [
-    "GEAR",
-    "GCON",
-    "UCON",
-    "PTCV",
-    "CVCV",
-    "FLEX_BODY",
-    "CONSTRAINT",
-];
+const CONSTRAINTS: [&str; 6] = ["GEAR", "UCON", "PTCV", "CVCV", "FLEX_BODY", "CONSTRAINT"];
 
 /// Statements that take no part in the motion (output, graphics, units,
 /// solver settings and data read by elements that are refused anyway).
@@ -77,9 +69,9 @@ const FORCE_ELEMENTS: [&str; 8] = [
 ];
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`].
-const SIMULATED: [&str; 13] = [
+const SIMULATED: [&str; 14] = [
     "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
-    "JPRIM", "MOTION", "COUPLER", "SENSOR",
+    "JPRIM", "MOTION", "COUPLER", "GCON", "SENSOR",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -105,7 +97,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&FORCE_ELEMENTS) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, COUPLER, SENSOR, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, ACCGRAV)"
+                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, COUPLER, GCON, SENSOR, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, ACCGRAV)"
                     .to_string(),
                 span: statement.span,
             });
@@ -255,6 +247,7 @@ impl Reader<'_> {
         let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
         let (motions, marker_motions) = self.motions(&joints);
         let couplers = super::couplers::couplers(self.dataset, &joints, &mut self.errors);
+        let general_constraints = self.general_constraints();
         let joint_initials = super::joints::initials(
             self.dataset,
             &joints,
@@ -276,6 +269,7 @@ impl Reader<'_> {
             motions,
             marker_motions,
             couplers,
+            general_constraints,
             joint_initials,
             exact,
             sensors,
@@ -286,6 +280,40 @@ impl Reader<'_> {
             run: None,
             statics: false,
         }
+    }
+
+    /// The GCON statements: each an I marker and a FUNCTION.
+    fn general_constraints(&mut self) -> Vec<GeneralConstraint> {
+        let indices: Vec<usize> = self.statements("GCON").map(|(index, _)| index).collect();
+        let dataset = self.dataset;
+        let mut constraints = Vec::new();
+        for index in indices {
+            let statement = &dataset.statements[index];
+            let label = statement.label();
+            if statement.argument("I", 1).is_none() {
+                self.refuse(
+                    format!("{label}: give I = the marker its reaction acts on"),
+                    statement.span,
+                );
+            }
+            let i = self.marker(statement, "I");
+            let function = self.expression(index, "FUNCTION");
+            if statement.argument("FUNCTION", 4).is_none() {
+                self.refuse(
+                    format!("{label}: give FUNCTION = the expression the constraint keeps at 0"),
+                    statement.span,
+                );
+            }
+            if let (Some(i), Some(function)) = (i, function) {
+                constraints.push(GeneralConstraint {
+                    id: statement.id.unwrap_or(0),
+                    i,
+                    function,
+                    span: statement.span,
+                });
+            }
+        }
+        constraints
     }
 
     /// The MOTION statements: those on one of `joints`, and those between

@@ -150,6 +150,7 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         motions: Vec::new(),
         marker_motions: Vec::new(),
         couplers: Vec::new(),
+        general_constraints: Vec::new(),
         joint_initials: Vec::new(),
         exact: Vec::new(),
         sensors: Vec::new(),

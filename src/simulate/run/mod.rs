@@ -433,8 +433,13 @@ impl Simulation<'_> {
         let offsets = body_offsets(model);
         let inverse_inertia = model.inverse_inertia();
         let drives = Drives::new(model);
+        let unevaluated = |time: f64| SimulateError::Integration {
+            time,
+            message: "a motion's FUNCTION cannot be evaluated at this time".to_string(),
+            cause: None,
+        };
         let assemble = |y: &mut [f64], time: f64, tolerance: Tolerance, initial: bool| {
-            let at = drives.at(time).unwrap_or_default();
+            let at = drives.at(time).ok_or_else(|| unevaluated(time))?;
             project(model, y, &offsets, &at, &inverse_inertia, tolerance, initial).map_err(|error| {
                 let message = match error {
                     Unassembled::Singular if initial && !(model.joint_initials.is_empty() && model.exact.is_empty()) => "the joints cannot be assembled: their equations and the initial conditions (the joints' IC, ICTRAN, ICROT, the parts' EXACT) are dependent at this state (an initial condition may set a coordinate the joints, motions or other initial conditions already set, or the configuration is singular)".to_string(),
@@ -482,7 +487,7 @@ impl Simulation<'_> {
             found
         };
         let equilibrium = if settings.statics {
-            let at = drives.at(0.0).unwrap_or_default();
+            let at = drives.at(0.0).ok_or_else(|| unevaluated(0.0))?;
             let mut put_back = |y: &mut [f64]| {
                 if model.is_constrained() {
                     assemble(

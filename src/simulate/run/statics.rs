@@ -15,7 +15,7 @@
 use nalgebra::{DMatrix, DVector, UnitQuaternion, Vector3};
 
 use super::super::Model;
-use super::super::constraints::{Drive, held_equations};
+use super::super::constraints::{Imposed, held_equations};
 use super::super::equations::{BODY_STATES, Mechanics};
 use super::super::error::SimulateError;
 use crate::eval::OutputError;
@@ -192,7 +192,7 @@ pub(super) fn settle(
     mechanics: &mut Mechanics<'_>,
     y: &mut Vec<f64>,
     offsets: &[usize],
-    drives: &[Drive],
+    imposed: &Imposed<'_>,
     assemble: &mut dyn FnMut(&mut [f64]) -> Result<(), SimulateError>,
 ) -> Result<Equilibrium, Unsettled> {
     let layout = Layout {
@@ -233,7 +233,7 @@ pub(super) fn settle(
             .map(|entry| layout.state_of(entry))
             .collect();
         let accelerations = jacobian.select_rows(&rows) * &tangent;
-        let (held, g) = held_equations(model, y, offsets, drives);
+        let (held, g) = held_equations(model, y, offsets, imposed);
         // The joints' rows, weighed as the accelerations' so that the
         // least squares keep them.
         let weight = accelerations.amax().max(1.0) / g.amax().max(f64::MIN_POSITIVE);

@@ -1,0 +1,324 @@
+//! General constraints (`GCON`): the equation `FUNCTION = 0`, its FUNCTION
+//! an expression of the parts' positions and orientations and of time.
+//!
+//! Each FUNCTION is compiled on its own and evaluated in plain numbers at
+//! the bodies' current motion: once with dual numbers in the positions
+//! and small rotations of the parts it reads (the row of `G`), and once
+//! with second-order dual numbers along the motion the velocities give
+//! with no acceleration (the rate `Φ'` and the bias `Φ''`). The row is
+//! exact in plain numbers (the projection, the explicit method, the
+//! reactions); over the Jacobian's dual numbers it is a constant, so
+//! Radau5's Newton iteration sees the joints' curvature but not a GCON's
+//! (it converges on, with a Jacobian that is not exact there).
+
+use nalgebra::{Const, Matrix3, Vector3};
+use num_dual::{Dual2Vec, DualDVec64};
+
+use super::BodyMotion;
+use super::rows::Row;
+use crate::compile::{Program, compile_outputs};
+use crate::number::{Directional, Number};
+use crate::scene::StateComponent;
+use crate::simulate::Model;
+
+/// What a FUNCTION's input is at a state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Input {
+    /// `TIME`.
+    Time,
+    /// A coordinate of a part's origin in ground.
+    Position(usize, usize),
+    /// A component of a part's small rotation (about ground's axes).
+    Rotation(usize, usize),
+    /// A component of a part's origin's velocity in ground (read by the
+    /// marker frames the measures build; no measure a GCON may call uses
+    /// it).
+    Velocity(usize, usize),
+    /// A component of a part's angular velocity in ground (likewise).
+    AngularVelocity(usize, usize),
+    /// A value that does not change in the run (a constant of the scene).
+    Constant(f64),
+}
+
+/// One GCON's FUNCTION, compiled.
+struct Compiled {
+    program: Program,
+    inputs: Vec<Input>,
+}
+
+/// The model's general constraints, compiled.
+#[derive(Default)]
+pub(crate) struct GeneralConstraints {
+    compiled: Vec<Option<Compiled>>,
+}
+
+type PathDual = Dual2Vec<f64, Const<1>>;
+
+impl GeneralConstraints {
+    /// The FUNCTIONs of `model`'s GCONs, compiled (`None` for one that
+    /// does not compile or reads what a GCON may not: its errors are
+    /// [`GeneralConstraints::refusals`]).
+    pub(crate) fn new(model: &Model) -> GeneralConstraints {
+        let compiled = model
+            .general_constraints
+            .iter()
+            .map(|constraint| {
+                let tree = &model.expressions[constraint.function].checked;
+                let names = ["TIME".to_string()];
+                let program = compile_outputs(&[tree], &names, Some(&model.scene)).ok()?;
+                let inputs = inputs_of(model, &program).ok()?;
+                Some(Compiled { program, inputs })
+            })
+            .collect();
+        GeneralConstraints { compiled }
+    }
+
+    /// Why each GCON whose FUNCTION compiles cannot be held: it reads a
+    /// velocity (a constraint on velocities is not simulated) or a state
+    /// of the run other than the parts' places (a DIFF).
+    pub(crate) fn refusals(model: &Model) -> Vec<(u64, crate::span::Span, String)> {
+        model
+            .general_constraints
+            .iter()
+            .filter_map(|constraint| {
+                let tree = &model.expressions[constraint.function].checked;
+                let program = compile_outputs(&[tree], &["TIME"], Some(&model.scene)).ok()?;
+                let reason = inputs_of(model, &program)
+                    .err()
+                    .or_else(|| rate_reading(tree))?;
+                Some((constraint.id, constraint.span, reason))
+            })
+            .collect()
+    }
+
+    /// The equation of GCON `index` at `time`, the bodies moving as
+    /// `bodies` say (its value not a number where its FUNCTION cannot be
+    /// evaluated there).
+    pub(crate) fn row<T: Number>(
+        &self,
+        model: &Model,
+        index: usize,
+        time: f64,
+        bodies: &[BodyMotion<T>],
+    ) -> Row<T> {
+        let failed = || Row {
+            value: T::from(f64::NAN),
+            rate: T::zero(),
+            bias: T::zero(),
+            coefficients: Vec::new(),
+        };
+        let Some(Some(compiled)) = self.compiled.get(index) else {
+            return failed();
+        };
+        let plain: Vec<Motion> = bodies
+            .iter()
+            .zip(&model.masses)
+            .map(|(body, mass)| Motion::of(body, &mass.centre))
+            .collect();
+        let Some(row) = compiled.row(time, &plain) else {
+            return failed();
+        };
+        Row {
+            value: T::from(row.value),
+            rate: T::from(row.rate),
+            bias: T::from(row.bias),
+            coefficients: row
+                .coefficients
+                .into_iter()
+                .map(|(body, entries)| (body, entries.map(T::from)))
+                .collect(),
+        }
+    }
+}
+
+/// What each input of `program` is, or why a GCON may not read it.
+fn inputs_of(model: &Model, program: &Program) -> Result<Vec<Input>, String> {
+    program
+        .inputs()
+        .iter()
+        .map(|name| {
+            if name.eq_ignore_ascii_case("TIME") {
+                return Ok(Input::Time);
+            }
+            match model.scene.parse_state_name(name) {
+                Some((body, StateComponent::Position(axis))) => Ok(Input::Position(body, axis)),
+                Some((body, StateComponent::Rotation(axis))) => Ok(Input::Rotation(body, axis)),
+                Some((body, StateComponent::Velocity(axis))) => Ok(Input::Velocity(body, axis)),
+                Some((body, StateComponent::AngularVelocity(axis))) => {
+                    Ok(Input::AngularVelocity(body, axis))
+                }
+                None if crate::scene::parse_diff_input(name).is_some() => Err(format!(
+                    "its FUNCTION reads {name}, a state of the run: a GCON keeps a function of the parts' places and of time at 0"
+                )),
+                None => model
+                    .scene
+                    .value_of(name)
+                    .map(Input::Constant)
+                    .map_err(|error| error.to_string()),
+            }
+        })
+        .collect()
+}
+
+/// Why a GCON's FUNCTION `tree` cannot be held, when it reads a rate (a
+/// velocity or acceleration measure: a constraint on velocities is not
+/// simulated) or a value that may (a VARIABLE, a DIFF).
+fn rate_reading(tree: &crate::Checked) -> Option<String> {
+    use crate::catalog::Function as F;
+    let read = tree.functions().into_iter().find(|function| {
+        matches!(
+            function,
+            F::Vx
+                | F::Vy
+                | F::Vz
+                | F::Vm
+                | F::Vr
+                | F::Wx
+                | F::Wy
+                | F::Wz
+                | F::Wm
+                | F::Accx
+                | F::Accy
+                | F::Accz
+                | F::Accm
+                | F::Wdtx
+                | F::Wdty
+                | F::Wdtz
+                | F::Wdtm
+                | F::Varval
+                | F::Dif
+                | F::Dif1
+        )
+    })?;
+    Some(format!(
+        "its FUNCTION reads {}: a GCON keeps a function of the parts' places and of time at 0 (a constraint on velocities is not simulated)",
+        read.name()
+    ))
+}
+
+/// A body's motion in plain numbers, and its origin's.
+struct Motion {
+    centre: Vector3<f64>,
+    rotation: Matrix3<f64>,
+    velocity: Vector3<f64>,
+    omega: Vector3<f64>,
+    /// From the centre of mass to the body frame's origin, in ground.
+    to_origin: Vector3<f64>,
+}
+
+impl Motion {
+    fn of<T: Number>(body: &BodyMotion<T>, centre_in_body: &Vector3<f64>) -> Motion {
+        let rotation = body.rotation.map(|entry| entry.value());
+        Motion {
+            centre: body.centre.map(|entry| entry.value()),
+            velocity: body.velocity.map(|entry| entry.value()),
+            omega: body.omega.map(|entry| entry.value()),
+            to_origin: -(rotation * centre_in_body),
+            rotation,
+        }
+    }
+}
+
+impl Compiled {
+    /// The row in plain numbers, or `None` where the FUNCTION fails.
+    fn row(&self, time: f64, bodies: &[Motion]) -> Option<Row<f64>> {
+        // The directions of the gradient: each position and rotation input.
+        let directions: Vec<usize> = (0..self.inputs.len())
+            .filter(|&k| matches!(self.inputs[k], Input::Position(..) | Input::Rotation(..)))
+            .collect();
+        let count = directions.len();
+        let value_of = |input: &Input| match *input {
+            Input::Time => time,
+            Input::Position(body, axis) => bodies[body].centre[axis] + bodies[body].to_origin[axis],
+            Input::Rotation(..) => 0.0,
+            Input::Velocity(body, axis) => {
+                let motion = &bodies[body];
+                (motion.velocity + motion.omega.cross(&motion.to_origin))[axis]
+            }
+            Input::AngularVelocity(body, axis) => bodies[body].omega[axis],
+            Input::Constant(value) => value,
+        };
+        let seeded: Vec<DualDVec64> = self
+            .inputs
+            .iter()
+            .enumerate()
+            .map(|(k, input)| match directions.iter().position(|&d| d == k) {
+                Some(direction) => DualDVec64::variable(value_of(input), direction, count),
+                None => DualDVec64::from(value_of(input)),
+            })
+            .collect();
+        let gradient = evaluate(&self.program, &seeded, bodies)?;
+        let slopes = gradient.gradient(count);
+        // Along the motion with no acceleration: each centre moves at its
+        // velocity, each body turns at its angular velocity, so its origin
+        // is at `o + (v + ω × d) s + ω × (ω × d) s²/2` (`d` from the
+        // centre to the origin) and its small rotation is `ω s`.
+        let s = PathDual::variable(0.0, 0, 1);
+        let along: Vec<PathDual> = self
+            .inputs
+            .iter()
+            .map(|input| match *input {
+                Input::Time => PathDual::from(time) + s,
+                Input::Position(body, axis) => {
+                    let motion = &bodies[body];
+                    let arm = motion.to_origin;
+                    let rate = motion.velocity + motion.omega.cross(&arm);
+                    let curve = motion.omega.cross(&motion.omega.cross(&arm));
+                    PathDual::from(value_of(input))
+                        + s * rate[axis]
+                        + s * s * (0.5 * curve[axis])
+                }
+                Input::Rotation(body, axis) => s * bodies[body].omega[axis],
+                _ => PathDual::from(value_of(input)),
+            })
+            .collect();
+        let path = evaluate(&self.program, &along, bodies)?;
+        // The row of G: on v the gradient in the origin's place, on ω the
+        // gradient in the small rotation plus the origin's turn about the
+        // centre (`δo = δc + δθ × d`).
+        let mut coefficients: Vec<(usize, [f64; 6])> = Vec::new();
+        for (direction, &k) in directions.iter().enumerate() {
+            let (body, entries) = match self.inputs[k] {
+                Input::Position(body, axis) => {
+                    let mut entries = [0.0; 6];
+                    entries[axis] = slopes[direction];
+                    let mut unit = Vector3::zeros();
+                    unit[axis] = slopes[direction];
+                    let turn = bodies[body].to_origin.cross(&unit);
+                    entries[3..].copy_from_slice(turn.as_slice());
+                    (body, entries)
+                }
+                Input::Rotation(body, axis) => {
+                    let mut entries = [0.0; 6];
+                    entries[3 + axis] = slopes[direction];
+                    (body, entries)
+                }
+                _ => continue,
+            };
+            match coefficients.iter_mut().find(|(b, _)| *b == body) {
+                Some((_, sum)) => sum.iter_mut().zip(entries).for_each(|(a, b)| *a += b),
+                None => coefficients.push((body, entries)),
+            }
+        }
+        let row = Row {
+            value: path.re,
+            rate: path.gradient(1)[0],
+            bias: path.hessian(1).map_or(0.0, |hessian| hessian[(0, 0)]),
+            coefficients,
+        };
+        [row.value, row.rate, row.bias]
+            .iter()
+            .all(|value| value.is_finite())
+            .then_some(row)
+    }
+}
+
+/// The program's one output over `inputs`, its bodies turned as `bodies`
+/// say.
+fn evaluate<T: Number>(program: &Program, inputs: &[T], bodies: &[Motion]) -> Option<T> {
+    let mut evaluator = program.evaluator::<T>();
+    evaluator.reorient(|body| bodies[body].rotation);
+    let mut outputs = vec![T::zero(); 1];
+    evaluator.outputs(inputs, None, &mut outputs).ok()?;
+    outputs.pop()
+}
