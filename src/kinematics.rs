@@ -391,6 +391,11 @@ impl Orientation {
         })
     }
 
+    /// Whether it is an Euler parameter (system 27).
+    pub fn is_euler_parameter(self) -> bool {
+        self.system == 27
+    }
+
     /// The component of the rotation `relative` (`i`'s axes as columns in
     /// `j`'s).
     fn of<T: Number>(self, relative: &Matrix3<T>) -> Result<T, LawError> {
@@ -458,7 +463,7 @@ fn euler_angle<T: Number>(
 /// The Euler parameters `e0 e1 e2 e3` of the rotation `a` (Shepperd's
 /// method: the square root taken of the largest, so no division by a small
 /// one), `e0` not negative.
-fn euler_parameters<T: Number>(a: &Matrix3<T>) -> [T; 4] {
+pub(crate) fn euler_parameters<T: Number>(a: &Matrix3<T>) -> [T; 4] {
     let c = |row: usize, column: usize| a[(row, column)].clone();
     let trace = c(0, 0) + c(1, 1) + c(2, 2);
     let diagonal = [a[(0, 0)].value(), a[(1, 1)].value(), a[(2, 2)].value()];

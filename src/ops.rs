@@ -104,6 +104,23 @@ impl FrameArg {
     }
 }
 
+/// The Euler parameters of the rotation of frame `args[1]`'s axes to
+/// `args[0]`'s at the state in `slots` (`e0` not negative), in plain
+/// numbers.
+pub(crate) fn euler_parameters<T: Number>(
+    args: &[FrameArg],
+    slots: &[T],
+    tables: &Tables,
+) -> [f64; 4] {
+    let [i, j] = [0, 1].map(|position| {
+        args[position.min(args.len() - 1)]
+            .frame(slots, tables)
+            .axes
+            .map(|entry| entry.value())
+    });
+    kinematics::euler_parameters(&(j.transpose() * i))
+}
+
 /// The marker frames one run of a program has worked out, by index in the
 /// frame table: each is computed once per run (from the body's state
 /// inputs, which a run does not change) and shared by every measure that

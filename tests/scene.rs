@@ -461,15 +461,20 @@ fn scene_files_read_and_refuse_with_reasons() {
     insta::assert_snapshot!(refusals);
 }
 
-#[test]
-fn angles_stay_continuous_over_a_run() {
+/// A body `spin` at rest at the origin, its marker 1 at its origin.
+fn spinning() -> Scene {
     let mut marker = Marker::new(Some(0));
     marker.id = Some(1);
-    let scene = Scene {
+    Scene {
         bodies: vec![Body::new("spin")],
         markers: vec![marker],
         ..Scene::default()
-    };
+    }
+}
+
+#[test]
+fn angles_stay_continuous_over_a_run() {
+    let scene = spinning();
     let checked = check_tree(&parse("AZ(1)").unwrap()).unwrap();
     let program = compile_in_scene(&checked, &scene.input_names(), &scene).unwrap();
     let mut values = scene.values(program.inputs()).unwrap();
@@ -704,5 +709,51 @@ fn incang_measures_about_the_drawn_normal() {
             got.value
         );
         assert!((got.gradient.unwrap()[0] - 1.0).abs() < 1e-9);
+    }
+}
+
+/// ORIENT's Euler parameters run on continuously through `e0 = 0` over a
+/// run (a part turning twice about z: `e0 = cos θ/2`, `e3 = sin θ/2`, as
+/// Adams gives them), where one evaluation alone gives `e0` not negative.
+#[test]
+fn euler_parameters_run_on_through_a_half_turn() {
+    let scene = spinning();
+    for component in [1, 4] {
+        let text = format!("ORIENT(27, {component}, 1)");
+        let checked = check_tree(&parse(&text).unwrap()).unwrap();
+        let program = compile_in_scene(&checked, &scene.input_names(), &scene).unwrap();
+        let mut values = scene.values(program.inputs()).unwrap();
+        let turn = program.input_index("spin.rz").unwrap();
+        let mut run = program.run();
+        for step in 0..=130 {
+            let angle = f64::from(step) * 0.1;
+            values[turn] = angle;
+            let want = if component == 1 {
+                (angle / 2.0).cos()
+            } else {
+                (angle / 2.0).sin()
+            };
+            let continued = run.evaluate(&values, &[turn], Order::Gradient).unwrap();
+            let alone = program.evaluate(&values, &[turn], Order::Value).unwrap();
+            assert!(
+                (continued.value - want).abs() < 1e-12,
+                "{text} at {angle}: {}",
+                continued.value
+            );
+            let slope = if component == 1 {
+                -0.5 * (angle / 2.0).sin()
+            } else {
+                0.5 * (angle / 2.0).cos()
+            };
+            assert!(
+                (continued.gradient.unwrap()[0] - slope).abs() < 1e-9,
+                "{text} at {angle}"
+            );
+            let sign = if (angle / 2.0).cos() < 0.0 { -1.0 } else { 1.0 };
+            assert!(
+                (alone.value - sign * want).abs() < 1e-12,
+                "{text} alone at {angle}"
+            );
+        }
     }
 }

@@ -69,6 +69,9 @@ pub struct Evaluator<'p, T> {
     /// The last value of each AX, AY, AZ, INCANG instruction (empty until
     /// one runs).
     angles: Vec<Option<f64>>,
+    /// The last Euler parameters of each `ORIENT(27, ...)` instruction, as
+    /// worked out (`e0` not negative) and as given (empty until one runs).
+    parameters: Vec<Option<Continued>>,
     /// In a simulation, their values at the last accepted states, which
     /// settle their whole turns ([`Evaluator::accept_angles`]).
     turns: Option<Box<Turns>>,
@@ -125,6 +128,17 @@ impl Turns {
 pub struct Run<'p> {
     program: &'p Program,
     angles: Vec<Option<f64>>,
+    parameters: Vec<Option<Continued>>,
+}
+
+/// The Euler parameters an `ORIENT(27, ...)` instruction gave last: as
+/// worked out, `e0` not negative, and whether they were given with their
+/// sign turned (so that they run on continuously through `e0 = 0`, as
+/// Adams gives them).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Continued {
+    worked_out: [f64; 4],
+    turned: bool,
 }
 
 /// A function that evaluates a program at a point (its inputs).
@@ -151,7 +165,7 @@ impl Run<'_> {
         order: Order,
         body: impl FnOnce(&mut EvaluateAt<'_>) -> R,
     ) -> R {
-        let (program, angles) = (self.program, &mut self.angles);
+        let (program, angles) = (self.program, (&mut self.angles, &mut self.parameters));
         macro_rules! with {
             ($number:ty) => {
                 program.continuing::<$number, _>(angles, |evaluator| {
@@ -196,17 +210,23 @@ impl Program {
             turned: None,
             slots,
             angles: Vec::new(),
+            parameters: Vec::new(),
             turns: None,
             frames: SharedFrames::new(),
         }
     }
 
     /// Whether a result of a [`Run`] can depend on the points before it (an
-    /// AX, AY, AZ or INCANG, continuous through ±π): if not, the points of a run may
+    /// AX, AY, AZ or INCANG, continuous through ±π, an Euler parameter
+    /// continuous through `e0 = 0`): if not, the points of a run may
     /// be evaluated in any order, or in parallel, each on its own.
     pub fn continues_from_point_to_point(&self) -> bool {
         self.code.iter().any(|instruction| {
-            matches!(instruction, Instruction::Compute { op, .. } if continues_through_turns(op))
+            matches!(
+                instruction,
+                Instruction::Compute { op, .. }
+                    if continues_through_turns(op) || continues_by_sign(op)
+            )
         })
     }
 
@@ -215,6 +235,7 @@ impl Program {
         Run {
             program: self,
             angles: Vec::new(),
+            parameters: Vec::new(),
         }
     }
 
@@ -234,16 +255,18 @@ impl Program {
         self.run().evaluate(inputs, wrt, order)
     }
 
-    /// Runs `body` on an evaluator that carries on the angle history `angles`
-    /// and hands the history back.
+    /// Runs `body` on an evaluator that carries on the history `angles`
+    /// (the angles' values, the Euler parameters' signs) and hands it back.
     fn continuing<T: Number, R>(
         &self,
-        angles: &mut Vec<Option<f64>>,
+        (angles, parameters): (&mut Vec<Option<f64>>, &mut Vec<Option<Continued>>),
         body: impl FnOnce(&mut Evaluator<'_, T>) -> R,
     ) -> R {
         let mut evaluator = self.evaluator::<T>();
         evaluator.angles = std::mem::take(angles);
+        evaluator.parameters = std::mem::take(parameters);
         let result = body(&mut evaluator);
+        *parameters = evaluator.parameters;
         *angles = evaluator.angles;
         result
     }
@@ -344,7 +367,8 @@ impl<T: Number> Evaluator<'_, T> {
                         });
                     match computed {
                         Ok(result) if matches!(op, Op::Measure { .. }) => {
-                            (dst, self.continue_angle(op, pc - 1, result))
+                            let result = self.continue_angle(op, pc - 1, result);
+                            (dst, self.continue_sign(op, pc - 1, result))
                         }
                         Ok(result) => (dst, result),
                         Err(error) => {
@@ -427,6 +451,34 @@ impl<T: Number> Evaluator<'_, T> {
         }
     }
 
+    /// `result` of instruction `index`, its sign turned when `op` is an
+    /// Euler parameter (`ORIENT(27, ...)`) whose parameters, worked out
+    /// with `e0` not negative, jumped to their opposite since the last
+    /// evaluation (`e0` passed 0): the parameters run on continuously, as
+    /// Adams gives them.
+    fn continue_sign(&mut self, op: &Op, index: usize, result: T) -> T {
+        let Op::Measure { frames: args, .. } = op else {
+            return result;
+        };
+        if !continues_by_sign(op) {
+            return result;
+        }
+        let tables = self.turned.as_deref().unwrap_or(&self.program.tables);
+        let worked_out = crate::ops::euler_parameters(args, &self.slots, tables);
+        if self.parameters.is_empty() {
+            self.parameters = vec![None; self.program.code.len()];
+        }
+        let turned = match self.parameters[index] {
+            Some(last) => {
+                let dot: f64 = (0..4).map(|k| last.worked_out[k] * worked_out[k]).sum();
+                last.turned != (dot < 0.0)
+            }
+            None => false,
+        };
+        self.parameters[index] = Some(Continued { worked_out, turned });
+        if turned { -result } else { result }
+    }
+
     /// `result` of instruction `index`, moved by whole turns to the value
     /// nearest its last one when `op` is AX, AY, AZ or INCANG.
     fn continue_angle(&mut self, op: &Op, index: usize, result: T) -> T {
@@ -456,6 +508,18 @@ impl<T: Number> Evaluator<'_, T> {
         self.angles[index] = Some(result.value());
         result
     }
+}
+
+/// Whether `op` is `ORIENT(27, ...)`, an Euler parameter, which a [`Run`]
+/// keeps continuous through `e0 = 0` by its sign.
+fn continues_by_sign(op: &Op) -> bool {
+    matches!(
+        op,
+        Op::Measure {
+            selector: crate::kinematics::Selector::Orientation(orientation),
+            ..
+        } if orientation.is_euler_parameter()
+    )
 }
 
 /// Whether `op` is AX, AY, AZ or INCANG, which a [`Run`] keeps continuous

@@ -264,9 +264,7 @@ impl Compiled {
                     let arm = motion.to_origin;
                     let rate = motion.velocity + motion.omega.cross(&arm);
                     let curve = motion.omega.cross(&motion.omega.cross(&arm));
-                    PathDual::from(value_of(input))
-                        + s * rate[axis]
-                        + s * s * (0.5 * curve[axis])
+                    PathDual::from(value_of(input)) + s * rate[axis] + s * s * (0.5 * curve[axis])
                 }
                 Input::Rotation(body, axis) => s * bodies[body].omega[axis],
                 _ => PathDual::from(value_of(input)),
