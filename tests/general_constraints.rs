@@ -108,9 +108,10 @@ END
 
 /// A slider on a TRANSLATIONAL joint along ground x under gravity along
 /// x, its place `0.3 + 0.1 sin 2t` set by a GCON of time, and by the
-/// MOTION of the same displacement: the same motion, and the GCON's
-/// reaction on the slider (the net force at its marker from ground, less
-/// the joint's) the force Newton's law asks, `m (x'' - g)`.
+/// MOTION between markers of the same displacement: the same motion, and
+/// the GCON's and the motion's reactions on the slider (the net force at
+/// its marker from ground less the joint's; the motion's `MOTION(1, 0, 4,
+/// 1)` along its J marker's z) the force Newton's law asks, `m (x'' - g)`.
 #[test]
 fn a_gcon_of_time_drives_as_the_motion_of_the_same_displacement() {
     let slider = |driver: &str, force: &str| {
@@ -133,7 +134,7 @@ END
     let motion = run(
         &slider(
             "MOTION/1, I = 21, J = 1, Z, FUNCTION = 0.3 + 0.1 * SIN(2 * TIME)",
-            ", F3 = 0",
+            ", F3 = FX(21, 1) - JOINT(1, 0, 2, 0), F4 = MOTION(1, 0, 4, 1)",
         ),
         &settings,
     )
@@ -150,19 +151,22 @@ END
     for (a, b) in motion.rows.iter().zip(&gcon.rows) {
         let t = a[0];
         let place = 0.3 + 0.1 * (2.0 * t).sin();
-        let (driven, held) = (a[a.len() - 2], b[b.len() - 2]);
+        let (driven, held) = (a[a.len() - 3], b[b.len() - 2]);
         worst = worst.max((driven - place).abs()).max((held - place).abs());
-        // The force that drives it: m (x'' - g) along x, with x'' = -0.4 sin 2t.
+        // The force that drives it: m (x'' - g) along x, with x'' = -0.4 sin 2t;
+        // the motion's along its J marker's z axis (ground's x).
         let needed = 3.0 * (-0.4 * (2.0 * t).sin() + G);
-        worst = worst.max((b[b.len() - 1] - needed).abs() / needed.abs().max(1.0));
+        for force in [b[b.len() - 1], a[a.len() - 2], a[a.len() - 1]] {
+            worst = worst.max((force - needed).abs() / needed.abs().max(1.0));
+        }
     }
     println!("slider: off the driven place and force by {worst:.2e}");
     assert!(worst < 1e-7, "{worst}");
 }
 
 /// What a GCON may not read, and a GCON with no I, refused at its place;
-/// and a net force at a marker a MOTION between markers drives (whose
-/// reaction is not computed), which would leave it out.
+/// and a net force at a joint a COUPLER ties (whose reaction is not
+/// computed), which would leave it out.
 #[test]
 fn what_a_gcon_cannot_hold_is_refused_at_its_place() {
     let model = |gcon: &str| {
@@ -183,7 +187,7 @@ END
         GCON/1, FUNCTION = DM(20) - 1
         GCON/1, I = 1, FUNCTION = DM(20) - 1 + DIF(3)
         GCON/1, I = 1
-        MOTION/1, I = 20, J = 1, X, FUNCTION = TIME | REQUEST/1, F2 = FX(20, 1)
+        MARKER/21, PART = 2 | JOINT/1, REVOLUTE, I = 21, J = 1 | MARKER/22, PART = 1 | PART/3, MASS = 1, CM = 30, IP = 1, 1, 1 | MARKER/30, PART = 3 | JOINT/2, REVOLUTE, I = 30, J = 22 | COUPLER/1, JOINTS = 1, 2, TYPE = R:R, SCALES = 1, -1 | REQUEST/1, F2 = FX(21, 1)
     ";
     let report = super::table(cases, |case| {
         match run(&model(&case.replace(" | ", "\n")), &settings(1.0, 2, 1e-6)) {

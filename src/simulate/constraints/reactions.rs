@@ -18,7 +18,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::rows::BodyMotion;
-use super::{Imposed, kept_rows, motion_row};
+use super::{Imposed, kept_rows, marker_motion_row, motion_row};
 use crate::catalog::Function;
 use crate::compile::SolverCall;
 use crate::scene::Target;
@@ -30,6 +30,7 @@ use crate::simulate::Model;
 enum Holder {
     Joint(usize),
     Motion(usize),
+    MarkerMotion(usize),
 }
 
 /// A reaction component a model's expression asks for, found in the model.
@@ -53,7 +54,14 @@ impl Component {
                 .motions
                 .iter()
                 .position(|motion| motion.id == call.id)
-                .map(Holder::Motion),
+                .map(Holder::Motion)
+                .or_else(|| {
+                    model
+                        .marker_motions
+                        .iter()
+                        .position(|motion| motion.id == call.id)
+                        .map(Holder::MarkerMotion)
+                }),
             function => model
                 .joints
                 .iter()
@@ -61,16 +69,6 @@ impl Component {
                 .map(Holder::Joint),
         };
         let Some(holder) = holder else {
-            if call.function == Function::Motion
-                && model
-                    .marker_motions
-                    .iter()
-                    .any(|motion| motion.id == call.id)
-            {
-                return Err(format!(
-                    "{written}: the reactions of a MOTION between markers are not computed yet (those of a MOTION on a joint are)"
-                ));
-            }
             return Err(format!(
                 "{written}: the model has no {}/{} that is simulated",
                 call.function.name(),
@@ -139,8 +137,10 @@ pub(crate) struct Reactions {
     /// For each joint, its load on each body it holds: `[force | torque
     /// about the centre of mass]`, in ground.
     joints: Vec<Vec<(usize, [f64; 6])>>,
-    /// The same for each motion.
+    /// The same for each motion on a joint.
     motions: Vec<Vec<(usize, [f64; 6])>>,
+    /// The same for each motion between markers.
+    marker_motions: Vec<Vec<(usize, [f64; 6])>>,
     /// The same for each general constraint.
     general: Vec<Vec<(usize, [f64; 6])>>,
     /// Each body's centre of mass and rotation to ground.
@@ -186,44 +186,49 @@ impl Reactions {
     ) -> Reactions {
         let drives = &imposed.drives;
         let mut multipliers = multipliers.iter().copied();
+        // Each holder's loads from its rows, its multipliers the next ones.
+        let mut loads_of = |rows: Vec<super::rows::Row<f64>>| {
+            let mut loads = Vec::new();
+            add_loads(rows.into_iter(), &mut multipliers, &mut loads);
+            loads
+        };
         let joints = model
             .joints
             .iter()
-            .map(|joint| {
-                let mut loads = Vec::new();
-                add_loads(
-                    kept_rows(model, joint, bodies),
-                    &mut multipliers,
-                    &mut loads,
-                );
-                loads
-            })
+            .map(|joint| loads_of(kept_rows(model, joint, bodies).collect()))
             .collect();
         let motions = model
             .motions
             .iter()
             .zip(drives)
-            .map(|(motion, drive)| {
-                let mut loads = Vec::new();
-                let row = motion_row(model, motion, drive, bodies);
-                add_loads(std::iter::once(row), &mut multipliers, &mut loads);
-                loads
-            })
+            .map(|(motion, drive)| loads_of(vec![motion_row(model, motion, drive, bodies)]))
             .collect();
-        // The motions between markers and the couplers hold one equation
-        // each, before the general constraints'.
-        let mut multipliers = multipliers.skip(model.marker_motions.len() + model.couplers.len());
+        let marker_drives = drives.get(model.motions.len()..).unwrap_or_default();
+        let marker_motions = model
+            .marker_motions
+            .iter()
+            .zip(marker_drives)
+            .map(|(motion, drive)| loads_of(vec![marker_motion_row(model, motion, drive, bodies)]))
+            .collect();
+        // The couplers' equations come before the general constraints'
+        // (their reactions are not asked for: a net force refuses them).
+        for coupler in &model.couplers {
+            loads_of(vec![super::coupler_row(model, coupler, bodies)]);
+        }
         let general = (0..model.general_constraints.len())
             .map(|index| {
-                let mut loads = Vec::new();
-                let row = imposed.general.row(model, index, imposed.time, bodies);
-                add_loads(std::iter::once(row), &mut multipliers, &mut loads);
-                loads
+                loads_of(vec![imposed.general.row(
+                    model,
+                    index,
+                    imposed.time,
+                    bodies,
+                )])
             })
             .collect();
         Reactions {
             joints,
             motions,
+            marker_motions,
             general,
             bodies: bodies
                 .iter()
@@ -265,18 +270,21 @@ impl Reactions {
     /// The force and the torque about the marker's origin, in ground, that
     /// `holder` applies on its I marker (J when `on_j`).
     fn load(&self, model: &Model, holder: Holder, on_j: bool) -> (Vector3<f64>, Vector3<f64>) {
-        let (loads, joint) = match holder {
-            Holder::Joint(index) => (&self.joints[index], &model.joints[index]),
-            Holder::Motion(index) => (
-                &self.motions[index],
-                &model.joints[model.motions[index].joint],
-            ),
+        let (loads, i, j) = match holder {
+            Holder::Joint(index) => {
+                let joint = &model.joints[index];
+                (&self.joints[index], &joint.i, &joint.j)
+            }
+            Holder::Motion(index) => {
+                let joint = &model.joints[model.motions[index].joint];
+                (&self.motions[index], &joint.i, &joint.j)
+            }
+            Holder::MarkerMotion(index) => {
+                let motion = &model.marker_motions[index];
+                (&self.marker_motions[index], &motion.i, &motion.j)
+            }
         };
-        let (marker, other) = if on_j {
-            (&joint.j, &joint.i)
-        } else {
-            (&joint.i, &joint.j)
-        };
+        let (marker, other) = if on_j { (j, i) } else { (i, j) };
         // On ground, the opposite of what the other marker's body takes.
         let (sign, body) = match body_of(model, marker) {
             Some(body) => (1.0, Some(body)),
@@ -333,19 +341,25 @@ impl Reactions {
         i: &Target,
         j: &Target,
     ) -> (Vector3<f64>, Vector3<f64>) {
-        let holders = (0..model.joints.len())
-            .map(|index| (Holder::Joint(index), index))
+        let holders = model
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(index, joint)| (Holder::Joint(index), &joint.i, &joint.j))
+            .chain(model.motions.iter().enumerate().map(|(index, motion)| {
+                let joint = &model.joints[motion.joint];
+                (Holder::Motion(index), &joint.i, &joint.j)
+            }))
             .chain(
                 model
-                    .motions
+                    .marker_motions
                     .iter()
                     .enumerate()
-                    .map(|(index, motion)| (Holder::Motion(index), motion.joint)),
+                    .map(|(index, motion)| (Holder::MarkerMotion(index), &motion.i, &motion.j)),
             );
         let mut sum = (Vector3::zeros(), Vector3::zeros());
-        for (holder, joint) in holders {
-            let joint = &model.joints[joint];
-            for (on_j, marker, other) in [(false, &joint.i, &joint.j), (true, &joint.j, &joint.i)] {
+        for (holder, holder_i, holder_j) in holders {
+            for (on_j, marker, other) in [(false, holder_i, holder_j), (true, holder_j, holder_i)] {
                 if marker == i && (*j == Target::Ground || other == j) {
                     let (force, torque) = self.load(model, holder, on_j);
                     sum.0 += force;

@@ -148,30 +148,22 @@ impl NetForce {
             .map_err(|why| format!("{}: {why}", call.input_name()))?;
         let marker = |position: usize| markers.get(position).copied().unwrap_or(Target::Ground);
         let (i, j) = (marker(0), marker(1));
-        // What acts at I whose reaction is not computed: a motion between
-        // markers, a coupler on a joint at I (left out, the sum would be
-        // silently short).
+        // What acts at I whose reaction is not computed: a coupler on a
+        // joint at I (left out, the sum would be silently short).
         let between = |a: &Target, b: &Target| {
             (*a == i && (j == Target::Ground || *b == j))
                 || (*b == i && (j == Target::Ground || *a == j))
         };
         let unknown = model
-            .marker_motions
+            .couplers
             .iter()
-            .find(|motion| between(&motion.i, &motion.j))
-            .map(|motion| format!("MOTION/{}", motion.id))
-            .or_else(|| {
-                model
-                    .couplers
-                    .iter()
-                    .find(|coupler| {
-                        coupler.joints.iter().any(|&(joint, _, _)| {
-                            let joint = &model.joints[joint];
-                            between(&joint.i, &joint.j)
-                        })
-                    })
-                    .map(|coupler| format!("COUPLER/{}", coupler.id))
-            });
+            .find(|coupler| {
+                coupler.joints.iter().any(|&(joint, _, _)| {
+                    let joint = &model.joints[joint];
+                    between(&joint.i, &joint.j)
+                })
+            })
+            .map(|coupler| format!("COUPLER/{}", coupler.id));
         if let Some(holder) = unknown {
             return Err(format!(
                 "{}: {holder} acts there and its reaction is not computed yet, so the net force would leave it out",
