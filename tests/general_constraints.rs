@@ -164,7 +164,8 @@ END
     assert!(worst < 1e-7, "{worst}");
 }
 
-/// What a GCON may not read, and a GCON with no I, refused at its place;
+/// What a GCON may not read, and a GCON with no I, refused at its place; a
+/// GCON whose FUNCTION cannot be evaluated where the parts start, named;
 /// and a net force at a joint a COUPLER ties (whose reaction is not
 /// computed), which would leave it out.
 #[test]
@@ -187,6 +188,7 @@ END
         GCON/1, FUNCTION = DM(20) - 1
         GCON/1, I = 1, FUNCTION = DM(20) - 1 + DIF(3)
         GCON/1, I = 1
+        GCON/1, I = 1, FUNCTION = SQRT(DX(20) - 2.5) - 0.1
         MARKER/21, PART = 2 | JOINT/1, REVOLUTE, I = 21, J = 1 | MARKER/22, PART = 1 | PART/3, MASS = 1, CM = 30, IP = 1, 1, 1 | MARKER/30, PART = 3 | JOINT/2, REVOLUTE, I = 30, J = 22 | COUPLER/1, JOINTS = 1, 2, TYPE = R:R, SCALES = 1, -1 | REQUEST/1, F2 = FX(21, 1)
     ";
     let report = super::table(cases, |case| {

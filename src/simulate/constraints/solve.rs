@@ -458,7 +458,8 @@ pub(crate) enum Unassembled {
     Apart {
         /// The equation's index among the held equations.
         row: usize,
-        /// Its value `Φ` left.
+        /// Its value `Φ` left (not a number where it cannot be
+        /// evaluated).
         residual: f64,
     },
 }
@@ -570,6 +571,14 @@ pub(crate) fn project(
     };
     let rows = with_initial(active, &bodies, false);
     let mut residual = Residuals::of(&rows).position;
+    // An equation that cannot be evaluated here (a GCON's FUNCTION out of
+    // its domain) is named, not taken for a singular configuration.
+    if let Some(row) = rows.iter().position(|row| !row.value.is_finite()) {
+        return Err(Unassembled::Apart {
+            row,
+            residual: f64::NAN,
+        });
+    }
     let off_positions = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
     // The least change of the velocities at `bodies`, whose positions'
     // equations are `rows`: outside the initial analysis the velocities

@@ -444,6 +444,10 @@ impl Simulation<'_> {
                 let message = match error {
                     Unassembled::Singular if initial && !(model.joint_initials.is_empty() && model.exact.is_empty()) => "the joints cannot be assembled: their equations and the initial conditions (the joints' IC, ICTRAN, ICROT, the parts' EXACT) are dependent at this state (an initial condition may set a coordinate the joints, motions or other initial conditions already set, or the configuration is singular)".to_string(),
                     Unassembled::Singular => "the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(),
+                    Unassembled::Apart { row, residual } if residual.is_nan() => format!(
+                        "the joints cannot be assembled: the equation of {} cannot be evaluated at this state (its FUNCTION leaves its domain)",
+                        owner_of_row(model, row)
+                    ),
                     Unassembled::Apart { row, residual } => format!(
                         "the joints cannot be assembled: {} stays off by {residual:.3e} after Newton's iterations (the parts cannot be placed as the joints and motions ask: check the markers' places and axes and the motions' values at this time)",
                         owner_of_row(model, row)
