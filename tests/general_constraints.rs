@@ -199,3 +199,35 @@ END
     });
     insta::assert_snapshot!(report);
 }
+
+/// A part on a distance GCON and a second one on a GCON of time that reads
+/// both parts' places and turns, under a spring.
+const TWO_GCONS: &str = "two gcons
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1.5, CM = 20, IP = 0.2, 0.3, 0.4, WZ = 0.5, VY = 0.3
+MARKER/20, PART = 2, QP = 2, 0, 0
+MARKER/21, PART = 2, QP = 2.5, 0.2, 0
+PART/3, MASS = 0.7, CM = 30, IP = 0.1, 0.1, 0.1, QG = 0, 0, 1
+MARKER/30, PART = 3, QP = 3, 0, 0
+GCON/1, I = 1, FUNCTION = DM(20, 1) - 2
+GCON/2, I = 21, FUNCTION = DX(30, 21, 21) - 0.5 - 0.1 * SIN(TIME) + 0.2 * AZ(30, 21)
+SFORCE/1, TRANSLATIONAL, I = 30, J = 1, FUNCTION = -5 * (DM(30, 1) - 3)
+ACCGRAV/JGRAV = -9.80665
+END
+";
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(8))]
+
+    /// The Jacobian of parts held by GCONs (their rows carried through the
+    /// bodies' motion by differences of the plain row) agrees with central
+    /// differences of the rates.
+    #[test]
+    fn the_jacobian_with_gcons_agrees_with_finite_differences(
+        shifts in proptest::collection::vec(-0.02f64..0.02, 26),
+        time in 0.0f64..3.0,
+    ) {
+        super::simulate::the_jacobian_agrees_with_finite_differences(TWO_GCONS, &shifts, time)?;
+    }
+}

@@ -7,9 +7,11 @@
 //! with second-order dual numbers along the motion the velocities give
 //! with no acceleration (the rate `Φ'` and the bias `Φ''`). The row is
 //! exact in plain numbers (the projection, the explicit method, the
-//! reactions); over the Jacobian's dual numbers it is a constant, so
-//! Radau5's Newton iteration sees the joints' curvature but not a GCON's
-//! (it converges on, with a Jacobian that is not exact there).
+//! reactions). Over the Jacobian's dual numbers each part of it is carried
+//! to first order through the bodies' motion it reads, its slopes by
+//! central differences of the plain row (its exact derivatives would need
+//! a third order of dual numbers): the Jacobian is right to about 1e-9,
+//! not to rounding, where a GCON acts.
 
 use nalgebra::{Const, Matrix3, Vector3};
 use num_dual::{Dual2Vec, DualDVec64};
@@ -19,7 +21,7 @@ use super::rows::Row;
 use crate::compile::{Program, compile_outputs};
 use crate::number::{Directional, Number};
 use crate::scene::StateComponent;
-use crate::simulate::Model;
+use crate::simulate::{GeneralConstraint, Model};
 
 /// What a FUNCTION's input is at a state.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -118,17 +120,83 @@ impl GeneralConstraints {
         let Some(row) = compiled.row(time, &plain) else {
             return failed();
         };
-        Row {
+        let mut lifted = Row {
             value: T::from(row.value),
             rate: T::from(row.rate),
             bias: T::from(row.bias),
             coefficients: row
                 .coefficients
-                .into_iter()
-                .map(|(body, entries)| (body, entries.map(T::from)))
+                .iter()
+                .map(|(body, entries)| (*body, entries.map(T::from)))
                 .collect(),
+        };
+        if T::NDERIV == 0 {
+            return lifted;
         }
+        // Each scalar of the motion of each body read, with derivative
+        // parts: the row's slope in it, by central differences, times its
+        // derivative parts.
+        for body in compiled.bodies_read() {
+            let motion = &bodies[body];
+            let scalars = motion
+                .centre
+                .iter()
+                .chain(motion.rotation.iter())
+                .chain(motion.velocity.iter())
+                .chain(motion.omega.iter());
+            for (which, scalar) in scalars.enumerate() {
+                if scalar.is_constant() {
+                    continue;
+                }
+                let parts = scalar.clone() - scalar.value();
+                let step = 1e-6 * scalar.value().abs().max(1.0);
+                let shifted = |by: f64| {
+                    let mut moved = plain.clone();
+                    moved[body].shift(which, by, &model.masses[body].centre);
+                    compiled.row(time, &moved)
+                };
+                let (Some(up), Some(down)) = (shifted(step), shifted(-step)) else {
+                    return failed();
+                };
+                let slope = |a: f64, b: f64| parts.clone() * ((a - b) / (2.0 * step));
+                lifted.value += slope(up.value, down.value);
+                lifted.rate += slope(up.rate, down.rate);
+                lifted.bias += slope(up.bias, down.bias);
+                for ((_, entries), ((_, a), (_, b))) in lifted
+                    .coefficients
+                    .iter_mut()
+                    .zip(up.coefficients.iter().zip(&down.coefficients))
+                {
+                    for (entry, (a, b)) in entries.iter_mut().zip(a.iter().zip(b)) {
+                        *entry += slope(*a, *b);
+                    }
+                }
+            }
+        }
+        lifted
     }
+}
+
+/// The bodies the markers of GCON `constraint`'s FUNCTION are on (ground
+/// left out), each once: the parts its equation holds together.
+pub(crate) fn bodies_of(model: &Model, constraint: &GeneralConstraint) -> Vec<usize> {
+    let mut bodies = Vec::new();
+    let tree = &model.expressions[constraint.function].checked;
+    crate::check::visit(&tree.root, &mut |node| {
+        if let crate::check::NodeKind::Call(_, args) = &node.kind {
+            for arg in args {
+                if let crate::check::Argument::Marker(reference, _) = arg
+                    && let Ok(crate::scene::Target::Marker(index)) =
+                        model.scene.find_marker(reference)
+                    && let Some(body) = model.scene.markers[index].body
+                    && !bodies.contains(&body)
+                {
+                    bodies.push(body);
+                }
+            }
+        }
+    });
+    bodies
 }
 
 /// What each input of `program` is, or why a GCON may not read it.
@@ -197,6 +265,7 @@ fn rate_reading(tree: &crate::Checked) -> Option<String> {
 }
 
 /// A body's motion in plain numbers, and its origin's.
+#[derive(Clone)]
 struct Motion {
     centre: Vector3<f64>,
     rotation: Matrix3<f64>,
@@ -207,6 +276,21 @@ struct Motion {
 }
 
 impl Motion {
+    /// Scalar `which` of the centre (0–2), the rotation (3–11, by
+    /// columns), the velocity (12–14) and the angular velocity (15–17)
+    /// moved by `by`.
+    fn shift(&mut self, which: usize, by: f64, centre_in_body: &Vector3<f64>) {
+        match which {
+            0..=2 => self.centre[which] += by,
+            3..=11 => {
+                self.rotation[which - 3] += by;
+                self.to_origin = -(self.rotation * centre_in_body);
+            }
+            12..=14 => self.velocity[which - 12] += by,
+            _ => self.omega[which - 15] += by,
+        }
+    }
+
     fn of<T: Number>(body: &BodyMotion<T>, centre_in_body: &Vector3<f64>) -> Motion {
         let rotation = body.rotation.map(|entry| entry.value());
         Motion {
@@ -220,6 +304,24 @@ impl Motion {
 }
 
 impl Compiled {
+    /// The bodies whose state the FUNCTION reads, each once.
+    fn bodies_read(&self) -> Vec<usize> {
+        let mut bodies: Vec<usize> = self
+            .inputs
+            .iter()
+            .filter_map(|input| match *input {
+                Input::Position(body, _)
+                | Input::Rotation(body, _)
+                | Input::Velocity(body, _)
+                | Input::AngularVelocity(body, _) => Some(body),
+                Input::Time | Input::Constant(_) => None,
+            })
+            .collect();
+        bodies.sort_unstable();
+        bodies.dedup();
+        bodies
+    }
+
     /// The row in plain numbers, or `None` where the FUNCTION fails.
     fn row(&self, time: f64, bodies: &[Motion]) -> Option<Row<f64>> {
         // The directions of the gradient: each position and rotation input.

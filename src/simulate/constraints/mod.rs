@@ -34,7 +34,7 @@ mod rows;
 mod solve;
 
 pub(crate) use drives::{Drive, Drives, Imposed};
-pub(crate) use general::GeneralConstraints;
+pub(crate) use general::{GeneralConstraints, bodies_of};
 pub(crate) use reactions::{Component, Reactions, flags, pick};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;

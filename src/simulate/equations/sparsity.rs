@@ -231,8 +231,8 @@ fn joined(model: &Model) -> Vec<Vec<usize>> {
         body
     }
     let body_of = |target: &Target| body_of(model, target);
-    // Each holder's bodies: a joint's, a motion's between markers, and
-    // those of every joint a coupler ties.
+    // Each holder's bodies: a joint's, a motion's between markers, those
+    // of every joint a coupler ties, and those a GCON's FUNCTION reads.
     let held = model
         .joints
         .iter()
@@ -251,6 +251,12 @@ fn joined(model: &Model) -> Vec<Vec<usize>> {
                     let joint = &model.joints[index];
                     [body_of(&joint.i), body_of(&joint.j)]
                 })
+                .collect()
+        }))
+        .chain(model.general_constraints.iter().map(|constraint| {
+            crate::simulate::constraints::bodies_of(model, constraint)
+                .into_iter()
+                .map(Some)
                 .collect()
         }));
     for bodies in held {
