@@ -519,6 +519,8 @@ pub struct GeneralConstraint {
     pub i: Target,
     /// The FUNCTION (an index into [`Model::expressions`]).
     pub function: usize,
+    /// The FUNCTION argument's place in the file.
+    pub function_span: Span,
     /// The statement's place in the file.
     pub span: Span,
 }

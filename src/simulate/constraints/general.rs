@@ -88,7 +88,7 @@ impl GeneralConstraints {
                 let reason = inputs_of(model, &program)
                     .err()
                     .or_else(|| rate_reading(tree))?;
-                Some((constraint.id, constraint.span, reason))
+                Some((constraint.id, constraint.function_span, reason))
             })
             .collect()
     }

@@ -298,17 +298,19 @@ impl Reader<'_> {
             }
             let i = self.marker(statement, "I");
             let function = self.expression(index, "FUNCTION");
-            if statement.argument("FUNCTION", 4).is_none() {
+            let Some(written) = statement.argument("FUNCTION", 4) else {
                 self.refuse(
                     format!("{label}: give FUNCTION = the expression the constraint keeps at 0"),
                     statement.span,
                 );
-            }
+                continue;
+            };
             if let (Some(i), Some(function)) = (i, function) {
                 constraints.push(GeneralConstraint {
                     id: statement.id.unwrap_or(0),
                     i,
                     function,
+                    function_span: written.span,
                     span: statement.span,
                 });
             }
