@@ -384,6 +384,14 @@ pub struct Joint {
     pub span: Span,
 }
 
+impl Joint {
+    /// How many of its equations the run holds (its redundant ones left
+    /// out).
+    pub(crate) fn held_equations(&self) -> usize {
+        self.kind.equations() - self.redundant.len()
+    }
+}
+
 /// A `MOTION` on a joint: the joint's displacement along (translation) or
 /// about (rotation) its J marker's z axis, a function of time.
 #[derive(Clone, Debug, PartialEq)]

@@ -64,13 +64,7 @@ impl GeneralConstraints {
         let compiled = model
             .general_constraints
             .iter()
-            .map(|constraint| {
-                let tree = &model.expressions[constraint.function].checked;
-                let names = ["TIME".to_string()];
-                let program = compile_outputs(&[tree], &names, Some(&model.scene)).ok()?;
-                let inputs = inputs_of(model, &program).ok()?;
-                Some(Compiled { program, inputs })
-            })
+            .map(|constraint| compile(model, constraint)?.ok())
             .collect();
         GeneralConstraints { compiled }
     }
@@ -83,11 +77,7 @@ impl GeneralConstraints {
             .general_constraints
             .iter()
             .filter_map(|constraint| {
-                let tree = &model.expressions[constraint.function].checked;
-                let program = compile_outputs(&[tree], &["TIME"], Some(&model.scene)).ok()?;
-                let reason = inputs_of(model, &program)
-                    .err()
-                    .or_else(|| rate_reading(tree))?;
+                let reason = compile(model, constraint)?.err()?;
                 Some((constraint.id, constraint.function_span, reason))
             })
             .collect()
@@ -197,6 +187,18 @@ pub(crate) fn bodies_of(model: &Model, constraint: &GeneralConstraint) -> Vec<us
         }
     });
     bodies
+}
+
+/// GCON `constraint`'s FUNCTION compiled (`None` where it does not
+/// compile: the simulation's compile reports why), or why a GCON may not
+/// read what it reads.
+fn compile(model: &Model, constraint: &GeneralConstraint) -> Option<Result<Compiled, String>> {
+    let tree = &model.expressions[constraint.function].checked;
+    let program = compile_outputs(&[tree], &["TIME"], Some(&model.scene)).ok()?;
+    Some(match (inputs_of(model, &program), rate_reading(tree)) {
+        (Err(reason), _) | (Ok(_), Some(reason)) => Err(reason),
+        (Ok(inputs), None) => Ok(Compiled { program, inputs }),
+    })
 }
 
 /// What each input of `program` is, or why a GCON may not read it.

@@ -434,7 +434,7 @@ fn coupler_row<T: crate::number::Number>(
 pub(crate) fn owner_of_row(model: &super::Model, row: usize) -> String {
     let mut first = 0;
     for joint in &model.joints {
-        let held = joint.kind.equations() - joint.redundant.len();
+        let held = joint.held_equations();
         if row < first + held {
             return format!("{}/{}", joint.kind.statement(), joint.id);
         }

@@ -18,7 +18,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::rows::BodyMotion;
-use super::{Imposed, kept_rows, marker_motion_row, motion_row};
+use super::{Imposed, active_rows};
 use crate::catalog::Function;
 use crate::compile::SolverCall;
 use crate::scene::Target;
@@ -184,46 +184,29 @@ impl Reactions {
         imposed: &Imposed<'_>,
         multipliers: &[f64],
     ) -> Reactions {
-        let drives = &imposed.drives;
+        // The held equations in the run's order, each holder taking as many
+        // as it holds, with their multipliers.
+        let mut rows = active_rows(model, bodies, imposed).into_iter();
         let mut multipliers = multipliers.iter().copied();
-        // Each holder's loads from its rows, its multipliers the next ones.
-        let mut loads_of = |rows: Vec<super::rows::Row<f64>>| {
+        let mut loads_of = |count: usize| {
             let mut loads = Vec::new();
-            add_loads(rows.into_iter(), &mut multipliers, &mut loads);
+            add_loads(rows.by_ref().take(count), &mut multipliers, &mut loads);
             loads
         };
         let joints = model
             .joints
             .iter()
-            .map(|joint| loads_of(kept_rows(model, joint, bodies).collect()))
+            .map(|joint| loads_of(joint.held_equations()))
             .collect();
-        let motions = model
-            .motions
+        let motions = model.motions.iter().map(|_| loads_of(1)).collect();
+        let marker_motions = model.marker_motions.iter().map(|_| loads_of(1)).collect();
+        // The couplers' reactions are not asked for (a net force refuses
+        // them): their equations are passed over.
+        loads_of(model.couplers.len());
+        let general = model
+            .general_constraints
             .iter()
-            .zip(drives)
-            .map(|(motion, drive)| loads_of(vec![motion_row(model, motion, drive, bodies)]))
-            .collect();
-        let marker_drives = drives.get(model.motions.len()..).unwrap_or_default();
-        let marker_motions = model
-            .marker_motions
-            .iter()
-            .zip(marker_drives)
-            .map(|(motion, drive)| loads_of(vec![marker_motion_row(model, motion, drive, bodies)]))
-            .collect();
-        // The couplers' equations come before the general constraints'
-        // (their reactions are not asked for: a net force refuses them).
-        for coupler in &model.couplers {
-            loads_of(vec![super::coupler_row(model, coupler, bodies)]);
-        }
-        let general = (0..model.general_constraints.len())
-            .map(|index| {
-                loads_of(vec![imposed.general.row(
-                    model,
-                    index,
-                    imposed.time,
-                    bodies,
-                )])
-            })
+            .map(|_| loads_of(1))
             .collect();
         Reactions {
             joints,
