@@ -3,7 +3,7 @@
 //! (free fall with the Coriolis and centrifugal terms of a spinning frame,
 //! a pendulum's centripetal and tangential parts by hand, a spun-up body's
 //! marker off its centre of mass seen from ground and from the body), and
-//! refused in a force.
+//! refused in a motion.
 
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -166,18 +166,19 @@ END
     assert!(worst < 1e-8, "{worst}");
 }
 
-/// A force reading an acceleration is an algebraic loop: refused at the
-/// call, before the run, with the reason.
+/// A MOTION reading an acceleration is refused at the call, before the
+/// run, with the reason: its constraint must hold before the forces are
+/// known (a force reading one is solved with it: `tests/loop_values.rs`).
 #[test]
-fn a_force_reading_an_acceleration_is_refused_at_the_call() {
+fn a_motion_reading_an_acceleration_is_refused_at_the_call() {
     let (m, d, izz) = (2.0, 0.5, 0.03);
     let text = pendulum(m, d, izz).replace(
         "END",
-        "SFORCE/1, ROTATIONAL, I = 21, J = 1, FUNCTION = -0.1 * ACCX(20)\nEND",
+        "MOTION/1, JOINT = 1, ROTATION, FUNCTION = -0.1 * ACCX(20)\nEND",
     );
     let error = run(&text, &settings(1.0, 1, 1e-8)).err().expect("refused");
     assert!(
-        error.contains("ACCX(20,0,0,0): a force, DIFF or MOTION that reads an acceleration"),
+        error.contains("ACCX(20,0,0,0): a MOTION or GCON that reads a value of the running solver"),
         "{error}"
     );
 }

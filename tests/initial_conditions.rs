@@ -81,6 +81,36 @@ fn an_ic_without_a_velocity_leaves_the_velocity_to_the_parts() {
     assert!(run.rows.last().unwrap()[FIRST] < 0.7);
 }
 
+/// A PART's given velocities are kept where the joint leaves them free,
+/// the others follow (Adams' "inexact 0" for those left out): the
+/// pendulum (centre 0.8 below the pivot) given `WZ = 5` turns at 5, its
+/// centre moving at `ω × r = (4, 0)`; given `VX = 2` its centre moves at 2
+/// and it turns at 2.5; given `VX = 2, VY = 1`, which the joint cannot
+/// both keep (the centre moves along x), VX is kept and VY goes (the
+/// least squares of the given); with an IC's velocity too, the IC's wins.
+#[test]
+fn a_parts_given_velocities_are_kept_where_the_joint_leaves_them_free() {
+    let cases = [
+        ("", ", WZ = 5", 5.0),
+        ("", ", VX = 2", 2.5),
+        ("", ", VX = 2, VY = 1", 2.5),
+        ("", ", VX = 2, WZ = 2.5", 2.5),
+        (", IC = 0, -1", ", WZ = 5", -1.0),
+    ];
+    for (joint, part, rate) in cases {
+        let run = run(&pendulum(joint, part), &settings(0.1, 1, 1e-10))
+            .unwrap_or_else(|error| panic!("{part}: {error}"));
+        let first = &run.rows[0];
+        assert!((first[FIRST + 1] - rate).abs() < 1e-12, "{part}: {first:?}");
+        // The part's origin, at the pivot, stays (its centre moves at ω × r).
+        assert!((first[13] - rate).abs() < 1e-12, "{part}: {first:?}");
+        assert!(
+            first[8].abs() < 1e-12 && first[9].abs() < 1e-12,
+            "{part}: {first:?}"
+        );
+    }
+}
+
 /// A slider (mass 2) on a translational joint along ground's x under a
 /// spring of stiffness 50 from its drawn place: `IC = x0, v0` gives `x =
 /// x0 cos ωt + v0/ω sin ωt`.

@@ -22,6 +22,7 @@ mod integrate_problems;
 mod joint_kinds;
 mod joints;
 mod joints_random;
+mod loop_values;
 mod magnitudes;
 mod massless;
 mod model;

@@ -177,7 +177,7 @@ END
 }
 
 /// What cannot be read is an error before the run, at its place: a joint
-/// the model does not have, a flag out of range, and a force reading a
+/// the model does not have, a flag out of range, and a motion reading a
 /// reaction.
 #[test]
 fn reactions_that_cannot_be_had_are_refused_before_the_run() {
@@ -200,10 +200,20 @@ fn reactions_that_cannot_be_had_are_refused_before_the_run() {
         "ACCGRAV",
         "SFORCE/1, ROTATIONAL, I = 21, J = 1, FUNCTION = -0.1 * JOINT(1,0,1,0) * SIGN(1, WY(21, 1))\nACCGRAV",
     );
-    let error = run(&friction, &settings(1.0, 1, 1e-8))
+    // Friction that reads the joint's reaction is solved with it
+    // (`tests/loop_values.rs`); a motion that reads one is refused.
+    run(&friction, &settings(1.0, 1, 1e-8)).expect("friction reads the reaction");
+    let driven = PENDULUM.replace(
+        "ACCGRAV",
+        "MOTION/1, JOINT = 1, ROTATION, FUNCTION = 0.1 * JOINT(1,0,1,0)\nACCGRAV",
+    );
+    let error = run(&driven, &settings(1.0, 1, 1e-8))
         .err()
         .expect("refused");
-    assert!(error.contains("reads a reaction"), "{error}");
+    assert!(
+        error.contains("a MOTION or GCON that reads a value"),
+        "{error}"
+    );
 }
 
 /// Adams' cubic STEP from `h0` at `x0` to `h1` at `x1`, written here.

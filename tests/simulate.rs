@@ -296,13 +296,14 @@ function = \"STEP(TIME, 0, 0, 1, 1) * LOG(0)\"
             short.clone(),
         ),
         (
-            "a solver's result has no value in a simulation",
+            "a motion cannot read a solver's result",
             "solver
 PART/1, GROUND
 MARKER/1, PART = 1
 PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
-SFORCE/1, TRANSLATIONAL, I = 3, J = 1, FUNCTION = FX(3, 1)
+JOINT/1, TRANSLATIONAL, I = 3, J = 1
+MOTION/1, JOINT = 1, TRANSLATION, FUNCTION = FX(3, 1)
 ",
             short.clone(),
         ),

@@ -184,9 +184,11 @@ impl<'m> Simulation<'m> {
                     }),
             );
         }
-        let dynamics = compile(model, &computed, &no_reaction, &mut errors);
+        // Forces and DIFFs may read the running solver's values: they are
+        // settled with the motion at each state (`Mechanics::settle`).
         let reaction =
             |call: &crate::compile::RunCall| equations::RunValue::of(model, call).map(|_| ());
+        let dynamics = compile(model, &computed, &reaction, &mut errors);
         let outputs = compile(model, &output_expressions, &reaction, &mut errors);
         match (dynamics, outputs) {
             (Some(dynamics), Some(outputs)) if errors.is_empty() => Ok(Simulation {
@@ -212,36 +214,15 @@ impl<'m> Simulation<'m> {
     }
 }
 
-/// Refuses a reaction, a force element's value or an acceleration read by
-/// a motion, a force or a DIFF.
+/// Refuses a value of the running solver (a reaction, a force element's
+/// value, a net force, an acceleration) read by a MOTION's or a GCON's
+/// FUNCTION: the constraints they are must hold before the forces are
+/// known.
 fn no_reaction(call: &crate::compile::RunCall) -> Result<(), String> {
-    Err(match call {
-        crate::compile::RunCall::Reaction(reaction)
-            if !matches!(
-                reaction.function,
-                crate::catalog::Function::Joint
-                    | crate::catalog::Function::Jprim
-                    | crate::catalog::Function::Motion
-            ) =>
-        {
-            format!(
-                "{}: a force, DIFF or MOTION that reads a force element's value is not simulated: the forces are applied together, not in an order one could read another's in; REQUESTs and VARIABLEs read them",
-                call.input_name()
-            )
-        }
-        crate::compile::RunCall::NetForce(_) => format!(
-            "{}: a force, DIFF or MOTION that reads the net force between markers is not simulated: it sums the joints' reactions, which would have to be solved together with the multipliers; REQUESTs and VARIABLEs read it",
-            call.input_name()
-        ),
-        crate::compile::RunCall::Reaction(_) => format!(
-            "{}: a force, DIFF or MOTION that reads a reaction (joint friction) is not simulated: its value and the multipliers would have to be solved together; REQUESTs and VARIABLEs read reactions",
-            call.input_name()
-        ),
-        crate::compile::RunCall::Acceleration(_) => format!(
-            "{}: a force, DIFF or MOTION that reads an acceleration is not simulated: the accelerations come from the forces (an algebraic loop); REQUESTs and VARIABLEs read accelerations",
-            call.input_name()
-        ),
-    })
+    Err(format!(
+        "{}: a MOTION or GCON that reads a value of the running solver (a reaction, a force, an acceleration) is not simulated: its constraint must hold before the forces are known; forces, DIFFs, REQUESTs and VARIABLEs read them",
+        call.input_name()
+    ))
 }
 
 /// `expressions` of `model` compiled together, the reactions `reactions`

@@ -46,6 +46,10 @@ pub struct Model {
     /// The parts whose coordinates the initial-conditions analysis keeps
     /// (`EXACT`).
     pub exact: Vec<ExactPart>,
+    /// The parts' velocities the dataset gives (`VX ... WZ`), held in the
+    /// initial-conditions analysis of the velocities where the joints
+    /// leave them free; those it leaves out are free.
+    pub given_velocities: Vec<GivenVelocity>,
     /// The sensors, watched after every accepted step.
     pub sensors: Vec<Sensor>,
     /// The acceleration of gravity, in ground.
@@ -502,6 +506,24 @@ pub struct ExactPart {
     pub cm_axes: Matrix3<f64>,
     /// The argument's place in the file.
     pub span: Span,
+}
+
+/// A part's initial velocity components as the dataset gives them (`VX,
+/// VY, VZ` of its VM marker's origin along ground's axes, `WX, WY, WZ`
+/// about its WM marker's axes): each one given is held in the velocities'
+/// initial-conditions analysis where the joints leave it free, as Adams
+/// changes a given velocity only where it disagrees with a joint or a
+/// motion; one left out is "inexact 0", free.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GivenVelocity {
+    /// The part's body, an index into the scene's bodies.
+    pub body: usize,
+    /// The VM marker's origin in the body's frame.
+    pub point: Vector3<f64>,
+    /// The WM marker's axes in the body's (columns).
+    pub axes: Matrix3<f64>,
+    /// `VX, VY, VZ, WX, WY, WZ`, each when given.
+    pub values: [Option<f64>; 6],
 }
 
 /// A `COUPLER`: two or three joints' displacements tied, `Σ scale·q = 0`.

@@ -202,6 +202,55 @@ fn initial_rows(
     rows
 }
 
+/// The velocity components the PARTs give, as equations at `bodies` whose
+/// rates are their residuals (see [`given_velocity_rows`]).
+fn given_velocities(model: &super::Model, bodies: &[BodyMotion<f64>]) -> Vec<Row<f64>> {
+    model
+        .given_velocities
+        .iter()
+        .flat_map(|given| given_velocity_rows(model, given, &bodies[given.body]))
+        .collect()
+}
+
+/// The equations that keep the velocity components a PART gives at their
+/// values (in the analysis of the velocities, as nearly as the joints let
+/// them): `VX, VY, VZ`, the velocity
+/// of the VM marker's origin along ground's axes, `v + ω × r` with `r`
+/// from the centre of mass; `WX, WY, WZ`, the angular velocity about the
+/// WM marker's axes.
+fn given_velocity_rows(
+    model: &super::Model,
+    given: &super::model::GivenVelocity,
+    body: &BodyMotion<f64>,
+) -> Vec<Row<f64>> {
+    let arm = body.rotation * (given.point - model.masses[given.body].centre);
+    let axes = body.rotation * given.axes;
+    let row = |rate: f64, linear: Vector3<f64>, angular: Vector3<f64>| Row {
+        value: 0.0,
+        rate,
+        bias: 0.0,
+        coefficients: vec![(
+            given.body,
+            [
+                linear.x, linear.y, linear.z, angular.x, angular.y, angular.z,
+            ],
+        )],
+    };
+    let mut rows = Vec::new();
+    for (k, value) in given.values.iter().enumerate() {
+        let Some(value) = value else { continue };
+        if k < 3 {
+            let along = Vector3::ith(k, 1.0);
+            let velocity = body.velocity + body.omega.cross(&arm);
+            rows.push(row(velocity[k] - value, along, arm.cross(&along)));
+        } else {
+            let axis = axes.column(k - 3).into_owned();
+            rows.push(row(body.omega.dot(&axis) - value, Vector3::zeros(), axis));
+        }
+    }
+    rows
+}
+
 /// The equations that keep the coordinates `part` lists at their drawn
 /// values (in the analysis of the positions only: their rates and biases
 /// are not used). All three angles are kept together through the turn

@@ -5,7 +5,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
 
 use super::rows::{BodyMotion, Row};
-use super::{Imposed, active_rows, initial_rows, joint_rows};
+use super::{Imposed, active_rows, given_velocities, initial_rows, joint_rows};
 use crate::number::Number;
 use crate::simulate::Model;
 
@@ -435,6 +435,85 @@ fn least_change(
         .collect())
 }
 
+/// The change of the velocities at `bodies` in the initial-conditions
+/// analysis when PARTs give velocities: it holds the equations `held`
+/// (the joints', motions' and their initial velocities'), comes as near as
+/// they let it to the velocities the PARTs give (`given`, least squares of
+/// their residuals: a given velocity the joints leave free is kept
+/// exactly), and is otherwise the least in the metric of the masses and
+/// inertias. Worked out in coordinates scaled by `M^(1/2)`, where that
+/// metric is Euclidean: `x₁ = −H⁺ r` holds the equations with the least
+/// change, `P = I − H⁺H` spans what they leave free, and `x = x₁ + P w`
+/// with `w = −(A P)⁺ (r_A + A x₁)` the least-norm least-squares fit of
+/// the given rows `A` (pseudo-inverses from the singular values, below
+/// `1e-10` of `H`'s and `A`'s largest taken as zero: nearly dependent rows
+/// are not amplified).
+fn given_velocity_change(
+    model: &Model,
+    held: &[Row<f64>],
+    given: &[Row<f64>],
+    bodies: &[BodyMotion<f64>],
+    inverse_inertia: &[Matrix3<f64>],
+) -> Vec<[f64; 6]> {
+    let width = 6 * bodies.len();
+    // The inverse square root of the metric, body by body.
+    let mut root = DMatrix::zeros(width, width);
+    for (body, inverse) in inverses(model, bodies, inverse_inertia, true)
+        .iter()
+        .enumerate()
+    {
+        let linear = inverse.linear.sqrt();
+        let eigen = nalgebra::SymmetricEigen::new(inverse.angular);
+        let angular = eigen.eigenvectors
+            * Matrix3::from_diagonal(&eigen.eigenvalues.map(|value| value.max(0.0).sqrt()))
+            * eigen.eigenvectors.transpose();
+        for k in 0..3 {
+            root[(6 * body + k, 6 * body + k)] = linear;
+        }
+        root.view_mut((6 * body + 3, 6 * body + 3), (3, 3))
+            .copy_from(&angular);
+    }
+    let scaled_rows = |rows: &[Row<f64>]| {
+        let mut dense = DMatrix::zeros(rows.len(), width);
+        for (index, row) in rows.iter().enumerate() {
+            for (body, coefficients) in &row.coefficients {
+                for (k, c) in coefficients.iter().enumerate() {
+                    dense[(index, 6 * body + k)] += c;
+                }
+            }
+        }
+        let residuals = DVector::from_iterator(rows.len(), rows.iter().map(|row| row.rate));
+        (dense * &root, residuals)
+    };
+    // The pseudo-inverse of `matrix`, its singular values below `1e-10`
+    // of `scale`'s largest taken as zero.
+    let pseudo_inverse = |matrix: &DMatrix<f64>, scale: &DMatrix<f64>| {
+        if matrix.is_empty() {
+            return DMatrix::zeros(matrix.ncols(), matrix.nrows());
+        }
+        let largest = scale.clone().singular_values().max();
+        let floor = (1e-10 * largest).max(f64::MIN_POSITIVE);
+        matrix
+            .clone()
+            .svd(true, true)
+            .pseudo_inverse(floor)
+            .unwrap_or_else(|_| DMatrix::zeros(matrix.ncols(), matrix.nrows()))
+    };
+    let (h, r) = scaled_rows(held);
+    let (a, r_a) = scaled_rows(given);
+    let h_plus = pseudo_inverse(&h, &h);
+    let x1 = -(&h_plus * r);
+    let free = DMatrix::identity(width, width) - &h_plus * &h;
+    // What the equations fix leaves rounding in `A P`: measured against
+    // `A`'s own scale, not amplified.
+    let fit = &a * &free;
+    let w = -(pseudo_inverse(&fit, &a) * (r_a + &a * &x1));
+    let change = &root * (x1 + &free * w);
+    (0..bodies.len())
+        .map(|body| std::array::from_fn(|k| change[6 * body + k]))
+        .collect()
+}
+
 /// Newton iterations on the positions at most.
 const POSITION_ITERATIONS: usize = 40;
 
@@ -584,6 +663,16 @@ pub(crate) fn project(
     // equations are `rows`: outside the initial analysis the velocities
     // hold the same equations.
     let velocity_change = |bodies: &[BodyMotion<f64>], rows: &[Row<f64>]| {
+        if initial && !model.given_velocities.is_empty() {
+            let given = given_velocities(model, bodies);
+            return Ok(given_velocity_change(
+                model,
+                &held(bodies, true),
+                &given,
+                bodies,
+                inverse_inertia,
+            ));
+        }
         let velocity_rows = initial.then(|| held(bodies, true));
         least_change(
             model,

@@ -72,7 +72,22 @@ pub(crate) struct Mechanics<'m> {
     /// The Jacobian's pattern and evaluator, built when first asked for.
     /// The count is the number of directions the evaluator seeds.
     jacobian: Option<(Sparsity, DualEvaluator<'m>, usize)>,
+    /// The values of the running solver the program itself reads (a
+    /// force that reads a joint's reaction, as joint friction does), each
+    /// solved with the motion it acts on ([`Mechanics::settle`]).
+    loop_values: Vec<RunValue>,
+    /// The loop values at the last state settled: the next state's first
+    /// guess.
+    settled: Vec<f64>,
+    /// `I − ∂g/∂z` of the last settling, factorised: Newton's matrix of the
+    /// map `g` from the loop values the forces read to those they give,
+    /// kept from state to state while Newton's iterations contract with it.
+    settling_matrix: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
 }
+
+/// At most this many of Newton's iterations settle the loop values at one
+/// state.
+const SETTLING_ITERATIONS: usize = 30;
 
 /// The evaluator of the Jacobian's dual numbers: a size fixed at compile
 /// time for up to 4 directions (DIFFs only) and for one, two and three body
@@ -139,6 +154,10 @@ impl<'m> Mechanics<'m> {
             .map(|diff| output_of[diff.function])
             .collect();
         let inverse_inertia = model.inverse_inertia();
+        let loop_values: Vec<RunValue> = solver_calls
+            .iter()
+            .map(|call| RunValue::of(model, call).expect("checked when compiled"))
+            .collect();
         Mechanics {
             equations: Equations {
                 model,
@@ -153,6 +172,9 @@ impl<'m> Mechanics<'m> {
             values: program.evaluator(),
             buffers: Buffers::new(program),
             jacobian: None,
+            settled: vec![0.0; loop_values.len()],
+            loop_values,
+            settling_matrix: None,
         }
     }
 
@@ -170,9 +192,120 @@ impl<'m> Mechanics<'m> {
         held: Option<&[Option<Code>]>,
         rates: &mut [f64],
     ) -> Result<(), OutputError> {
+        self.settle(t, y, held)?;
         self.values.at_time(t);
+        let fixed = Fixed {
+            sites: held,
+            loop_values: &self.settled,
+        };
         self.equations
-            .rates(&mut self.values, t, y, held, rates, &mut self.buffers)
+            .rates(&mut self.values, t, y, fixed, rates, &mut self.buffers)
+    }
+
+    /// Solves the loop values at `(t, y)` with the sites on `held` into
+    /// [`settled`](Mechanics::settled): the values `z` of the running
+    /// solver the program's forces read are those the forces give, `z =
+    /// g(z)`, where `g` evaluates the forces with `z`, solves the joints'
+    /// multipliers and takes the reactions (accelerations, net forces ...)
+    /// the forces read. Newton's iterations on `z − g(z)`, the matrix `I −
+    /// ∂g/∂z` by forward differences of `g` (a few values: one column per
+    /// value read), kept from state to state while the iterations contract
+    /// with it. A force linear in the reactions settles in one iteration.
+    fn settle(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+    ) -> Result<(), OutputError> {
+        if self.loop_values.is_empty() {
+            return Ok(());
+        }
+        let calls = std::mem::take(&mut self.loop_values);
+        let settled = self.settle_values(t, y, held, &calls);
+        self.loop_values = calls;
+        self.settled = settled?;
+        Ok(())
+    }
+
+    /// The loop values `calls` settled at `(t, y)` (see
+    /// [`settle`](Mechanics::settle)), from the last state's.
+    fn settle_values(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        calls: &[RunValue],
+    ) -> Result<Vec<f64>, OutputError> {
+        let mut guess = self.settled.clone();
+        let mut fresh = false;
+        let mut last_size = f64::INFINITY;
+        for _ in 0..SETTLING_ITERATIONS {
+            let given = self.values_at(t, y, held, &guess, calls)?;
+            let residual = nalgebra::DVector::from_iterator(
+                guess.len(),
+                given.iter().zip(&guess).map(|(g, z)| g - z),
+            );
+            let scale = given
+                .iter()
+                .chain(&guess)
+                .fold(0.0_f64, |largest, value| largest.max(value.abs()));
+            let settled = residual
+                .iter()
+                .zip(given.iter().zip(&guess))
+                .all(|(r, (g, z))| r.abs() <= 1e-13 * (g.abs() + z.abs()) + 1e-15 * scale);
+            let size = residual.amax();
+            // Below a millionth of the values, a residual that stops
+            // shrinking is the rounding of the joints' solve.
+            if settled || (size >= last_size && size <= 1e-9 * scale) {
+                return Ok(given);
+            }
+            // A matrix that does not contract the residual tenfold is
+            // worked out again at this guess, once.
+            if self.settling_matrix.is_none() || (size > 0.1 * last_size && !fresh) {
+                self.settling_matrix =
+                    Some(self.settling_matrix_at(t, y, held, &guess, &given, calls)?);
+                fresh = true;
+            }
+            last_size = size;
+            let matrix = self.settling_matrix.as_ref().expect("worked out above");
+            let step = matrix
+                .solve(&residual)
+                .ok_or_else(|| unsettled(self.equations.program, &self.equations.sources))?;
+            for (value, change) in guess.iter_mut().zip(step.iter()) {
+                *value += change;
+            }
+        }
+        Err(unsettled(self.equations.program, &self.equations.sources))
+    }
+
+    /// `I − ∂g/∂z` at `guess`, where `g(guess) = given`, by forward
+    /// differences, factorised.
+    fn settling_matrix_at(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        guess: &[f64],
+        given: &[f64],
+        calls: &[RunValue],
+    ) -> Result<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>, OutputError> {
+        let count = guess.len();
+        let mut matrix = DMatrix::identity(count, count);
+        let mut moved = guess.to_vec();
+        for column in 0..count {
+            let step = 1e-7
+                * guess[column]
+                    .abs()
+                    .max(1e-3 * given[column].abs())
+                    .max(1e-7);
+            moved[column] = guess[column] + step;
+            let changed = self.values_at(t, y, held, &moved, calls)?;
+            moved[column] = guess[column];
+            for row in 0..count {
+                matrix[(row, column)] -= (changed[row] - given[row]) / step;
+            }
+        }
+        Ok(matrix.lu())
     }
 
     /// `(t, y)` is an accepted state of the run: the program's AX, AY, AZ
@@ -217,6 +350,7 @@ impl<'m> Mechanics<'m> {
         branches: (&mut [Option<Code>], &mut [f64]),
         tolerance: Option<f64>,
     ) -> Result<f64, OutputError> {
+        self.settle(t, y, held)?;
         self.values.at_time(t);
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
@@ -226,7 +360,7 @@ impl<'m> Mechanics<'m> {
             t,
             y,
             &kinematics,
-            &[],
+            &self.settled,
             &mut buffers.inputs,
         );
         reorient(&mut self.values, &kinematics);
@@ -265,12 +399,28 @@ impl<'m> Mechanics<'m> {
     }
 
     /// The values `values` of the running solver at `(t, y)`, all branches
-    /// natural: the reactions solved and the accelerations of the
-    /// right-hand side worked out once each, when some value needs them.
+    /// natural, the loop values settled.
     pub(crate) fn run_values(
         &mut self,
         t: f64,
         y: &[f64],
+        values: &[RunValue],
+    ) -> Result<Vec<f64>, OutputError> {
+        self.settle(t, y, None)?;
+        let settled = self.settled.clone();
+        self.values_at(t, y, None, &settled, values)
+    }
+
+    /// The values `values` of the running solver at `(t, y)` with the
+    /// sites on `held`, the program reading the loop values `solved`: the
+    /// reactions solved and the accelerations of the right-hand side worked
+    /// out once each, when some value needs them.
+    fn values_at(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        solved: &[f64],
         values: &[RunValue],
     ) -> Result<Vec<f64>, OutputError> {
         self.values.at_time(t);
@@ -278,7 +428,7 @@ impl<'m> Mechanics<'m> {
             .iter()
             .any(|value| matches!(value, RunValue::Reaction(_) | RunValue::NetForce(_)))
         {
-            Some(self.reactions(t, y)?)
+            Some(self.reactions(t, y, held, solved)?)
         } else {
             None
         };
@@ -287,7 +437,12 @@ impl<'m> Mechanics<'m> {
             .any(|value| matches!(value, RunValue::Acceleration(_)))
         {
             let mut rates = vec![0.0; self.dimension()];
-            self.rates(t, y, None, &mut rates)?;
+            let fixed = Fixed {
+                sites: held,
+                loop_values: solved,
+            };
+            self.equations
+                .rates(&mut self.values, t, y, fixed, &mut rates, &mut self.buffers)?;
             let model = self.equations.model;
             let offsets = (0..model.scene.bodies.len()).map(|body| body_offset(model, body));
             Some(Accelerations::new(
@@ -306,10 +461,10 @@ impl<'m> Mechanics<'m> {
             .any(|value| matches!(value, RunValue::Element(_) | RunValue::NetForce(_)))
         {
             let inputs = &mut self.buffers.inputs;
-            fill_inputs(&equations.sources, t, y, &kinematics, &[], inputs);
+            fill_inputs(&equations.sources, t, y, &kinematics, solved, inputs);
             reorient(&mut self.values, &kinematics);
             self.values
-                .outputs(inputs, None, &mut self.buffers.outputs)?;
+                .outputs(inputs, held, &mut self.buffers.outputs)?;
         }
         let outputs = &self.buffers.outputs;
         let expression_value = |expression| equations.value_of(outputs, expression);
@@ -340,11 +495,21 @@ impl<'m> Mechanics<'m> {
             .collect()
     }
 
-    /// The reactions of the joints, primitives and motions at `(t, y)`, all
-    /// branches natural.
-    fn reactions(&mut self, t: f64, y: &[f64]) -> Result<Reactions, OutputError> {
+    /// The reactions of the joints, primitives and motions at `(t, y)`, with
+    /// the sites on `held` and the program reading the loop values `solved`.
+    fn reactions(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        solved: &[f64],
+    ) -> Result<Reactions, OutputError> {
         let equations = &self.equations;
-        let solved = equations.solve(&mut self.values, t, y, None, &mut self.buffers)?;
+        let fixed = Fixed {
+            sites: held,
+            loop_values: solved,
+        };
+        let solved = equations.solve(&mut self.values, t, y, fixed, &mut self.buffers)?;
         let drives = equations.drives.at(t).ok_or_else(joints_singular)?;
         let multipliers = solved.multipliers.unwrap_or_default();
         Ok(Reactions::new(
@@ -391,6 +556,9 @@ impl<'m> Mechanics<'m> {
         values: &mut [f64],
     ) -> Result<(), OutputError> {
         self.sparsity();
+        if !self.loop_values.is_empty() {
+            return self.differenced_jacobian(t, y, held, values);
+        }
         let Some((sparsity, duals, count)) = &mut self.jacobian else {
             unreachable!("built above");
         };
@@ -406,6 +574,43 @@ impl<'m> Mechanics<'m> {
             };
         }
         fill_with!(One, Two, Three, Four, OneBody, TwoBodies, ThreeBodies, Many)
+    }
+
+    /// The Jacobian of a program that reads loop values, by central
+    /// differences of the rates (each settling its loop values; the
+    /// pattern is dense): exact derivatives would need the joints' solve and
+    /// the reactions over dual numbers. Right to about `1e-8` of the
+    /// entries, which Radau5's Newton iterations only need roughly.
+    fn differenced_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        values: &mut [f64],
+    ) -> Result<(), OutputError> {
+        let n = y.len();
+        let centre = self.settled.clone();
+        let mut moved = y.to_vec();
+        let mut ahead = vec![0.0; n];
+        let mut behind = vec![0.0; n];
+        let mut columns = DMatrix::zeros(n, n);
+        for column in 0..n {
+            let step = f64::EPSILON.cbrt() * y[column].abs().max(1.0);
+            moved[column] = y[column] + step;
+            self.rates(t, &moved, held, &mut ahead)?;
+            self.settled.clone_from(&centre);
+            moved[column] = y[column] - step;
+            self.rates(t, &moved, held, &mut behind)?;
+            self.settled.clone_from(&centre);
+            moved[column] = y[column];
+            for row in 0..n {
+                columns[(row, column)] = (ahead[row] - behind[row]) / (2.0 * step);
+            }
+        }
+        for (value, entry) in values.iter_mut().zip(self.pattern().entries()) {
+            *value = columns[entry];
+        }
+        Ok(())
     }
 
     /// `d(dy/dt)/dy` at `(t, y)` with the sites on `held`, into the dense
@@ -502,6 +707,15 @@ struct Solved<T: Number> {
     massless: Vec<(usize, [T; 6])>,
 }
 
+/// What one evaluation of the equations holds fixed: the branch of each
+/// site (`None`: every branch natural) and the loop values the program
+/// reads ([`Mechanics::settle`]).
+#[derive(Clone, Copy)]
+struct Fixed<'a> {
+    sites: Option<&'a [Option<Code>]>,
+    loop_values: &'a [f64],
+}
+
 /// The program's inputs and outputs, kept from call to call.
 struct Buffers<T> {
     inputs: Vec<T>,
@@ -574,12 +788,12 @@ impl Equations<'_> {
         evaluator: &mut Evaluator<'_, T>,
         t: f64,
         y: &[T],
-        held: Option<&[Option<Code>]>,
+        fixed: Fixed<'_>,
         rates: &mut [T],
         buffers: &mut Buffers<T>,
     ) -> Result<(), OutputError> {
         let model = self.model;
-        let solved = self.solve(evaluator, t, y, held, buffers)?;
+        let solved = self.solve(evaluator, t, y, fixed, buffers)?;
         let outputs = &buffers.outputs;
         for (rate, output) in rates.iter_mut().zip(&self.diff_outputs) {
             *rate = output.map_or_else(T::zero, |output| outputs[output].clone());
@@ -621,20 +835,27 @@ impl Equations<'_> {
 
     /// The bodies' kinematics at `(t, y)` and the loads on them, the joints'
     /// reactions among them, with the joints' multipliers (the program's
-    /// outputs left in `buffers`).
+    /// outputs left in `buffers`), with what `fixed` holds.
     fn solve<T: Number>(
         &self,
         evaluator: &mut Evaluator<'_, T>,
         t: f64,
         y: &[T],
-        held: Option<&[Option<Code>]>,
+        fixed: Fixed<'_>,
         buffers: &mut Buffers<T>,
     ) -> Result<Solved<T>, OutputError> {
         let model = self.model;
         let kinematics = self.kinematics(y);
-        fill_inputs(&self.sources, t, y, &kinematics, &[], &mut buffers.inputs);
+        fill_inputs(
+            &self.sources,
+            t,
+            y,
+            &kinematics,
+            fixed.loop_values,
+            &mut buffers.inputs,
+        );
         reorient(evaluator, &kinematics);
-        evaluator.outputs(&buffers.inputs, held, &mut buffers.outputs)?;
+        evaluator.outputs(&buffers.inputs, fixed.sites, &mut buffers.outputs)?;
         let outputs = &buffers.outputs;
         let bodies = model.scene.bodies.len();
         let mut loads = Loads {
@@ -690,7 +911,13 @@ impl Equations<'_> {
             .collect();
         let mut rates = vec![T::zero(); y.len()];
         let mut buffers = Buffers::new(self.program);
-        self.rates(evaluator, t, &seeded, held, &mut rates, &mut buffers)?;
+        // Programs that read loop values are differentiated by differences
+        // instead (`Mechanics::sparse_jacobian`).
+        let fixed = Fixed {
+            sites: held,
+            loop_values: &[],
+        };
+        self.rates(evaluator, t, &seeded, fixed, &mut rates, &mut buffers)?;
         for (row, rate) in rates.iter().enumerate() {
             let gradient = rate.gradient(count);
             for &(position, direction) in sparsity.row(row) {
@@ -698,5 +925,29 @@ impl Equations<'_> {
             }
         }
         Ok(())
+    }
+}
+
+/// The error of loop values that Newton's iterations do not settle: the
+/// first output of `program` that reads one (its sources in `sources`).
+fn unsettled(program: &Program, sources: &[Source]) -> OutputError {
+    let output = program
+        .inputs_of_outputs()
+        .iter()
+        .position(|inputs| {
+            inputs
+                .iter()
+                .any(|&input| matches!(sources[input], Source::Solver(_)))
+        })
+        .unwrap_or(0);
+    OutputError {
+        output,
+        error: EvalError::Law {
+            error: crate::laws::LawError::Domain {
+                operation: "a force that reads the running solver's values",
+                reason: "the values it reads (reactions, accelerations, forces) and those the motion gives do not settle to one at this state: Newton's iterations on them diverge, as at a joint that friction locks, or where a force reads its own value with a gain of 1".to_string(),
+            },
+            span: crate::Span::default(),
+        },
     }
 }

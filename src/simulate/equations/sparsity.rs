@@ -17,6 +17,10 @@
 //! element and DIFF is differentiated only in the states it reads: a stack
 //! or chain of bodies, whose rates read a body and its two neighbours, needs
 //! three body colours (39 directions) whatever its length.
+//!
+//! A program that reads values of the running solver (a force reading a
+//! joint's reaction) has a dense pattern: those values are settled with
+//! the motion of every body.
 
 use super::forces::body_of;
 use super::{BODY_STATES, Source, body_offset};
@@ -133,6 +137,17 @@ impl Sparsity {
             read.dedup();
             for &body in &component {
                 reads[body].clone_from(&read);
+            }
+        }
+        // The values of the running solver a force reads (a joint's
+        // reaction ...) are settled with every body's motion: every rate
+        // may read every state.
+        if sources
+            .iter()
+            .any(|source| matches!(source, Source::Solver(_)))
+        {
+            for read in &mut reads {
+                *read = (0..groups).collect();
             }
         }
         for read in &mut reads {

@@ -256,6 +256,7 @@ impl Reader<'_> {
             &mut self.errors,
         );
         let exact = super::exact::exact_parts(self.dataset, &self.scene, &masses, &mut self.errors);
+        let given_velocities = super::exact::given_velocities(self.dataset, &self.scene);
         let gravity = self.gravity();
         let outputs = self.outputs(&mut notes);
         let sensors = self.sensors();
@@ -272,6 +273,7 @@ impl Reader<'_> {
             general_constraints,
             joint_initials,
             exact,
+            given_velocities,
             sensors,
             gravity,
             expressions: std::mem::take(&mut self.expressions),

@@ -1,13 +1,17 @@
 //! `PART ..., EXACT = X:Y:Z:PSI:THETA:PHI`: the part coordinates the
-//! initial-conditions analysis must not change.
+//! initial-conditions analysis must not change; and `PART ..., VX = ...,
+//! WZ = ...`: the part velocities it keeps where the joints leave them
+//! free.
 
 use nalgebra::Matrix3;
 
+use crate::check::Reference;
 use crate::model::initial::number;
 use crate::model::{Dataset, Value, is_kind};
 use crate::scene::Scene;
+use crate::scene::Target;
 use crate::simulate::error::SimulateError;
-use crate::simulate::model::{ExactPart, MassProperties};
+use crate::simulate::model::{ExactPart, GivenVelocity, MassProperties};
 
 /// The coordinates `EXACT` may name, in Adams' order.
 const COORDINATES: [&str; 6] = ["X", "Y", "Z", "PSI", "THETA", "PHI"];
@@ -85,4 +89,53 @@ pub(super) fn exact_parts(
         });
     }
     parts
+}
+
+/// The velocity keywords of a PART, in [`GivenVelocity::values`]' order.
+const VELOCITIES: [&str; 6] = ["VX", "VY", "VZ", "WX", "WY", "WZ"];
+
+/// The parts of `dataset` that give any of `VX ... WZ`, with their VM and
+/// WM markers (the CM marker's when left out) in `scene`'s bodies. A value
+/// or a marker that cannot be read is reported where the scene is read.
+pub(super) fn given_velocities(dataset: &Dataset, scene: &Scene) -> Vec<GivenVelocity> {
+    let mut given = Vec::new();
+    for statement in &dataset.statements {
+        if !is_kind(&statement.name, "PART") || statement.argument("GROUND", 3).is_some() {
+            continue;
+        }
+        let values = VELOCITIES.map(|keyword| {
+            statement
+                .argument(keyword, 2)
+                .and_then(|_| number(statement, keyword, f64::NAN).ok())
+                .filter(|value| value.is_finite())
+        });
+        if values.iter().all(Option::is_none) {
+            continue;
+        }
+        let label = statement.label();
+        let Some(body) = scene.bodies.iter().position(|body| body.name == label) else {
+            continue;
+        };
+        let marker = |keyword: &str| {
+            let id = number(statement, keyword, f64::NAN).ok()?;
+            (id.fract() == 0.0 && id >= 0.0).then_some(())?;
+            match scene.find_marker(&Reference::Id(id as u64)).ok()? {
+                Target::Marker(index) if scene.markers[index].body == Some(body) => {
+                    Some(&scene.markers[index])
+                }
+                _ => None,
+            }
+        };
+        let cm = marker("CM");
+        let (Some(at), Some(about)) = (marker("VM").or(cm), marker("WM").or(cm)) else {
+            continue;
+        };
+        given.push(GivenVelocity {
+            body,
+            point: at.position,
+            axes: about.orientation.to_rotation_matrix().into_inner(),
+            values,
+        });
+    }
+    given
 }

@@ -153,6 +153,7 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         general_constraints: Vec::new(),
         joint_initials: Vec::new(),
         exact: Vec::new(),
+        given_velocities: Vec::new(),
         sensors: Vec::new(),
         scene: reader.scene,
         masses,

@@ -424,10 +424,20 @@ impl Simulation<'_> {
             reactions,
             values: Vec::new(),
         };
-        let fail = |time: f64, error: OutputError| SimulateError::Evaluation {
-            time,
-            expression: self.expression_of(program, error.output),
-            error: error.error,
+        let fail = |time: f64, error: OutputError| {
+            if error.output == JOINTS {
+                SimulateError::Integration {
+                    time,
+                    message: error.error.to_string(),
+                    cause: None,
+                }
+            } else {
+                SimulateError::Evaluation {
+                    time,
+                    expression: self.expression_of(program, error.output),
+                    error: error.error,
+                }
+            }
         };
         let mut y0 = initial_state(model);
         let offsets = body_offsets(model);
