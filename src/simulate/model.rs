@@ -529,6 +529,9 @@ pub struct GivenVelocity {
 /// A `COUPLER`: two or three joints' displacements tied, `Σ scale·q = 0`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Coupler {
+    /// The statement's kind: `COUPLER`, or `GEAR` (a coupler whose scales
+    /// its CV marker's place gives).
+    pub statement: &'static str,
     /// The statement id.
     pub id: u64,
     /// Each coupled joint (an index into [`Model::joints`]), whether its

@@ -503,7 +503,7 @@ pub(crate) fn owner_of_row(model: &super::Model, row: usize) -> String {
             model
                 .couplers
                 .iter()
-                .map(|coupler| format!("COUPLER/{}", coupler.id)),
+                .map(|coupler| format!("{}/{}", coupler.statement, coupler.id)),
         )
         .chain(
             model

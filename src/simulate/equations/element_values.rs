@@ -163,7 +163,7 @@ impl NetForce {
                     between(&joint.i, &joint.j)
                 })
             })
-            .map(|coupler| format!("COUPLER/{}", coupler.id));
+            .map(|coupler| format!("{}/{}", coupler.statement, coupler.id));
         if let Some(holder) = unknown {
             return Err(format!(
                 "{}: {holder} acts there and its reaction is not computed yet, so the net force would leave it out",

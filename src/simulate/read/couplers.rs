@@ -1,10 +1,15 @@
 //! The `COUPLER` statements: two or three joints' displacements tied by
 //! their scales, `s₁ q₁ + s₂ q₂ (+ s₃ q₃) = 0`, each `q` a REVOLUTE's
 //! rotation, a TRANSLATIONAL's translation, or either of a CYLINDRICAL's as
-//! its `TYPE` says.
+//! its `TYPE` says; and the `GEAR` statements, couplers whose scales the
+//! place of their common-velocity marker gives.
 
-use crate::model::initial::number_list;
+use nalgebra::{Matrix3, Vector3};
+
+use crate::check::Reference;
+use crate::model::initial::{number, number_list};
 use crate::model::{Argument, Dataset, Statement, Value, is_kind};
+use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{Coupler, Joint, JointKind};
 use crate::span::Span;
@@ -42,6 +47,25 @@ fn required<'s>(
             statement.span,
         )
     })
+}
+
+/// The index among `joints` of the joint `id` that `listed` names in the
+/// statement `label`, or the message that it names none.
+fn joint_index(
+    joints: &[Joint],
+    id: f64,
+    label: &str,
+    listed: &Argument,
+) -> Result<usize, (String, Span)> {
+    joints
+        .iter()
+        .position(|joint| joint.id as f64 == id)
+        .ok_or_else(|| {
+            (
+                format!("{label}: JOINT/{id} is not a joint of the model"),
+                listed.span,
+            )
+        })
 }
 
 /// The coupler `statement` gives among `joints`, or why it gives none.
@@ -96,15 +120,7 @@ fn coupler(statement: &Statement, joints: &[Joint]) -> Result<Coupler, (String, 
     };
     let mut coupled = Vec::new();
     for (k, (&id, &scale)) in ids.iter().zip(&scales).enumerate() {
-        let index = joints
-            .iter()
-            .position(|joint| joint.id as f64 == id)
-            .ok_or_else(|| {
-                (
-                    format!("{label}: JOINT/{id} is not a joint of the model"),
-                    listed.span,
-                )
-            })?;
+        let index = joint_index(joints, id, &label, listed)?;
         let written = types.get(k).map(String::as_str);
         let rotation = match (joints[index].kind, written) {
             (JointKind::Revolute, None | Some("R")) | (JointKind::Cylindrical, Some("R")) => true,
@@ -129,6 +145,153 @@ fn coupler(statement: &Statement, joints: &[Joint]) -> Result<Coupler, (String, 
         coupled.push((index, rotation, scale));
     }
     Ok(Coupler {
+        statement: "COUPLER",
+        id: statement.id.unwrap_or(0),
+        joints: coupled,
+        span: statement.span,
+    })
+}
+
+/// The `GEAR` statements of `dataset` among `joints`, as couplers; what
+/// cannot be read is recorded in `errors` at its place.
+pub(super) fn gears(
+    dataset: &Dataset,
+    joints: &[Joint],
+    scene: &Scene,
+    errors: &mut Vec<SimulateError>,
+) -> Vec<Coupler> {
+    dataset
+        .statements
+        .iter()
+        .filter(|statement| is_kind(&statement.name, "GEAR"))
+        .filter_map(|statement| match gear(statement, joints, scene) {
+            Ok(gear) => Some(gear),
+            Err((message, span)) => {
+                errors.push(SimulateError::Model { message, span });
+                None
+            }
+        })
+        .collect()
+}
+
+/// `target`'s body, its origin and its axes (columns) in ground, where the
+/// scene draws it.
+fn drawn(scene: &Scene, target: Target) -> (Option<usize>, Vector3<f64>, Matrix3<f64>) {
+    match target {
+        Target::Ground => (None, Vector3::zeros(), Matrix3::identity()),
+        Target::Marker(index) => {
+            let marker = &scene.markers[index];
+            let own = marker.orientation.to_rotation_matrix().into_inner();
+            let axes = marker.body.map_or(own, |body| {
+                scene.bodies[body]
+                    .orientation
+                    .to_rotation_matrix()
+                    .into_inner()
+                    * own
+            });
+            (marker.body, scene.origin(target), axes)
+        }
+    }
+}
+
+/// The gear `statement` gives among `joints`, or why it gives none.
+///
+/// Adams' GEAR: two joints (REVOLUTE, TRANSLATIONAL or CYLINDRICAL) that
+/// share a part, the carrier, which holds the common-velocity marker CV at
+/// the teeth's contact, its z axis along their motion; the contact point
+/// moves alike along that axis as a point of either gear. Relative to the
+/// carrier a joint's rotation `q̇` moves it at `q̇ z × (c − o)` and its
+/// translation at `q̇ z` (`o`, `z`: the joint's J origin and axis, `c`:
+/// CV's origin), all fixed in the carrier: so `k₁ q̇₁ = k₂ q̇₂` with `k =
+/// ±(z × (c − o))·z_CV` or `±z·z_CV` (the sign − for a joint whose I
+/// marker is on the carrier), a coupler with scales `k₁, −k₂`.
+fn gear(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Coupler, (String, Span)> {
+    let label = statement.label();
+    let listed = required(statement, "JOINTS", "the two joints it gears")?;
+    let ids = number_list(statement, listed).unwrap_or_default();
+    if ids.len() != 2 {
+        return Err((format!("{label}: JOINTS names two joints"), listed.span));
+    }
+    let cv_argument = required(
+        statement,
+        "CV",
+        "the common-velocity marker, at the teeth's contact, its z axis along their motion",
+    )?;
+    let cv = number(statement, "CV", f64::NAN)
+        .ok()
+        .filter(|id| id.fract() == 0.0 && *id > 0.0)
+        .and_then(|id| scene.find_marker(&Reference::Id(id as u64)).ok())
+        .filter(|target| matches!(target, Target::Marker(_)))
+        .ok_or_else(|| {
+            (
+                format!("{label}: CV must name a MARKER of the model"),
+                cv_argument.span,
+            )
+        })?;
+    let (carrier, contact, cv_axes) = drawn(scene, cv);
+    let along = cv_axes.column(2).into_owned();
+    let body_of = |target: Target| drawn(scene, target).0;
+    let mut coupled = Vec::new();
+    for (k, &id) in ids.iter().enumerate() {
+        let index = joint_index(joints, id, &label, listed)?;
+        let joint = &joints[index];
+        let (turns, slides) = match joint.kind {
+            JointKind::Revolute => (true, false),
+            JointKind::Translational => (false, true),
+            JointKind::Cylindrical => (true, true),
+            _ => {
+                return Err((
+                    format!(
+                        "{label}: gears JOINT/{id}, which is not a REVOLUTE, TRANSLATIONAL or CYLINDRICAL joint"
+                    ),
+                    listed.span,
+                ));
+            }
+        };
+        let sign = if body_of(joint.j) == carrier {
+            1.0
+        } else if body_of(joint.i) == carrier {
+            -1.0
+        } else {
+            return Err((
+                format!(
+                    "{label}: the CV marker must be on the part both joints hold (the carrier), and JOINT/{id} does not hold the CV marker's part"
+                ),
+                cv_argument.span,
+            ));
+        };
+        // The first gear's contact velocity equals the second's.
+        let side = if k == 0 { sign } else { -sign };
+        let (_, origin, axes) = drawn(scene, joint.j);
+        let axis = axes.column(2).into_owned();
+        let arm = contact - origin;
+        let size = 1.0 + arm.norm();
+        let mut moves = false;
+        if turns {
+            let scale = axis.cross(&arm).dot(&along);
+            if scale.abs() > 1e-9 * size {
+                coupled.push((index, true, side * scale));
+                moves = true;
+            }
+        }
+        if slides {
+            let scale = axis.dot(&along);
+            if scale.abs() > 1e-9 {
+                coupled.push((index, false, side * scale));
+                moves = true;
+            }
+        }
+        if !moves {
+            return Err((
+                format!(
+                    "{label}: JOINT/{id} does not move the contact point along the CV marker's z axis (point CV's z along the teeth's motion, at their contact)"
+                ),
+                cv_argument.span,
+            ));
+        }
+    }
+    Ok(Coupler {
+        statement: "GEAR",
         id: statement.id.unwrap_or(0),
         joints: coupled,
         span: statement.span,

@@ -26,7 +26,7 @@ use crate::simulate::model::{
 use crate::span::Span;
 
 /// Statements that need a constraint solver.
-const CONSTRAINTS: [&str; 6] = ["GEAR", "UCON", "PTCV", "CVCV", "FLEX_BODY", "CONSTRAINT"];
+const CONSTRAINTS: [&str; 5] = ["UCON", "PTCV", "CVCV", "FLEX_BODY", "CONSTRAINT"];
 
 /// Statements that take no part in the motion (output, graphics, units,
 /// solver settings and data read by elements that are refused anyway).
@@ -69,9 +69,9 @@ const FORCE_ELEMENTS: [&str; 8] = [
 ];
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`].
-const SIMULATED: [&str; 14] = [
+const SIMULATED: [&str; 15] = [
     "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
-    "JPRIM", "MOTION", "COUPLER", "GCON", "SENSOR",
+    "JPRIM", "MOTION", "COUPLER", "GEAR", "GCON", "SENSOR",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -97,7 +97,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&FORCE_ELEMENTS) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, COUPLER, GCON, SENSOR, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, ACCGRAV)"
+                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, ACCGRAV)"
                     .to_string(),
                 span: statement.span,
             });
@@ -246,7 +246,13 @@ impl Reader<'_> {
         let (forces, force_statements) = self.forces();
         let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
         let (motions, marker_motions) = self.motions(&joints);
-        let couplers = super::couplers::couplers(self.dataset, &joints, &mut self.errors);
+        let mut couplers = super::couplers::couplers(self.dataset, &joints, &mut self.errors);
+        couplers.extend(super::couplers::gears(
+            self.dataset,
+            &joints,
+            &self.scene,
+            &mut self.errors,
+        ));
         let general_constraints = self.general_constraints();
         let joint_initials = super::joints::initials(
             self.dataset,
