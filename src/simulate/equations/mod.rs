@@ -239,6 +239,7 @@ impl<'m> Mechanics<'m> {
         let mut guess = self.settled.clone();
         let mut fresh = false;
         let mut last_size = f64::INFINITY;
+        let mut first_size = None;
         for _ in 0..SETTLING_ITERATIONS {
             let given = self.values_at(t, y, held, &guess, calls)?;
             let residual = nalgebra::DVector::from_iterator(
@@ -254,9 +255,11 @@ impl<'m> Mechanics<'m> {
                 .zip(given.iter().zip(&guess))
                 .all(|(r, (g, z))| r.abs() <= 1e-13 * (g.abs() + z.abs()) + 1e-15 * scale);
             let size = residual.amax();
-            // Below a millionth of the values, a residual that stops
-            // shrinking is the rounding of the joints' solve.
-            if settled || (size >= last_size && size <= 1e-9 * scale) {
+            let first = *first_size.get_or_insert(size);
+            // Below a billionth of the values, and a millionth of where it
+            // started, a residual that stops shrinking is the rounding of
+            // the joints' solve.
+            if settled || (size >= last_size && size <= 1e-9 * scale && size <= 1e-6 * first) {
                 return Ok(given);
             }
             // A matrix that does not contract the residual tenfold is
@@ -292,12 +295,16 @@ impl<'m> Mechanics<'m> {
         let count = guess.len();
         let mut matrix = DMatrix::identity(count, count);
         let mut moved = guess.to_vec();
+        // Each value moved by a ten-millionth of its size, taken no less
+        // than a thousandth of the largest value's (a value at zero beside
+        // large ones), or by 1e-7 when all are zero.
+        let largest = guess
+            .iter()
+            .chain(given)
+            .fold(0.0_f64, |largest, value| largest.max(value.abs()));
+        let floor = if largest > 0.0 { 1e-3 * largest } else { 1.0 };
         for column in 0..count {
-            let step = 1e-7
-                * guess[column]
-                    .abs()
-                    .max(1e-3 * given[column].abs())
-                    .max(1e-7);
+            let step = 1e-7 * (guess[column].abs() + given[column].abs()).max(floor);
             moved[column] = guess[column] + step;
             let changed = self.values_at(t, y, held, &moved, calls)?;
             moved[column] = guess[column];
@@ -305,7 +312,21 @@ impl<'m> Mechanics<'m> {
                 matrix[(row, column)] -= (changed[row] - given[row]) / step;
             }
         }
-        Ok(matrix.lu())
+        // `I − ∂g/∂z` is of the size of 1: a pivot a millionth of that is
+        // a gain of 1 (a force that reads itself with it), which no value
+        // settles.
+        let lu = matrix.lu();
+        let smallest = lu
+            .u()
+            .diagonal()
+            .iter()
+            .fold(f64::INFINITY, |smallest: f64, pivot: &f64| {
+                smallest.min(pivot.abs())
+            });
+        if smallest.is_nan() || smallest < 1e-6 {
+            return Err(unsettled(self.equations.program, &self.equations.sources));
+        }
+        Ok(lu)
     }
 
     /// `(t, y)` is an accepted state of the run: the program's AX, AY, AZ
@@ -529,6 +550,9 @@ impl<'m> Mechanics<'m> {
     /// The Jacobian's pattern and its evaluator, built once.
     fn sparsity(&mut self) -> &Sparsity {
         let equations = &self.equations;
+        // A program that reads loop values is differentiated by
+        // differences: its evaluator over duals is the smallest.
+        let differenced = !self.loop_values.is_empty();
         &self
             .jacobian
             .get_or_insert_with(|| {
@@ -538,8 +562,8 @@ impl<'m> Mechanics<'m> {
                     &equations.sources,
                     &equations.output_of,
                 );
-                let (duals, count) =
-                    DualEvaluator::for_directions(equations.program, sparsity.directions);
+                let directions = if differenced { 1 } else { sparsity.directions };
+                let (duals, count) = DualEvaluator::for_directions(equations.program, directions);
                 (sparsity, duals, count)
             })
             .0
