@@ -142,6 +142,17 @@ pub trait System {
         finite_difference_jacobian(self, t, y, dy, jac)
     }
 
+    /// The rounding floor of each rate at `(t, y)` into `floor`: how far
+    /// below its size rounding leaves a rate (an acceleration whose loads
+    /// cancel). Radau5 measures its Newton increments against no less
+    /// than a multiple of it, since an increment cannot contract below the
+    /// noise of its rate. The default is zero: no floor.
+    fn rounding_floor(&mut self, t: f64, y: &[f64], floor: &mut [f64]) -> Result<(), Self::Error> {
+        let _ = (t, y);
+        floor.fill(0.0);
+        Ok(())
+    }
+
     /// Where the Jacobian's entries can be nonzero, when the system knows
     /// (asked once, when a stepper of the implicit method starts; the
     /// pattern must hold for every state of the run). With a pattern, the

@@ -78,6 +78,10 @@ const T_INVERSE: [[f64; 3]; 3] = [
 const MAX_NEWTON: usize = 7;
 /// The Jacobian is kept while the Newton contraction stays below this.
 const JACOBIAN_REUSE: f64 = 0.001;
+/// A Newton increment is measured against at least this many times its
+/// rate's rounding floor over the step (the joints' solve amplifies the
+/// rounding of the loads by the conditioning of its matrix).
+const FLOOR_MARGIN: f64 = 1000.0;
 /// Safety factor of the step size control.
 const SAFETY: f64 = 0.9;
 /// Bounds of `h / h_new`: a step changes by a factor between 1/5 and 8.
@@ -104,6 +108,9 @@ pub(super) struct Radau5 {
     newton_tolerance: f64,
     /// `atol + rtol |y|` at the start of the step.
     scale: Vec<f64>,
+    /// The system's rounding floor of each rate where the Jacobian was
+    /// last evaluated ([`System::rounding_floor`]).
+    floor: Vec<f64>,
     /// The system's Jacobian: dense, or on the system's pattern.
     jacobian: Jacobian,
     /// The Jacobian may be used at the current state.
@@ -163,6 +170,7 @@ impl Radau5 {
             n,
             newton_tolerance,
             scale: zeros(),
+            floor: zeros(),
             jacobian: Jacobian::zeros(n, pattern.map(Rc::new)),
             jacobian_valid: false,
             jacobian_current: false,
@@ -323,6 +331,13 @@ impl Radau5 {
         if !self.jacobian.values().iter().all(|entry| entry.is_finite()) {
             return Err(IntegrateError::JacobianNotFinite { t: core.t });
         }
+        // A floor the system cannot give is none.
+        if system
+            .rounding_floor(core.t, &core.y, &mut self.floor)
+            .is_err()
+        {
+            self.floor.fill(0.0);
+        }
         self.jacobian_valid = true;
         self.jacobian_current = true;
         self.factorised_for = f64::NAN;
@@ -401,9 +416,14 @@ impl Radau5 {
             }
             self.matrices.solve_real(&mut self.real_rhs);
             self.matrices.solve_complex(&mut self.complex_rhs);
+            // An increment is measured against the tolerance, or against
+            // what the rounding of its rate leaves in it over the step
+            // where that is larger: a velocity that is rounding noise of
+            // a joints' solve cannot contract below it.
             let scaled = (0..n).flat_map(|i| {
                 let (dw1, dw2) = (self.real_rhs[i], self.complex_rhs[i]);
-                [dw1, dw2.re, dw2.im].map(|dw| dw / self.scale[i])
+                let scale = self.scale[i].max(FLOOR_MARGIN * h * self.floor[i]);
+                [dw1, dw2.re, dw2.im].map(|dw| dw / scale)
             });
             let norm = rms(scaled, 3 * n);
             if !norm.is_finite() {

@@ -197,9 +197,79 @@ impl<'m> Mechanics<'m> {
         let fixed = Fixed {
             sites: held,
             loop_values: &self.settled,
+            keep_applied: false,
         };
         self.equations
             .rates(&mut self.values, t, y, fixed, rates, &mut self.buffers)
+    }
+
+    /// The rounding floor of each rate at `(t, y)` with the sites on
+    /// `held`, into `floor`: for a part's accelerations, the rounding of
+    /// the loads summed in them, `ε (|F| + |R| + m |g|) / m` and `ε (|τ| +
+    /// |τ_R| + |R| a) ‖I⁻¹‖` with `R`, `τ_R` the joints' reactions, which
+    /// can cancel the elements' loads and gravity to rounding (a part at
+    /// rest on a slope), and `a` the largest arm from the centre of mass
+    /// to a joint's marker; zero elsewhere and in a model without joints.
+    pub(crate) fn rounding_floor(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        floor: &mut [f64],
+    ) -> Result<(), OutputError> {
+        floor.fill(0.0);
+        let model = self.equations.model;
+        if !model.is_constrained() {
+            return Ok(());
+        }
+        self.settle(t, y, held)?;
+        self.values.at_time(t);
+        let fixed = Fixed {
+            sites: held,
+            loop_values: &self.settled,
+            keep_applied: true,
+        };
+        let solved = self
+            .equations
+            .solve(&mut self.values, t, y, fixed, &mut self.buffers)?;
+        let Some(applied) = &solved.applied else {
+            return Ok(());
+        };
+        // The largest distance from each part's centre of mass to a
+        // joint's marker on it.
+        let mut arms = vec![0.0_f64; model.masses.len()];
+        for joint in &model.joints {
+            for target in [&joint.i, &joint.j] {
+                if let crate::scene::Target::Marker(index) = target {
+                    let marker = &model.scene.markers[*index];
+                    if let Some(body) = marker.body {
+                        let arm = (marker.position - model.masses[body].centre).norm();
+                        arms[body] = arms[body].max(arm);
+                    }
+                }
+            }
+        }
+        for (body, mass) in model.masses.iter().enumerate() {
+            if mass.is_massless() {
+                continue;
+            }
+            let (force, torque) = (&applied.force[body], &applied.torque[body]);
+            let reaction = (solved.loads.force[body] - force).norm();
+            // The reactions' torques about the centre are the sum of
+            // each equation's force times its arm, which can cancel: their
+            // sizes are those of the net force at the joints' markers.
+            let moment = (solved.loads.torque[body] - torque).norm() + reaction * arms[body];
+            let linear = f64::EPSILON
+                * (force.norm() + reaction + mass.mass * model.gravity.norm())
+                / mass.mass;
+            let angular = f64::EPSILON
+                * (torque.norm() + moment)
+                * self.equations.inverse_inertia[body].norm();
+            let offset = body_offset(model, body);
+            floor[offset + 7..offset + 10].fill(linear);
+            floor[offset + 10..offset + BODY_STATES].fill(angular);
+        }
+        Ok(())
     }
 
     /// Solves the loop values at `(t, y)` with the sites on `held` into
@@ -461,6 +531,7 @@ impl<'m> Mechanics<'m> {
             let fixed = Fixed {
                 sites: held,
                 loop_values: solved,
+                keep_applied: false,
             };
             self.equations
                 .rates(&mut self.values, t, y, fixed, &mut rates, &mut self.buffers)?;
@@ -529,6 +600,7 @@ impl<'m> Mechanics<'m> {
         let fixed = Fixed {
             sites: held,
             loop_values: solved,
+            keep_applied: false,
         };
         let solved = equations.solve(&mut self.values, t, y, fixed, &mut self.buffers)?;
         let drives = equations.drives.at(t).ok_or_else(joints_singular)?;
@@ -729,6 +801,9 @@ struct Solved<T: Number> {
     /// The accelerations of the massless parts, which the joints' solve
     /// gives (`[v' | ω']` of the centre, in ground).
     massless: Vec<(usize, [T; 6])>,
+    /// The force elements' loads alone, before the joints' reactions
+    /// were added (when [`Fixed::keep_applied`] asks).
+    applied: Option<Loads<T>>,
 }
 
 /// What one evaluation of the equations holds fixed: the branch of each
@@ -738,6 +813,9 @@ struct Solved<T: Number> {
 struct Fixed<'a> {
     sites: Option<&'a [Option<Code>]>,
     loop_values: &'a [f64],
+    /// Keep the elements' loads apart from the joints' reactions
+    /// ([`Solved::applied`]).
+    keep_applied: bool,
 }
 
 /// The program's inputs and outputs, kept from call to call.
@@ -892,6 +970,10 @@ impl Equations<'_> {
         }
         let mut multipliers = None;
         let mut massless = Vec::new();
+        let applied = fixed.keep_applied.then(|| Loads {
+            force: loads.force.clone(),
+            torque: loads.torque.clone(),
+        });
         if model.is_constrained() {
             let motions = body_motions(&kinematics);
             let drives = self.drives.at(t).ok_or_else(joints_singular)?;
@@ -912,6 +994,7 @@ impl Equations<'_> {
             loads,
             multipliers,
             massless,
+            applied,
         })
     }
 
@@ -940,6 +1023,7 @@ impl Equations<'_> {
         let fixed = Fixed {
             sites: held,
             loop_values: &[],
+            keep_applied: false,
         };
         self.rates(evaluator, t, &seeded, fixed, &mut rates, &mut buffers)?;
         for (row, rate) in rates.iter().enumerate() {

@@ -347,6 +347,10 @@ impl crate::integrate::System for Equations<'_> {
         Some(self.mechanics.pattern().clone())
     }
 
+    fn rounding_floor(&mut self, t: f64, y: &[f64], floor: &mut [f64]) -> Result<(), OutputError> {
+        self.mechanics.rounding_floor(t, y, None, floor)
+    }
+
     fn sparse_jacobian(
         &mut self,
         t: f64,

@@ -85,6 +85,10 @@ impl System for Held<'_> {
         Some(self.mechanics.pattern().clone())
     }
 
+    fn rounding_floor(&mut self, t: f64, y: &[f64], floor: &mut [f64]) -> Result<(), OutputError> {
+        self.mechanics.rounding_floor(t, y, Some(&self.held), floor)
+    }
+
     fn sparse_jacobian(
         &mut self,
         t: f64,
