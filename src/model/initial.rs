@@ -11,8 +11,7 @@ use super::{Argument, ModelCheck, Statement, Value, is_statement};
 use crate::laws::spline::{SplineData, SplineDataError};
 use std::collections::HashSet;
 
-use crate::check::Reference;
-use crate::scene::{Body, DiffData, Marker, Scene, SceneKind, Target, euler_313};
+use crate::scene::{Body, DiffData, Marker, Scene, SceneKind, euler_313};
 use crate::span::Span;
 
 /// A statement whose data cannot make a scene.
@@ -249,12 +248,7 @@ pub fn initial_scene(
     // carry them to the part's origin. A VM or WM on another part is
     // refused by the simulator; the CM marker stands in for it here.
     for &(index, cm, vm, wm) in parts.values() {
-        let on_part = |id: u64| match scene.find_marker(&Reference::Id(id)) {
-            Ok(Target::Marker(marker)) if scene.markers[marker].body == Some(index) => {
-                Some(&scene.markers[marker])
-            }
-            _ => None,
-        };
+        let on_part = |id: u64| scene.marker_on(id, index);
         let (Some(at), Some(about)) = (
             on_part(vm).or_else(|| on_part(cm)),
             on_part(wm).or_else(|| on_part(cm)),

@@ -291,6 +291,16 @@ pub enum Target {
 }
 
 impl Scene {
+    /// The marker of id `id` when it is fixed on body `body`.
+    pub fn marker_on(&self, id: u64, body: usize) -> Option<&Marker> {
+        match self.find_marker(&Reference::Id(id)) {
+            Ok(Target::Marker(index)) if self.markers[index].body == Some(body) => {
+                Some(&self.markers[index])
+            }
+            _ => None,
+        }
+    }
+
     /// The marker `reference` names: `0` is ground, other ids and names
     /// (case-insensitive) are looked up among the markers.
     pub fn find_marker(&self, reference: &Reference) -> Result<Target, SceneError> {

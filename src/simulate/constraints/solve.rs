@@ -380,17 +380,21 @@ pub(crate) fn held_equations(
 ) -> (DVector<f64>, DMatrix<f64>) {
     let bodies = motions(y, offsets);
     let rows = active_rows(model, &bodies, imposed);
-    let mut values = DVector::zeros(rows.len());
-    let mut g = DMatrix::zeros(rows.len(), 6 * offsets.len());
+    let values = DVector::from_iterator(rows.len(), rows.iter().map(|row| row.value));
+    (values, dense_rows(&rows, offsets.len()))
+}
+
+/// The rows of `G` of `rows` over `bodies` bodies' `[δc | δθ]`, dense.
+fn dense_rows(rows: &[Row<f64>], bodies: usize) -> DMatrix<f64> {
+    let mut g = DMatrix::zeros(rows.len(), 6 * bodies);
     for (r, row) in rows.iter().enumerate() {
-        values[r] = row.value;
         for (body, c) in &row.coefficients {
             for (k, c) in c.iter().enumerate() {
                 g[(r, 6 * body + k)] += c;
             }
         }
     }
-    (values, g)
+    g
 }
 
 /// The bodies' motions at state `y`, where each body's states start at
@@ -474,16 +478,8 @@ fn given_velocity_change(
             .copy_from(&angular);
     }
     let scaled_rows = |rows: &[Row<f64>]| {
-        let mut dense = DMatrix::zeros(rows.len(), width);
-        for (index, row) in rows.iter().enumerate() {
-            for (body, coefficients) in &row.coefficients {
-                for (k, c) in coefficients.iter().enumerate() {
-                    dense[(index, 6 * body + k)] += c;
-                }
-            }
-        }
         let residuals = DVector::from_iterator(rows.len(), rows.iter().map(|row| row.rate));
-        (dense * &root, residuals)
+        (dense_rows(rows, bodies.len()) * &root, residuals)
     };
     // The pseudo-inverse of `matrix`, its singular values below `1e-10`
     // of `scale`'s largest taken as zero.

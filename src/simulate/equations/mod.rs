@@ -166,6 +166,7 @@ impl<'m> Mechanics<'m> {
                 diff_outputs,
                 output_of,
                 inverse_inertia,
+                joint_arms: joint_arms(model),
                 drives: Drives::new(model),
                 solver_calls,
             },
@@ -194,11 +195,7 @@ impl<'m> Mechanics<'m> {
     ) -> Result<(), OutputError> {
         self.settle(t, y, held)?;
         self.values.at_time(t);
-        let fixed = Fixed {
-            sites: held,
-            loop_values: &self.settled,
-            keep_applied: false,
-        };
+        let fixed = Fixed::new(held, &self.settled);
         self.equations
             .rates(&mut self.values, t, y, fixed, rates, &mut self.buffers)
     }
@@ -225,9 +222,8 @@ impl<'m> Mechanics<'m> {
         self.settle(t, y, held)?;
         self.values.at_time(t);
         let fixed = Fixed {
-            sites: held,
-            loop_values: &self.settled,
             keep_applied: true,
+            ..Fixed::new(held, &self.settled)
         };
         let solved = self
             .equations
@@ -235,20 +231,6 @@ impl<'m> Mechanics<'m> {
         let Some(applied) = &solved.applied else {
             return Ok(());
         };
-        // The largest distance from each part's centre of mass to a
-        // joint's marker on it.
-        let mut arms = vec![0.0_f64; model.masses.len()];
-        for joint in &model.joints {
-            for target in [&joint.i, &joint.j] {
-                if let crate::scene::Target::Marker(index) = target {
-                    let marker = &model.scene.markers[*index];
-                    if let Some(body) = marker.body {
-                        let arm = (marker.position - model.masses[body].centre).norm();
-                        arms[body] = arms[body].max(arm);
-                    }
-                }
-            }
-        }
         for (body, mass) in model.masses.iter().enumerate() {
             if mass.is_massless() {
                 continue;
@@ -258,7 +240,8 @@ impl<'m> Mechanics<'m> {
             // The reactions' torques about the centre are the sum of
             // each equation's force times its arm, which can cancel: their
             // sizes are those of the net force at the joints' markers.
-            let moment = (solved.loads.torque[body] - torque).norm() + reaction * arms[body];
+            let moment = (solved.loads.torque[body] - torque).norm()
+                + reaction * self.equations.joint_arms[body];
             let linear = f64::EPSILON
                 * (force.norm() + reaction + mass.mass * model.gravity.norm())
                 / mass.mass;
@@ -343,12 +326,12 @@ impl<'m> Mechanics<'m> {
             let matrix = self.settling_matrix.as_ref().expect("worked out above");
             let step = matrix
                 .solve(&residual)
-                .ok_or_else(|| unsettled(self.equations.program, &self.equations.sources))?;
+                .ok_or_else(|| self.equations.unsettled())?;
             for (value, change) in guess.iter_mut().zip(step.iter()) {
                 *value += change;
             }
         }
-        Err(unsettled(self.equations.program, &self.equations.sources))
+        Err(self.equations.unsettled())
     }
 
     /// `I − ∂g/∂z` at `guess`, where `g(guess) = given`, by forward
@@ -394,7 +377,7 @@ impl<'m> Mechanics<'m> {
                 smallest.min(pivot.abs())
             });
         if smallest.is_nan() || smallest < 1e-6 {
-            return Err(unsettled(self.equations.program, &self.equations.sources));
+            return Err(self.equations.unsettled());
         }
         Ok(lu)
     }
@@ -528,11 +511,7 @@ impl<'m> Mechanics<'m> {
             .any(|value| matches!(value, RunValue::Acceleration(_)))
         {
             let mut rates = vec![0.0; self.dimension()];
-            let fixed = Fixed {
-                sites: held,
-                loop_values: solved,
-                keep_applied: false,
-            };
+            let fixed = Fixed::new(held, solved);
             self.equations
                 .rates(&mut self.values, t, y, fixed, &mut rates, &mut self.buffers)?;
             let model = self.equations.model;
@@ -597,11 +576,7 @@ impl<'m> Mechanics<'m> {
         solved: &[f64],
     ) -> Result<Reactions, OutputError> {
         let equations = &self.equations;
-        let fixed = Fixed {
-            sites: held,
-            loop_values: solved,
-            keep_applied: false,
-        };
+        let fixed = Fixed::new(held, solved);
         let solved = equations.solve(&mut self.values, t, y, fixed, &mut self.buffers)?;
         let drives = equations.drives.at(t).ok_or_else(joints_singular)?;
         let multipliers = solved.multipliers.unwrap_or_default();
@@ -779,6 +754,24 @@ fn fill_inputs<T: Number>(
     }));
 }
 
+/// The largest distance from each body's centre of mass to a joint's
+/// marker on it (0 for a body no joint holds).
+fn joint_arms(model: &Model) -> Vec<f64> {
+    let mut arms = vec![0.0_f64; model.masses.len()];
+    for joint in &model.joints {
+        for target in [&joint.i, &joint.j] {
+            if let crate::scene::Target::Marker(index) = target {
+                let marker = &model.scene.markers[*index];
+                if let Some(body) = marker.body {
+                    let arm = (marker.position - model.masses[body].centre).norm();
+                    arms[body] = arms[body].max(arm);
+                }
+            }
+        }
+    }
+    arms
+}
+
 /// The bodies as the constraint rows see them.
 fn body_motions<T: Number>(kinematics: &[Kinematics<T>]) -> Vec<BodyMotion<T>> {
     kinematics
@@ -818,6 +811,18 @@ struct Fixed<'a> {
     keep_applied: bool,
 }
 
+impl<'a> Fixed<'a> {
+    /// The sites on `sites` and the program reading `loop_values`, the
+    /// loads not kept apart.
+    fn new(sites: Option<&'a [Option<Code>]>, loop_values: &'a [f64]) -> Fixed<'a> {
+        Fixed {
+            sites,
+            loop_values,
+            keep_applied: false,
+        }
+    }
+}
+
 /// The program's inputs and outputs, kept from call to call.
 struct Buffers<T> {
     inputs: Vec<T>,
@@ -854,6 +859,9 @@ struct Equations<'m> {
     output_of: Vec<Option<usize>>,
     /// The inverse inertia of each body.
     inverse_inertia: Vec<Matrix3<f64>>,
+    /// The largest distance from each body's centre of mass to a joint's
+    /// marker on it ([`Mechanics::rounding_floor`]).
+    joint_arms: Vec<f64>,
     /// The motions' displacements in time.
     drives: Drives,
     /// The values of the running solver the program reads.
@@ -861,6 +869,31 @@ struct Equations<'m> {
 }
 
 impl Equations<'_> {
+    /// The error of loop values that Newton's iterations do not settle: at
+    /// the first output of the program that reads one.
+    fn unsettled(&self) -> OutputError {
+        let output = self
+            .program
+            .inputs_of_outputs()
+            .iter()
+            .position(|inputs| {
+                inputs
+                    .iter()
+                    .any(|&input| matches!(self.sources[input], Source::Solver(_)))
+            })
+            .unwrap_or(0);
+        OutputError {
+            output,
+            error: EvalError::Law {
+                error: crate::laws::LawError::Domain {
+                    operation: "a force that reads the running solver's values",
+                    reason: "the values it reads (reactions, accelerations, forces) and those the motion gives do not settle to one at this state: Newton's iterations on them diverge, as at a joint that friction locks, or where a force reads its own value with a gain of 1".to_string(),
+                },
+                span: crate::Span::default(),
+            },
+        }
+    }
+
     /// The value of `expression` among the program's `outputs` (zero for
     /// no expression).
     fn value_of<T: Number>(&self, outputs: &[T], expression: Option<usize>) -> T {
@@ -1020,11 +1053,7 @@ impl Equations<'_> {
         let mut buffers = Buffers::new(self.program);
         // Programs that read loop values are differentiated by differences
         // instead (`Mechanics::sparse_jacobian`).
-        let fixed = Fixed {
-            sites: held,
-            loop_values: &[],
-            keep_applied: false,
-        };
+        let fixed = Fixed::new(held, &[]);
         self.rates(evaluator, t, &seeded, fixed, &mut rates, &mut buffers)?;
         for (row, rate) in rates.iter().enumerate() {
             let gradient = rate.gradient(count);
@@ -1033,29 +1062,5 @@ impl Equations<'_> {
             }
         }
         Ok(())
-    }
-}
-
-/// The error of loop values that Newton's iterations do not settle: the
-/// first output of `program` that reads one (its sources in `sources`).
-fn unsettled(program: &Program, sources: &[Source]) -> OutputError {
-    let output = program
-        .inputs_of_outputs()
-        .iter()
-        .position(|inputs| {
-            inputs
-                .iter()
-                .any(|&input| matches!(sources[input], Source::Solver(_)))
-        })
-        .unwrap_or(0);
-    OutputError {
-        output,
-        error: EvalError::Law {
-            error: crate::laws::LawError::Domain {
-                operation: "a force that reads the running solver's values",
-                reason: "the values it reads (reactions, accelerations, forces) and those the motion gives do not settle to one at this state: Newton's iterations on them diverge, as at a joint that friction locks, or where a force reads its own value with a gain of 1".to_string(),
-            },
-            span: crate::Span::default(),
-        },
     }
 }

@@ -5,11 +5,9 @@
 
 use nalgebra::Matrix3;
 
-use crate::check::Reference;
 use crate::model::initial::number;
 use crate::model::{Dataset, Value, is_kind};
 use crate::scene::Scene;
-use crate::scene::Target;
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{ExactPart, GivenVelocity, MassProperties};
 
@@ -119,12 +117,7 @@ pub(super) fn given_velocities(dataset: &Dataset, scene: &Scene) -> Vec<GivenVel
         let marker = |keyword: &str| {
             let id = number(statement, keyword, f64::NAN).ok()?;
             (id.fract() == 0.0 && id >= 0.0).then_some(())?;
-            match scene.find_marker(&Reference::Id(id as u64)).ok()? {
-                Target::Marker(index) if scene.markers[index].body == Some(body) => {
-                    Some(&scene.markers[index])
-                }
-                _ => None,
-            }
+            scene.marker_on(id as u64, body)
         };
         let cm = marker("CM");
         let (Some(at), Some(about)) = (marker("VM").or(cm), marker("WM").or(cm)) else {
