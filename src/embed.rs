@@ -633,24 +633,23 @@ impl LoadedModel {
             .events
             .iter()
             .map(|event| {
-                let expression = &self.model.expressions[event.expression];
+                let message = format!(
+                    "{} switches from {} to {} at t = {} in {}",
+                    event.function,
+                    event.from,
+                    event.to,
+                    Shown(event.time),
+                    event.label
+                );
                 PlacedEvent {
                     time: event.time,
                     function: event.function.clone(),
                     from: event.from.clone(),
                     to: event.to.clone(),
-                    place: Located::at(
-                        &self.text,
-                        expression.file_span(event.span),
-                        format!(
-                            "{} switches from {} to {} at t = {} in {}",
-                            event.function,
-                            event.from,
-                            event.to,
-                            Shown(event.time),
-                            expression.label
-                        ),
-                    ),
+                    place: match event.place.file_span(&self.model) {
+                        Some(span) => Located::at(&self.text, span, message),
+                        None => Located::nowhere(message),
+                    },
                 }
             })
             .collect();

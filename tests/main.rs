@@ -8,6 +8,7 @@ mod architecture;
 mod beams;
 mod checker;
 mod cli;
+mod contacts;
 mod corpus;
 mod couplers;
 mod diagnostics;

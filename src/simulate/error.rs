@@ -25,6 +25,20 @@ pub enum Place {
     None,
 }
 
+impl Place {
+    /// The span of the model's file this place is at (`None`: nowhere).
+    pub fn file_span(self, model: &crate::simulate::Model) -> Option<Span> {
+        match self {
+            Place::File(span) => Some(span),
+            Place::Expression { expression, span } => model
+                .expressions
+                .get(expression)
+                .map(|expression| expression.file_span(span)),
+            Place::None => None,
+        }
+    }
+}
+
 /// Why a model cannot be simulated, or why a run stops.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum SimulateError {
@@ -147,10 +161,8 @@ pub enum SimulateError {
         count: usize,
         /// Over how long.
         window: f64,
-        /// The expression it is in.
-        expression: usize,
-        /// Its span there.
-        span: Span,
+        /// Where it is written.
+        place: Place,
     },
 }
 
@@ -316,12 +328,7 @@ impl SimulateError {
                     span,
                 })
             }
-            SimulateError::Chattering {
-                expression, span, ..
-            } => Place::Expression {
-                expression: *expression,
-                span: *span,
-            },
+            SimulateError::Chattering { place, .. } => *place,
         }
     }
 }

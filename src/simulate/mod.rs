@@ -57,8 +57,8 @@ mod run;
 pub use constraints::Residuals;
 pub use error::{Place, SimulateError};
 pub use model::{
-    Along, Diff, ExactPart, Expression, Force, GeneralConstraint, Given, Joint, JointInitial,
-    JointKind, MarkerMotion, MassProperties, Model, Motion, Output,
+    Along, Contact, Diff, ExactPart, Expression, Force, Friction, GeneralConstraint, Given, Joint,
+    JointInitial, JointKind, MarkerMotion, MassProperties, Model, Motion, Output, Shape, Solid,
 };
 pub use read::{
     ModelFormat, RunCommands, Unread, format_of_path, from_scene, is_scene_path, run_settings,
@@ -136,6 +136,7 @@ impl<'m> Simulation<'m> {
                 Force::Vector { force, torque, .. } => {
                     force.iter().chain(torque).flatten().copied().collect()
                 }
+                Force::Contact(_) => Vec::new(),
             };
             for expression in used {
                 if !computed.contains(&expression) {

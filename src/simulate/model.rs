@@ -6,6 +6,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use crate::check::Checked;
+use crate::laws::contact::Stops;
 use crate::model::Embedded;
 use crate::scene::{Scene, Target};
 use crate::span::Span;
@@ -23,7 +24,7 @@ pub struct Model {
     /// The force elements.
     pub forces: Vec<Force>,
     /// The statement (`SFORCE`, `VFORCE`, `VTORQUE`, `GFORCE`, `BUSHING`,
-    /// `SPRINGDAMPER`) and id of each force element, in the order of
+    /// `SPRINGDAMPER`, `CONTACT`) and id of each force element, in the order of
     /// [`Model::forces`]; empty for a scene, whose forces have no id.
     pub force_statements: Vec<(&'static str, u64)>,
     /// The joints, held by Lagrange multipliers
@@ -197,6 +198,106 @@ pub enum Force {
         /// Torque components, indices into [`Model::expressions`].
         torque: [Option<usize>; 3],
     },
+    /// `CONTACT`: a force where two solids overlap (see [`Contact`]).
+    Contact(Box<Contact>),
+}
+
+/// A `CONTACT` between one solid of each of two parts: where they overlap,
+/// a normal force by the `IMPACT` law of the depth and its rate, and
+/// optionally Coulomb friction against the slip, on I's part at the
+/// contact point and the opposite on J's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Contact {
+    /// The solid of the I part (`IGEOM`).
+    pub i: Solid,
+    /// The solid of the J part (`JGEOM`).
+    pub j: Solid,
+    /// `STIFFNESS`: the normal force is `STIFFNESS·depth^EXPONENT`.
+    pub stiffness: f64,
+    /// `EXPONENT` of the depth.
+    pub exponent: f64,
+    /// `DAMPING`: the damping coefficient at full depth.
+    pub damping: f64,
+    /// `DMAX`: the depth at which the damping is full (a cubic step from
+    /// none at first touch).
+    pub damping_depth: f64,
+    /// Coulomb friction, when it is on.
+    pub friction: Option<Friction>,
+    /// The statement (for messages and events).
+    pub span: Span,
+}
+
+impl Contact {
+    /// The normal force's law: `IMPACT(x, v, 0, k, e, c, d)` of the
+    /// separation `x = -depth` and its rate.
+    pub(crate) fn law(&self) -> Stops {
+        Stops::new(
+            0.0,
+            None,
+            [
+                self.stiffness,
+                self.exponent,
+                self.damping,
+                self.damping_depth,
+            ],
+        )
+    }
+}
+
+/// A contact's Coulomb friction: its coefficient a function of the slip
+/// speed `v` at the contact point, `STEP(v, -vs, -μs, vs, μs)` below the
+/// stiction transition velocity `vs`, `STEP(v, vs, μs, vd, μd)` up to the
+/// friction transition velocity `vd`, and `μd` beyond.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Friction {
+    /// `MU_STATIC` (`μs`).
+    pub static_coefficient: f64,
+    /// `MU_DYNAMIC` (`μd`).
+    pub dynamic_coefficient: f64,
+    /// `STICTION_TRANSITION_VELOCITY` (`vs`).
+    pub stiction_velocity: f64,
+    /// `FRICTION_TRANSITION_VELOCITY` (`vd`).
+    pub friction_velocity: f64,
+}
+
+/// A solid a contact meets: its shape in the axes of a marker.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solid {
+    /// The marker whose origin and axes place the shape.
+    pub marker: Target,
+    /// The shape.
+    pub shape: Shape,
+}
+
+/// The shapes a contact meets (GRAPHICS statements).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// `ELLIPSOID` with equal scales: a sphere about the marker's origin.
+    Sphere {
+        /// Half the scale (Adams' scales are diameters).
+        radius: f64,
+    },
+    /// `BOX`: the block between the marker's origin and the corner
+    /// `(X, Y, Z)` in its axes (each length of either sign).
+    Block {
+        /// The least corner, in the marker's axes.
+        lower: Vector3<f64>,
+        /// The greatest corner, in the marker's axes.
+        upper: Vector3<f64>,
+    },
+    /// `CYLINDER`: a round solid about the marker's z axis, from its origin
+    /// to `length` along z (either sign).
+    Cylinder {
+        /// The radius.
+        radius: f64,
+        /// The least z.
+        bottom: f64,
+        /// The greatest z.
+        top: f64,
+    },
+    /// `PLANE`: the half-space below the marker's x-y plane (its z axis is
+    /// the outward normal), unbounded.
+    HalfSpace,
 }
 
 impl Force {

@@ -456,8 +456,7 @@ struct Events<'a> {
 
 impl Events<'_> {
     fn switch(&mut self, event: &Event) {
-        let expression = &self.model.expressions[event.expression];
-        let span = expression.file_span(event.span);
+        let span = event.place.file_span(self.model).unwrap_or_default();
         let at = mbexpr::Location::of(&self.source.text, span.start);
         let object = || {
             let state: serde_json::Map<String, serde_json::Value> = self.columns[1..]
@@ -471,7 +470,7 @@ impl Events<'_> {
                 "file": self.source.path,
                 "line": at.line,
                 "column": at.column,
-                "expression": expression.label,
+                "expression": event.label,
                 "from": event.from,
                 "to": event.to,
                 "state": state,
@@ -496,7 +495,7 @@ impl Events<'_> {
                 self.source.path,
                 at.line,
                 at.column,
-                expression.label,
+                event.label,
                 event.from,
                 event.to
             )

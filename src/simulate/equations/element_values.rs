@@ -89,7 +89,7 @@ impl ElementComponent {
         kinematics: &[Kinematics<f64>],
         value: &impl Fn(Option<usize>) -> f64,
     ) -> f64 {
-        let [on_i, on_j] = actions(model, &model.forces[self.force], kinematics, value);
+        let [on_i, on_j] = actions(model, &model.forces[self.force], kinematics, value, None);
         let action = if self.on_j { on_j } else { on_i };
         let origin = place(model, &self.marker, kinematics).origin;
         let (force, torque) = about(action, &origin);
@@ -113,6 +113,7 @@ fn markers(model: &Model, index: usize) -> (Target, Option<Target>) {
                 .is_some_and(|(kind, _)| ["BUSHING", "BEAM", "FIELD"].contains(kind));
             (*i, bushing.then_some(*axes))
         }
+        Force::Contact(contact) => (contact.i.marker, Some(contact.j.marker)),
     }
 }
 
@@ -192,7 +193,7 @@ impl NetForce {
         let any = self.j == Target::Ground;
         for index in 0..model.forces.len() {
             let (i, j) = markers(model, index);
-            let [on_i, on_j] = actions(model, &model.forces[index], kinematics, value);
+            let [on_i, on_j] = actions(model, &model.forces[index], kinematics, value, None);
             let mut add = |action| {
                 let (push, turn) = about(action, &origin);
                 force += push;

@@ -5,6 +5,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use super::bodies::{Kinematics, Loads};
 use crate::kinematics::times_constant;
+use crate::laws::contact::ContactBranch;
 use crate::number::Number;
 use crate::scene::Target;
 use crate::simulate::model::{Force, Model};
@@ -79,15 +80,16 @@ pub(super) struct Action<T: Number> {
     pub(super) torque: Option<Vector3<T>>,
 }
 
-/// Adds what `force` applies to the bodies.
+/// Adds what `force` applies to the bodies (a contact's normal force on
+/// the branch `branch` of its law, the natural one when `None`).
 pub(super) fn apply<T: Number>(
     model: &Model,
     force: &Force,
     kinematics: &[Kinematics<T>],
-    value: &impl Fn(Option<usize>) -> T,
+    (value, branch): (&impl Fn(Option<usize>) -> T, Option<ContactBranch>),
     loads: &mut Loads<T>,
 ) {
-    for action in actions(model, force, kinematics, value)
+    for action in actions(model, force, kinematics, value, branch)
         .into_iter()
         .flatten()
     {
@@ -109,6 +111,7 @@ pub(super) fn actions<T: Number>(
     force: &Force,
     kinematics: &[Kinematics<T>],
     value: &impl Fn(Option<usize>) -> T,
+    branch: Option<ContactBranch>,
 ) -> [Option<Action<T>>; 2] {
     match force {
         Force::Translational {
@@ -183,6 +186,7 @@ pub(super) fn actions<T: Number>(
             };
             [Some(on_i), Some(other)]
         }
+        Force::Contact(contact) => super::contact::actions(model, contact, kinematics, branch),
     }
 }
 

@@ -23,6 +23,7 @@
 
 mod accelerations;
 mod bodies;
+mod contact;
 mod element_values;
 mod forces;
 mod sparsity;
@@ -35,12 +36,13 @@ use crate::eval::EvalError;
 use crate::eval::{Evaluator, OutputError};
 use crate::integrate::linalg::Pattern;
 use crate::laws::branch::Code;
+use crate::laws::contact::ContactBranch;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input};
 use crate::simulate::constraints::{
     BodyMotion, Component, Drives, Reactions, constraint_loads, joints_singular, joints_singular_in,
 };
-use crate::simulate::model::Model;
+use crate::simulate::model::{Contact, Force, Model};
 use accelerations::{Accelerations, Measure};
 pub(crate) use bodies::{BODY_STATES, body_offset};
 use bodies::{Kinematics, Loads};
@@ -177,6 +179,26 @@ impl<'m> Mechanics<'m> {
             loop_values,
             settling_matrix: None,
         }
+    }
+
+    /// The number of sites whose branches a run holds: the program's, then
+    /// one for each contact's law.
+    pub(crate) fn site_count(&self) -> usize {
+        self.equations.program.sites().len() + self.equations.contacts().len()
+    }
+
+    /// The number of switching values [`Mechanics::observe`] gives: the
+    /// program's, then three for each contact.
+    pub(crate) fn switch_count(&self) -> usize {
+        self.equations.program.switch_count() + 3 * self.equations.contacts().len()
+    }
+
+    /// The contact of site `site`, when it is one (its index among the
+    /// contacts).
+    pub(crate) fn contact_of_site(&self, site: usize) -> Option<&'m Contact> {
+        let program_sites = self.equations.program.sites().len();
+        let index = site.checked_sub(program_sites)?;
+        self.equations.contacts().get(index).copied()
     }
 
     /// The number of states.
@@ -438,13 +460,57 @@ impl<'m> Mechanics<'m> {
             &mut buffers.inputs,
         );
         reorient(&mut self.values, &kinematics);
-        self.values.observe(
+        let (natural, switching) = branches;
+        let (program_sites, program_switches) = (
+            equations.program.sites().len(),
+            equations.program.switch_count(),
+        );
+        let (natural, contact_natural) = natural.split_at_mut(program_sites);
+        let (switching, contact_switching) = switching.split_at_mut(program_switches);
+        let mut limit = self.values.observe(
             &buffers.inputs,
-            held,
-            branches,
+            held.map(|sites| &sites[..program_sites]),
+            (natural, switching),
             &mut buffers.outputs,
             tolerance,
-        )
+        )?;
+        let model = equations.model;
+        let contacts = equations.contacts();
+        // Each contact's law is a site after the program's, with the three
+        // switching values of an IMPACT.
+        for (index, contact) in contacts.iter().enumerate() {
+            let (separation, rate) = contact::separation(model, contact, &kinematics);
+            let held = held
+                .and_then(|sites| sites[program_sites + index])
+                .map(ContactBranch::from_code);
+            let law = contact.law();
+            let observed = law.switching(separation, rate, held);
+            contact_natural[index] = Some(observed.natural.code());
+            contact_switching[3 * index..3 * index + 3].copy_from_slice(&observed.values);
+            if let Some(tolerance) = tolerance {
+                let branch = held.unwrap_or(observed.natural);
+                limit = limit.min(law.step_limit(separation, rate, branch, tolerance));
+            }
+        }
+        if tolerance.is_none() || contacts.is_empty() {
+            return Ok(limit);
+        }
+        let mut rates = vec![0.0; y.len()];
+        self.rates(t, y, held, &mut rates)?;
+        let accelerations: Vec<(f64, f64)> = (0..model.scene.bodies.len())
+            .map(|body| {
+                let offset = body_offset(model, body);
+                let rate = |first: usize| {
+                    Vector3::from_column_slice(&rates[offset + first..offset + first + 3]).norm()
+                };
+                (rate(7), rate(10))
+            })
+            .collect();
+        let kinematics = self.equations.kinematics(y);
+        Ok(contacts
+            .into_iter()
+            .map(|contact| contact::step_limit(model, contact, &kinematics, &accelerations))
+            .fold(limit, f64::min))
     }
 
     /// The values of the running solver the program reads, in the order
@@ -534,6 +600,8 @@ impl<'m> Mechanics<'m> {
             let inputs = &mut self.buffers.inputs;
             fill_inputs(&equations.sources, t, y, &kinematics, solved, inputs);
             reorient(&mut self.values, &kinematics);
+            let program_sites = equations.program.sites().len();
+            let held = held.map(|sites| &sites[..program_sites]);
             self.values
                 .outputs(inputs, held, &mut self.buffers.outputs)?;
         }
@@ -868,7 +936,20 @@ struct Equations<'m> {
     solver_calls: Vec<RunCall>,
 }
 
-impl Equations<'_> {
+impl<'m> Equations<'m> {
+    /// The model's contacts, in the order of their sites (after the
+    /// program's).
+    fn contacts(&self) -> Vec<&'m Contact> {
+        self.model
+            .forces
+            .iter()
+            .filter_map(|force| match force {
+                Force::Contact(contact) => Some(&**contact),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The error of loop values that Newton's iterations do not settle: at
     /// the first output of the program that reads one.
     fn unsettled(&self) -> OutputError {
@@ -990,7 +1071,9 @@ impl Equations<'_> {
             &mut buffers.inputs,
         );
         reorient(evaluator, &kinematics);
-        evaluator.outputs(&buffers.inputs, fixed.sites, &mut buffers.outputs)?;
+        let program_sites = self.program.sites().len();
+        let sites = fixed.sites.map(|sites| &sites[..program_sites]);
+        evaluator.outputs(&buffers.inputs, sites, &mut buffers.outputs)?;
         let outputs = &buffers.outputs;
         let bodies = model.scene.bodies.len();
         let mut loads = Loads {
@@ -998,8 +1081,20 @@ impl Equations<'_> {
             torque: vec![Vector3::zeros(); bodies],
         };
         let value = |expression: Option<usize>| self.value_of(outputs, expression);
+        let mut contacts = 0;
         for force in &model.forces {
-            forces::apply(model, force, &kinematics, &value, &mut loads);
+            // A contact's branch: its site after the program's.
+            let branch = match force {
+                Force::Contact(_) => {
+                    contacts += 1;
+                    fixed
+                        .sites
+                        .and_then(|sites| sites[program_sites + contacts - 1])
+                        .map(ContactBranch::from_code)
+                }
+                _ => None,
+            };
+            forces::apply(model, force, &kinematics, (&value, branch), &mut loads);
         }
         let mut multipliers = None;
         let mut massless = Vec::new();

@@ -117,6 +117,13 @@ impl Sparsity {
                         .collect(),
                     force.iter().chain(torque).copied().collect(),
                 ),
+                Force::Contact(contact) => (
+                    [body_of(&contact.i.marker), body_of(&contact.j.marker)]
+                        .into_iter()
+                        .flatten()
+                        .collect(),
+                    Vec::new(),
+                ),
             };
             let mut read = touched.clone();
             for &expression in &expressions {

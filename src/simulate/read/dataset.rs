@@ -69,9 +69,9 @@ const FORCE_ELEMENTS: [&str; 8] = [
 ];
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`].
-const SIMULATED: [&str; 15] = [
+const SIMULATED: [&str; 16] = [
     "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
-    "JPRIM", "MOTION", "COUPLER", "GEAR", "GCON", "SENSOR",
+    "JPRIM", "MOTION", "COUPLER", "GEAR", "GCON", "SENSOR", "CONTACT",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -97,7 +97,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&FORCE_ELEMENTS) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, ACCGRAV)"
+                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, CONTACT, ACCGRAV)"
                     .to_string(),
                 span: statement.span,
             });
@@ -243,7 +243,12 @@ impl Reader<'_> {
     fn model(&mut self, mut notes: Vec<(String, Span)>) -> Model {
         let masses = self.masses();
         let diffs = self.diffs();
-        let (forces, force_statements) = self.forces();
+        let (mut forces, mut force_statements) = self.forces();
+        for (contact, id) in super::contacts::contacts(self.dataset, &self.scene, &mut self.errors)
+        {
+            forces.push(Force::Contact(Box::new(contact)));
+            force_statements.push(("CONTACT", id));
+        }
         let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
         let (motions, marker_motions) = self.motions(&joints);
         let mut couplers = super::couplers::couplers(self.dataset, &joints, &mut self.errors);

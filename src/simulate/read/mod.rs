@@ -4,6 +4,7 @@
 //! read models here.
 
 mod commands;
+mod contacts;
 mod couplers;
 mod dataset;
 mod exact;

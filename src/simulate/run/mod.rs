@@ -20,9 +20,9 @@ use super::constraints::{
     Drives, JOINTS, Residuals, Tolerance, Unassembled, disagreeing_redundant, owner_of_row, project,
 };
 use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
-use super::error::SimulateError;
+use super::error::{Place, SimulateError};
 use super::initial::initial_state;
-use super::model::SensorAction;
+use super::model::{Contact, Force, SensorAction};
 use super::{Model, Simulation};
 use crate::Shown;
 use crate::compile::{Program, SiteKind};
@@ -31,6 +31,7 @@ use crate::integrate::{
     AbsoluteTolerance, IntegrateError, Method, Options, Rejection, Stats, Stepper,
 };
 use crate::laws::branch::{self, Code};
+use crate::laws::contact::ContactBranch;
 use sink::RowsOnly;
 use switch::{Held, Switch, find_switch, switching_slope};
 
@@ -132,12 +133,14 @@ const SENSOR_LOOKS: usize = 4;
 pub struct Event {
     /// When.
     pub time: f64,
-    /// The function (`BISTOP`) or `IF`.
+    /// The function (`BISTOP`), `IF`, or `CONTACT` for a contact's law.
     pub function: String,
-    /// The expression it is in, an index into [`Model::expressions`].
-    pub expression: usize,
-    /// Its span in that expression.
-    pub span: crate::Span,
+    /// Where it is written: a call's span in an expression of
+    /// [`Model::expressions`], or a CONTACT statement's in the file.
+    pub place: Place,
+    /// What it is in: the expression's label (`SFORCE/3 FUNCTION`) or the
+    /// statement's (`CONTACT/1`).
+    pub label: String,
     /// The branch it leaves.
     pub from: String,
     /// The branch it takes.
@@ -197,6 +200,35 @@ pub struct SensorTrip {
     pub time: f64,
     /// Whether it ended the run (HALT or RETURN).
     pub halted: bool,
+}
+
+/// The event of `contact`'s law switching from `from` to `to` at `time`.
+fn contact_event(model: &Model, contact: &Contact, time: f64, from: Code, to: Code) -> Event {
+    let index = model
+        .forces
+        .iter()
+        .position(|force| matches!(force, Force::Contact(c) if std::ptr::eq(&**c, contact)));
+    let id = index
+        .and_then(|index| model.force_statements.get(index))
+        .map_or(0, |(_, id)| *id);
+    let describe = |code| {
+        let name = ContactBranch::from_code(code).name();
+        // The law's stop is where the solids touch.
+        name.strip_prefix("lower stop, ").map_or_else(
+            || if name == "free" { "apart" } else { name }.to_string(),
+            |piece| format!("touching, {piece}"),
+        )
+    };
+    Event {
+        time,
+        function: "CONTACT".to_string(),
+        place: Place::File(contact.span),
+        label: format!("CONTACT/{id}"),
+        from: describe(from),
+        to: describe(to),
+        values: Vec::new(),
+        residuals: None,
+    }
 }
 
 /// A step limit of the sites, raised to what the integrator can take at
@@ -410,7 +442,7 @@ impl Simulation<'_> {
         let program = &self.dynamics;
         let mut system = Held {
             mechanics: Mechanics::new(model, program, &self.computed),
-            held: vec![None; program.sites().len()],
+            held: Vec::new(),
             tolerance: settings.atol,
             before_end: None,
         };
@@ -537,8 +569,9 @@ impl Simulation<'_> {
         } else {
             None
         };
-        let mut natural = vec![None; program.sites().len()];
-        let mut switching = vec![0.0; program.switch_count()];
+        system.held = vec![None; system.mechanics.site_count()];
+        let mut natural = vec![None; system.mechanics.site_count()];
+        let mut switching = vec![0.0; system.mechanics.switch_count()];
         let limit = system
             .mechanics
             .observe(
@@ -750,14 +783,15 @@ impl Simulation<'_> {
                 .observe(right, &dense, None, (&mut natural, &mut switching), None)
                 .map_err(|error| fail(right, error))?;
             let first_event = summary.events.len();
-            for (site, (held, now)) in program.sites().iter().zip(system.held.iter().zip(&natural))
-            {
+            for (index, (held, now)) in system.held.iter().zip(&natural).enumerate() {
                 if let (Some(from), Some(to)) = (held, now)
                     && from != to
                 {
-                    summary
-                        .events
-                        .push(self.event(program, site, right, *from, *to));
+                    let event = match system.mechanics.contact_of_site(index) {
+                        Some(contact) => contact_event(model, contact, right, *from, *to),
+                        None => self.event(program, &program.sites()[index], right, *from, *to),
+                    };
+                    summary.events.push(event);
                 }
             }
             system.held.clone_from(&natural);
@@ -804,8 +838,7 @@ impl Simulation<'_> {
                     function: event.function.clone(),
                     count: CHATTER_COUNT,
                     window: last - first,
-                    expression: event.expression,
-                    span: event.span,
+                    place: event.place,
                 });
             }
             // A fresh start: the first step is chosen anew for the new
@@ -840,8 +873,8 @@ impl Simulation<'_> {
         slope: f64,
     ) -> Result<(f64, Vec<f64>), SimulateError> {
         let program = &self.dynamics;
-        let mut natural = vec![None; program.sites().len()];
-        let mut switching = vec![0.0; program.switch_count()];
+        let mut natural = vec![None; system.mechanics.site_count()];
+        let mut switching = vec![0.0; system.mechanics.switch_count()];
         let tolerance = 1e-13 * located.right.abs().max(located.right - t0);
         let mut time = located.right;
         let mut best: Option<(f64, Vec<f64>)> = None;
@@ -909,11 +942,15 @@ impl Simulation<'_> {
                 branch::describe_if(to).to_string(),
             ),
         };
+        let expression = self.expression_of(program, program.origin(index));
         Event {
             time,
             function,
-            expression: self.expression_of(program, program.origin(index)),
-            span: program.span(index),
+            place: Place::Expression {
+                expression,
+                span: program.span(index),
+            },
+            label: self.model.expressions[expression].label.clone(),
             from,
             to,
             values: Vec::new(),

@@ -1,0 +1,779 @@
+//! CONTACT: where two solids overlap, how deep, along which normal, and the
+//! force that follows (Adams' IMPACT normal force and its velocity-based
+//! Coulomb friction), generic over the number type so that the Jacobian
+//! comes from the same code.
+//!
+//! The geometry follows Adams' account of its solid-to-solid contact: the
+//! overlap's centroid, the closest point of each solid's surface to it,
+//! the depth the distance between those two points and the normal the
+//! direction between them. A sphere's overlap with a sphere, a plane, a
+//! block or a cylinder has its depth in closed form (the depth along the
+//! line of the centroid is the distance from the sphere's deepest point to
+//! the other surface); two blocks, or a block and a plane, overlap in a
+//! convex polyhedron whose centroid is computed exactly by clipping.
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::bodies::Kinematics;
+use super::forces::{Action, axes, place};
+use crate::laws::contact::ContactBranch;
+use crate::laws::steps::{Shape as StepShape, step};
+use crate::number::Number;
+use crate::simulate::model::{Contact, Friction, Model, Shape, Solid};
+
+/// A solid placed in ground: its marker's origin and axes, and its shape.
+struct Placed<'s, T: Number> {
+    origin: Vector3<T>,
+    axes: Matrix3<T>,
+    shape: &'s Shape,
+    body: Option<usize>,
+}
+
+impl<T: Number> Placed<'_, T> {
+    /// A point of ground in the marker's axes.
+    fn local(&self, point: &Vector3<T>) -> Vector3<T> {
+        self.axes.tr_mul(&(point - &self.origin))
+    }
+
+    /// A point in the marker's axes, in ground.
+    fn ground(&self, local: &Vector3<T>) -> Vector3<T> {
+        &self.origin + &self.axes * local
+    }
+
+    /// A point well inside the solid, which the normal points away from.
+    fn inside(&self, near: &Vector3<T>) -> Vector3<T> {
+        match *self.shape {
+            Shape::Sphere { .. } => self.origin.clone(),
+            Shape::Block { lower, upper } => self.ground(&((lower + upper) / 2.0).map(T::from)),
+            Shape::Cylinder { bottom, top, .. } => {
+                self.ground(&Vector3::new(0.0, 0.0, (bottom + top) / 2.0).map(T::from))
+            }
+            Shape::HalfSpace => near - self.axes.column(2).into_owned(),
+        }
+    }
+}
+
+/// `solid` where its marker stands in `kinematics`.
+fn placed<'s, T: Number>(
+    model: &Model,
+    solid: &'s Solid,
+    kinematics: &[Kinematics<T>],
+) -> Placed<'s, T> {
+    let marker = place(model, &solid.marker, kinematics);
+    Placed {
+        origin: marker.origin,
+        axes: axes(model, &solid.marker, kinematics),
+        shape: &solid.shape,
+        body: marker.body,
+    }
+}
+
+/// Where two solids overlap: the point the force acts at, the unit normal
+/// along which it pushes I's solid away from J's, and the depth.
+struct Touch<T: Number> {
+    point: Vector3<T>,
+    normal: Vector3<T>,
+    depth: T,
+}
+
+/// What a contact applies on I's part and on J's, its normal force on
+/// branch `held` of its law (the natural branch when `None`): nothing
+/// while the solids are apart, unless a branch in touch is held there.
+pub(super) fn actions<T: Number>(
+    model: &Model,
+    contact: &Contact,
+    kinematics: &[Kinematics<T>],
+    held: Option<ContactBranch>,
+) -> [Option<Action<T>>; 2] {
+    let (i, j) = (
+        placed(model, &contact.i, kinematics),
+        placed(model, &contact.j, kinematics),
+    );
+    let Some(touch) = touch(&i, &j) else {
+        return [None, None];
+    };
+    if touch.depth.value() <= 0.0 && held.is_none_or(|branch| branch == ContactBranch::Free) {
+        return [None, None];
+    }
+    let relative = relative_velocity(kinematics, &i, &j, &touch.point);
+    let push = force(contact, &touch, &relative, held);
+    let on = |body, force: Vector3<T>| Action {
+        body,
+        point: touch.point.clone(),
+        force: Some(force),
+        torque: None,
+    };
+    [Some(on(i.body, push.clone())), Some(on(j.body, -push))]
+}
+
+/// The velocity of I's solid's point at `point` relative to J's.
+fn relative_velocity<T: Number>(
+    kinematics: &[Kinematics<T>],
+    i: &Placed<T>,
+    j: &Placed<T>,
+    point: &Vector3<T>,
+) -> Vector3<T> {
+    let velocity = |body: Option<usize>| match body {
+        None => Vector3::zeros(),
+        Some(body) => {
+            let state = &kinematics[body];
+            &state.velocity + state.omega_ground.cross(&(point - &state.centre))
+        }
+    };
+    velocity(i.body) - velocity(j.body)
+}
+
+/// The separation of a contact's solids (the negative of their depth:
+/// the first argument of its `IMPACT` law) and its rate at a state, which
+/// the run watches to switch the law's branches; while two solids of flat
+/// faces are apart, a lower bound on their distance and no rate.
+pub(super) fn separation(
+    model: &Model,
+    contact: &Contact,
+    kinematics: &[Kinematics<f64>],
+) -> (f64, f64) {
+    let (i, j) = (
+        placed(model, &contact.i, kinematics),
+        placed(model, &contact.j, kinematics),
+    );
+    match touch(&i, &j) {
+        Some(touch) => {
+            let relative = relative_velocity(kinematics, &i, &j, &touch.point);
+            (-touch.depth, touch.normal.dot(&relative))
+        }
+        None => (distance_bound(&i, &j).unwrap_or(0.0).max(0.0), 0.0),
+    }
+}
+
+/// The force on I's solid: the contact's `IMPACT` law of the separation
+/// and its rate on branch `held`, along the normal, and friction against
+/// the slip.
+fn force<T: Number>(
+    contact: &Contact,
+    touch: &Touch<T>,
+    relative: &Vector3<T>,
+    held: Option<ContactBranch>,
+) -> Vector3<T> {
+    let approach = touch.normal.dot(relative);
+    let separation = -touch.depth.clone();
+    let law = contact.law();
+    let normal_force = match held {
+        None => law.force(&separation, &approach),
+        Some(branch) => law.force_held(&separation, &approach, branch),
+    };
+    let mut push = &touch.normal * normal_force.clone();
+    if let Some(friction) = &contact.friction {
+        let slip = relative - &touch.normal * approach;
+        let per_slip = friction_per_slip(friction, &slip);
+        push += slip * (-normal_force * per_slip);
+    }
+    push
+}
+
+/// The friction coefficient divided by the slip speed `v`, which stays
+/// finite as `v` goes to zero (the stiction ramp is odd in `v`).
+fn friction_per_slip<T: Number>(friction: &Friction, slip: &Vector3<T>) -> T {
+    let &Friction {
+        static_coefficient: mu_s,
+        dynamic_coefficient: mu_d,
+        stiction_velocity: v_s,
+        friction_velocity: v_d,
+    } = friction;
+    let squared = slip.dot(slip);
+    if squared.value() <= (1e-9 * v_s).powi(2) {
+        // STEP(v, -vs, -μs, vs, μs)/v at v = 0: the ramp's slope, 3μs/(2vs).
+        return T::from(1.5 * mu_s / v_s);
+    }
+    let speed = squared.sqrt();
+    let c = T::from;
+    let stiction = step(
+        StepShape::Cubic,
+        &speed,
+        &c(-v_s),
+        &c(-mu_s),
+        &c(v_s),
+        &c(mu_s),
+    );
+    let sliding = step(
+        StepShape::Cubic,
+        &speed,
+        &c(v_s),
+        &c(0.0),
+        &c(v_d),
+        &c(mu_d - mu_s),
+    );
+    (stiction + sliding) / speed
+}
+
+/// Where `i` and `j` overlap, if they do.
+fn touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
+    match (i.shape, j.shape) {
+        (Shape::Sphere { radius }, _) => sphere_touch(&i.origin, *radius, j),
+        (_, Shape::Sphere { radius }) => sphere_touch(&j.origin, *radius, i).map(|touch| Touch {
+            normal: -touch.normal,
+            ..touch
+        }),
+        _ => overlap_touch(i, j),
+    }
+}
+
+/// A sphere about `centre` against `other`: the normal points from the
+/// other solid into the sphere, the depth is the radius less the
+/// distance from the centre to the other solid's surface (plus that
+/// distance when the centre is inside), and the force acts midway between
+/// the two surfaces. The depth is negative while they are apart (the
+/// contact's switching value, and its force continued on a held branch).
+fn sphere_touch<T: Number>(
+    centre: &Vector3<T>,
+    radius: f64,
+    other: &Placed<T>,
+) -> Option<Touch<T>> {
+    let (surface, outward) = closest_surface(other, centre)?;
+    let depth = T::from(radius) - (centre - &surface).dot(&outward);
+    let deepest = centre - &outward * T::from(radius);
+    Some(Touch {
+        point: (deepest + surface) * T::from(0.5),
+        normal: outward,
+        depth,
+    })
+}
+
+/// The point of `solid`'s surface closest to `point` and the surface's
+/// outward unit normal there (towards `point` when it is outside, the
+/// nearest face's when inside); `None` where they are not defined (a
+/// point at a sphere's centre or on a cylinder's axis inside it).
+fn closest_surface<T: Number>(
+    solid: &Placed<T>,
+    point: &Vector3<T>,
+) -> Option<(Vector3<T>, Vector3<T>)> {
+    let local = solid.local(point);
+    let (surface, outward) = match *solid.shape {
+        Shape::Sphere { radius } => {
+            let length = local.norm();
+            if length.value() == 0.0 {
+                return None;
+            }
+            let outward = local / length;
+            (&outward * T::from(radius), outward)
+        }
+        Shape::HalfSpace => {
+            let mut surface = local;
+            surface.z = T::from(0.0);
+            (surface, Vector3::z().map(T::from))
+        }
+        Shape::Block { lower, upper } => block_surface(&local, &lower, &upper),
+        Shape::Cylinder {
+            radius,
+            bottom,
+            top,
+        } => cylinder_surface(&local, radius, bottom, top)?,
+    };
+    Some((solid.ground(&surface), &solid.axes * outward))
+}
+
+/// The closest point of a block's surface to `local` and the outward
+/// normal there.
+fn block_surface<T: Number>(
+    local: &Vector3<T>,
+    lower: &Vector3<f64>,
+    upper: &Vector3<f64>,
+) -> (Vector3<T>, Vector3<T>) {
+    let clamped = Vector3::from_fn(|axis, _| {
+        let x = &local[axis];
+        if x.value() < lower[axis] {
+            T::from(lower[axis])
+        } else if x.value() > upper[axis] {
+            T::from(upper[axis])
+        } else {
+            x.clone()
+        }
+    });
+    let gap = local - &clamped;
+    let length = gap.norm();
+    if length.value() > 0.0 {
+        return (clamped, gap / length);
+    }
+    // Inside: out through the nearest face.
+    let mut nearest = (f64::INFINITY, 0, 1.0);
+    for axis in 0..3 {
+        let x = local[axis].value();
+        for (distance, side) in [(x - lower[axis], -1.0), (upper[axis] - x, 1.0)] {
+            if distance < nearest.0 {
+                nearest = (distance, axis, side);
+            }
+        }
+    }
+    let (_, axis, side) = nearest;
+    let mut surface = local.clone();
+    surface[axis] = T::from(if side > 0.0 { upper[axis] } else { lower[axis] });
+    let mut outward = Vector3::zeros();
+    outward[axis] = T::from(side);
+    (surface, outward)
+}
+
+/// The closest point of a cylinder's surface (about z, between `bottom`
+/// and `top`) to `local` and the outward normal there.
+fn cylinder_surface<T: Number>(
+    local: &Vector3<T>,
+    radius: f64,
+    bottom: f64,
+    top: f64,
+) -> Option<(Vector3<T>, Vector3<T>)> {
+    let zero = || T::from(0.0);
+    let across = (local.x.clone() * local.x.clone() + local.y.clone() * local.y.clone()).sqrt();
+    let (rho, z) = (across.value(), local.z.value());
+    let radial = |length: T| {
+        if rho == 0.0 {
+            None
+        } else {
+            Some((
+                local.x.clone() / across.clone(),
+                local.y.clone() / across.clone(),
+                length,
+            ))
+        }
+    };
+    let outside_side = rho > radius;
+    let outside_ends = z < bottom || z > top;
+    if outside_side || outside_ends {
+        // Clamp to the solid; the gap's direction is the normal.
+        let end = if z < bottom {
+            T::from(bottom)
+        } else if z > top {
+            T::from(top)
+        } else {
+            local.z.clone()
+        };
+        let surface = if outside_side {
+            let (x, y, _) = radial(T::from(radius))?;
+            Vector3::new(x * T::from(radius), y * T::from(radius), end)
+        } else {
+            Vector3::new(local.x.clone(), local.y.clone(), end)
+        };
+        let gap = local - &surface;
+        let length = gap.norm();
+        return (length.value() > 0.0).then(|| (surface, gap / length));
+    }
+    // Inside: out through the nearest of the side and the two ends.
+    let side = radius - rho;
+    let (down, up) = (z - bottom, top - z);
+    if side <= down && side <= up {
+        let (x, y, _) = radial(zero())?;
+        let surface = Vector3::new(
+            x.clone() * T::from(radius),
+            y.clone() * T::from(radius),
+            local.z.clone(),
+        );
+        return Some((surface, Vector3::new(x, y, zero())));
+    }
+    let (end, sign) = if down < up {
+        (bottom, -1.0)
+    } else {
+        (top, 1.0)
+    };
+    let surface = Vector3::new(local.x.clone(), local.y.clone(), T::from(end));
+    Some((surface, Vector3::new(zero(), zero(), T::from(sign))))
+}
+
+/// Two solids of flat faces (blocks, planes): their overlap, a convex
+/// polyhedron, clipped exactly; the force at its centroid, the depth
+/// the distance between the two surfaces' points closest to it.
+fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
+    // Clip the bounded one by the other's faces (two planes have no
+    // bounded overlap, and the reader refuses that pair).
+    let (bounded, other) = match (i.shape, j.shape) {
+        (Shape::HalfSpace, _) => (j, i),
+        _ => (i, j),
+    };
+    let mut faces = block_faces(bounded)?;
+    for (normal, offset) in half_spaces(other) {
+        faces = clip(faces, &normal, &offset);
+        if faces.len() < 4 {
+            return None;
+        }
+    }
+    let centroid = centroid(&faces)?;
+    let (on_i, _) = closest_surface(i, &centroid)?;
+    let (on_j, _) = closest_surface(j, &centroid)?;
+    let between = &on_j - &on_i;
+    let depth = between.norm();
+    if depth.value() == 0.0 {
+        return None;
+    }
+    let mut normal = between / depth.clone();
+    // The normal pushes I away from J: towards I's inside.
+    let away = i.inside(&centroid) - j.inside(&centroid);
+    if normal.dot(&away).value() < 0.0 {
+        normal = -normal;
+    }
+    Some(Touch {
+        point: centroid,
+        normal,
+        depth,
+    })
+}
+
+/// A face: its corners in order round it.
+type Face<T> = Vec<Vector3<T>>;
+
+/// The six faces of a block, in ground (`None` for another shape).
+fn block_faces<T: Number>(solid: &Placed<T>) -> Option<Vec<Face<T>>> {
+    let Shape::Block { lower, upper } = *solid.shape else {
+        return None;
+    };
+    let corner = |x: bool, y: bool, z: bool| {
+        let pick = |axis: usize, high: bool| if high { upper[axis] } else { lower[axis] };
+        solid.ground(&Vector3::new(pick(0, x), pick(1, y), pick(2, z)).map(T::from))
+    };
+    let face = |axis: usize, high: bool| {
+        // The four corners with this coordinate, in order round the face.
+        let order = [(false, false), (true, false), (true, true), (false, true)];
+        order
+            .iter()
+            .map(|&(a, b)| match axis {
+                0 => corner(high, a, b),
+                1 => corner(a, high, b),
+                _ => corner(a, b, high),
+            })
+            .collect()
+    };
+    Some(
+        (0..3)
+            .flat_map(|axis| [face(axis, false), face(axis, true)])
+            .collect(),
+    )
+}
+
+/// The half-spaces `normal · x <= offset` whose intersection is `solid`
+/// (a block's six, a plane's one), in ground.
+fn half_spaces<T: Number>(solid: &Placed<T>) -> Vec<(Vector3<T>, T)> {
+    let mut planes = Vec::new();
+    let mut add = |axis: usize, sign: f64, at: f64| {
+        let normal = solid.axes.column(axis).into_owned() * T::from(sign);
+        let mut point = Vector3::zeros();
+        point[axis] = T::from(at);
+        let offset = normal.dot(&solid.ground(&point));
+        planes.push((normal, offset));
+    };
+    match *solid.shape {
+        Shape::Block { lower, upper } => {
+            for axis in 0..3 {
+                add(axis, -1.0, lower[axis]);
+                add(axis, 1.0, upper[axis]);
+            }
+        }
+        Shape::HalfSpace => add(2, 1.0, 0.0),
+        Shape::Sphere { .. } | Shape::Cylinder { .. } => {}
+    }
+    planes
+}
+
+/// A convex polyhedron cut by the half-space `normal · x <= offset`: each
+/// face clipped, and the cut closed by a new face (unless a face already
+/// lies in the cutting plane). Heights within a trillionth of the scale
+/// count as on the plane, so that flush faces are met as such.
+fn clip<T: Number>(faces: Vec<Face<T>>, normal: &Vector3<T>, offset: &T) -> Vec<Face<T>> {
+    let height = |point: &Vector3<T>| normal.dot(point) - offset.clone();
+    let scale = faces
+        .iter()
+        .flatten()
+        .map(|point| normal.dot(point).value().abs())
+        .fold(offset.value().abs(), f64::max);
+    let tolerance = 1e-12 * scale.max(f64::MIN_POSITIVE);
+    let side = |height: &T| {
+        if height.value() > tolerance {
+            1
+        } else if height.value() < -tolerance {
+            -1
+        } else {
+            0
+        }
+    };
+    let mut kept = Vec::new();
+    let mut cut: Vec<Vector3<T>> = Vec::new();
+    let mut flush = false;
+    for face in faces {
+        let mut clipped = Vec::new();
+        let mut on_plane = 0;
+        for (index, point) in face.iter().enumerate() {
+            let next = &face[(index + 1) % face.len()];
+            let (here, there) = (height(point), height(next));
+            let (here_side, there_side) = (side(&here), side(&there));
+            if here_side <= 0 {
+                clipped.push(point.clone());
+            }
+            if here_side == 0 {
+                on_plane += 1;
+                cut.push(point.clone());
+            } else if here_side * there_side < 0 {
+                let fraction = here.clone() / (here - there);
+                let crossing = point + (next - point) * fraction;
+                cut.push(crossing.clone());
+                clipped.push(crossing);
+            }
+        }
+        flush |= on_plane == face.len();
+        if clipped.len() >= 3 {
+            kept.push(clipped);
+        }
+    }
+    if !flush && let Some(face) = ordered(cut, normal) {
+        kept.push(face);
+    }
+    kept
+}
+
+/// The points of a cut (each met twice) in order round their mean, in the
+/// plane of `normal`; `None` for fewer than three distinct points.
+fn ordered<T: Number>(points: Vec<Vector3<T>>, normal: &Vector3<T>) -> Option<Face<T>> {
+    let mut distinct: Vec<Vector3<T>> = Vec::new();
+    let scale = points
+        .iter()
+        .map(|point| point.map(|c| c.value()).norm())
+        .fold(1.0, f64::max);
+    for point in points {
+        let near = |other: &Vector3<T>| (other - &point).map(|c| c.value()).norm() <= 1e-12 * scale;
+        if !distinct.iter().any(near) {
+            distinct.push(point);
+        }
+    }
+    if distinct.len() < 3 {
+        return None;
+    }
+    let count = T::from(distinct.len() as f64);
+    let mean = distinct
+        .iter()
+        .fold(Vector3::zeros(), |sum, point| sum + point)
+        / count;
+    let n = normal.map(|c| c.value());
+    let first = (&distinct[0] - &mean).map(|c| c.value());
+    let second = n.cross(&first);
+    let angle = |point: &Vector3<T>| {
+        let offset = (point - &mean).map(|c| c.value());
+        offset.dot(&second).atan2(offset.dot(&first))
+    };
+    distinct.sort_by(|a, b| angle(a).total_cmp(&angle(b)));
+    Some(distinct)
+}
+
+/// The centroid of a convex polyhedron, by tetrahedra from its corners'
+/// mean; `None` when it has no volume.
+fn centroid<T: Number>(faces: &[Face<T>]) -> Option<Vector3<T>> {
+    let corners: Vec<&Vector3<T>> = faces.iter().flatten().collect();
+    let apex = corners
+        .iter()
+        .fold(Vector3::zeros(), |sum, point| sum + *point)
+        / T::from(corners.len() as f64);
+    let mut volume = T::from(0.0);
+    let mut moment = Vector3::zeros();
+    for face in faces {
+        for index in 1..face.len() - 1 {
+            let (a, b, c) = (&face[0], &face[index], &face[index + 1]);
+            let signed = (a - &apex).dot(&(b - &apex).cross(&(c - &apex))) / T::from(6.0);
+            let size = if signed.value() < 0.0 {
+                -signed
+            } else {
+                signed
+            };
+            moment += (&apex + a + b + c) * (size.clone() / T::from(4.0));
+            volume += size;
+        }
+    }
+    let extent = corners
+        .iter()
+        .map(|point| (*point - &apex).map(|c| c.value()).norm())
+        .fold(0.0, f64::max);
+    (volume.value() > 1e-15 * extent.powi(3)).then(|| moment / volume)
+}
+
+/// The part of the way to a solid's surface (plus the allowed first
+/// depth) that one step may close ([`step_limit`]).
+const APPROACH_FRACTION: f64 = 0.5;
+
+/// The largest step after which the solids of `contact`, apart now, can
+/// overlap by no more than the depth its force first meets with
+/// (`DMAX`, or a tenth of the thinner solid's least size when that is
+/// less), so that the run's looks inside the step see the touch (and
+/// locate it): a lower bound on their distance against upper bounds on their
+/// closing speed and its rate (`accelerations`: each body's centre
+/// acceleration and angular acceleration, in size). An error-controlled
+/// step that sees no force would otherwise step a falling body through a
+/// thin plate. Infinite when they overlap (the force is then in the
+/// equations) or do not approach.
+pub(super) fn step_limit(
+    model: &Model,
+    contact: &Contact,
+    kinematics: &[Kinematics<f64>],
+    accelerations: &[(f64, f64)],
+) -> f64 {
+    let (i, j) = (
+        placed(model, &contact.i, kinematics),
+        placed(model, &contact.j, kinematics),
+    );
+    let Some(distance) = distance_bound(&i, &j) else {
+        return f64::INFINITY;
+    };
+    if distance <= 0.0 {
+        return f64::INFINITY;
+    }
+    let allowed = contact
+        .damping_depth
+        .min(0.1 * least_size(&i).min(least_size(&j)));
+    // Points of the two solids lie within `reach` of `middle`.
+    let (bounded, other) = if matches!(i.shape, Shape::HalfSpace) {
+        (&j, &i)
+    } else {
+        (&i, &j)
+    };
+    let (centre, radius) = bounding_sphere(bounded);
+    let (middle, reach) = match bounding_sphere_of(other) {
+        Some((other_centre, other_radius)) => {
+            let middle = (centre + other_centre) / 2.0;
+            let half = (centre - other_centre).norm() / 2.0;
+            (middle, half + radius.max(other_radius))
+        }
+        None => (centre, radius),
+    };
+    // Each body's velocity at `middle`, its angular velocity, and a bound
+    // on the acceleration of its points within `reach` of `middle`.
+    let motion = |body: Option<usize>| match body {
+        None => (Vector3::zeros(), Vector3::zeros(), 0.0),
+        Some(body) => {
+            let state = &kinematics[body];
+            let arm = middle - state.centre;
+            let at_middle = state.velocity + state.omega_ground.cross(&arm);
+            let (linear, angular) = accelerations[body];
+            let spin = state.omega_ground.norm_squared();
+            let acceleration = linear + (angular + spin) * (arm.norm() + reach);
+            (at_middle, state.omega_ground, acceleration)
+        }
+    };
+    let ((v_i, w_i, a_i), (v_j, w_j, a_j)) = (motion(i.body), motion(j.body));
+    let speed = (v_i - v_j).norm() + (w_i - w_j).norm() * reach;
+    let acceleration = a_i + a_j;
+    // The step in which `speed h + acceleration h²/2` reaches the way.
+    let way = APPROACH_FRACTION * (distance + allowed);
+    let root = speed.hypot((2.0 * acceleration * way).sqrt());
+    if speed + root == 0.0 {
+        return f64::INFINITY;
+    }
+    2.0 * way / (speed + root)
+}
+
+/// A sphere that holds a bounded solid: its centre and radius in ground.
+fn bounding_sphere(solid: &Placed<f64>) -> (Vector3<f64>, f64) {
+    bounding_sphere_of(solid).unwrap_or((solid.origin, 0.0))
+}
+
+/// [`bounding_sphere`], `None` for a half-space.
+fn bounding_sphere_of(solid: &Placed<f64>) -> Option<(Vector3<f64>, f64)> {
+    match *solid.shape {
+        Shape::Sphere { radius } => Some((solid.origin, radius)),
+        Shape::Block { lower, upper } => Some((
+            solid.ground(&((lower + upper) / 2.0)),
+            (upper - lower).norm() / 2.0,
+        )),
+        Shape::Cylinder {
+            radius,
+            bottom,
+            top,
+        } => Some((
+            solid.ground(&Vector3::new(0.0, 0.0, (bottom + top) / 2.0)),
+            radius.hypot((top - bottom) / 2.0),
+        )),
+        Shape::HalfSpace => None,
+    }
+}
+
+/// A solid's least size (infinite for a half-space).
+fn least_size(solid: &Placed<f64>) -> f64 {
+    match *solid.shape {
+        Shape::Sphere { radius } => radius,
+        Shape::Block { lower, upper } => (upper - lower).min(),
+        Shape::Cylinder {
+            radius,
+            bottom,
+            top,
+        } => radius.min(top - bottom),
+        Shape::HalfSpace => f64::INFINITY,
+    }
+}
+
+/// A lower bound on the distance between two solids (negative or zero
+/// when they may overlap): exact for a sphere against anything and for a
+/// block against a plane; for two blocks, the widest gap between their
+/// shadows on the fifteen axes that separate boxes.
+fn distance_bound(i: &Placed<f64>, j: &Placed<f64>) -> Option<f64> {
+    match (i.shape, j.shape) {
+        (Shape::Sphere { radius }, _) => sphere_distance(&i.origin, *radius, j),
+        (_, Shape::Sphere { radius }) => sphere_distance(&j.origin, *radius, i),
+        (Shape::HalfSpace, _) => Some(lowest_height(j, i)),
+        (_, Shape::HalfSpace) => Some(lowest_height(i, j)),
+        _ => Some(shadow_gap(i, j)),
+    }
+}
+
+/// How far a sphere's surface is from `other` (negative inside it).
+fn sphere_distance(centre: &Vector3<f64>, radius: f64, other: &Placed<f64>) -> Option<f64> {
+    let (surface, outward) = closest_surface(other, centre)?;
+    Some((centre - surface).dot(&outward) - radius)
+}
+
+/// How high a block's lowest corner stands above a plane.
+fn lowest_height(block: &Placed<f64>, plane: &Placed<f64>) -> f64 {
+    let normal = plane.axes.column(2).into_owned();
+    corners(block)
+        .iter()
+        .map(|corner| normal.dot(&(corner - plane.origin)))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// A block's eight corners in ground.
+fn corners(block: &Placed<f64>) -> Vec<Vector3<f64>> {
+    let Shape::Block { lower, upper } = *block.shape else {
+        return Vec::new();
+    };
+    (0..8)
+        .map(|bits: usize| {
+            let pick = |axis: usize| {
+                if bits >> axis & 1 == 1 {
+                    upper[axis]
+                } else {
+                    lower[axis]
+                }
+            };
+            block.ground(&Vector3::new(pick(0), pick(1), pick(2)))
+        })
+        .collect()
+}
+
+/// The widest gap between the shadows of two blocks on their face normals
+/// and the cross products of their edges.
+fn shadow_gap(i: &Placed<f64>, j: &Placed<f64>) -> f64 {
+    let (a, b) = (corners(i), corners(j));
+    let mut axes: Vec<Vector3<f64>> = Vec::new();
+    for k in 0..3 {
+        axes.push(i.axes.column(k).into_owned());
+        axes.push(j.axes.column(k).into_owned());
+        for l in 0..3 {
+            let cross = i.axes.column(k).cross(&j.axes.column(l));
+            if cross.norm() > 1e-9 {
+                axes.push(cross.normalize());
+            }
+        }
+    }
+    let shadow = |points: &[Vector3<f64>], axis: &Vector3<f64>| {
+        points
+            .iter()
+            .map(|point| axis.dot(point))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), x| {
+                (low.min(x), high.max(x))
+            })
+    };
+    axes.iter()
+        .map(|axis| {
+            let ((a_low, a_high), (b_low, b_high)) = (shadow(&a, axis), shadow(&b, axis));
+            (a_low - b_high).max(b_low - a_high)
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
+}

@@ -1,0 +1,401 @@
+//! The `CONTACT` statements between solids (`TYPE = SOLID_TO_SOLID`) with
+//! the IMPACT normal force and optional Coulomb friction, and the GRAPHICS
+//! statements that give their solids: a sphere (`ELLIPSOID` of equal
+//! scales, which are diameters), a `BOX`, a `CYLINDER` and a `PLANE`. A
+//! contact that lists several solids on a side is one contact for each
+//! pair.
+
+use std::collections::HashMap;
+
+use nalgebra::Vector3;
+
+use crate::check::Reference;
+use crate::model::initial::{number, number_list};
+use crate::model::{Dataset, Statement, Value, is_kind};
+use crate::scene::{Scene, Target};
+use crate::simulate::error::SimulateError;
+use crate::simulate::model::{Contact, Friction, Shape, Solid};
+
+/// What a refused contact meets, said once for all the contacts it stops
+/// (the grouped summary counts them).
+const SHAPES: &str =
+    "mbexpr meets spheres (ELLIPSOID of equal scales), BOXes, CYLINDERs and PLANEs";
+
+/// The contacts of `dataset`, each pair of its solids one [`Contact`];
+/// what cannot be read is recorded in `errors` at its place.
+pub(super) fn contacts(
+    dataset: &Dataset,
+    scene: &Scene,
+    errors: &mut Vec<SimulateError>,
+) -> Vec<(Contact, u64)> {
+    let graphics: HashMap<u64, &Statement> = dataset
+        .statements
+        .iter()
+        .filter(|statement| is_kind(&statement.name, "GRAPHICS"))
+        .filter_map(|statement| Some((statement.id?, statement)))
+        .collect();
+    let mut contacts = Vec::new();
+    for statement in &dataset.statements {
+        if !is_kind(&statement.name, "CONTACT") {
+            continue;
+        }
+        match contact(statement, &graphics, scene) {
+            Ok(pairs) => {
+                let id = statement.id.unwrap_or(0);
+                contacts.extend(pairs.into_iter().map(|pair| (pair, id)));
+            }
+            Err(error) => errors.push(error),
+        }
+    }
+    contacts
+}
+
+/// A refusal of `statement` for `reason` at `span`.
+fn refused(statement: &Statement, reason: String, span: crate::span::Span) -> SimulateError {
+    SimulateError::Unsupported {
+        statement: statement.label(),
+        reason,
+        span,
+    }
+}
+
+/// The word a keyword is set to (`TYPE = SOLID_TO_SOLID`), upper case.
+fn word(statement: &Statement, keyword: &str) -> Option<String> {
+    match &statement.argument(keyword, keyword.len().min(6))?.value {
+        Value::List(items) if items.len() == 1 => Some(items[0].text.trim().to_ascii_uppercase()),
+        _ => Some(String::new()),
+    }
+}
+
+fn contact(
+    statement: &Statement,
+    graphics: &HashMap<u64, &Statement>,
+    scene: &Scene,
+) -> Result<Vec<Contact>, SimulateError> {
+    let label = statement.label();
+    for keyword in [
+        "NORMAL_FUNCTION",
+        "NORMAL_ROUTINE",
+        "FRICTION_FUNCTION",
+        "FRICTION_ROUTINE",
+        "POISSON",
+        "AUGMENTED_LAGRANGIAN_FORMULATION",
+        "IFLEX",
+        "JFLEX",
+        "IEDGE",
+        "JEDGE",
+        "IFLIP_GEOMETRY",
+        "JFLIP_GEOMETRY",
+        "IFLIP_NORMAL",
+        "JFLIP_NORMAL",
+    ] {
+        if let Some(argument) = statement.argument(keyword, keyword.len()) {
+            return Err(refused(
+                statement,
+                format!(
+                    "has {keyword}, which mbexpr does not simulate (it simulates solid-to-solid contacts with the IMPACT normal force and Coulomb friction)"
+                ),
+                argument.span,
+            ));
+        }
+    }
+    if let Some(kind) = word(statement, "TYPE")
+        && kind != "SOLID_TO_SOLID"
+    {
+        let span = statement
+            .argument("TYPE", 4)
+            .map_or(statement.span, |a| a.span);
+        return Err(refused(
+            statement,
+            "is not TYPE = SOLID_TO_SOLID, the only contact mbexpr simulates (curves and flexible bodies are not)".to_string(),
+            span,
+        ));
+    }
+    let positive = |keyword: &str, what: &str| -> Result<f64, SimulateError> {
+        let value = number(statement, keyword, f64::NAN).unwrap_or(f64::NAN);
+        if value > 0.0 && value.is_finite() {
+            return Ok(value);
+        }
+        let span = statement
+            .argument(keyword, keyword.len().min(4))
+            .map_or(statement.span, |argument| argument.span);
+        Err(SimulateError::Model {
+            message: format!("{label}: give {keyword} = a positive number ({what})"),
+            span,
+        })
+    };
+    let stiffness = positive("STIFFNESS", "the force per depth to the EXPONENT")?;
+    let damping = number(statement, "DAMPING", 0.0)
+        .ok()
+        .filter(|damping| *damping >= 0.0 && damping.is_finite())
+        .ok_or_else(|| SimulateError::Model {
+            message: format!("{label}: DAMPING is a number, zero or more"),
+            span: statement
+                .argument("DAMPING", 4)
+                .map_or(statement.span, |argument| argument.span),
+        })?;
+    let exponent = positive(
+        "EXPONENT",
+        "the power of the depth; Adams suggests 2.2 for metals",
+    )?;
+    let damping_depth = positive("DMAX", "the depth at which the damping is full")?;
+    let friction = friction(statement)?;
+    let sides = ["IGEOM", "JGEOM"].map(|keyword| solids(statement, keyword, graphics, scene));
+    let [i_solids, j_solids] = sides;
+    let (i_solids, j_solids) = (i_solids?, j_solids?);
+    let mut pairs = Vec::new();
+    for i in &i_solids {
+        for j in &j_solids {
+            check_pair(statement, i, j, scene)?;
+            pairs.push(Contact {
+                i: i.0.clone(),
+                j: j.0.clone(),
+                stiffness,
+                exponent,
+                damping,
+                damping_depth,
+                friction,
+                span: statement.span,
+            });
+        }
+    }
+    Ok(pairs)
+}
+
+/// The friction a contact asks for: `COULOMB_FRICTION = ON` (or
+/// `DYNAMICS_ONLY`, the same in a dynamic run: the coefficient is zero at
+/// zero slip), or on by default when the coefficients are given.
+fn friction(statement: &Statement) -> Result<Option<Friction>, SimulateError> {
+    let label = statement.label();
+    let given = ["MU_STATIC", "MU_DYNAMIC"]
+        .iter()
+        .any(|keyword| statement.argument(keyword, keyword.len()).is_some());
+    let on = match word(statement, "COULOMB_FRICTION").as_deref() {
+        None => given,
+        Some("OFF") => false,
+        Some("ON" | "DYNAMICS_ONLY" | "DYNAMICSONLY") => true,
+        Some(_) => {
+            let span = statement
+                .argument("COULOMB_FRICTION", 7)
+                .map_or(statement.span, |argument| argument.span);
+            return Err(SimulateError::Model {
+                message: format!("{label}: COULOMB_FRICTION is ON, OFF or DYNAMICS_ONLY"),
+                span,
+            });
+        }
+    };
+    if !on {
+        return Ok(None);
+    }
+    let value = |keyword: &str, what: &str, zero_allowed: bool| {
+        let found = statement.argument(keyword, keyword.len());
+        let value = number(statement, keyword, f64::NAN).unwrap_or(f64::NAN);
+        if value.is_finite() && (value > 0.0 || (zero_allowed && value == 0.0)) {
+            return Ok(value);
+        }
+        Err(SimulateError::Model {
+            message: format!("{label}: with friction on, give {keyword} = {what}"),
+            span: found.map_or(statement.span, |argument| argument.span),
+        })
+    };
+    let static_coefficient = value("MU_STATIC", "the static coefficient, 0 or more", true)?;
+    let dynamic_coefficient = value("MU_DYNAMIC", "the dynamic coefficient, 0 or more", true)?;
+    let stiction_velocity = value(
+        "STICTION_TRANSITION_VELOCITY",
+        "the slip speed of full static friction, above 0",
+        false,
+    )?;
+    let friction_velocity = value(
+        "FRICTION_TRANSITION_VELOCITY",
+        "the slip speed of full dynamic friction, above STICTION_TRANSITION_VELOCITY",
+        false,
+    )?;
+    if friction_velocity <= stiction_velocity {
+        return Err(SimulateError::Model {
+            message: format!(
+                "{label}: FRICTION_TRANSITION_VELOCITY must exceed STICTION_TRANSITION_VELOCITY"
+            ),
+            span: statement
+                .argument("FRICTION_TRANSITION_VELOCITY", 8)
+                .map_or(statement.span, |argument| argument.span),
+        });
+    }
+    Ok(Some(Friction {
+        static_coefficient,
+        dynamic_coefficient,
+        stiction_velocity,
+        friction_velocity,
+    }))
+}
+
+/// The solids a side of a contact lists (`IGEOM = 3, 4`), each with the
+/// place it is named at.
+fn solids(
+    statement: &Statement,
+    keyword: &str,
+    graphics: &HashMap<u64, &Statement>,
+    scene: &Scene,
+) -> Result<Vec<(Solid, crate::span::Span)>, SimulateError> {
+    let missing = || SimulateError::Model {
+        message: format!(
+            "{}: give {keyword} = the ids of GRAPHICS statements of one part",
+            statement.label()
+        ),
+        span: statement
+            .argument(keyword, keyword.len())
+            .map_or(statement.span, |argument| argument.span),
+    };
+    let argument = statement
+        .argument(keyword, keyword.len())
+        .ok_or_else(missing)?;
+    let ids = number_list(statement, argument).map_err(|_| missing())?;
+    let mut solids = Vec::new();
+    for id in ids {
+        let found = (id.fract() == 0.0 && id > 0.0)
+            .then(|| graphics.get(&(id as u64)))
+            .flatten();
+        let Some(graphic) = found else {
+            return Err(SimulateError::Model {
+                message: format!(
+                    "{}: {keyword} names GRAPHICS/{id}, which the model does not have",
+                    statement.label()
+                ),
+                span: argument.span,
+            });
+        };
+        let solid = solid(graphic, scene).map_err(|reason| {
+            refused(
+                statement,
+                format!("meets {reason}; {SHAPES}"),
+                argument.span,
+            )
+        })?;
+        solids.push((solid, argument.span));
+    }
+    Ok(solids)
+}
+
+/// The solid a GRAPHICS statement draws, or what it is that a contact
+/// cannot meet (said without its id, so that the contacts it stops are
+/// counted together; the place names it).
+fn solid(graphic: &Statement, scene: &Scene) -> Result<Solid, String> {
+    let has = |keyword: &str| graphic.argument(keyword, keyword.len()).is_some();
+    let value = |keyword: &str| {
+        number(graphic, keyword, f64::NAN)
+            .ok()
+            .filter(|value| value.is_finite())
+    };
+    let marker = |keyword: &str| {
+        value(keyword)
+            .filter(|id| id.fract() == 0.0 && *id > 0.0)
+            .and_then(|id| scene.find_marker(&Reference::Id(id as u64)).ok())
+            .ok_or_else(|| format!("a GRAPHICS whose {keyword} names no MARKER"))
+    };
+    let bad = |what: &str| what.to_string();
+    if has("ELLIPSOID") {
+        let scales = ["XSCALE", "YSCALE", "ZSCALE"].map(value);
+        let [Some(x), Some(y), Some(z)] = scales else {
+            return Err(bad("an ELLIPSOID without its three scales"));
+        };
+        if x != y || y != z || x <= 0.0 {
+            return Err(bad("an ELLIPSOID of unequal scales (not a sphere)"));
+        }
+        return Ok(Solid {
+            marker: marker("CM")?,
+            shape: Shape::Sphere { radius: x / 2.0 },
+        });
+    }
+    if has("BOX") {
+        let sizes = ["X", "Y", "Z"].map(value);
+        let [Some(x), Some(y), Some(z)] = sizes else {
+            return Err(bad("a BOX without its X, Y and Z"));
+        };
+        let size = Vector3::new(x, y, z);
+        if size.iter().any(|length| *length == 0.0) {
+            return Err(bad("a flat BOX (an edge of length 0)"));
+        }
+        return Ok(Solid {
+            marker: marker("CORNER")?,
+            shape: Shape::Block {
+                lower: size.map(|length| length.min(0.0)),
+                upper: size.map(|length| length.max(0.0)),
+            },
+        });
+    }
+    if has("CYLINDER") {
+        let (Some(length), Some(radius)) = (value("LENGTH"), value("RADIUS")) else {
+            return Err(bad("a CYLINDER without its LENGTH and RADIUS"));
+        };
+        if has("RANGLE") {
+            return Err(bad("a part of a CYLINDER (RANGLE)"));
+        }
+        if length == 0.0 || radius <= 0.0 {
+            return Err(bad("a CYLINDER of no length or radius"));
+        }
+        return Ok(Solid {
+            marker: marker("CM")?,
+            shape: Shape::Cylinder {
+                radius,
+                bottom: length.min(0.0),
+                top: length.max(0.0),
+            },
+        });
+    }
+    if has("PLANE") {
+        return Ok(Solid {
+            marker: marker("RM")?,
+            shape: Shape::HalfSpace,
+        });
+    }
+    let kind = graphic
+        .arguments
+        .iter()
+        .find(|argument| matches!(argument.value, Value::Flag))
+        .map_or("a shape", |argument| argument.keyword.as_str());
+    if kind == "EXTERNAL" {
+        return Err(bad(
+            "a solid read from a file (EXTERNAL), which mbexpr does not read",
+        ));
+    }
+    Err(format!("a {kind}"))
+}
+
+/// Refuses a pair the contact geometry does not meet: solids on one part,
+/// two planes, a cylinder against anything but a sphere.
+fn check_pair(
+    statement: &Statement,
+    (i, i_span): &(Solid, crate::span::Span),
+    (j, _): &(Solid, crate::span::Span),
+    scene: &Scene,
+) -> Result<(), SimulateError> {
+    let body = |solid: &Solid| match solid.marker {
+        Target::Marker(index) => scene.markers[index].body,
+        Target::Ground => None,
+    };
+    if body(i) == body(j) {
+        return Err(SimulateError::Model {
+            message: format!(
+                "{}: IGEOM and JGEOM are solids of one part, which cannot touch each other",
+                statement.label()
+            ),
+            span: *i_span,
+        });
+    }
+    let sphere = |solid: &Solid| matches!(solid.shape, Shape::Sphere { .. });
+    let cylinder = |solid: &Solid| matches!(solid.shape, Shape::Cylinder { .. });
+    let plane = |solid: &Solid| matches!(solid.shape, Shape::HalfSpace);
+    let reason = if plane(i) && plane(j) {
+        Some(format!("meets two PLANEs; {SHAPES}"))
+    } else if (cylinder(i) || cylinder(j)) && !(sphere(i) || sphere(j)) {
+        Some(
+            "meets a CYLINDER with a solid other than a sphere; mbexpr meets a cylinder with a sphere only"
+                .to_string(),
+        )
+    } else {
+        None
+    };
+    match reason {
+        Some(reason) => Err(refused(statement, reason, *i_span)),
+        None => Ok(()),
+    }
+}

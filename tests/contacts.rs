@@ -1,0 +1,342 @@
+//! CONTACT between solids: each checked against the same law written
+//! another way, or against a closed form.
+//!
+//! - A ball dropped on a plate (a BOX, a PLANE, a CYLINDER's end, a tilted
+//!   PLANE, the two solids named either way round) moves as the same
+//!   IMPACT written as an SFORCE along the plate's normal, whose switches
+//!   the run locates in the expression: to 1e-8 over several bounces, with
+//!   both methods.
+//! - Two balls meet, head on and obliquely, as an SFORCE between their
+//!   centres.
+//! - A ball thrown sliding on a plane with friction slows at `μd g` while it
+//!   slips, then rolls at the speed its angular momentum about the contact
+//!   line keeps (5/7 of the first for a solid ball).
+//! - A block sliding on a plate slows at `μd g` and stops where the closed
+//!   form says.
+//! - The Jacobian of contacts with friction (sphere on a block's edge, two
+//!   blocks) agrees with finite differences.
+//! - Every contact the simulator cannot hold is refused at its place.
+
+use mbexpr::simulate::Settings;
+
+use super::joints::method;
+use super::simulate::{run, settings};
+
+const G: f64 = 9.81;
+
+/// A ball of radius 0.1 and mass 1 dropped from `height` (its centre) on
+/// `plate`, a solid of ground with its top face at z = 0 through marker
+/// 10; `contact` says how they meet (`{I}` and `{J}`: the two GRAPHICS
+/// ids, ball 2 and plate 1). The plate's marker 11 has its z axis along
+/// the plate's normal.
+fn drop_on(plate: &str, height: f64, contact: &str) -> String {
+    format!(
+        "ball on a plate
+PART/1, GROUND
+MARKER/10, PART = 1, QP = -1, -1, -0.2
+MARKER/11, PART = 1
+{plate}
+PART/2, MASS = 1, CM = 20, IP = 0.004, 0.004, 0.004, QG = 0, 0, {height}
+MARKER/20, PART = 2
+GRAPHICS/2, ELLIPSOID, CM = 20, XSCALE = 0.2, YSCALE = 0.2, ZSCALE = 0.2
+{contact}
+ACCGRAV/KGRAV = -{G}
+END
+"
+    )
+}
+
+const IMPACT_NUMBERS: &str = "STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-4, EXPONENT = 1.5";
+
+/// The largest difference between two runs' rows.
+fn largest_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(b)
+        .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
+        .fold(0.0, f64::max)
+}
+
+fn with_method(name: &str, end: f64, steps: usize, rtol: f64) -> Settings {
+    Settings {
+        method: method(name),
+        ..settings(end, steps, rtol)
+    }
+}
+
+#[test]
+fn a_ball_dropped_on_a_plate_bounces_as_the_same_impact_written_as_an_sforce() {
+    let plates = [
+        ("GRAPHICS/1, BOX, CORNER = 10, X = 2, Y = 2, Z = 0.2", ""),
+        ("GRAPHICS/1, PLANE, RM = 11", ""),
+        // An upright cylinder's top face.
+        (
+            "GRAPHICS/1, CYLINDER, CM = 10, LENGTH = 0.2, RADIUS = 2",
+            "",
+        ),
+        // A plane tilted by 0.3 rad about x: the ball slides down it.
+        (
+            "GRAPHICS/1, PLANE, RM = 11",
+            "MARKER/11, PART = 1, REULER = 0, 0.3, 0",
+        ),
+    ];
+    for (index, (plate, tilt)) in plates.iter().enumerate() {
+        for (height, swapped) in [(0.5, false), (0.37, true)] {
+            let (i, j) = if swapped { (1, 2) } else { (2, 1) };
+            let contact = format!("CONTACT/1, IGEOM = {i}, JGEOM = {j}, IMPACT, {IMPACT_NUMBERS}");
+            let mut text = drop_on(plate, height, &contact);
+            if !tilt.is_empty() {
+                text = text.replace("MARKER/11, PART = 1\n", &format!("{tilt}\n"));
+            }
+            let sforce = drop_on(
+                "",
+                height,
+                "SFORCE/1, TRANSLATIONAL, ACTIONONLY, I = 20, J = 11, FUNCTION = IMPACT(DZ(20,11,11), VZ(20,11,11,11), 0.1, 1E5, 1.5, 10, 1E-4)",
+            );
+            let sforce = if tilt.is_empty() {
+                sforce
+            } else {
+                sforce.replace("MARKER/11, PART = 1\n", &format!("{tilt}\n"))
+            };
+            for name in ["dop853", "radau"] {
+                let settings = with_method(name, 2.0, 40, 1e-10);
+                let contact_run = run(&text, &settings).unwrap_or_else(|e| panic!("{e}"));
+                let reference = run(&sforce, &settings).unwrap_or_else(|e| panic!("{e}"));
+                let difference = largest_difference(&contact_run.rows, &reference.rows);
+                println!("plate {index}, swapped {swapped}, {name}: {difference:.1e}");
+                assert!(difference < 1e-8, "plate {index} {name}: {difference}");
+                // It bounced: the ball came back up at least once.
+                assert!(contact_run.rows.iter().any(|row| row[10] > 0.5));
+                // Each touch and each parting is a located event.
+                let touches = contact_run
+                    .events
+                    .iter()
+                    .filter(|event| event.to.starts_with("touching") && event.from == "apart")
+                    .count();
+                assert!(touches >= 3, "{touches} touches");
+            }
+        }
+    }
+}
+
+/// Two balls (radii 0.1 and 0.15, masses 1 and 2) meet without gravity:
+/// `offset` off the line of their centres. A frictionless contact between
+/// spheres is an SFORCE along the line of their centres.
+#[test]
+fn two_balls_meet_as_an_sforce_between_their_centres() {
+    let balls = |offset: f64, element: &str| {
+        format!(
+            "two balls
+PART/1, GROUND
+PART/2, MASS = 1, CM = 20, IP = 0.004, 0.004, 0.004, QG = -1, {offset}, 0, VX = 3
+MARKER/20, PART = 2
+GRAPHICS/2, ELLIPSOID, CM = 20, XSCALE = 0.2, YSCALE = 0.2, ZSCALE = 0.2
+PART/3, MASS = 2, CM = 30, IP = 0.018, 0.018, 0.018, QG = 0, 0, 0
+MARKER/30, PART = 3
+GRAPHICS/3, ELLIPSOID, CM = 30, XSCALE = 0.3, YSCALE = 0.3, ZSCALE = 0.3
+{element}
+END
+"
+        )
+    };
+    for offset in [0.0, 0.12] {
+        let contact = balls(
+            offset,
+            &format!("CONTACT/1, IGEOM = 2, JGEOM = 3, IMPACT, {IMPACT_NUMBERS}"),
+        );
+        let sforce = balls(
+            offset,
+            "SFORCE/1, TRANSLATIONAL, I = 20, J = 30, FUNCTION = IMPACT(DM(20,30), VR(20,30), 0.25, 1E5, 1.5, 10, 1E-4)",
+        );
+        for name in ["dop853", "radau"] {
+            let settings = with_method(name, 0.8, 16, 1e-10);
+            let contact_run = run(&contact, &settings).unwrap_or_else(|e| panic!("{e}"));
+            let reference = run(&sforce, &settings).unwrap_or_else(|e| panic!("{e}"));
+            let difference = largest_difference(&contact_run.rows, &reference.rows);
+            println!("offset {offset}, {name}: {difference:.1e}");
+            assert!(difference < 1e-8, "{offset} {name}: {difference}");
+            // The second ball was struck.
+            let last = contact_run.rows.last().expect("rows");
+            assert!(last[21] > 0.5, "{last:?}");
+        }
+    }
+}
+
+/// The friction numbers of the sliding tests: `μs 0.5, μd 0.3`, full
+/// dynamic friction above a slip of 0.01.
+const FRICTION: &str = "COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.001, FRICTION_TRANSITION_VELOCITY = 0.01";
+
+/// The depth at which a contact of stiffness 1e7 and exponent 1.5 holds
+/// a mass of 1 up.
+fn resting_depth() -> f64 {
+    (G / 1e7_f64).powf(1.0 / 1.5)
+}
+
+/// A solid ball thrown along x at 2 without spin on a plane: while it
+/// slips faster than the transition velocity friction is `μd m g`, so `v =
+/// 2 − μd g t` and `ω = μd m g a t / I` (`a` the arm from the centre to the
+/// contact point, the radius less half the depth); it rolls on at `v₀ m a²
+/// / (m a² + I)` (angular momentum about the contact line is kept), which
+/// is `5/7 v₀` for a point contact.
+#[test]
+fn a_ball_thrown_sliding_slows_then_rolls_at_the_speed_its_momentum_keeps() {
+    let depth = resting_depth();
+    let (radius, inertia, v0, mu) = (0.1, 0.004, 2.0, 0.3);
+    let text = format!(
+        "sliding ball
+PART/1, GROUND
+MARKER/11, PART = 1
+GRAPHICS/1, PLANE, RM = 11
+PART/2, MASS = 1, CM = 20, IP = {inertia}, {inertia}, {inertia}, QG = 0, 0, {}, VX = {v0}
+MARKER/20, PART = 2
+GRAPHICS/2, ELLIPSOID, CM = 20, XSCALE = 0.2, YSCALE = 0.2, ZSCALE = 0.2
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E7, DAMPING = 1000, DMAX = 1E-5, EXPONENT = 1.5, {FRICTION}
+ACCGRAV/KGRAV = -{G}
+END
+",
+        radius - depth
+    );
+    let arm = radius - depth / 2.0;
+    for name in ["dop853", "radau"] {
+        let run = run(&text, &with_method(name, 1.0, 20, 1e-9)).unwrap_or_else(|e| panic!("{e}"));
+        // t = 0.1: sliding.
+        let row = &run.rows[2];
+        assert!(
+            (row[8] - (v0 - mu * G * 0.1)).abs() < 1e-7,
+            "{name}: {row:?}"
+        );
+        assert!(
+            (row[12] - mu * G * arm * 0.1 / inertia).abs() < 1e-5,
+            "{name}: {row:?}"
+        );
+        let rolling = v0 * arm * arm / (arm * arm + inertia);
+        let last = run.rows.last().expect("rows");
+        println!(
+            "{name}: rolls at {:.9} against {rolling:.9} (5/7 v0 = {:.9})",
+            last[8],
+            v0 * 5.0 / 7.0
+        );
+        assert!((last[8] - rolling).abs() < 1e-6 * v0, "{name}: {last:?}");
+        assert!((last[12] * arm - last[8]).abs() < 1e-6, "{name}: {last:?}");
+        // It stays on the plane at its resting depth.
+        assert!(
+            (last[3] - (radius - depth)).abs() < 1e-9,
+            "{name}: {last:?}"
+        );
+    }
+}
+
+/// A block (0.4 square, 0.2 high, mass 1) slides on a plate at 2: it slows
+/// at `μd g` and stops after `v₀²/(2 μd g)`, give or take the pitching that
+/// a force at the centroid of the overlap gives a sliding block.
+#[test]
+fn a_block_sliding_on_a_plate_stops_where_the_closed_form_says() {
+    let depth = resting_depth();
+    let text = format!(
+        "sliding block
+PART/1, GROUND
+MARKER/11, PART = 1, QP = -5, -5, -1
+GRAPHICS/1, BOX, CORNER = 11, X = 10, Y = 10, Z = 1
+PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01, QG = 0, 0, {}, VX = 2
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = -0.2, -0.2, -0.1
+GRAPHICS/2, BOX, CORNER = 21, X = 0.4, Y = 0.4, Z = 0.2
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E7, DAMPING = 1000, DMAX = 1E-5, EXPONENT = 1.5, {FRICTION}
+ACCGRAV/KGRAV = -{G}
+END
+",
+        0.1 - depth
+    );
+    let stop = 4.0 / (2.0 * 0.3 * G);
+    let mut ends = Vec::new();
+    for name in ["dop853", "radau"] {
+        let run = run(&text, &with_method(name, 1.0, 10, 1e-8)).unwrap_or_else(|e| panic!("{e}"));
+        let last = run.rows.last().expect("rows");
+        println!("{name}: stops at {:.6} against {stop:.6}", last[1]);
+        assert!((last[1] - stop).abs() < 2e-3 * stop, "{name}: {last:?}");
+        assert!(last[8].abs() < 1e-2, "{name}: {last:?}");
+        // On the plate at about its resting depth.
+        assert!((last[3] - (0.1 - depth)).abs() < 1e-5, "{name}: {last:?}");
+        ends.push(last.clone());
+    }
+    // The two methods agree far closer than the closed form.
+    assert!(largest_difference(&ends[..1], &ends[1..]) < 1e-7);
+}
+
+/// A ball pressed on a block's edge, with friction and a spin, and a block
+/// tilted on another: states around the start.
+const EDGE_AND_BLOCKS: &str = "contacts for the Jacobian
+PART/1, GROUND
+MARKER/10, PART = 1, QP = -1, -1, -0.2
+GRAPHICS/1, BOX, CORNER = 10, X = 1, Y = 2, Z = 0.2
+PART/2, MASS = 1, CM = 20, IP = 0.004, 0.004, 0.004, QG = 0.05, 0.3, 0.06, VX = 0.3, VY = 0.2, VZ = -0.4, WX = 2, WZ = 1
+MARKER/20, PART = 2
+GRAPHICS/2, ELLIPSOID, CM = 20, XSCALE = 0.2, YSCALE = 0.2, ZSCALE = 0.2
+PART/3, MASS = 2, CM = 30, IP = 0.02, 0.03, 0.04, QG = -0.5, -0.5, 0.095, REULER = 10D, 3D, 2D, VX = 0.5, VZ = -0.1, WY = 0.7
+MARKER/30, PART = 3
+MARKER/31, PART = 3, QP = -0.15, -0.1, -0.1
+GRAPHICS/3, BOX, CORNER = 31, X = 0.3, Y = 0.2, Z = 0.2
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-2, EXPONENT = 2.2, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
+CONTACT/2, IGEOM = 3, JGEOM = 1, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-2, EXPONENT = 2.2, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
+ACCGRAV/KGRAV = -9.81
+END
+";
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(16))]
+
+    /// The Jacobian of contacts (normal force, damping and friction; a
+    /// sphere on a block's edge, a tilted block on a plate) agrees with
+    /// central differences of the rates.
+    #[test]
+    fn the_jacobian_of_contacts_agrees_with_finite_differences(
+        shifts in proptest::collection::vec(-0.01f64..0.01, 26),
+        time in 0.0f64..1.0,
+    ) {
+        super::simulate::the_jacobian_agrees_with_finite_differences(EDGE_AND_BLOCKS, &shifts, time)?;
+    }
+}
+
+/// What the simulator says of a model with `contact` and `graphics`
+/// between a ball (GRAPHICS/2 on part 2) and the ground's solids.
+fn check(case: &str) -> String {
+    let (graphics, contact) = case.split_once(" | ").expect("graphics | contact");
+    let text = format!(
+        "refusals
+PART/1, GROUND
+MARKER/10, PART = 1
+MARKER/11, PART = 1
+{graphics}
+PART/2, MASS = 1, CM = 20, IP = 0.004, 0.004, 0.004
+MARKER/20, PART = 2
+GRAPHICS/2, ELLIPSOID, CM = 20, XSCALE = 0.2, YSCALE = 0.2, ZSCALE = 0.2
+GRAPHICS/3, BOX, CORNER = 20, X = 0.1, Y = 0.1, Z = 0.1
+{contact}
+END
+"
+    );
+    match run(&text, &settings(0.1, 1, 1e-6)) {
+        Ok(_) => "ran".to_string(),
+        Err(errors) => errors.trim_end().replace('\n', "\n     "),
+    }
+}
+
+#[test]
+fn contacts_mbexpr_cannot_hold_are_refused_at_their_place() {
+    let impact = "IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-4, EXPONENT = 1.5";
+    let cases = [
+        format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, EXTERNAL, RM = 10, FILE = a.xmt_txt | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, FRUSTUM, CM = 10, LENGTH = 1, TOP = 1, BOTTOM = 2 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, ELLIPSOID, CM = 10, XSCALE = 1, YSCALE = 2, ZSCALE = 1 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, CYLINDER, CM = 10, LENGTH = 1, RADIUS = 0.5 | CONTACT/1, IGEOM = 3, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 3, {impact}"),
+        format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 9, {impact}"),
+        format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, TYPE = POINT_TO_PLANE, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}, NORMAL_ROUTINE = lib::cnf"),
+        "GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, DAMPING = 10, DMAX = 1E-4, EXPONENT = 1.5".to_string(),
+        format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3"),
+        format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 1, FRICTION_TRANSITION_VELOCITY = 0.5"),
+    ];
+    insta::assert_snapshot!(super::table(&cases.join("\n"), check));
+}
