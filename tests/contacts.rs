@@ -340,3 +340,27 @@ fn contacts_mbexpr_cannot_hold_are_refused_at_their_place() {
     ];
     insta::assert_snapshot!(super::table(&cases.join("\n"), check));
 }
+
+/// `examples/simulate/i_ball_and_block_on_a_table.adm`: the ball rolls
+/// off the table at the speed its angular momentum about the contact line
+/// keeps and falls to the floor; the block stops on the table where the
+/// closed form says.
+#[test]
+fn the_table_example_rolls_its_ball_off_and_stops_its_block() {
+    let text = include_str!("../examples/simulate/i_ball_and_block_on_a_table.adm");
+    let run = run(text, &settings(2.0, 200, 1e-8)).unwrap_or_else(|e| panic!("{e}"));
+    let (radius, mass, inertia) = (0.05, 0.5, 5e-4);
+    let arm = radius - (mass * 9.80665 / 1e7_f64).powf(1.0 / 1.5) / 2.0;
+    let rolling = 1.5 * mass * arm * arm / (mass * arm * arm + inertia);
+    // At t = 0.5 the ball rolls on the table (its edge at x = 0.8).
+    let row = &run.rows[50];
+    assert!(row[1] < 0.8 && (row[8] - rolling).abs() < 1e-5, "{row:?}");
+    // At the end it has fallen to the floor, still moving on.
+    let last = run.rows.last().expect("rows");
+    assert!(last[3] < 0.3 && last[1] > 1.5, "{last:?}");
+    // The block (part 5, columns from 14) has stopped at v²/(2 μd g).
+    let stop = 1.2 * 1.2 / (2.0 * 0.3 * 9.80665);
+    assert!((last[14] - stop).abs() < 2e-3 * stop, "{last:?}");
+    assert!(last[21].abs() < 1e-2, "{last:?}");
+    assert!(run.events.iter().any(|event| event.label == "CONTACT/2"));
+}
