@@ -10,7 +10,9 @@
 //!   centres.
 //! - A ball thrown sliding on a plane with friction slows at `μd g` while it
 //!   slips, then rolls at the speed its angular momentum about the contact
-//!   line keeps (5/7 of the first for a solid ball).
+//!   line keeps (5/7 of the first for a solid ball); `CONTACT(id, jflag,
+//!   comp, rm)` gives the friction, the normal force and the torque about
+//!   the ball's centre.
 //! - A block sliding on a plate slows at `μd g` and stops where the closed
 //!   form says.
 //! - The Jacobian of contacts with friction (sphere on a block's edge, two
@@ -191,6 +193,7 @@ PART/2, MASS = 1, CM = 20, IP = {inertia}, {inertia}, {inertia}, QG = 0, 0, {}, 
 MARKER/20, PART = 2
 GRAPHICS/2, ELLIPSOID, CM = 20, XSCALE = 0.2, YSCALE = 0.2, ZSCALE = 0.2
 CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E7, DAMPING = 1000, DMAX = 1E-5, EXPONENT = 1.5, {FRICTION}
+REQUEST/1, F2 = CONTACT(1,0,2,0), F3 = CONTACT(1,0,4,0), F4 = CONTACT(1,0,7,0), F6 = CONTACT(1,1,4,0)
 ACCGRAV/KGRAV = -{G}
 END
 ",
@@ -209,6 +212,13 @@ END
             (row[12] - mu * G * arm * 0.1 / inertia).abs() < 1e-5,
             "{name}: {row:?}"
         );
+        // CONTACT(1, jflag, comp, 0): on the ball, friction `−μd m g`
+        // along x, the weight's worth up, the friction's torque about the
+        // centre `a μd m g` about y; on the plane, the weight's worth down.
+        let expected = [-mu * G, G, arm * mu * G, -G];
+        for (column, value) in expected.iter().enumerate() {
+            assert!((row[14 + column] - value).abs() < 1e-8, "{name}: {row:?}");
+        }
         let rolling = v0 * arm * arm / (arm * arm + inertia);
         let last = run.rows.last().expect("rows");
         println!(

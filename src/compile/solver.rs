@@ -30,7 +30,7 @@ pub struct SolverCall {
 
 impl SolverCall {
     /// The functions whose calls become inputs.
-    pub const FUNCTIONS: [Function; 10] = [
+    pub const FUNCTIONS: [Function; 11] = [
         Function::Joint,
         Function::Jprim,
         Function::Motion,
@@ -41,6 +41,7 @@ impl SolverCall {
         Function::Bush,
         Function::Beam,
         Function::Field,
+        Function::Contact,
     ];
 
     /// The call of `function` with `args`, when it is one of

@@ -1,11 +1,13 @@
 //! The values of force elements during a run, as the functions
 //! `SFORCE(id, jflag, comp, rm)`, `VFORCE`, `VTORQ`, `GFORCE`, `BUSH`,
-//! `BEAM` and `FIELD`
+//! `BEAM`, `FIELD` and `CONTACT`
 //! give them (Adams' convention): the force and the torque the element
 //! applies on its I marker (jflag 0) or its J marker (jflag 1, the floating
 //! marker of a VFORCE, VTORQUE or GFORCE, which sits at I), the torque
 //! about that marker's origin, along the axes of marker `rm` (ground's
-//! when 0); comp 1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty Tz`.
+//! when 0); comp 1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty Tz`. A
+//! CONTACT's value sums its pairs of solids, on the part of its I (or J)
+//! solid, the torque about that part's centre of mass.
 //!
 //! What the element applies is [`super::forces::actions`], the one place
 //! its geometry is written: so a BUSHING's torque on J carries the moment
@@ -15,7 +17,7 @@
 use nalgebra::Vector3;
 
 use super::bodies::Kinematics;
-use super::forces::{Action, actions, axes, place};
+use super::forces::{Action, actions, axes, body_of, place};
 use crate::catalog::Function;
 use crate::compile::{MarkerCall, SolverCall};
 use crate::scene::Target;
@@ -24,7 +26,7 @@ use crate::simulate::constraints::{flags, pick};
 use crate::simulate::model::{Force, Model};
 
 /// The force elements' functions and the statements they read.
-pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 7] = [
+pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 8] = [
     (Function::Sforce, "SFORCE"),
     (Function::Vforce, "VFORCE"),
     (Function::Vtorq, "VTORQUE"),
@@ -32,18 +34,20 @@ pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 7] = [
     (Function::Bush, "BUSHING"),
     (Function::Beam, "BEAM"),
     (Function::Field, "FIELD"),
+    (Function::Contact, "CONTACT"),
 ];
 
 /// A force element's component a model's expression asks for, found in
 /// the model.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct ElementComponent {
-    /// The element's index in [`Model::forces`].
-    force: usize,
+    /// The element's indices in [`Model::forces`]: one, or a CONTACT's
+    /// pairs of solids (their forces summed).
+    forces: Vec<usize>,
     /// On the J marker (jflag 1) rather than the I marker.
     on_j: bool,
-    /// The marker about whose origin the torque is.
-    marker: Target,
+    /// The point the torque is about.
+    about: About,
     /// 1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty Tz`.
     component: usize,
     /// The marker whose axes the components are along.
@@ -58,11 +62,14 @@ impl ElementComponent {
             .iter()
             .find(|(function, _)| *function == call.function)
             .map_or("", |(_, kind)| *kind);
-        let Some(force) = model
+        let forces: Vec<usize> = model
             .force_statements
             .iter()
-            .position(|&(statement, id)| statement == kind && id == call.id)
-        else {
+            .enumerate()
+            .filter(|(_, (statement, id))| *statement == kind && *id == call.id)
+            .map(|(index, _)| index)
+            .collect();
+        let Some(&force) = forces.first() else {
             return Err(format!(
                 "{written}: the model has no {kind}/{} that is simulated",
                 call.id
@@ -70,12 +77,17 @@ impl ElementComponent {
         };
         let (on_j, component, rm) = flags(model, call, "force")?;
         let (i, j) = markers(model, force);
-        // A floating marker sits at I.
+        // A floating marker sits at I; a contact's force is about the
+        // centre of mass of its I (or J) solid's part.
         let marker = if on_j { j.unwrap_or(i) } else { i };
+        let about = match &model.forces[force] {
+            Force::Contact(_) => About::Centre(body_of(model, &marker)),
+            _ => About::Marker(marker),
+        };
         Ok(ElementComponent {
-            force,
+            forces,
             on_j,
-            marker,
+            about,
             component,
             rm,
         })
@@ -89,10 +101,18 @@ impl ElementComponent {
         kinematics: &[Kinematics<f64>],
         value: &impl Fn(Option<usize>) -> f64,
     ) -> f64 {
-        let [on_i, on_j] = actions(model, &model.forces[self.force], kinematics, value, None);
-        let action = if self.on_j { on_j } else { on_i };
-        let origin = place(model, &self.marker, kinematics).origin;
-        let (force, torque) = about(action, &origin);
+        let origin = match self.about {
+            About::Marker(marker) => place(model, &marker, kinematics).origin,
+            About::Centre(body) => body.map_or_else(Vector3::zeros, |body| kinematics[body].centre),
+        };
+        let (mut force, mut torque) = (Vector3::zeros(), Vector3::zeros());
+        for &index in &self.forces {
+            let [on_i, on_j] = actions(model, &model.forces[index], kinematics, value, None);
+            let action = if self.on_j { on_j } else { on_i };
+            let (push, turn) = about(action, &origin);
+            force += push;
+            torque += turn;
+        }
         let along = axes(model, &self.rm, kinematics).transpose();
         let (force, torque) = (along * force, along * torque);
         pick(&force, &torque, self.component)
@@ -127,6 +147,15 @@ fn about(action: Option<Action<f64>>, origin: &Vector3<f64>) -> (Vector3<f64>, V
     let torque =
         action.torque.unwrap_or_else(Vector3::zeros) + (action.point - origin).cross(&force);
     (force, torque)
+}
+
+/// The point an element's torque is about.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum About {
+    /// A marker's origin.
+    Marker(Target),
+    /// The centre of mass of a part (`None`: ground's origin).
+    Centre(Option<usize>),
 }
 
 /// The net force between two markers, `FX FY FZ FM TX TY TZ TM (i, j,
