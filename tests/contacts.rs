@@ -274,7 +274,10 @@ END
 }
 
 /// A ball pressed on a block's edge, with friction and a spin, and a block
-/// tilted on another: states around the start.
+/// tilted on another: states around the start. The damping ramps are long
+/// (DMAX beyond the depths), so that the rates curve gently enough for
+/// central differences at the helper's step (with DMAX = 1e-2 the exact
+/// Jacobian still agreed with differences at a step of 1e-6, not 1e-4).
 const EDGE_AND_BLOCKS: &str = "contacts for the Jacobian
 PART/1, GROUND
 MARKER/10, PART = 1, QP = -1, -1, -0.2
@@ -286,8 +289,8 @@ PART/3, MASS = 2, CM = 30, IP = 0.02, 0.03, 0.04, QG = -0.5, -0.5, 0.095, REULER
 MARKER/30, PART = 3
 MARKER/31, PART = 3, QP = -0.15, -0.1, -0.1
 GRAPHICS/3, BOX, CORNER = 31, X = 0.3, Y = 0.2, Z = 0.2
-CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-2, EXPONENT = 2.2, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
-CONTACT/2, IGEOM = 3, JGEOM = 1, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-2, EXPONENT = 2.2, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 5E-2, EXPONENT = 2.2, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
+CONTACT/2, IGEOM = 3, JGEOM = 1, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 5E-2, EXPONENT = 2.2, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
 ACCGRAV/KGRAV = -9.81
 END
 ";
@@ -298,13 +301,43 @@ proptest::proptest! {
     /// The Jacobian of contacts (normal force, damping and friction; a
     /// sphere on a block's edge, a tilted block on a plate) agrees with
     /// central differences of the rates.
+    ///
+    /// The overlap of the two blocks changes its shape where a corner of
+    /// the tilted block crosses the plate's top, a kink in the rates that
+    /// central differences straddling it cannot follow: states with a
+    /// corner that near are left out.
     #[test]
     fn the_jacobian_of_contacts_agrees_with_finite_differences(
         shifts in proptest::collection::vec(-0.01f64..0.01, 26),
         time in 0.0f64..1.0,
     ) {
+        proptest::prop_assume!(lowest_corners_clear_the_plate(&shifts));
         super::simulate::the_jacobian_agrees_with_finite_differences(EDGE_AND_BLOCKS, &shifts, time)?;
     }
+}
+
+/// Whether every corner of `EDGE_AND_BLOCKS`' block (part 3, its states
+/// from 13 after the ball's) stands more than 2e-3 off the plate's top
+/// (z = 0) at the start shifted by `shifts`.
+fn lowest_corners_clear_the_plate(shifts: &[f64]) -> bool {
+    use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+    let text = super::simulate::model_of(EDGE_AND_BLOCKS).expect("the model reads");
+    let start = mbexpr::simulate::Simulation::new(&text)
+        .expect("it compiles")
+        .initial_state();
+    let state: Vec<f64> = start
+        .iter()
+        .zip(shifts.iter().cycle())
+        .map(|(value, shift)| value + shift)
+        .collect();
+    let block = &state[13..26];
+    let turn =
+        UnitQuaternion::from_quaternion(Quaternion::new(block[3], block[4], block[5], block[6]));
+    (0..8).all(|bits: u32| {
+        let sign = |bit: u32| if bits >> bit & 1 == 1 { 1.0 } else { -1.0 };
+        let corner = Vector3::new(0.15 * sign(0), 0.1 * sign(1), 0.1 * sign(2));
+        (block[2] + (turn * corner).z).abs() > 2e-3
+    })
 }
 
 /// What the simulator says of a model with `contact` and `graphics`
