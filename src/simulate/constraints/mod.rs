@@ -28,7 +28,7 @@
 
 mod drives;
 mod general;
-mod quadrature;
+pub(crate) mod quadrature;
 mod reactions;
 mod rows;
 mod solve;

@@ -5,7 +5,7 @@
 
 /// The Kronrod abscissae on [-1, 1] (non-negative half, descending; the odd
 /// ones are Gauss's).
-const NODES: [f64; 8] = [
+pub(crate) const NODES: [f64; 8] = [
     0.991_455_371_120_812_6,
     0.949_107_912_342_758_5,
     0.864_864_423_359_769_1,
@@ -17,7 +17,7 @@ const NODES: [f64; 8] = [
 ];
 
 /// The Kronrod weights of [`NODES`].
-const KRONROD: [f64; 8] = [
+pub(crate) const KRONROD: [f64; 8] = [
     0.022_935_322_010_529_225,
     0.063_092_092_629_978_55,
     0.104_790_010_322_250_18,

@@ -10,7 +10,9 @@
 //! block or a cylinder has its depth in closed form (the depth along the
 //! line of the centroid is the distance from the sphere's deepest point to
 //! the other surface); two blocks, or a block and a plane, overlap in a
-//! convex polyhedron whose centroid is computed exactly by clipping.
+//! convex polyhedron whose centroid is computed exactly by clipping; a
+//! cylinder's overlap with a plane (or a block's face) is integrated
+//! across its axis, each slice a disk cut in a circular segment.
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -19,6 +21,7 @@ use super::forces::{Action, axes, place};
 use crate::laws::contact::ContactBranch;
 use crate::laws::steps::{Shape as StepShape, step};
 use crate::number::Number;
+use crate::simulate::constraints::quadrature::{KRONROD, NODES};
 use crate::simulate::model::{Contact, Friction, Model, Shape, Solid};
 
 /// A solid placed in ground: its marker's origin and axes, and its shape.
@@ -376,23 +379,32 @@ fn cylinder_surface<T: Number>(
 }
 
 /// Two solids of flat faces (blocks, planes): their overlap, a convex
-/// polyhedron, clipped exactly; the force at its centroid, the depth
-/// the distance between the two surfaces' points closest to it.
+/// polyhedron, clipped exactly; or a cylinder and a plane or a block: the
+/// overlap with the plane (or the block's face the cylinder stands
+/// beyond), integrated slice by slice. The force acts at the overlap's
+/// centroid, the depth the distance between the two surfaces' points
+/// closest to it.
 fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
-    // Clip the bounded one by the other's faces (two planes have no
-    // bounded overlap, and the reader refuses that pair).
-    let (bounded, other) = match (i.shape, j.shape) {
-        (Shape::HalfSpace, _) => (j, i),
-        _ => (i, j),
-    };
-    let mut faces = block_faces(bounded)?;
-    for (normal, offset) in half_spaces(other) {
-        faces = clip(faces, &normal, &offset);
-        if faces.len() < 4 {
-            return None;
+    let centroid = match (i.shape, j.shape) {
+        (Shape::Cylinder { .. }, _) => cylinder_overlap(i, j)?,
+        (_, Shape::Cylinder { .. }) => cylinder_overlap(j, i)?,
+        _ => {
+            // Clip the bounded one by the other's faces (two planes have
+            // no bounded overlap, and the reader refuses that pair).
+            let (bounded, other) = match (i.shape, j.shape) {
+                (Shape::HalfSpace, _) => (j, i),
+                _ => (i, j),
+            };
+            let mut faces = block_faces(bounded)?;
+            for (normal, offset) in half_spaces(other) {
+                faces = clip(faces, &normal, &offset);
+                if faces.len() < 4 {
+                    return None;
+                }
+            }
+            centroid(&faces)?
         }
-    }
-    let centroid = centroid(&faces)?;
+    };
     let (on_i, _) = closest_surface(i, &centroid)?;
     let (on_j, _) = closest_surface(j, &centroid)?;
     let between = &on_j - &on_i;
@@ -411,6 +423,164 @@ fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
         normal,
         depth,
     })
+}
+
+/// The centroid of a cylinder's overlap with `other`, a plane or a block:
+/// with a block, the overlap with the face the cylinder's centre stands
+/// farthest beyond, kept while its centroid lies within the block's other
+/// faces.
+fn cylinder_overlap<T: Number>(cylinder: &Placed<T>, other: &Placed<T>) -> Option<Vector3<T>> {
+    let Shape::Cylinder {
+        radius,
+        bottom,
+        top,
+    } = *cylinder.shape
+    else {
+        return None;
+    };
+    let middle = cylinder.ground(&Vector3::new(0.0, 0.0, (bottom + top) / 2.0).map(T::from));
+    let planes = half_spaces(other);
+    let (face, (normal, offset)) = planes.iter().enumerate().max_by(|(_, a), (_, b)| {
+        let beyond =
+            |(normal, offset): &(Vector3<T>, T)| (normal.dot(&middle) - offset.clone()).value();
+        beyond(a).total_cmp(&beyond(b))
+    })?;
+    let centroid = cylinder_under(cylinder, [radius, bottom, top], normal, offset)?;
+    let inside = planes.iter().enumerate().all(|(index, (normal, offset))| {
+        index == face || (normal.dot(&centroid) - offset.clone()).value() <= 0.0
+    });
+    inside.then_some(centroid)
+}
+
+/// The centroid of the part of a cylinder (`radius`, from `bottom` to `top`
+/// along its marker's z) in the half-space `normal · x <= offset`, `None`
+/// when that part has no volume. Each slice across the axis is a disk the
+/// plane cuts in a circular segment, whose area and centroid are known;
+/// the disk's distance `ρ` from the cut is linear along the axis, so the
+/// axis splits into slices that are whole, cut and untouched. The cut ones
+/// are integrated in the angle `θ` with `ρ = −R cos θ` (the segment's area
+/// `R² (π − θ + sin θ cos θ)`, its first moment `2/3 R³ sin³ θ`), which
+/// makes the integrands smooth for the 15-point Kronrod rule.
+fn cylinder_under<T: Number>(
+    cylinder: &Placed<T>,
+    [radius, bottom, top]: [f64; 3],
+    normal: &Vector3<T>,
+    offset: &T,
+) -> Option<Vector3<T>> {
+    use std::f64::consts::PI;
+    let c = T::from;
+    let axis = cylinder.axes.column(2).into_owned();
+    let origin = &cylinder.origin;
+    let height = normal.dot(origin) - offset.clone();
+    let along = normal.dot(&axis);
+    let across = normal - &axis * along.clone();
+    let tilt = across.norm();
+    let disk = PI * radius * radius;
+    let mut volume = c(0.0);
+    let mut moment = Vector3::zeros();
+    let point_on_axis = |s: &T| origin + &axis * s.clone();
+    // Whole disks from s0 to s1.
+    let whole = |s0: T, s1: T, volume: &mut T, moment: &mut Vector3<T>| {
+        if s1.value() > s0.value() {
+            let size = (s1.clone() - s0.clone()) * c(disk);
+            *moment += point_on_axis(&((s0 + s1) * c(0.5))) * size.clone();
+            *volume += size;
+        }
+    };
+    let clamp = |s: T| {
+        if s.value() < bottom {
+            c(bottom)
+        } else if s.value() > top {
+            c(top)
+        } else {
+            s
+        }
+    };
+    if tilt.value() <= 1e-12 * along.value().abs() {
+        // Standing on an end: whole disks below the plane.
+        let level = -height.clone() / along.clone();
+        let (s0, s1) = if along.value() > 0.0 {
+            (c(bottom), clamp(level))
+        } else {
+            (clamp(level), c(top))
+        };
+        whole(s0, s1, &mut volume, &mut moment);
+    } else {
+        let outward = &across / tilt.clone();
+        let segment = |theta: &T| {
+            let (sin, cos) = (theta.clone().sin(), theta.clone().cos());
+            let area = (c(PI) - theta.clone() + sin.clone() * cos) * c(radius * radius);
+            let first_moment = sin.powi(3) * c(2.0 / 3.0 * radius.powi(3));
+            (area, first_moment)
+        };
+        if along.value().abs() <= 1e-12 * tilt.value() {
+            // Lying along the plane: every slice is cut alike.
+            let rho = height.clone() / tilt.clone();
+            if rho.value() <= -radius {
+                whole(c(bottom), c(top), &mut volume, &mut moment);
+            } else if rho.value() < radius {
+                let theta = (-rho / c(radius)).acos();
+                let (area, first_moment) = segment(&theta);
+                let length = c(top - bottom);
+                let middle = point_on_axis(&c((bottom + top) / 2.0));
+                moment += (middle * area.clone() - &outward * first_moment) * length.clone();
+                volume += area * length;
+            }
+        } else {
+            // The axis position where the disk stands at distance ρ.
+            let at = |rho: f64| (tilt.clone() * c(rho) - height.clone()) / along.clone();
+            let (touching, covered) = (at(radius), at(-radius));
+            // Whole disks beyond `covered`, away from `touching`.
+            if along.value() > 0.0 {
+                whole(c(bottom), clamp(covered.clone()), &mut volume, &mut moment);
+            } else {
+                whole(clamp(covered.clone()), c(top), &mut volume, &mut moment);
+            }
+            let (low, high) = if touching.value() < covered.value() {
+                (clamp(touching), clamp(covered))
+            } else {
+                (clamp(covered), clamp(touching))
+            };
+            if high.value() > low.value() {
+                let angle = |s: &T| {
+                    let rho = (height.clone() + along.clone() * s.clone()) / tilt.clone();
+                    let cosine = -rho / c(radius);
+                    // At an end of the cut slices θ is 0 or π whatever the
+                    // state (and acos has no slope there).
+                    let cosine = if cosine.value() >= 1.0 {
+                        c(1.0)
+                    } else if cosine.value() <= -1.0 {
+                        c(-1.0)
+                    } else {
+                        cosine
+                    };
+                    cosine.acos()
+                };
+                let (theta0, theta1) = (angle(&low), angle(&high));
+                let (centre, half) = (
+                    (theta0.clone() + theta1.clone()) * c(0.5),
+                    (theta1 - theta0) * c(0.5),
+                );
+                // ds/dθ = (tilt / along) R sin θ.
+                let rate = tilt.clone() / along.clone() * c(radius);
+                for (&node, &weight) in NODES.iter().zip(&KRONROD) {
+                    let sides: &[f64] = if node == 0.0 { &[0.0] } else { &[-node, node] };
+                    for &side in sides {
+                        let theta = centre.clone() + half.clone() * c(side);
+                        let rho = -theta.clone().cos() * c(radius);
+                        let s = (tilt.clone() * rho - height.clone()) / along.clone();
+                        let (area, first_moment) = segment(&theta);
+                        let step = half.clone() * rate.clone() * theta.sin() * c(weight);
+                        moment += (point_on_axis(&s) * area.clone() - &outward * first_moment)
+                            * step.clone();
+                        volume += area * step;
+                    }
+                }
+            }
+        }
+    }
+    let scale = radius * radius * (top - bottom);
+    (volume.value().abs() > 1e-15 * scale).then(|| moment / volume)
 }
 
 /// A face: its corners in order round it.
@@ -701,16 +871,45 @@ fn least_size(solid: &Placed<f64>) -> f64 {
 
 /// A lower bound on the distance between two solids (negative or zero
 /// when they may overlap): exact for a sphere against anything and for a
-/// block against a plane; for two blocks, the widest gap between their
-/// shadows on the fifteen axes that separate boxes.
+/// block or a cylinder against a plane; for two blocks, the widest gap
+/// between their shadows on the fifteen axes that separate boxes; for a
+/// cylinder and a block, the farthest it stands beyond one of the block's
+/// faces.
 fn distance_bound(i: &Placed<f64>, j: &Placed<f64>) -> Option<f64> {
     match (i.shape, j.shape) {
         (Shape::Sphere { radius }, _) => sphere_distance(&i.origin, *radius, j),
         (_, Shape::Sphere { radius }) => sphere_distance(&j.origin, *radius, i),
+        (Shape::Cylinder { .. }, _) => Some(cylinder_gap(i, j)),
+        (_, Shape::Cylinder { .. }) => Some(cylinder_gap(j, i)),
         (Shape::HalfSpace, _) => Some(lowest_height(j, i)),
         (_, Shape::HalfSpace) => Some(lowest_height(i, j)),
         _ => Some(shadow_gap(i, j)),
     }
+}
+
+/// How far a cylinder stands beyond the farthest of `other`'s faces (a
+/// plane's one, a block's six): a lower bound on their distance, exact
+/// for a plane.
+fn cylinder_gap(cylinder: &Placed<f64>, other: &Placed<f64>) -> f64 {
+    let Shape::Cylinder {
+        radius,
+        bottom,
+        top,
+    } = *cylinder.shape
+    else {
+        return 0.0;
+    };
+    let axis = cylinder.axes.column(2).into_owned();
+    let middle = cylinder.ground(&Vector3::new(0.0, 0.0, (bottom + top) / 2.0));
+    half_spaces(other)
+        .iter()
+        .map(|(normal, offset)| {
+            let along = normal.dot(&axis);
+            let reach =
+                along.abs() * (top - bottom) / 2.0 + radius * (normal - axis * along).norm();
+            normal.dot(&middle) - offset - reach
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// How far a sphere's surface is from `other` (negative inside it).

@@ -1,7 +1,8 @@
 //! The `CONTACT` statements between solids (`TYPE = SOLID_TO_SOLID`) with
 //! the IMPACT normal force and optional Coulomb friction, and the GRAPHICS
 //! statements that give their solids: a sphere (`ELLIPSOID` of equal
-//! scales, which are diameters), a `BOX`, a `CYLINDER` and a `PLANE`. A
+//! scales, which are diameters), a `BOX`, a `CYLINDER` and a `PLANE` (two
+//! planes and two cylinders are refused). A
 //! contact that lists several solids on a side is one contact for each
 //! pair.
 
@@ -361,7 +362,7 @@ fn solid(graphic: &Statement, scene: &Scene) -> Result<Solid, String> {
 }
 
 /// Refuses a pair the contact geometry does not meet: solids on one part,
-/// two planes, a cylinder against anything but a sphere.
+/// two planes, two cylinders.
 fn check_pair(
     statement: &Statement,
     (i, i_span): &(Solid, crate::span::Span),
@@ -381,14 +382,13 @@ fn check_pair(
             span: *i_span,
         });
     }
-    let sphere = |solid: &Solid| matches!(solid.shape, Shape::Sphere { .. });
     let cylinder = |solid: &Solid| matches!(solid.shape, Shape::Cylinder { .. });
     let plane = |solid: &Solid| matches!(solid.shape, Shape::HalfSpace);
     let reason = if plane(i) && plane(j) {
         Some(format!("meets two PLANEs; {SHAPES}"))
-    } else if (cylinder(i) || cylinder(j)) && !(sphere(i) || sphere(j)) {
+    } else if cylinder(i) && cylinder(j) {
         Some(
-            "meets a CYLINDER with a solid other than a sphere; mbexpr meets a cylinder with a sphere only"
+            "meets two CYLINDERs; mbexpr meets a cylinder with a sphere, a BOX or a PLANE"
                 .to_string(),
         )
     } else {
