@@ -21,6 +21,8 @@
 //!   blocks, cylinders tilted on a plane and a block) agrees with finite
 //!   differences.
 //! - Every contact the simulator cannot hold is refused at its place.
+//! - Every pair of solids, anywhere (deep in each other, centres on faces
+//!   and axes, still), gives finite rates and Jacobians.
 
 use mbexpr::simulate::Settings;
 
@@ -505,5 +507,74 @@ proptest::proptest! {
         time in 0.0f64..1.0,
     ) {
         super::simulate::the_jacobian_agrees_with_finite_differences(CYLINDERS, &shifts, time)?;
+    }
+}
+
+/// Every solid against every other, on two free parts and ground.
+const EVERY_PAIR: &str = "every pair
+PART/1, GROUND
+MARKER/10, PART = 1, QP = -1, -1, -0.2
+MARKER/11, PART = 1
+GRAPHICS/1, PLANE, RM = 11
+GRAPHICS/2, BOX, CORNER = 10, X = 2, Y = 2, Z = 0.2
+PART/2, MASS = 1, CM = 20, IP = 0.02, 0.02, 0.04, QG = 0, 0, 0.1
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = -0.1, -0.1, -0.1
+GRAPHICS/3, ELLIPSOID, CM = 20, XSCALE = 0.2, YSCALE = 0.2, ZSCALE = 0.2
+GRAPHICS/4, BOX, CORNER = 21, X = 0.2, Y = 0.2, Z = 0.2
+PART/3, MASS = 1, CM = 30, IP = 0.02, 0.02, 0.04, QG = 0.1, 0.1, 0.15
+MARKER/30, PART = 3
+MARKER/31, PART = 3, QP = 0, 0, -0.1
+GRAPHICS/5, CYLINDER, CM = 31, LENGTH = 0.2, RADIUS = 0.1
+GRAPHICS/6, ELLIPSOID, CM = 30, XSCALE = 0.1, YSCALE = 0.1, ZSCALE = 0.1
+CONTACT/1, IGEOM = 3, 4, JGEOM = 1, 2, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
+CONTACT/2, IGEOM = 5, 6, JGEOM = 1, 2, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
+CONTACT/3, IGEOM = 3, 4, JGEOM = 5, 6, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
+ACCGRAV/KGRAV = -9.81
+END
+";
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// Whatever the places, turns and speeds of the parts (solids deep in
+    /// each other, centres on faces and axes, exactly still), the rates
+    /// and the Jacobian of every pair of solids are finite: no panic, no
+    /// NaN.
+    #[test]
+    fn contacts_give_finite_rates_and_jacobians_wherever_the_parts_are(
+        shifts in proptest::collection::vec(
+            proptest::prop_oneof![
+                proptest::strategy::Just(0.0),
+                -0.3f64..0.3,
+                proptest::sample::select(vec![-0.1, 0.1, 0.2, -0.2, 1.0, -1.0]),
+            ],
+            26,
+        ),
+    ) {
+        use mbexpr::integrate::System;
+        let model = super::simulate::model_of(EVERY_PAIR).expect("the model reads");
+        let simulation = mbexpr::simulate::Simulation::new(&model).expect("it compiles");
+        let mut equations = simulation.equations();
+        let y: Vec<f64> = simulation
+            .initial_state()
+            .iter()
+            .zip(&shifts)
+            .map(|(value, shift)| value + shift)
+            .collect();
+        // A quaternion of no length is no orientation.
+        for part in [0, 13] {
+            let length = y[part + 3..part + 7].iter().map(|q| q * q).sum::<f64>();
+            proptest::prop_assume!(length > 1e-2);
+        }
+        let n = y.len();
+        let mut rates = vec![0.0; n];
+        equations.rhs(0.0, &y, &mut rates).expect("the rates");
+        proptest::prop_assert!(rates.iter().all(|rate| rate.is_finite()), "{rates:?}");
+        let mut jacobian = nalgebra::DMatrix::zeros(n, n);
+        equations
+            .jacobian(0.0, &y, &rates, &mut jacobian)
+            .expect("the Jacobian");
+        proptest::prop_assert!(jacobian.iter().all(|entry| entry.is_finite()));
     }
 }

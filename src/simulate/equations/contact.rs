@@ -446,8 +446,10 @@ fn cylinder_overlap<T: Number>(cylinder: &Placed<T>, other: &Placed<T>) -> Optio
         beyond(a).total_cmp(&beyond(b))
     })?;
     let centroid = cylinder_under(cylinder, [radius, bottom, top], normal, offset)?;
+    // Within the other faces, a rounding error beyond them counted in.
+    let tolerance = 1e-12 * (radius + top - bottom);
     let inside = planes.iter().enumerate().all(|(index, (normal, offset))| {
-        index == face || (normal.dot(&centroid) - offset.clone()).value() <= 0.0
+        index == face || (normal.dot(&centroid) - offset.clone()).value() <= tolerance
     });
     inside.then_some(centroid)
 }
