@@ -821,7 +821,18 @@ pub(super) fn step_limit(
         }
     };
     let ((v_i, w_i, a_i), (v_j, w_j, a_j)) = (motion(i.body), motion(j.body));
-    let speed = (v_i - v_j).norm() + (w_i - w_j).norm() * reach;
+    // A sphere's distance to a solid has an exact rate (the relative
+    // velocity at the closest points along their normal): only its
+    // approach counts, so a ball rolling fast past a wall is not held to
+    // short steps. Otherwise any relative motion of the solids' points.
+    let sphere = matches!(i.shape, Shape::Sphere { .. }) || matches!(j.shape, Shape::Sphere { .. });
+    let speed = match touch(&i, &j) {
+        Some(touch) if sphere => {
+            let relative = relative_velocity(kinematics, &i, &j, &touch.point);
+            (-touch.normal.dot(&relative)).max(0.0)
+        }
+        _ => (v_i - v_j).norm() + (w_i - w_j).norm() * reach,
+    };
     let acceleration = a_i + a_j;
     // The step in which `speed h + acceleration h²/2` reaches the way.
     let way = APPROACH_FRACTION * (distance + allowed);
