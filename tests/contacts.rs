@@ -385,6 +385,11 @@ fn contacts_mbexpr_cannot_hold_are_refused_at_their_place() {
         format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, TYPE = POINT_TO_PLANE, IGEOM = 2, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}, NORMAL_ROUTINE = lib::cnf"),
         "GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, DAMPING = 10, DMAX = 1E-4, EXPONENT = 1.5".to_string(),
+        format!(
+            "GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = {}, JGEOM = {}, {impact}",
+            ["2"; 101].join(", "),
+            ["1"; 100].join(", ")
+        ),
         format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3"),
         format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 1, FRICTION_TRANSITION_VELOCITY = 0.5"),
     ];

@@ -22,6 +22,10 @@ use crate::simulate::model::{Contact, Friction, Shape, Solid};
 const SHAPES: &str =
     "mbexpr meets spheres (ELLIPSOID of equal scales), BOXes, CYLINDERs and PLANEs";
 
+/// The most pairs of solids one contact may list (each is a force the run
+/// evaluates at every step).
+const MOST_PAIRS: usize = 10_000;
+
 /// The contacts of `dataset`, each pair of its solids one [`Contact`];
 /// what cannot be read is recorded in `errors` at its place.
 pub(super) fn contacts(
@@ -144,6 +148,17 @@ fn contact(
     let sides = ["IGEOM", "JGEOM"].map(|keyword| solids(statement, keyword, graphics, scene));
     let [i_solids, j_solids] = sides;
     let (i_solids, j_solids) = (i_solids?, j_solids?);
+    let count = i_solids.len() * j_solids.len();
+    if count > MOST_PAIRS {
+        return Err(SimulateError::Model {
+            message: format!(
+                "{label}: IGEOM and JGEOM list {} × {} = {count} pairs of solids; mbexpr holds at most {MOST_PAIRS} in one contact: split it, or merge solids",
+                i_solids.len(),
+                j_solids.len()
+            ),
+            span: statement.span,
+        });
+    }
     let mut pairs = Vec::new();
     for i in &i_solids {
         for j in &j_solids {
