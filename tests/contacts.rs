@@ -383,6 +383,8 @@ fn contacts_mbexpr_cannot_hold_are_refused_at_their_place() {
         format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 3, {impact}"),
         format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 9, {impact}"),
         format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, TYPE = POINT_TO_PLANE, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, TYPE = SPHERE_TO_PLANE, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, TYPE = SPHERE_TO_SPHERE, IGEOM = 2, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}, NORMAL_ROUTINE = lib::cnf"),
         "GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, DAMPING = 10, DMAX = 1E-4, EXPONENT = 1.5".to_string(),
         format!(

@@ -1,4 +1,5 @@
-//! The `CONTACT` statements between solids (`TYPE = SOLID_TO_SOLID`) with
+//! The `CONTACT` statements between solids (`TYPE = SOLID_TO_SOLID`, or
+//! `SPHERE_TO_PLANE` and `SPHERE_TO_SPHERE` with those shapes) with
 //! the IMPACT normal force and optional Coulomb friction, and the GRAPHICS
 //! statements that give their solids: a sphere (`ELLIPSOID` of equal
 //! scales, which are diameters), a `BOX`, a `CYLINDER` and a `PLANE` (two
@@ -21,6 +22,10 @@ use crate::simulate::model::{Contact, Friction, Shape, Solid};
 /// (the grouped summary counts them).
 const SHAPES: &str =
     "mbexpr meets spheres (ELLIPSOID of equal scales), BOXes, CYLINDERs and PLANEs";
+
+/// The contact types mbexpr simulates: between solids, and the sphere's
+/// two Adams View types, which are solid contacts of particular shapes.
+const TYPES: [&str; 3] = ["SOLID_TO_SOLID", "SPHERE_TO_PLANE", "SPHERE_TO_SPHERE"];
 
 /// The most pairs of solids one contact may list (each is a force the run
 /// evaluates at every step).
@@ -104,16 +109,15 @@ fn contact(
             ));
         }
     }
-    if let Some(kind) = word(statement, "TYPE")
-        && kind != "SOLID_TO_SOLID"
-    {
-        let span = statement
-            .argument("TYPE", 4)
-            .map_or(statement.span, |a| a.span);
+    let kind = word(statement, "TYPE").unwrap_or_else(|| "SOLID_TO_SOLID".to_string());
+    let type_span = statement
+        .argument("TYPE", 4)
+        .map_or(statement.span, |a| a.span);
+    if !TYPES.contains(&kind.as_str()) {
         return Err(refused(
             statement,
-            "is not TYPE = SOLID_TO_SOLID, the only contact mbexpr simulates (curves and flexible bodies are not)".to_string(),
-            span,
+            "is not TYPE = SOLID_TO_SOLID, SPHERE_TO_PLANE or SPHERE_TO_SPHERE, the contacts mbexpr simulates (curves, points and flexible bodies are not)".to_string(),
+            type_span,
         ));
     }
     let positive = |keyword: &str, what: &str| -> Result<f64, SimulateError> {
@@ -163,6 +167,28 @@ fn contact(
     for i in &i_solids {
         for j in &j_solids {
             check_pair(statement, i, j, scene)?;
+            let sphere = |solid: &Solid| matches!(solid.shape, Shape::Sphere { .. });
+            let fits = match kind.as_str() {
+                "SPHERE_TO_PLANE" => {
+                    sphere(&i.0) && matches!(j.0.shape, Shape::HalfSpace)
+                        || sphere(&j.0) && matches!(i.0.shape, Shape::HalfSpace)
+                }
+                "SPHERE_TO_SPHERE" => sphere(&i.0) && sphere(&j.0),
+                _ => true,
+            };
+            if !fits {
+                return Err(SimulateError::Model {
+                    message: format!(
+                        "{label}: TYPE = {kind} needs {}",
+                        if kind == "SPHERE_TO_PLANE" {
+                            "a sphere (an ELLIPSOID of equal scales) and a PLANE"
+                        } else {
+                            "two spheres (ELLIPSOIDs of equal scales)"
+                        }
+                    ),
+                    span: type_span,
+                });
+            }
             pairs.push(Contact {
                 i: i.0.clone(),
                 j: j.0.clone(),
