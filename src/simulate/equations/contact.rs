@@ -425,11 +425,9 @@ fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
     })
 }
 
-/// The centroid of a cylinder's overlap with `other`, a plane or a block:
-/// with a block, the overlap with the face the cylinder's centre stands
-/// farthest beyond, kept while its centroid lies within the block's other
-/// faces.
-fn cylinder_overlap<T: Number>(cylinder: &Placed<T>, other: &Placed<T>) -> Option<Vector3<T>> {
+/// A cylinder's radius and its ends along its axis, and the middle of its
+/// axis in ground (`None` for another shape).
+fn cylinder_parts<T: Number>(cylinder: &Placed<T>) -> Option<([f64; 3], Vector3<T>)> {
     let Shape::Cylinder {
         radius,
         bottom,
@@ -439,6 +437,15 @@ fn cylinder_overlap<T: Number>(cylinder: &Placed<T>, other: &Placed<T>) -> Optio
         return None;
     };
     let middle = cylinder.ground(&Vector3::new(0.0, 0.0, (bottom + top) / 2.0).map(T::from));
+    Some(([radius, bottom, top], middle))
+}
+
+/// The centroid of a cylinder's overlap with `other`, a plane or a block:
+/// with a block, the overlap with the face the cylinder's centre stands
+/// farthest beyond, kept while its centroid lies within the block's other
+/// faces.
+fn cylinder_overlap<T: Number>(cylinder: &Placed<T>, other: &Placed<T>) -> Option<Vector3<T>> {
+    let ([radius, bottom, top], middle) = cylinder_parts(cylinder)?;
     let planes = half_spaces(other);
     let (face, (normal, offset)) = planes.iter().enumerate().max_by(|(_, a), (_, b)| {
         let beyond =
@@ -904,16 +911,10 @@ fn distance_bound(i: &Placed<f64>, j: &Placed<f64>) -> Option<f64> {
 /// plane's one, a block's six): a lower bound on their distance, exact
 /// for a plane.
 fn cylinder_gap(cylinder: &Placed<f64>, other: &Placed<f64>) -> f64 {
-    let Shape::Cylinder {
-        radius,
-        bottom,
-        top,
-    } = *cylinder.shape
-    else {
+    let Some(([radius, bottom, top], middle)) = cylinder_parts(cylinder) else {
         return 0.0;
     };
     let axis = cylinder.axes.column(2).into_owned();
-    let middle = cylinder.ground(&Vector3::new(0.0, 0.0, (bottom + top) / 2.0));
     half_spaces(other)
         .iter()
         .map(|(normal, offset)| {
