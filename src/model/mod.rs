@@ -116,6 +116,14 @@ pub struct Statement {
 }
 
 impl Statement {
+    /// Where argument `keyword` (abbreviated to no fewer than `shortest`
+    /// letters) stands, or the statement's place when it is left out: where
+    /// a message about the argument points.
+    pub fn place_of(&self, keyword: &str, shortest: usize) -> Span {
+        self.argument(keyword, shortest)
+            .map_or(self.span, |argument| argument.span)
+    }
+
     /// `SFORCE/7`, `PART`, for messages.
     pub fn label(&self) -> String {
         match self.id {

@@ -223,6 +223,8 @@ pub struct Contact {
     pub damping_depth: f64,
     /// Coulomb friction, when it is on.
     pub friction: Option<Friction>,
+    /// The statement id.
+    pub id: u64,
     /// The statement (for messages and events).
     pub span: Span,
 }

@@ -43,16 +43,23 @@ impl<T: Number> Placed<'_, T> {
         &self.origin + &self.axes * local
     }
 
-    /// A point well inside the solid, which the normal points away from.
+    /// The centre of a bounded solid in ground (`None` for a half-space):
+    /// a sphere's, a block's, the middle of a cylinder's axis.
+    fn centre(&self) -> Option<Vector3<T>> {
+        let local = match *self.shape {
+            Shape::Sphere { .. } => return Some(self.origin.clone()),
+            Shape::Block { lower, upper } => (lower + upper) / 2.0,
+            Shape::Cylinder { bottom, top, .. } => Vector3::new(0.0, 0.0, (bottom + top) / 2.0),
+            Shape::HalfSpace => return None,
+        };
+        Some(self.ground(&local.map(T::from)))
+    }
+
+    /// A point well inside the solid, which the normal points away from:
+    /// its centre, or a unit below `near` in a half-space.
     fn inside(&self, near: &Vector3<T>) -> Vector3<T> {
-        match *self.shape {
-            Shape::Sphere { .. } => self.origin.clone(),
-            Shape::Block { lower, upper } => self.ground(&((lower + upper) / 2.0).map(T::from)),
-            Shape::Cylinder { bottom, top, .. } => {
-                self.ground(&Vector3::new(0.0, 0.0, (bottom + top) / 2.0).map(T::from))
-            }
-            Shape::HalfSpace => near - self.axes.column(2).into_owned(),
-        }
+        self.centre()
+            .unwrap_or_else(|| near - self.axes.column(2).into_owned())
     }
 }
 
@@ -436,8 +443,7 @@ fn cylinder_parts<T: Number>(cylinder: &Placed<T>) -> Option<([f64; 3], Vector3<
     else {
         return None;
     };
-    let middle = cylinder.ground(&Vector3::new(0.0, 0.0, (bottom + top) / 2.0).map(T::from));
-    Some(([radius, bottom, top], middle))
+    Some(([radius, bottom, top], cylinder.centre()?))
 }
 
 /// The centroid of a cylinder's overlap with `other`, a plane or a block:
@@ -773,28 +779,27 @@ const APPROACH_FRACTION: f64 = 0.5;
 /// overlap by no more than the depth its force first meets with
 /// (`DMAX`, or a tenth of the thinner solid's least size when that is
 /// less), so that the run's looks inside the step see the touch (and
-/// locate it): a lower bound on their distance against upper bounds on their
-/// closing speed and its rate (`accelerations`: each body's centre
-/// acceleration and angular acceleration, in size). An error-controlled
-/// step that sees no force would otherwise step a falling body through a
-/// thin plate. Infinite when they overlap (the force is then in the
-/// equations) or do not approach.
+/// locate it): the contact's [`separation`] and its rate (a lower bound on
+/// the distance, and no rate, for solids of flat faces) against upper
+/// bounds on their closing speed and its rate (`accelerations`: each
+/// body's centre acceleration and angular acceleration, in size). An
+/// error-controlled step that sees no force would otherwise step a falling
+/// body through a thin plate. Infinite when they overlap (the force is
+/// then in the equations) or do not approach.
 pub(super) fn step_limit(
     model: &Model,
     contact: &Contact,
     kinematics: &[Kinematics<f64>],
     accelerations: &[(f64, f64)],
+    (distance, rate): (f64, f64),
 ) -> f64 {
+    if distance <= 0.0 {
+        return f64::INFINITY;
+    }
     let (i, j) = (
         placed(model, &contact.i, kinematics),
         placed(model, &contact.j, kinematics),
     );
-    let Some(distance) = distance_bound(&i, &j) else {
-        return f64::INFINITY;
-    };
-    if distance <= 0.0 {
-        return f64::INFINITY;
-    }
     let allowed = contact
         .damping_depth
         .min(0.1 * least_size(&i).min(least_size(&j)));
@@ -833,12 +838,10 @@ pub(super) fn step_limit(
     // approach counts, so a ball rolling fast past a wall is not held to
     // short steps. Otherwise any relative motion of the solids' points.
     let sphere = matches!(i.shape, Shape::Sphere { .. }) || matches!(j.shape, Shape::Sphere { .. });
-    let speed = match touch(&i, &j) {
-        Some(touch) if sphere => {
-            let relative = relative_velocity(kinematics, &i, &j, &touch.point);
-            (-touch.normal.dot(&relative)).max(0.0)
-        }
-        _ => (v_i - v_j).norm() + (w_i - w_j).norm() * reach,
+    let speed = if sphere {
+        (-rate).max(0.0)
+    } else {
+        (v_i - v_j).norm() + (w_i - w_j).norm() * reach
     };
     let acceleration = a_i + a_j;
     // The step in which `speed h + acceleration h²/2` reaches the way.
@@ -857,22 +860,17 @@ fn bounding_sphere(solid: &Placed<f64>) -> (Vector3<f64>, f64) {
 
 /// [`bounding_sphere`], `None` for a half-space.
 fn bounding_sphere_of(solid: &Placed<f64>) -> Option<(Vector3<f64>, f64)> {
-    match *solid.shape {
-        Shape::Sphere { radius } => Some((solid.origin, radius)),
-        Shape::Block { lower, upper } => Some((
-            solid.ground(&((lower + upper) / 2.0)),
-            (upper - lower).norm() / 2.0,
-        )),
+    let radius = match *solid.shape {
+        Shape::Sphere { radius } => radius,
+        Shape::Block { lower, upper } => (upper - lower).norm() / 2.0,
         Shape::Cylinder {
             radius,
             bottom,
             top,
-        } => Some((
-            solid.ground(&Vector3::new(0.0, 0.0, (bottom + top) / 2.0)),
-            radius.hypot((top - bottom) / 2.0),
-        )),
-        Shape::HalfSpace => None,
-    }
+        } => radius.hypot((top - bottom) / 2.0),
+        Shape::HalfSpace => return None,
+    };
+    Some((solid.centre()?, radius))
 }
 
 /// A solid's least size (infinite for a half-space).

@@ -171,6 +171,14 @@ impl<'m> Mechanics<'m> {
                 joint_arms: joint_arms(model),
                 drives: Drives::new(model),
                 solver_calls,
+                contacts: model
+                    .forces
+                    .iter()
+                    .filter_map(|force| match force {
+                        Force::Contact(contact) => Some(&**contact),
+                        _ => None,
+                    })
+                    .collect(),
             },
             values: program.evaluator(),
             buffers: Buffers::new(program),
@@ -184,13 +192,13 @@ impl<'m> Mechanics<'m> {
     /// The number of sites whose branches a run holds: the program's, then
     /// one for each contact's law.
     pub(crate) fn site_count(&self) -> usize {
-        self.equations.program.sites().len() + self.equations.contacts().len()
+        self.equations.program.sites().len() + self.equations.contacts.len()
     }
 
     /// The number of switching values [`Mechanics::observe`] gives: the
     /// program's, then three for each contact.
     pub(crate) fn switch_count(&self) -> usize {
-        self.equations.program.switch_count() + 3 * self.equations.contacts().len()
+        self.equations.program.switch_count() + 3 * self.equations.contacts.len()
     }
 
     /// The contact of site `site`, when it is one (its index among the
@@ -198,7 +206,7 @@ impl<'m> Mechanics<'m> {
     pub(crate) fn contact_of_site(&self, site: usize) -> Option<&'m Contact> {
         let program_sites = self.equations.program.sites().len();
         let index = site.checked_sub(program_sites)?;
-        self.equations.contacts().get(index).copied()
+        self.equations.contacts.get(index).copied()
     }
 
     /// The number of states.
@@ -475,10 +483,10 @@ impl<'m> Mechanics<'m> {
             tolerance,
         )?;
         let model = equations.model;
-        let contacts = equations.contacts();
         // Each contact's law is a site after the program's, with the three
         // switching values of an IMPACT.
-        for (index, contact) in contacts.iter().enumerate() {
+        let mut apart = Vec::new();
+        for (index, &contact) in equations.contacts.iter().enumerate() {
             let (separation, rate) = contact::separation(model, contact, &kinematics);
             let held = held
                 .and_then(|sites| sites[program_sites + index])
@@ -490,9 +498,14 @@ impl<'m> Mechanics<'m> {
             if let Some(tolerance) = tolerance {
                 let branch = held.unwrap_or(observed.natural);
                 limit = limit.min(law.step_limit(separation, rate, branch, tolerance));
+                if separation > 0.0 {
+                    apart.push((contact, separation, rate));
+                }
             }
         }
-        if tolerance.is_none() || contacts.is_empty() {
+        // Solids apart bound the step by their approach, which needs the
+        // bodies' accelerations.
+        if apart.is_empty() {
             return Ok(limit);
         }
         let mut rates = vec![0.0; y.len()];
@@ -506,10 +519,17 @@ impl<'m> Mechanics<'m> {
                 (rate(7), rate(10))
             })
             .collect();
-        let kinematics = self.equations.kinematics(y);
-        Ok(contacts
+        Ok(apart
             .into_iter()
-            .map(|contact| contact::step_limit(model, contact, &kinematics, &accelerations))
+            .map(|(contact, separation, rate)| {
+                contact::step_limit(
+                    model,
+                    contact,
+                    &kinematics,
+                    &accelerations,
+                    (separation, rate),
+                )
+            })
             .fold(limit, f64::min))
     }
 
@@ -934,22 +954,12 @@ struct Equations<'m> {
     drives: Drives,
     /// The values of the running solver the program reads.
     solver_calls: Vec<RunCall>,
-}
-
-impl<'m> Equations<'m> {
     /// The model's contacts, in the order of their sites (after the
     /// program's).
-    fn contacts(&self) -> Vec<&'m Contact> {
-        self.model
-            .forces
-            .iter()
-            .filter_map(|force| match force {
-                Force::Contact(contact) => Some(&**contact),
-                _ => None,
-            })
-            .collect()
-    }
+    contacts: Vec<&'m Contact>,
+}
 
+impl Equations<'_> {
     /// The error of loop values that Newton's iterations do not settle: at
     /// the first output of the program that reads one.
     fn unsettled(&self) -> OutputError {

@@ -37,7 +37,7 @@ pub(super) fn contacts(
     dataset: &Dataset,
     scene: &Scene,
     errors: &mut Vec<SimulateError>,
-) -> Vec<(Contact, u64)> {
+) -> Vec<Contact> {
     let graphics: HashMap<u64, &Statement> = dataset
         .statements
         .iter()
@@ -50,10 +50,7 @@ pub(super) fn contacts(
             continue;
         }
         match contact(statement, &graphics, scene) {
-            Ok(pairs) => {
-                let id = statement.id.unwrap_or(0);
-                contacts.extend(pairs.into_iter().map(|pair| (pair, id)));
-            }
+            Ok(pairs) => contacts.extend(pairs),
             Err(error) => errors.push(error),
         }
     }
@@ -110,9 +107,7 @@ fn contact(
         }
     }
     let kind = word(statement, "TYPE").unwrap_or_else(|| "SOLID_TO_SOLID".to_string());
-    let type_span = statement
-        .argument("TYPE", 4)
-        .map_or(statement.span, |a| a.span);
+    let type_span = statement.place_of("TYPE", 4);
     if !TYPES.contains(&kind.as_str()) {
         return Err(refused(
             statement,
@@ -125,12 +120,9 @@ fn contact(
         if value > 0.0 && value.is_finite() {
             return Ok(value);
         }
-        let span = statement
-            .argument(keyword, keyword.len().min(4))
-            .map_or(statement.span, |argument| argument.span);
         Err(SimulateError::Model {
             message: format!("{label}: give {keyword} = a positive number ({what})"),
-            span,
+            span: statement.place_of(keyword, keyword.len().min(4)),
         })
     };
     let stiffness = positive("STIFFNESS", "the force per depth to the EXPONENT")?;
@@ -139,9 +131,7 @@ fn contact(
         .filter(|damping| *damping >= 0.0 && damping.is_finite())
         .ok_or_else(|| SimulateError::Model {
             message: format!("{label}: DAMPING is a number, zero or more"),
-            span: statement
-                .argument("DAMPING", 4)
-                .map_or(statement.span, |argument| argument.span),
+            span: statement.place_of("DAMPING", 4),
         })?;
     let exponent = positive(
         "EXPONENT",
@@ -149,8 +139,8 @@ fn contact(
     )?;
     let damping_depth = positive("DMAX", "the depth at which the damping is full")?;
     let friction = friction(statement)?;
-    let sides = ["IGEOM", "JGEOM"].map(|keyword| solids(statement, keyword, graphics, scene));
-    let [i_solids, j_solids] = sides;
+    let [i_solids, j_solids] =
+        ["IGEOM", "JGEOM"].map(|keyword| solids(statement, keyword, graphics, scene));
     let (i_solids, j_solids) = (i_solids?, j_solids?);
     let count = i_solids.len() * j_solids.len();
     if count > MOST_PAIRS {
@@ -197,6 +187,7 @@ fn contact(
                 damping,
                 damping_depth,
                 friction,
+                id: statement.id.unwrap_or(0),
                 span: statement.span,
             });
         }
@@ -217,9 +208,7 @@ fn friction(statement: &Statement) -> Result<Option<Friction>, SimulateError> {
         Some("OFF") => false,
         Some("ON" | "DYNAMICS_ONLY" | "DYNAMICSONLY") => true,
         Some(_) => {
-            let span = statement
-                .argument("COULOMB_FRICTION", 7)
-                .map_or(statement.span, |argument| argument.span);
+            let span = statement.place_of("COULOMB_FRICTION", 7);
             return Err(SimulateError::Model {
                 message: format!("{label}: COULOMB_FRICTION is ON, OFF or DYNAMICS_ONLY"),
                 span,
@@ -230,14 +219,13 @@ fn friction(statement: &Statement) -> Result<Option<Friction>, SimulateError> {
         return Ok(None);
     }
     let value = |keyword: &str, what: &str, zero_allowed: bool| {
-        let found = statement.argument(keyword, keyword.len());
         let value = number(statement, keyword, f64::NAN).unwrap_or(f64::NAN);
         if value.is_finite() && (value > 0.0 || (zero_allowed && value == 0.0)) {
             return Ok(value);
         }
         Err(SimulateError::Model {
             message: format!("{label}: with friction on, give {keyword} = {what}"),
-            span: found.map_or(statement.span, |argument| argument.span),
+            span: statement.place_of(keyword, keyword.len()),
         })
     };
     let static_coefficient = value("MU_STATIC", "the static coefficient, 0 or more", true)?;
@@ -257,9 +245,7 @@ fn friction(statement: &Statement) -> Result<Option<Friction>, SimulateError> {
             message: format!(
                 "{label}: FRICTION_TRANSITION_VELOCITY must exceed STICTION_TRANSITION_VELOCITY"
             ),
-            span: statement
-                .argument("FRICTION_TRANSITION_VELOCITY", 8)
-                .map_or(statement.span, |argument| argument.span),
+            span: statement.place_of("FRICTION_TRANSITION_VELOCITY", 8),
         });
     }
     Ok(Some(Friction {
@@ -283,9 +269,7 @@ fn solids(
             "{}: give {keyword} = the ids of GRAPHICS statements of one part",
             statement.label()
         ),
-        span: statement
-            .argument(keyword, keyword.len())
-            .map_or(statement.span, |argument| argument.span),
+        span: statement.place_of(keyword, keyword.len()),
     };
     let argument = statement
         .argument(keyword, keyword.len())

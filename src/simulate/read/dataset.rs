@@ -244,10 +244,9 @@ impl Reader<'_> {
         let masses = self.masses();
         let diffs = self.diffs();
         let (mut forces, mut force_statements) = self.forces();
-        for (contact, id) in super::contacts::contacts(self.dataset, &self.scene, &mut self.errors)
-        {
+        for contact in super::contacts::contacts(self.dataset, &self.scene, &mut self.errors) {
+            force_statements.push(("CONTACT", contact.id));
             forces.push(Force::Contact(Box::new(contact)));
-            force_statements.push(("CONTACT", id));
         }
         let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
         let (motions, marker_motions) = self.motions(&joints);
@@ -362,9 +361,7 @@ impl Reader<'_> {
             else {
                 self.refuse(
                     format!("{label}: JOINT must name a JOINT of the model"),
-                    statement
-                        .argument("JOINT", 2)
-                        .map_or(statement.span, |argument| argument.span),
+                    statement.place_of("JOINT", 2),
                 );
                 continue;
             };

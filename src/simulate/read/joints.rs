@@ -79,9 +79,7 @@ fn length(
                 statement.label(),
                 if keyword == "PD" { " above zero" } else { "" }
             ),
-            span: statement
-                .argument(keyword, keyword.len())
-                .map_or(statement.span, |argument| argument.span),
+            span: statement.place_of(keyword, keyword.len()),
         });
     }
     value
@@ -151,9 +149,7 @@ fn marker(
                 "{}: a joint needs {keyword} = the id of a MARKER of the model",
                 statement.label()
             ),
-            span: statement
-                .argument(keyword, keyword.len())
-                .map_or(statement.span, |argument| argument.span),
+            span: statement.place_of(keyword, keyword.len()),
         });
     }
     found

@@ -153,9 +153,7 @@ pub(super) fn beam(statement: &Statement) -> Result<Linear, Refusal> {
         if value > 0.0 && value.is_finite() {
             return Ok(value);
         }
-        let span = statement
-            .argument(keyword, keyword.len().min(2))
-            .map_or(statement.span, |argument| argument.span);
+        let span = statement.place_of(keyword, keyword.len().min(2));
         Err((
             format!(
                 "{}: give {keyword} = {what}, a positive number",

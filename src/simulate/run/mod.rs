@@ -22,7 +22,7 @@ use super::constraints::{
 use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
 use super::error::{Place, SimulateError};
 use super::initial::initial_state;
-use super::model::{Contact, Force, SensorAction};
+use super::model::{Contact, SensorAction};
 use super::{Model, Simulation};
 use crate::Shown;
 use crate::compile::{Program, SiteKind};
@@ -31,7 +31,7 @@ use crate::integrate::{
     AbsoluteTolerance, IntegrateError, Method, Options, Rejection, Stats, Stepper,
 };
 use crate::laws::branch::{self, Code};
-use crate::laws::contact::ContactBranch;
+use crate::laws::contact::{ContactBranch, Piece};
 use sink::RowsOnly;
 use switch::{Held, Switch, find_switch, switching_slope};
 
@@ -203,27 +203,22 @@ pub struct SensorTrip {
 }
 
 /// The event of `contact`'s law switching from `from` to `to` at `time`.
-fn contact_event(model: &Model, contact: &Contact, time: f64, from: Code, to: Code) -> Event {
-    let index = model
-        .forces
-        .iter()
-        .position(|force| matches!(force, Force::Contact(c) if std::ptr::eq(&**c, contact)));
-    let id = index
-        .and_then(|index| model.force_statements.get(index))
-        .map_or(0, |(_, id)| *id);
+fn contact_event(contact: &Contact, time: f64, from: Code, to: Code) -> Event {
+    // The law's stop is where the solids touch.
     let describe = |code| {
-        let name = ContactBranch::from_code(code).name();
-        // The law's stop is where the solids touch.
-        name.strip_prefix("lower stop, ").map_or_else(
-            || if name == "free" { "apart" } else { name }.to_string(),
-            |piece| format!("touching, {piece}"),
-        )
+        match ContactBranch::from_code(code) {
+            ContactBranch::Lower(Piece::Ramp) => "touching, damping ramp",
+            ContactBranch::Lower(Piece::Full) => "touching, full damping",
+            ContactBranch::LowerClamped => "touching, clamped",
+            _ => "apart",
+        }
+        .to_string()
     };
     Event {
         time,
         function: "CONTACT".to_string(),
         place: Place::File(contact.span),
-        label: format!("CONTACT/{id}"),
+        label: format!("CONTACT/{}", contact.id),
         from: describe(from),
         to: describe(to),
         values: Vec::new(),
@@ -788,7 +783,7 @@ impl Simulation<'_> {
                     && from != to
                 {
                     let event = match system.mechanics.contact_of_site(index) {
-                        Some(contact) => contact_event(model, contact, right, *from, *to),
+                        Some(contact) => contact_event(contact, right, *from, *to),
                         None => self.event(program, &program.sites()[index], right, *from, *to),
                     };
                     summary.events.push(event);
