@@ -485,6 +485,9 @@ pub struct RunOptions {
     pub max_steps: Option<usize>,
     /// Start from a static equilibrium (default: as the `.acf` says).
     pub statics: Option<bool>,
+    /// Radau5 steps onto each output time (default: as the `.acf` says,
+    /// else `false`): [`simulate::Settings::land_on_outputs`].
+    pub land_on_outputs: Option<bool>,
 }
 
 impl Default for RunOptions {
@@ -498,6 +501,7 @@ impl Default for RunOptions {
             h_max: None,
             max_steps: None,
             statics: None,
+            land_on_outputs: None,
         }
     }
 }
@@ -538,6 +542,7 @@ impl LoadedModel {
                 Ok(run) => {
                     loaded.model.run = run.map(|run| (run.end, run.steps));
                     loaded.model.statics = run.is_some_and(|run| run.statics);
+                    loaded.model.land_on_outputs = run.is_some_and(|run| run.land_on_outputs);
                 }
                 Err(problem) => loaded.run_problem = Some(problem),
             }
@@ -606,6 +611,9 @@ impl LoadedModel {
             h_max: options.h_max.unwrap_or(f64::INFINITY),
             max_steps: options.max_steps.unwrap_or(simulate::DEFAULT_MAX_STEPS),
             statics: options.statics.unwrap_or(self.model.statics),
+            land_on_outputs: options
+                .land_on_outputs
+                .unwrap_or(self.model.land_on_outputs),
         })
     }
 

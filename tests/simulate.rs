@@ -934,6 +934,79 @@ fn the_number_of_output_times_changes_neither_steps_nor_results() {
     }
 }
 
+/// A compound pendulum released at rest at `angle` below the level of its
+/// pivot: centre of mass `d` from the pivot, inertia `izz` about it.
+fn pendulum(angle: f64, d: f64, izz: f64) -> String {
+    let (x, y) = (d * angle.cos(), -d * angle.sin());
+    format!(
+        "a pendulum
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 20, IP = {izz}, {izz}, {izz}
+MARKER/20, PART = 2, QP = {x}, {y}, 0
+MARKER/21, PART = 2
+JOINT/1, REVOLUTE, I = 21, J = 1
+ACCGRAV/JGRAV = -9.80665
+END
+"
+    )
+}
+
+/// `Settings::land_on_outputs` (Adams' INTERPOLATE = OFF): Radau5's rows
+/// are then step ends, of the method's order, where between steps they
+/// come from its order-3 continuous output. Pendulums drawn at random,
+/// against DOP853 at rtol 1e-13: landing keeps every row within the
+/// tolerance asked, and every row is a step's end (more steps, the same
+/// rows at the step ends whatever the output times).
+#[test]
+fn radau_rows_landed_on_are_within_the_tolerance_asked() {
+    use proptest::strategy::{Strategy, ValueTree};
+    let mut runner = proptest::test_runner::TestRunner::deterministic();
+    let draw = (0.2f64..1.4, 0.5f64..3.0, 0.01f64..1.0);
+    let (rtol, steps) = (1e-7, 200);
+    let mut worst = [0.0f64; 2];
+    for _ in 0..4 {
+        let (angle, d, izz) = draw.new_tree(&mut runner).unwrap().current();
+        let text = pendulum(angle, d, izz);
+        let end = 10.0;
+        let reference = run(
+            &text,
+            &Settings {
+                method: Method::Dop853,
+                ..settings(end, steps, 1e-13)
+            },
+        )
+        .expect("the pendulum runs");
+        for (land, worst) in [false, true].into_iter().zip(&mut worst) {
+            let radau = run(
+                &text,
+                &Settings {
+                    method: Method::Radau5,
+                    land_on_outputs: land,
+                    ..settings(end, steps, rtol)
+                },
+            )
+            .expect("the pendulum runs");
+            assert_eq!(radau.rows.len(), reference.rows.len());
+            if land {
+                assert!(radau.summary.stats.steps >= steps, "a step to each row");
+            }
+            for (row, expected) in radau.rows.iter().zip(&reference.rows) {
+                assert_eq!(row[0], expected[0], "the output times");
+                for (value, expected) in row.iter().zip(expected) {
+                    *worst = worst.max((value - expected).abs() / (rtol * (1.0 + expected.abs())));
+                }
+            }
+        }
+    }
+    let [between, landed] = worst;
+    assert!(landed < 1.0, "landed rows {landed:.2} x rtol off");
+    assert!(
+        landed < between,
+        "landing {landed:.2} x rtol, interpolating {between:.2} x rtol"
+    );
+}
+
 /// Van der Pol's oscillator with eps = 1e-6 as two DIFFs (Test Set for IVP
 /// Solvers, VDPOL), stiff from the start; its published state at t = 2.
 const VAN_DER_POL: &str = "Van der Pol, eps = 1e-6
@@ -1307,6 +1380,7 @@ fn check_commands(commands: &str) -> String {
     let dataset = model::read(&text, FileKind::Acf);
     match simulate::run_settings(&dataset) {
         Ok(Some(run)) if run.statics => format!("statics, then {} {}", run.end, run.steps),
+        Ok(Some(run)) if run.land_on_outputs => format!("landing, {} {}", run.end, run.steps),
         Ok(Some(run)) => format!("{} {}", run.end, run.steps),
         Ok(None) => "none".to_string(),
         Err((message, _)) => message.split(':').take(2).collect::<Vec<_>>().join(":"),
@@ -1333,6 +1407,18 @@ fn command_files_give_one_run_of_equally_spaced_outputs() {
             "1 4",
         ),
         ("", "none"),
+        (
+            "integrator/gstiff, interpolate = off; sim/dyn, end = 2, steps = 40",
+            "landing, 2 40",
+        ),
+        (
+            "INTEGRATOR/INTERPOLATE = ON; sim/dyn, end = 2, steps = 40",
+            "2 40",
+        ),
+        (
+            "int/interp = off; int/interp = on; sim/dyn, end = 2, steps = 40",
+            "2 40",
+        ),
         (
             "sim/stat; sim/dyn, end = 1, steps = 10",
             "statics, then 1 10",

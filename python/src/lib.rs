@@ -291,6 +291,7 @@ fn simulate<'py>(
         max_steps,
         // As the model's command file says.
         statics: None,
+        land_on_outputs: None,
     };
     let outcome = py.detach(|| {
         let loaded = if is_path {

@@ -1011,6 +1011,7 @@ fn options(settings: &CSettings) -> Result<RunOptions, Located> {
         max_steps: (settings.max_steps != 0).then_some(settings.max_steps),
         // As the model's command file says.
         statics: None,
+        land_on_outputs: None,
     })
 }
 

@@ -70,6 +70,9 @@ pub struct Model {
     /// Whether the file asks for a static equilibrium before the dynamics
     /// (`SIMULATE/STATICS` first in the `.acf`).
     pub statics: bool,
+    /// Whether the `.acf` asks Radau5 to step onto each output time
+    /// (`INTEGRATOR/INTERPOLATE = OFF`): [`crate::simulate::Settings::land_on_outputs`].
+    pub land_on_outputs: bool,
 }
 
 impl Model {

@@ -88,6 +88,9 @@ pub struct Args {
     /// Start from a static equilibrium: the parts at rest where the forces balance, found from the initial conditions by Newton's method (as SIMULATE/STATICS before the dynamics in the .acf does).
     #[arg(long)]
     statics: bool,
+    /// Radau5 steps onto each output time, as INTEGRATOR/INTERPOLATE = OFF in the .acf asks (Adams' default): its rows are then of the order of its steps, not of its continuous output (order 3 inside a step); by default the output times change neither the steps nor the rows.
+    #[arg(long)]
+    land_on_outputs: bool,
     /// Row format (default: csv on a pipe, text on a terminal).
     #[arg(long, value_enum)]
     format: Option<RowFormat>,
@@ -185,6 +188,7 @@ fn read_model(
             Ok(run) => {
                 model.run = run.map(|run| (run.end, run.steps));
                 model.statics = run.is_some_and(|run| run.statics);
+                model.land_on_outputs = run.is_some_and(|run| run.land_on_outputs);
             }
             Err(problem) => run_problem = Some(problem),
         }
@@ -304,6 +308,7 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         h_max: args.hmax.unwrap_or(f64::INFINITY),
         max_steps: args.max_steps,
         statics: args.statics || model.statics,
+        land_on_outputs: args.land_on_outputs || model.land_on_outputs,
     };
     // Every output is checked before the first step.
     settings

@@ -1,9 +1,9 @@
 //! The run a command file (`.acf`) asks for: its `SIMULATE` commands in
 //! order, as one run from time 0 with equally spaced outputs.
 
-use crate::model::Dataset;
 use crate::model::initial::number;
 use crate::model::vocabulary::{COMMANDS, statement_name};
+use crate::model::{Dataset, Value};
 use crate::span::Span;
 
 /// The most output steps a command file may ask for (a hundred million
@@ -20,6 +20,10 @@ pub struct RunCommands {
     /// Whether a static equilibrium comes first (`SIMULATE/STATICS`
     /// before the dynamic commands).
     pub statics: bool,
+    /// Whether Radau5 steps onto each output time
+    /// (`INTEGRATOR/INTERPOLATE = OFF`; by default, and with `ON`, the rows
+    /// come from the steps' continuous output).
+    pub land_on_outputs: bool,
     /// The span of the last SIMULATE command.
     pub span: Span,
 }
@@ -39,7 +43,18 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
     let mut interval: Option<f64> = None;
     let mut last = None;
     let mut statics = None;
+    let mut land_on_outputs = false;
     for statement in &commands.statements {
+        if statement_name(&statement.name, COMMANDS) == Some("INTEGRATOR")
+            && let Some(argument) = statement.argument("INTERPOLATE", 3)
+        {
+            land_on_outputs = match &argument.value {
+                Value::List(items) => items
+                    .first()
+                    .is_some_and(|item| item.text.eq_ignore_ascii_case("OFF")),
+                _ => false,
+            };
+        }
         if statement_name(&statement.name, COMMANDS) != Some("SIMULATE") {
             continue;
         }
@@ -129,6 +144,7 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
         end,
         steps: steps as usize,
         statics: statics.is_some(),
+        land_on_outputs,
         span,
     }))
 }

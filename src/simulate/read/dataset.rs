@@ -291,6 +291,7 @@ impl Reader<'_> {
             notes,
             run: None,
             statics: false,
+            land_on_outputs: false,
         }
     }
 

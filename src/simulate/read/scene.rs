@@ -166,6 +166,7 @@ pub fn from_scene(text: &str) -> Result<Model, Vec<SimulateError>> {
         notes,
         run,
         statics: false,
+        land_on_outputs: false,
     })
 }
 
