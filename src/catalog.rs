@@ -308,7 +308,7 @@ functions! {
     Contact "CONTACT" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a force component of CONTACT id";
     Ptcv "PTCV" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a reaction component of point-to-curve constraint id";
     Cvcv "CVCV" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a reaction component of curve-to-curve constraint id";
-    Delay "DELAY" Solver [Value, Value, Value, Flag] Flag 3..=4 ("e", "delay", "e_init", "use_init") "value of e a time `delay` ago (e_init before the history starts)";
+    Delay "DELAY" Solver [Value, Value, Value, Flag] Flag 3..=4 ("e", "delay", "e_history", "id") "value e had a time `delay` ago in a run (a negative delay is 0); before time 0, e_history (a constant or a function of TIME) at that time; id, an ARRAY of Adams' interpolation settings, 0 or left out";
     Varval "VARVAL" ModelData [Object] Object 1..=1 ("id") "value of VARIABLE id";
     Aryval "ARYVAL" ModelData [Object, Flag] Flag 2..=2 ("id", "i") "entry i of ARRAY id";
     Dif "DIF" ModelData [Object] Object 1..=1 ("id") "value of the differential state DIFF id";

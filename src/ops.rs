@@ -70,6 +70,23 @@ pub enum Op {
         /// The slot of `x'`.
         v: Slot,
     },
+    /// `DELAY(e, delay, history)` in a simulation: the value `e` had at the
+    /// time in slot `at` (`TIME − max(delay, 0)`), `history` before time 0.
+    /// The evaluator reads it from its record of `delayed` at the run's
+    /// accepted states (entry `site` of the evaluator's `DelayRecord`);
+    /// `execute`, with no record, takes the value `e` has now.
+    Delay {
+        /// The slot of `TIME`.
+        time: Slot,
+        /// The slot of the time looked back to.
+        at: Slot,
+        /// The slot of `e` now.
+        delayed: Slot,
+        /// The slot of the history at the time looked back to.
+        history: Slot,
+        /// The DELAY's index among the program's.
+        site: u32,
+    },
     /// A function of the intrinsic, step, contact or series family.
     Call {
         /// The function.
@@ -225,6 +242,18 @@ pub fn execute<T: Number>(op: &Op, slots: &[T], tables: &Tables) -> Result<T, La
         Op::Contact { table, x, v, .. } => {
             tables.contacts[*table as usize].force(slot(*x), slot(*v))
         }
+        Op::Delay {
+            at,
+            delayed,
+            history,
+            ..
+        } => {
+            if slot(*at).value() < 0.0 {
+                slot(*history).clone()
+            } else {
+                slot(*delayed).clone()
+            }
+        }
         Op::Call {
             function,
             args,
@@ -295,6 +324,16 @@ impl fmt::Display for Op {
                 x,
                 v,
             } => write!(f, "{function}(s{x}, s{v}, stops{table})"),
+            Op::Delay {
+                time,
+                at,
+                delayed,
+                history,
+                site,
+            } => write!(
+                f,
+                "DELAY(s{delayed} at s{at}, now s{time}, history s{history}, record{site})"
+            ),
             Op::Measure {
                 function, frames, ..
             } => {
@@ -331,6 +370,13 @@ impl Op {
                 visit(*x);
                 visit(*v);
             }
+            Op::Delay {
+                time,
+                at,
+                delayed,
+                history,
+                ..
+            } => [*time, *at, *delayed, *history].into_iter().for_each(visit),
             Op::Measure { frames, .. } => {
                 for state in frames.iter().filter_map(|frame| frame.state) {
                     state.into_iter().for_each(&mut visit);
@@ -352,6 +398,7 @@ impl Op {
             | Op::Measure { function, .. }
             | Op::Spline { function, .. }
             | Op::Contact { function, .. } => function.name().to_string(),
+            Op::Delay { .. } => "DELAY".to_string(),
         }
     }
 }

@@ -11,6 +11,7 @@ mod cli;
 mod contacts;
 mod corpus;
 mod couplers;
+mod delays;
 mod diagnostics;
 mod documents;
 mod eval;

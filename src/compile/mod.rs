@@ -115,6 +115,8 @@ fn compile_all<S: AsRef<str>>(
     let mut compiler = Compiler {
         scene,
         reactions,
+        delays: 0,
+        history_time: None,
         origin: 0,
         inlining: Vec::new(),
         inlining_set: HashSet::new(),
@@ -186,6 +188,11 @@ struct Compiler<'s> {
     /// Which solver reactions are inputs (`None`: none, every solver
     /// result is refused).
     reactions: Option<Reactions<'s>>,
+    /// The number of DELAY calls compiled (each its own record).
+    delays: u32,
+    /// The slot `TIME` stands for while a DELAY's history is compiled (the
+    /// time it looks back to); `None` elsewhere.
+    history_time: Option<Slot>,
     /// The index of the tree being compiled, recorded with each instruction.
     origin: u32,
     /// The VARIABLEs being compiled in place, outermost first.
@@ -286,6 +293,8 @@ impl Compiler<'_> {
             }
             Op::Call { args, .. } => args.to_vec(),
             Op::Spline { x, z, .. } | Op::Contact { x, v: z, .. } => vec![*x, *z],
+            // It reads the run's record: never folded.
+            Op::Delay { .. } => return None,
             Op::Measure { frames, .. } => frames
                 .iter()
                 .flat_map(|frame| frame.state.into_iter().flatten())
@@ -321,6 +330,11 @@ impl Compiler<'_> {
     }
 
     fn system(&mut self, variable: SystemVariable, span: Span) -> Slot {
+        if variable == SystemVariable::Time
+            && let Some(at) = self.history_time
+        {
+            return at;
+        }
         match self.input_index(variable.name()) {
             Some(index) => self.input(index, span),
             None if variable == SystemVariable::Mode => self.constant(SystemVariable::DEFAULT_MODE),
@@ -380,6 +394,15 @@ impl Compiler<'_> {
     }
 
     fn call(&mut self, function: Function, args: &[Argument], span: Span) -> Slot {
+        if function == Function::Delay && self.reactions.is_some() {
+            return match self.delay(args, span) {
+                Ok(slot) => slot,
+                Err(error) => {
+                    self.errors.push(error);
+                    self.constant(0.0)
+                }
+            };
+        }
         let error = match function.family() {
             Family::Intrinsic | Family::Step | Family::Contact | Family::Series => None,
             Family::Measure => match self.scene {
@@ -468,6 +491,70 @@ impl Compiler<'_> {
             },
             span,
         )
+    }
+
+    /// `DELAY(e, delay, history [, id])` for a running solver: `e` computed
+    /// now (the run records it at its accepted states), the time looked
+    /// back to, `TIME − max(delay, 0)` (Adams takes a negative delay as
+    /// zero), and the history, a function of TIME compiled with TIME
+    /// standing for the time looked back to; the fourth argument (Adams'
+    /// array of interpolation settings) must be 0 or absent.
+    fn delay(&mut self, args: &[Argument], span: Span) -> Result<Slot, CompileError> {
+        let value = |compiler: &mut Self, position: usize| match args.get(position) {
+            Some(Argument::Value(node)) => Some(compiler.node(node)),
+            _ => None,
+        };
+        let refuse = |message: &str| CompileError::Reaction {
+            message: format!("DELAY: {message}"),
+            span,
+        };
+        let no_array = match args.get(3) {
+            None => true,
+            Some(Argument::Flag(flag, _)) => *flag == 0,
+            Some(Argument::Value(node)) => {
+                matches!(node.kind, NodeKind::Number(value) if value == 0.0)
+            }
+            Some(_) => false,
+        };
+        if !no_array {
+            return Err(refuse(
+                "its fourth argument (the id of an ARRAY of interpolation settings) is not read by mbexpr: give 0 or leave it out",
+            ));
+        }
+        let (Some(delayed), Some(delay)) = (value(self, 0), value(self, 1)) else {
+            return Err(refuse("give the expression, the delay and the history"));
+        };
+        let time = self.system(SystemVariable::Time, span);
+        let zero = self.constant(0.0);
+        let delay = self.compute(
+            Op::Call {
+                function: Function::Max,
+                args: Box::new([delay, zero]),
+                check_rules: false,
+            },
+            span,
+        );
+        let at = self.compute(Op::Sub(time, delay), span);
+        // The history is a function of TIME (or a constant), taken at the
+        // time looked back to.
+        let outer = self.history_time.replace(at);
+        let history = value(self, 2);
+        self.history_time = outer;
+        let Some(history) = history else {
+            return Err(refuse("give the expression, the delay and the history"));
+        };
+        let site = self.delays;
+        self.delays += 1;
+        Ok(self.compute(
+            Op::Delay {
+                time,
+                at,
+                delayed,
+                history,
+                site,
+            },
+            span,
+        ))
     }
 
     /// The input that holds the value of the solver's `call`, added when new.

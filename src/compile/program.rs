@@ -194,6 +194,10 @@ pub(crate) fn find_sites(code: &[Instruction]) -> (Vec<Site>, Vec<u32>) {
                 ..
             } => Some(3),
             Instruction::Compute {
+                op: Op::Delay { .. },
+                ..
+            } => Some(1),
+            Instruction::Compute {
                 op: Op::Call { function, args, .. },
                 ..
             } => crate::laws::branch::switch_count(*function, args.len()),
@@ -261,6 +265,35 @@ impl Program {
         self.loads.iter().map(|load| load.input as usize)
     }
 
+    /// Each `DELAY` of a program compiled for a running solver, in the
+    /// order of their records ([`crate::ops::Op::Delay`]'s `site`): the
+    /// slots of `TIME`, of the time looked back to and of the expression
+    /// delayed.
+    pub(crate) fn delays(&self) -> Vec<[Slot; 3]> {
+        let mut delays = Vec::new();
+        for instruction in &self.code {
+            if let Instruction::Compute {
+                op:
+                    Op::Delay {
+                        time,
+                        at,
+                        delayed,
+                        site,
+                        ..
+                    },
+                ..
+            } = instruction
+            {
+                let site = *site as usize;
+                if delays.len() <= site {
+                    delays.resize(site + 1, [0; 3]);
+                }
+                delays[site] = [*time, *at, *delayed];
+            }
+        }
+        delays
+    }
+
     /// The number of instructions (a constant expression has none).
     pub fn len(&self) -> usize {
         self.code.len()
@@ -302,6 +335,10 @@ impl Program {
                 op: Op::Call { function, .. } | Op::Contact { function, .. },
                 ..
             } => SiteKind::Call(*function),
+            Instruction::Compute {
+                op: Op::Delay { .. },
+                ..
+            } => SiteKind::Call(Function::Delay),
             _ => SiteKind::If,
         }
     }

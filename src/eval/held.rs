@@ -4,7 +4,7 @@
 //! its boundary), and after the step its switching values tell whether and
 //! where it must switch (see [`crate::laws::branch`]).
 
-use super::{EvalError, Evaluator};
+use super::{EvalError, Evaluator, delay};
 use crate::compile::{NO_SITE, Program};
 use crate::laws::LawError;
 use crate::laws::branch::{self, Code};
@@ -27,6 +27,11 @@ pub(super) trait Branching<T> {
     /// The branch an arithmetic IF at instruction `index` takes (0 for
     /// `e1 < 0`, 1 for 0, 2 for `e1 > 0`) when its condition is `e1`.
     fn choose(&mut self, program: &Program, index: usize, e1: f64) -> Code;
+
+    /// The branch a DELAY at instruction `index` takes (0: its history, 1:
+    /// its record; [`super::delay::natural_branch`]) when it looks back to
+    /// the time `at`.
+    fn delay(&mut self, program: &Program, index: usize, at: f64) -> Code;
 }
 
 /// Every branch as the values decide (SPEC 5): the plain evaluation.
@@ -47,6 +52,10 @@ impl<T: Number> Branching<T> for Natural {
         } else {
             2
         }
+    }
+
+    fn delay(&mut self, _: &Program, _: usize, at: f64) -> Code {
+        delay::natural_branch(at)
     }
 }
 
@@ -74,6 +83,11 @@ impl<T: Number> Branching<T> for Held<'_> {
     fn choose(&mut self, program: &Program, index: usize, e1: f64) -> Code {
         let site = program.site_of[index] as usize;
         self.held[site].unwrap_or_else(|| Branching::<T>::choose(&mut Natural, program, index, e1))
+    }
+
+    fn delay(&mut self, program: &Program, index: usize, at: f64) -> Code {
+        let site = program.site_of[index] as usize;
+        self.held[site].unwrap_or_else(|| delay::natural_branch(at))
     }
 }
 
@@ -185,6 +199,19 @@ impl Branching<f64> for Observe<'_> {
             .copy_from_slice(&values);
         self.natural[site_index] = Some(natural);
         held.unwrap_or(natural)
+    }
+
+    fn delay(&mut self, program: &Program, index: usize, at: f64) -> Code {
+        let site_index = program.site_of[index] as usize;
+        let site = program.sites[site_index];
+        let held = self.held(site_index);
+        let natural = delay::natural_branch(at);
+        let on = held.unwrap_or(natural);
+        // On the history the time looked back to is below 0, on the
+        // record above it.
+        self.switching[site.first as usize] = if on == 0 { -at } else { at };
+        self.natural[site_index] = Some(natural);
+        on
     }
 }
 

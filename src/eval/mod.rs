@@ -5,10 +5,12 @@
 //! Only the inputs named as derivative directions are seeded; every other
 //! number carries no derivative part at all, and order 0 runs on plain `f64`.
 
+mod delay;
 mod error;
 mod held;
 mod lanes;
 
+pub(crate) use delay::{DelayRecord, SharedRecord};
 pub use error::EvalError;
 pub use held::OutputError;
 
@@ -77,6 +79,10 @@ pub struct Evaluator<'p, T> {
     turns: Option<Box<Turns>>,
     /// The marker frames of the current run, shared by its measures.
     frames: SharedFrames<T>,
+    /// In a simulation, the run's record of the program's DELAYs (`None`:
+    /// a DELAY takes its expression's value now, or its history before
+    /// time 0).
+    delays: Option<SharedRecord>,
 }
 
 /// The values of AX, AY, AZ, INCANG at a simulation's last accepted states: an
@@ -213,6 +219,7 @@ impl Program {
             parameters: Vec::new(),
             turns: None,
             frames: SharedFrames::new(),
+            delays: None,
         }
     }
 
@@ -355,16 +362,36 @@ impl<T: Number> Evaluator<'_, T> {
                 Instruction::Compute { dst, op } => {
                     let tables = self.turned.as_deref().unwrap_or(&program.tables);
                     let frames = &mut self.frames;
-                    let computed = branching
-                        .compute(program, pc - 1, op, slots)
-                        .unwrap_or_else(|| match op {
-                            Op::Measure {
-                                function,
-                                frames: args,
-                                selector,
-                            } => frames.measure(*function, *selector, args, slots, tables),
-                            _ => execute(op, slots, tables),
-                        });
+                    let computed = match op {
+                        Op::Delay {
+                            time,
+                            at,
+                            delayed,
+                            history,
+                            site,
+                        } if let Some(record) = &self.delays => {
+                            let on = branching.delay(program, pc - 1, slots[*at as usize].value());
+                            let record = record
+                                .read()
+                                .unwrap_or_else(|poisoned| poisoned.into_inner());
+                            Ok(delay::delayed_value(
+                                &record,
+                                *site as usize,
+                                on,
+                                [time, at, delayed, history].map(|&slot| &slots[slot as usize]),
+                            ))
+                        }
+                        _ => branching
+                            .compute(program, pc - 1, op, slots)
+                            .unwrap_or_else(|| match op {
+                                Op::Measure {
+                                    function,
+                                    frames: args,
+                                    selector,
+                                } => frames.measure(*function, *selector, args, slots, tables),
+                                _ => execute(op, slots, tables),
+                            }),
+                    };
                     match computed {
                         Ok(result) if matches!(op, Op::Measure { .. }) => {
                             let result = self.continue_angle(op, pc - 1, result);
@@ -417,6 +444,25 @@ impl<T: Number> Evaluator<'_, T> {
             .results
             .first()
             .map_or_else(T::zero, |&slot| self.slots[slot as usize].clone()))
+    }
+
+    /// Reads the program's DELAYs from `record` (a simulation's, shared by
+    /// its evaluators of the program) from now on.
+    pub(crate) fn share_delays(&mut self, record: SharedRecord) {
+        self.delays = Some(record);
+    }
+
+    /// The last evaluation's value of each DELAY's expression and its delay
+    /// (`TIME` less the time looked back to), for the run's record.
+    pub(crate) fn delay_samples(&self, values: &mut Vec<f64>, delays: &mut Vec<f64>) {
+        values.clear();
+        delays.clear();
+        let program = self.program;
+        for [time, at, delayed] in program.delays() {
+            let slot = |index: Slot| self.slots[index as usize].value();
+            values.push(slot(delayed));
+            delays.push(slot(time) - slot(at));
+        }
     }
 
     /// Whether the program has an AX, AY, AZ or INCANG, whose turns a simulation

@@ -269,6 +269,7 @@ pub fn describe(function: Function, code: Code) -> String {
         ),
         F::Max | F::Min => format!("argument {}", code + 1),
         F::Aint | F::Anint | F::Mod => format!("whole part {code}"),
+        F::Delay => if code == 0 { "history" } else { "record" }.to_string(),
         _ => code.to_string(),
     }
 }

@@ -28,12 +28,14 @@ mod element_values;
 mod forces;
 mod sparsity;
 
+use std::sync::{Arc, RwLock};
+
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use num_dual::{DualDVec64, DualSVec64};
 
 use crate::compile::{Program, RunCall};
 use crate::eval::EvalError;
-use crate::eval::{Evaluator, OutputError};
+use crate::eval::{DelayRecord, Evaluator, OutputError, SharedRecord};
 use crate::integrate::linalg::Pattern;
 use crate::laws::branch::Code;
 use crate::laws::contact::ContactBranch;
@@ -85,6 +87,9 @@ pub(crate) struct Mechanics<'m> {
     /// map `g` from the loop values the forces read to those they give,
     /// kept from state to state while Newton's iterations contract with it.
     settling_matrix: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+    /// The run's record of the program's DELAYs, shared by its evaluators
+    /// (`None`: the program has none).
+    delays: Option<SharedRecord>,
 }
 
 /// At most this many of Newton's iterations settle the loop values at one
@@ -107,8 +112,29 @@ enum DualEvaluator<'m> {
 }
 
 impl<'m> DualEvaluator<'m> {
+    /// The evaluator for `directions` directions, and the count it seeds,
+    /// reading the run's record of the program's DELAYs when it has one.
+    fn for_directions(
+        program: &'m Program,
+        directions: usize,
+        delays: Option<&SharedRecord>,
+    ) -> (DualEvaluator<'m>, usize) {
+        let (mut duals, count) = Self::of_size(program, directions);
+        if let Some(record) = delays {
+            macro_rules! share {
+                ($($variant:ident),*) => {
+                    match &mut duals {
+                        $(DualEvaluator::$variant(evaluator) => evaluator.share_delays(record.clone()),)*
+                    }
+                };
+            }
+            share!(One, Two, Three, Four, OneBody, TwoBodies, ThreeBodies, Many);
+        }
+        (duals, count)
+    }
+
     /// The evaluator for `directions` directions, and the count it seeds.
-    fn for_directions(program: &'m Program, directions: usize) -> (DualEvaluator<'m>, usize) {
+    fn of_size(program: &'m Program, directions: usize) -> (DualEvaluator<'m>, usize) {
         match directions {
             0 | 1 => (DualEvaluator::One(program.evaluator()), 1),
             2 => (DualEvaluator::Two(program.evaluator()), 2),
@@ -160,6 +186,13 @@ impl<'m> Mechanics<'m> {
             .iter()
             .map(|call| RunValue::of(model, call).expect("checked when compiled"))
             .collect();
+        let delay_count = program.delays().len();
+        let delays =
+            (delay_count > 0).then(|| Arc::new(RwLock::new(DelayRecord::new(delay_count))));
+        let mut values = program.evaluator();
+        if let Some(record) = &delays {
+            values.share_delays(record.clone());
+        }
         Mechanics {
             equations: Equations {
                 model,
@@ -180,13 +213,75 @@ impl<'m> Mechanics<'m> {
                     })
                     .collect(),
             },
-            values: program.evaluator(),
+            values,
             buffers: Buffers::new(program),
             jacobian: None,
             settled: vec![0.0; loop_values.len()],
             loop_values,
             settling_matrix: None,
+            delays,
         }
+    }
+
+    /// Whether the program has DELAYs, whose expressions the run records.
+    pub(crate) fn has_delays(&self) -> bool {
+        self.delays.is_some()
+    }
+
+    /// Evaluates the program at `(t, y)` and records its DELAYs'
+    /// expressions there (`starts`: the state begins a new piece of the
+    /// record, at a kink of this level: [`DelayRecord::record`]).
+    pub(crate) fn record_delays(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        starts: Option<u8>,
+    ) -> Result<(), OutputError> {
+        if self.delays.is_none() {
+            return Ok(());
+        }
+        let mut rates = vec![0.0; y.len()];
+        self.rates(t, y, held, &mut rates)?;
+        self.sample_delays(t, starts);
+        Ok(())
+    }
+
+    /// Records the DELAYs' expressions as the last evaluation, at `t`,
+    /// left them ([`Mechanics::record_delays`]).
+    pub(crate) fn sample_delays(&mut self, t: f64, starts: Option<u8>) {
+        let Some(record) = &self.delays else {
+            return;
+        };
+        let (mut values, mut delays) = (Vec::new(), Vec::new());
+        self.values.delay_samples(&mut values, &mut delays);
+        record
+            .write()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+            .record(t, &values, &delays, starts);
+    }
+
+    /// The first time after `t` at which a DELAY reads across a kink in
+    /// its record, and the kink's level ([`DelayRecord::next_kink`]).
+    pub(crate) fn next_delay_kink(&self, t: f64) -> Option<(f64, u8)> {
+        self.delays.as_ref().and_then(|record| {
+            record
+                .read()
+                .unwrap_or_else(|poisoned| poisoned.into_inner())
+                .next_kink(t)
+        })
+    }
+
+    /// The smallest positive delay of the program's DELAYs at the last
+    /// state recorded (infinity for none): the run's steps are held below
+    /// it, so that the values a DELAY reads lie in the record.
+    pub(crate) fn smallest_delay(&self) -> f64 {
+        self.delays.as_ref().map_or(f64::INFINITY, |record| {
+            record
+                .read()
+                .unwrap_or_else(|poisoned| poisoned.into_inner())
+                .smallest_delay()
+        })
     }
 
     /// The number of sites whose branches a run holds: the program's, then
@@ -698,7 +793,11 @@ impl<'m> Mechanics<'m> {
                     &equations.output_of,
                 );
                 let directions = if differenced { 1 } else { sparsity.directions };
-                let (duals, count) = DualEvaluator::for_directions(equations.program, directions);
+                let (duals, count) = DualEvaluator::for_directions(
+                    equations.program,
+                    directions,
+                    self.delays.as_ref(),
+                );
                 (sparsity, duals, count)
             })
             .0

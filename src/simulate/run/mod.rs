@@ -90,6 +90,20 @@ impl Default for Settings {
 /// simulation study takes with it at rtol 1e-12.
 pub const DEFAULT_MAX_STEPS: usize = 10_000_000;
 
+/// How many samples of the DELAYs' expressions the run records inside each
+/// accepted step, besides its end: with the record's eight samples
+/// per polynomial, the record reads the past to the order of the steps.
+const SAMPLES_INSIDE: u32 = 7;
+
+/// The shortest step a DELAY holds the steps to, as a fraction of the run:
+/// below it a DELAY reads the straight line from its record's last sample
+/// to its expression now.
+const DELAY_CAP_FLOOR: f64 = 1e-4;
+
+/// The least distance ahead, relative to the time, of a kink a step lands
+/// on (one nearer is passed over).
+const KINK_GAP: f64 = 1e-9;
+
 /// The least [`Settings::rtol`]: ten rounding units of a double, as in
 /// Hairer's codes.
 pub const SMALLEST_RTOL: f64 = 10.0 * f64::EPSILON;
@@ -284,6 +298,30 @@ impl Rows<'_> {
                 dynamics.accept_angles(t);
             }
         }
+        Ok(())
+    }
+
+    /// Whether the outputs (or the forces whose values they read) have
+    /// DELAYs, whose expressions the run records.
+    fn has_delays(&self) -> bool {
+        self.outputs.has_delays()
+            || self
+                .reactions
+                .as_ref()
+                .is_some_and(|(dynamics, _)| dynamics.has_delays())
+    }
+
+    /// Records the outputs' DELAYs' expressions at `(t, y)`
+    /// ([`Mechanics::record_delays`]).
+    fn record_delays(&mut self, t: f64, y: &[f64], starts: Option<u8>) -> Result<(), OutputError> {
+        if !self.has_delays() {
+            return Ok(());
+        }
+        if let Some((dynamics, _)) = &mut self.reactions {
+            dynamics.record_delays(t, y, None, starts)?;
+        }
+        self.at(t, y)?;
+        self.outputs.sample_delays(t, starts);
         Ok(())
     }
 
@@ -588,16 +626,54 @@ impl Simulation<'_> {
             )
             .map_err(|error| fail(0.0, error))?;
         system.held.clone_from(&natural);
-        let accept = |system: &mut Held<'_>, rows: &mut Rows<'_>, t: f64, y: &[f64]| {
-            system.mechanics.accept(t, y, Some(&system.held))?;
-            rows.accept(t, y)
+        // `starts`: the state begins a new piece of the DELAYs' records, at
+        // a kink of this level (0: the start, a switch).
+        let accept =
+            |system: &mut Held<'_>, rows: &mut Rows<'_>, t: f64, y: &[f64], starts: Option<u8>| {
+                system.mechanics.accept(t, y, Some(&system.held))?;
+                system
+                    .mechanics
+                    .record_delays(t, y, Some(&system.held), starts)?;
+                rows.accept(t, y)?;
+                rows.record_delays(t, y, starts)
+            };
+        accept(&mut system, &mut rows, 0.0, &y0, Some(0)).map_err(|error| fail(0.0, error))?;
+        let delays = system.mechanics.has_delays() || rows.has_delays();
+        // The DELAYs' expressions inside an accepted step that ends at
+        // `end`, on its continuous output: SAMPLES_INSIDE samples equally
+        // spaced, for the record's polynomials.
+        let sample_inside = |system: &mut Held<'_>,
+                             rows: &mut Rows<'_>,
+                             stepper: &Stepper,
+                             end: f64,
+                             state: &mut [f64]|
+         -> Result<(), (f64, OutputError)> {
+            let start = stepper.t_previous();
+            for sample in 1..=SAMPLES_INSIDE {
+                let t = start + (end - start) * f64::from(sample) / f64::from(SAMPLES_INSIDE + 1);
+                stepper.dense(t, state);
+                system
+                    .mechanics
+                    .record_delays(t, state, Some(&system.held), None)
+                    .and_then(|()| rows.record_delays(t, state, None))
+                    .map_err(|error| (t, error))?;
+            }
+            Ok(())
         };
-        accept(&mut system, &mut rows, 0.0, &y0).map_err(|error| fail(0.0, error))?;
+        // The largest step the DELAYs allow: their shortest delay, so that
+        // what they read lies in the record (no less than 1e-4 of the run:
+        // a shorter delay reads the line from the last record to now).
+        let delay_cap = |system: &Held<'_>| {
+            system
+                .mechanics
+                .smallest_delay()
+                .max(DELAY_CAP_FLOOR * settings.end)
+        };
         // A stepper's budget: what the steppers before it left.
-        let options = |limit: f64, spent: Stats| Options {
+        let options = |limit: f64, spent: Stats, cap: f64| Options {
             rtol: settings.rtol,
             atol: AbsoluteTolerance::All(settings.atol),
-            h_max: settings.h_max.min(floor(limit, 0.0)),
+            h_max: settings.h_max.min(floor(limit, 0.0)).min(cap),
             // A finite limit: a weak singularity near (contact::step_limit).
             smooth: limit.is_infinite(),
             max_steps: settings
@@ -608,7 +684,7 @@ impl Simulation<'_> {
         };
         let mut stepper = Stepper::new(
             settings.method,
-            options(limit, Stats::default()),
+            options(limit, Stats::default(), delay_cap(&system)),
             0.0,
             &y0,
             &mut system,
@@ -652,11 +728,25 @@ impl Simulation<'_> {
                 && stepper.method() == Method::Radau5
                 && next_output <= settings.steps
                 && output_time(next_output) > stepper.t();
-            let target = if lands_on_output {
+            let mut target = if lands_on_output {
                 output_time(next_output).min(settings.end)
             } else {
                 settings.end
             };
+            // A step lands where a DELAY reads across a kink in its record
+            // (its expression's derivatives jump there: the method's error
+            // estimate would not see it inside a step).
+            let mut kink = None;
+            if delays {
+                let now = stepper.t();
+                if let Some((time, level)) = system.mechanics.next_delay_kink(now)
+                    && time - now > KINK_GAP * now.abs().max(1.0)
+                    && time <= target
+                {
+                    target = time;
+                    kink = Some((time, level));
+                }
+            }
             stepper.step_to(&mut system, target).map_err(|error| {
                 let stiff_from = summary.stiff_from.or(stepper.stiff_from());
                 self.step_error(error, settings, stiff_from)
@@ -756,7 +846,11 @@ impl Simulation<'_> {
                 Err(limit) => {
                     // The last look was at t1.
                     start_values.copy_from_slice(&switching);
-                    stepper.set_h_max(settings.h_max.min(floor(limit, t1)));
+                    if delays {
+                        sample_inside(&mut system, &mut rows, &stepper, t1, &mut dense)
+                            .map_err(|(time, error)| fail(time, error))?;
+                    }
+                    stepper.set_h_max(settings.h_max.min(floor(limit, t1)).min(delay_cap(&system)));
                     stepper.set_smooth(limit.is_infinite());
                     if model.is_constrained() {
                         dense.copy_from_slice(stepper.y());
@@ -768,13 +862,22 @@ impl Simulation<'_> {
                         }
                     }
                     dense.copy_from_slice(stepper.y());
-                    accept(&mut system, &mut rows, t1, &dense).map_err(|error| fail(t1, error))?;
+                    // A step landed on a kink begins a piece one level up.
+                    let starts = kink
+                        .filter(|&(time, _)| time == t1)
+                        .map(|(_, level)| level + 1);
+                    accept(&mut system, &mut rows, t1, &dense, starts)
+                        .map_err(|error| fail(t1, error))?;
                     continue;
                 }
             };
             let slope =
                 switching_slope(&mut system, &stepper, located, &mut natural, &mut switching)
                     .map_err(|(time, error)| fail(time, error))?;
+            if delays {
+                sample_inside(&mut system, &mut rows, &stepper, located.right, &mut dense)
+                    .map_err(|(time, error)| fail(time, error))?;
+            }
             stepper.dense(located.right, &mut dense);
             let (right, state) = self.cut(
                 &mut system,
@@ -809,7 +912,8 @@ impl Simulation<'_> {
                 }
             }
             system.held.clone_from(&natural);
-            accept(&mut system, &mut rows, right, &dense).map_err(|error| fail(right, error))?;
+            accept(&mut system, &mut rows, right, &dense, Some(0))
+                .map_err(|error| fail(right, error))?;
             if let Some(sensor) = rows
                 .tripped(right, &dense, &mut active)
                 .map_err(|error| fail(right, error))?
@@ -859,7 +963,12 @@ impl Simulation<'_> {
             // branch (a step fit for free flight would cross a contact).
             before = add(before, stepper.stats());
             stepper = stepper
-                .fresh_start(options(limit, before), right, &dense, &mut system)
+                .fresh_start(
+                    options(limit, before, delay_cap(&system)),
+                    right,
+                    &dense,
+                    &mut system,
+                )
                 .map_err(|error| self.integration_error(error))?;
         }
         summary.stats = add(before, stepper.stats());

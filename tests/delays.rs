@@ -1,0 +1,209 @@
+//! `DELAY(e, delay, history)` in a run (issue 25 item 2: every function of
+//! SPEC with a value during a simulation has it): delay equations against
+//! their closed forms by the method of steps, a state-dependent delay, a
+//! delayed force on a part against the same equations as DIFFs, and the
+//! arguments mbexpr refuses.
+
+use super::joints::method;
+use super::simulate::{run, settings};
+use super::simulate_variants::Draw;
+use mbexpr::simulate::Settings;
+
+/// `x' = a x(t − τ) + b x`, `x = h` before 0 and `x(0) = x0`, by the
+/// method of steps computed another way: the pieces `y_k(u) = x(kτ + u)`,
+/// `u` in `[0, τ]`, solve the linear system `y_0' = b y_0 + a h`,
+/// `y_k' = b y_k + a y_(k−1)`, each from the end of the one before, which
+/// the matrix exponential gives exactly.
+struct Steps {
+    tau: f64,
+    /// The system's matrix, the constant `1` as its last state.
+    matrix: nalgebra::DMatrix<f64>,
+    /// The pieces' starting values, then 1.
+    start: nalgebra::DVector<f64>,
+}
+
+impl Steps {
+    fn new([a, b, tau, h, x0]: [f64; 5], count: usize) -> Steps {
+        let n = count + 1;
+        let mut matrix = nalgebra::DMatrix::zeros(n, n);
+        matrix[(0, 0)] = b;
+        matrix[(0, count)] = a * h;
+        for k in 1..count {
+            matrix[(k, k)] = b;
+            matrix[(k, k - 1)] = a;
+        }
+        let mut start = nalgebra::DVector::zeros(n);
+        start[0] = x0;
+        start[count] = 1.0;
+        let over_tau = (&matrix * tau).exp();
+        for k in 1..count {
+            let end = &over_tau * &start;
+            start[k] = end[k - 1];
+        }
+        Steps { tau, matrix, start }
+    }
+
+    fn at(&self, t: f64) -> f64 {
+        let pieces = self.start.len() - 1;
+        let k = ((t / self.tau).floor() as usize).min(pieces - 1);
+        let u = t - k as f64 * self.tau;
+        ((&self.matrix * u).exp() * &self.start)[k]
+    }
+}
+
+/// Delay equations drawn at random (`x' = a x(t − τ) + b x`) follow the
+/// method of steps within a small factor of the tolerance, with both
+/// methods: the record's polynomials read the past to the accuracy of the
+/// steps, the jump from the history to the record is located, and the
+/// steps land where the delay reads across a kink.
+#[test]
+fn delay_equations_follow_the_method_of_steps() {
+    let mut draw = Draw(25);
+    let mut report = String::new();
+    let mut worst: f64 = 0.0;
+    for _ in 0..6 {
+        let a = draw.uniform(-2.0, 1.0);
+        let b = draw.uniform(-1.5, 0.5);
+        let tau = draw.uniform(0.3, 1.5);
+        let h = draw.uniform(-1.0, 2.0);
+        let x0 = draw.uniform(-1.0, 2.0);
+        let text = format!(
+            "a delay equation\nDIFF/1, IC = {x0}, FUNCTION = {a} * DELAY(DIF(1), {tau}, {h}) + {b} * DIF(1)\nEND\n"
+        );
+        let end = 4.5 * tau;
+        let exact = Steps::new([a, b, tau, h, x0], 5);
+        for name in ["dop853", "radau"] {
+            for rtol in [1e-6, 1e-9] {
+                let ran = run(
+                    &text,
+                    &Settings {
+                        method: method(name),
+                        ..settings(end, 45, rtol)
+                    },
+                )
+                .unwrap_or_else(|error| panic!("{text}: {error}"));
+                let error = ran
+                    .rows
+                    .iter()
+                    .map(|row| (row[1] - exact.at(row[0])).abs() / (1.0 + row[1].abs()))
+                    .fold(0.0, f64::max);
+                worst = worst.max(error / rtol);
+                if error > 10.0 * rtol {
+                    report += &format!("{name} rtol {rtol:e}: {error:.2e} for {text}");
+                }
+            }
+        }
+    }
+    assert!(report.is_empty(), "{report}");
+    assert!(
+        worst > 1e-4,
+        "the runs differ from the closed form somewhere"
+    );
+}
+
+/// `x' = DELAY(TIME, x, 0)`: the time looked back to depends on the
+/// state. `x = x0` while `t < x0` (the history, 0), then `x' = t − x`, so
+/// `x = t − 1 + exp(x0 − t)`. Radau5's Jacobian carries the delay's
+/// derivative through the record (`∂x'/∂x = −1`).
+#[test]
+fn a_state_dependent_delay_follows_its_closed_form() {
+    for x0 in [0.4, 1.0, 1.7] {
+        let text = format!(
+            "a state-dependent delay\nDIFF/1, IC = {x0}, FUNCTION = DELAY(TIME, DIF(1), 0)\nEND\n"
+        );
+        let exact = |t: f64| {
+            if t <= x0 {
+                x0
+            } else {
+                t - 1.0 + (x0 - t).exp()
+            }
+        };
+        for name in ["dop853", "radau"] {
+            let rtol = 1e-9;
+            let ran = run(
+                &text,
+                &Settings {
+                    method: method(name),
+                    ..settings(4.0, 40, rtol)
+                },
+            )
+            .unwrap_or_else(|error| panic!("{error}"));
+            for row in &ran.rows {
+                let expected = exact(row[0]);
+                assert!(
+                    (row[1] - expected).abs() < 10.0 * rtol * (1.0 + expected.abs()),
+                    "{name}, x0 = {x0}, t = {}: {} against {expected}",
+                    row[0],
+                    row[1]
+                );
+            }
+        }
+    }
+}
+
+/// A part pulled back by a spring that sees its displacement 0.2 s late,
+/// against the same equations written as two DIFFs; a REQUEST reads
+/// DELAYs of TIME, with a constant history and with one of TIME.
+#[test]
+fn a_delayed_force_on_a_part_agrees_with_its_diffs() {
+    let part = "a delayed spring
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/4, PART = 1, FLOATING
+PART/2, MASS = 2, CM = 3, IP = 0.4, 0.4, 0.4, VX = 1
+MARKER/3, PART = 2
+VFORCE/1, I = 3, JFLOAT = 4, RM = 1, FX = -8 * DELAY(DX(3, 1), 0.2, 0), FY = 0, FZ = 0
+REQUEST/1, F2 = DELAY(TIME, 0.5, -1), F3 = DELAY(TIME, 0.5, 2 * TIME)
+END
+";
+    let diffs = "the same as DIFFs
+DIFF/1, IC = 0, FUNCTION = DIF(2)
+DIFF/2, IC = 1, FUNCTION = -4 * DELAY(DIF(1), 0.2, 0)
+END
+";
+    for name in ["dop853", "radau"] {
+        let settings = Settings {
+            method: method(name),
+            ..settings(3.0, 30, 1e-10)
+        };
+        let bodies = run(part, &settings).unwrap_or_else(|error| panic!("{error}"));
+        let reference = run(diffs, &settings).unwrap_or_else(|error| panic!("{error}"));
+        for (row, expected) in bodies.rows.iter().zip(&reference.rows) {
+            let t = row[0];
+            assert!((row[1] - expected[1]).abs() < 1e-8, "{name} x at {t}");
+            assert!((row[8] - expected[2]).abs() < 1e-8, "{name} vx at {t}");
+            let [.., constant, of_time] = row[..] else {
+                panic!("the request's columns");
+            };
+            let delayed_time = if t < 0.5 { -1.0 } else { t - 0.5 };
+            assert!(
+                (constant - delayed_time).abs() < 1e-12,
+                "{name} at {t}: {constant}"
+            );
+            // A history of TIME, taken at the time looked back to.
+            let of_time_expected = if t < 0.5 { 2.0 * (t - 0.5) } else { t - 0.5 };
+            assert!(
+                (of_time - of_time_expected).abs() < 1e-12,
+                "{name} at {t}: {of_time}"
+            );
+        }
+    }
+}
+
+#[test]
+fn what_a_delay_cannot_take_is_refused_at_its_place() {
+    let refused = |function: &str| {
+        let text = format!("refused\nDIFF/1, IC = 1, FUNCTION = {function}\nEND\n");
+        match run(&text, &settings(1.0, 1, 1e-6)) {
+            Ok(_) => "ran".to_string(),
+            Err(error) => error,
+        }
+    };
+    insta::assert_snapshot!(
+        [
+            refused("DELAY(DIF(1), 1, 0, 7)"),
+            refused("DELAY(DIF(1), 1, 0, 0)"),
+        ]
+        .join("\n")
+    );
+}
