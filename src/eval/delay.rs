@@ -44,6 +44,9 @@ pub struct DelayRecord {
     /// and a located switch, one more than the kink looked back across for
     /// a step landed on a DELAY's kink ([`DelayRecord::next_kink`]).
     starts: Vec<Option<u8>>,
+    /// The indices of the samples that begin pieces, increasing (the
+    /// lookups' binary searches).
+    breaks: Vec<usize>,
     /// Per DELAY, its expression's value at each sample.
     values: Vec<Vec<f64>>,
     /// Per DELAY, its delay at the last sample.
@@ -93,6 +96,8 @@ impl DelayRecord {
         let keep = self.times.partition_point(|&at| at < time);
         self.times.truncate(keep);
         self.starts.truncate(keep);
+        let breaks = self.breaks.partition_point(|&index| index < keep);
+        self.breaks.truncate(breaks);
         for record in &mut self.values {
             record.truncate(keep);
         }
@@ -121,12 +126,16 @@ impl DelayRecord {
         for (record, &value) in self.values.iter_mut().zip(values) {
             record.push(value);
         }
-        self.times.push(time);
-        self.starts.push(if keep == 0 {
+        let starts = if self.times.is_empty() {
             starts.or(Some(0))
         } else {
             starts
-        });
+        };
+        if starts.is_some() {
+            self.breaks.push(self.times.len());
+        }
+        self.times.push(time);
+        self.starts.push(starts);
     }
 
     /// The first time after `time` at which a DELAY, with the delay it had
@@ -140,7 +149,8 @@ impl DelayRecord {
         for &delay in self.delays.iter().filter(|&&delay| delay > 0.0) {
             let at = time - delay;
             let after = self.times.partition_point(|&sample| sample <= at);
-            let kink = (after..self.times.len()).find_map(|index| {
+            let from = self.breaks.partition_point(|&index| index < after);
+            let kink = self.breaks[from..].iter().find_map(|&index| {
                 self.starts[index]
                     .filter(|&level| level < KINK_LEVELS)
                     .map(|level| (self.times[index] + delay, level))
@@ -178,12 +188,12 @@ impl DelayRecord {
         // that enclose it.
         let right = self.times.partition_point(|&time| time < at);
         let left = right.saturating_sub(1);
-        let first = (0..=left)
-            .rev()
-            .find(|&index| self.starts[index].is_some())
-            .unwrap_or(0);
-        let end = (left + 1..self.times.len())
-            .find(|&index| self.starts[index].is_some())
+        let above = self.breaks.partition_point(|&index| index <= left);
+        let first = above.checked_sub(1).map_or(0, |below| self.breaks[below]);
+        let end = self
+            .breaks
+            .get(above)
+            .copied()
             .unwrap_or(self.times.len() - 1);
         let piece = end + 1 - first;
         let count = STENCIL.min(piece);
