@@ -141,52 +141,67 @@ fn a_state_dependent_delay_follows_its_closed_form() {
     }
 }
 
-/// A part pulled back by a spring that sees its displacement 0.2 s late,
-/// against the same equations written as two DIFFs; a REQUEST reads
-/// DELAYs of TIME, with a constant history and with one of TIME.
+/// `examples/simulate/j_delayed_control.adm`: two carts on TRANSLATIONAL
+/// joints, each pulled to its set point by a controller that reads it
+/// late (0.1 s, stable; 0.5 s, unstable), against the same equations
+/// written as DIFFs, `x'' = −10 x(t − T) − 4 x'(t − T)` with the history
+/// `x = 0.2`, `x' = 0`; the REQUEST's DELAYs read what the controllers saw,
+/// and DELAYs of TIME with a constant history and with one of TIME.
 #[test]
-fn a_delayed_force_on_a_part_agrees_with_its_diffs() {
-    let part = "a delayed spring
-PART/1, GROUND
-MARKER/1, PART = 1
-MARKER/4, PART = 1, FLOATING
-PART/2, MASS = 2, CM = 3, IP = 0.4, 0.4, 0.4, VX = 1
-MARKER/3, PART = 2
-VFORCE/1, I = 3, JFLOAT = 4, RM = 1, FX = -8 * DELAY(DX(3, 1), 0.2, 0), FY = 0, FZ = 0
-REQUEST/1, F2 = DELAY(TIME, 0.5, -1), F3 = DELAY(TIME, 0.5, 2 * TIME)
-END
-";
-    let diffs = "the same as DIFFs
-DIFF/1, IC = 0, FUNCTION = DIF(2)
-DIFF/2, IC = 1, FUNCTION = -4 * DELAY(DIF(1), 0.2, 0)
+fn delayed_controllers_on_jointed_carts_agree_with_their_diffs() {
+    let carts = include_str!("../examples/simulate/j_delayed_control.adm");
+    let diffs = "the carts as DIFFs
+DIFF/1, IC = 0.2, FUNCTION = DIF(2)
+DIFF/2, IC = 0, FUNCTION = -10 * DELAY(DIF(1), 0.1, 0.2) - 4 * DELAY(DIF(2), 0.1, 0)
+DIFF/3, IC = 0.2, FUNCTION = DIF(4)
+DIFF/4, IC = 0, FUNCTION = -10 * DELAY(DIF(3), 0.5, 0.2) - 4 * DELAY(DIF(4), 0.5, 0)
+REQUEST/1, F2 = DELAY(DIF(1), 0.1, 0.2), F3 = DELAY(DIF(3), 0.5, 0.2)
+REQUEST/2, F2 = DELAY(TIME, 0.5, -1), F3 = DELAY(TIME, 0.5, 2 * TIME)
 END
 ";
     for name in ["dop853", "radau"] {
         let settings = Settings {
             method: method(name),
-            ..settings(3.0, 30, 1e-10)
+            ..settings(5.0, 50, 1e-10)
         };
-        let bodies = run(part, &settings).unwrap_or_else(|error| panic!("{error}"));
+        let bodies = run(carts, &settings).unwrap_or_else(|error| panic!("{error}"));
         let reference = run(diffs, &settings).unwrap_or_else(|error| panic!("{error}"));
         for (row, expected) in bodies.rows.iter().zip(&reference.rows) {
             let t = row[0];
-            assert!((row[1] - expected[1]).abs() < 1e-8, "{name} x at {t}");
-            assert!((row[8] - expected[2]).abs() < 1e-8, "{name} vx at {t}");
-            let [.., constant, of_time] = row[..] else {
+            let close = |value: f64, expected: f64, what: &str| {
+                assert!(
+                    (value - expected).abs() < 1e-8 * expected.abs().max(1.0),
+                    "{name} {what} at {t}: {value} against {expected}"
+                );
+            };
+            // The carts' x and vx, then the REQUEST: x, seen, x, seen.
+            close(row[1], expected[1], "x");
+            close(row[8], expected[2], "vx");
+            close(row[14], expected[3], "the twin's x");
+            close(row[21], expected[4], "the twin's vx");
+            let [.., seen, _, seen_by_twin] = row[..] else {
+                panic!("the request's columns");
+            };
+            close(seen, expected[5], "what the controller saw");
+            close(seen_by_twin, expected[6], "what the twin's saw");
+            let [.., constant, of_time] = expected[..] else {
                 panic!("the request's columns");
             };
             let delayed_time = if t < 0.5 { -1.0 } else { t - 0.5 };
             assert!(
                 (constant - delayed_time).abs() < 1e-12,
-                "{name} at {t}: {constant}"
+                "at {t}: {constant}"
             );
             // A history of TIME, taken at the time looked back to.
             let of_time_expected = if t < 0.5 { 2.0 * (t - 0.5) } else { t - 0.5 };
             assert!(
                 (of_time - of_time_expected).abs() < 1e-12,
-                "{name} at {t}: {of_time}"
+                "at {t}: {of_time}"
             );
         }
+        let last = bodies.rows.last().expect("rows");
+        assert!(last[1].abs() < 1e-3, "the cart read 0.1 s late settles");
+        assert!(last[14].abs() > 10.0, "the one read 0.5 s late swings out");
     }
 }
 
