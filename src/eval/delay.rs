@@ -303,6 +303,33 @@ mod tests {
             }
         );
         assert_eq!(record.smallest_delay(), 0.3);
+        // Over dual numbers the slope flows through the time looked back
+        // to (a delay that depends on the states); the history branch and
+        // the expression now carry their own.
+        type Dual = num_dual::DualSVec64<1>;
+        let seed = <Dual as crate::number::Directional>::variable(0.0, 0, 1);
+        let slope_of = |number: &Dual| crate::number::Directional::gradient(number, 1)[0];
+        let at = seed + 0.77;
+        let now = Dual::from(1.07);
+        let delayed = seed * 3.0 + 5.0;
+        let history = seed * 0.5 - 1.0;
+        let read = delayed_value(&record, 0, 1, [&now, &at, &delayed, &history]);
+        let slope = -2.0 + 1.5 * 0.77f64.powi(2) - 0.5 * 0.77f64.powi(4) + 0.07 * 0.77f64.powi(6);
+        assert!((read.re - cubic(0.77)).abs() < 1e-12);
+        assert!(
+            (slope_of(&read) - slope).abs() < 1e-9,
+            "{read} against {slope}"
+        );
+        let before = delayed_value(&record, 0, 0, [&now, &at, &delayed, &history]);
+        assert_eq!((before.re, slope_of(&before)), (-1.0, 0.5));
+        // After the last sample: the line from it to the expression now.
+        let (now, at) = (Dual::from(3.0), Dual::from(2.5));
+        let read = delayed_value(&record, 0, 1, [&now, &at, &delayed, &history]);
+        assert!((read.re - (cubic(2.0) + (5.0 - cubic(2.0)) * 0.5)).abs() < 1e-12);
+        assert!(
+            (slope_of(&read) - 1.5).abs() < 1e-12,
+            "half the expression's slope"
+        );
     }
 
     #[test]
