@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 24] = [
+    let cases: [(&str, &str, Settings); 26] = [
         (
             "motions not simulated, and a primitive, a constraint not held yet",
             "joint
@@ -349,6 +349,33 @@ UNITS/SYSTEM = IPS
 PART/1, GROUND
 PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
+",
+            short.clone(),
+        ),
+        (
+            "a joint, a primitive and a motion whose markers are on one part",
+            "one part
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/2, PART = 1, QP = 1, 0, 0
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+MARKER/4, PART = 2, QP = 1, 0, 0
+JOINT/1, REVOLUTE, I = 2, J = 1
+JPRIM/2, ATPOINT, I = 4, J = 3
+MOTION/3, I = 4, J = 3, X, FUNCTION = TIME
+",
+            short.clone(),
+        ),
+        (
+            "an output column that fails, after a force, names its own place",
+            "outputs
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1, WZ = 1
+MARKER/3, PART = 2
+SFORCE/1, ROTATIONAL, I = 3, J = 1, FUNCTION = 0.5
+REQUEST/1, F2 = WZ(3), F3 = 1/(TIME-TIME)
 ",
             short,
         ),

@@ -134,6 +134,10 @@ fn solved<T: Number>(matrix: DMatrix<T>, rhs: DVector<T>) -> Result<DVector<T>, 
             Err(Singular)
         }
     };
+    if matrix.is_empty() {
+        // No equation held (every one left out as redundant).
+        return Ok(rhs);
+    }
     if matrix.iter().chain(rhs.iter()).all(Number::is_constant) {
         return finite(matrix.lu().solve(&rhs).ok_or(Singular)?);
     }

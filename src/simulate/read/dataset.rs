@@ -453,6 +453,22 @@ impl Reader<'_> {
                 statement.span,
             );
         }
+        let body = |target: Option<Target>| match target? {
+            Target::Ground => Some(None),
+            Target::Marker(marker) => Some(self.scene.markers[marker].body),
+        };
+        if let (Some(on_i), Some(on_j)) = (body(i), body(j))
+            && on_i == on_j
+        {
+            self.refuse(
+                format!(
+                    "{}: its I and J markers are on one part: a MOTION moves one part against another, so give markers of two parts",
+                    statement.label()
+                ),
+                statement.span,
+            );
+            return None;
+        }
         Some(MarkerMotion {
             id: statement.id.unwrap_or(0),
             i: i?,

@@ -121,6 +121,24 @@ fn between_markers(
     let i = marker(statement, "I", scene, errors);
     let j = marker(statement, "J", scene, errors);
     let (i, j) = (i?, j?);
+    let body = |target: Target| match target {
+        Target::Ground => None,
+        Target::Marker(index) => scene.markers[index].body,
+    };
+    if body(i) == body(j) {
+        errors.push(SimulateError::Model {
+            message: format!(
+                "{}: its I and J markers are on one part ({}): a joint holds one part to another, so give markers of two parts",
+                statement.label(),
+                match body(i) {
+                    None => "the ground".to_string(),
+                    Some(body) => scene.bodies[body].name.clone(),
+                }
+            ),
+            span: statement.span,
+        });
+        return None;
+    }
     Some(Joint {
         id: statement.id.unwrap_or(0),
         kind,

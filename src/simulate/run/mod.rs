@@ -104,6 +104,22 @@ const DELAY_CAP_FLOOR: f64 = 1e-4;
 /// on (one nearer is passed over).
 const KINK_GAP: f64 = 1e-9;
 
+/// An evaluation that failed during a run, with the program it ran.
+#[derive(Debug)]
+enum Failed {
+    /// The forces' and DIFFs' program (a state's rates, the values of the
+    /// running solver the outputs read).
+    Dynamics(OutputError),
+    /// The output columns' and sensors' program.
+    Outputs(OutputError),
+}
+
+impl From<OutputError> for Failed {
+    fn from(error: OutputError) -> Failed {
+        Failed::Dynamics(error)
+    }
+}
+
 /// The least [`Settings::rtol`]: ten rounding units of a double, as in
 /// Hairer's codes.
 pub const SMALLEST_RTOL: f64 = 10.0 * f64::EPSILON;
@@ -286,7 +302,7 @@ struct Rows<'m> {
 impl Rows<'_> {
     /// `(t, y)` is an accepted state: the AX, AY, AZ the outputs (and the
     /// forces whose values they read) evaluate settle their turns there.
-    fn accept(&mut self, t: f64, y: &[f64]) -> Result<(), OutputError> {
+    fn accept(&mut self, t: f64, y: &[f64]) -> Result<(), Failed> {
         let reactions = self
             .reactions
             .as_ref()
@@ -313,7 +329,7 @@ impl Rows<'_> {
 
     /// Records the outputs' DELAYs' expressions at `(t, y)`
     /// ([`Mechanics::record_delays`]).
-    fn record_delays(&mut self, t: f64, y: &[f64], starts: Option<u8>) -> Result<(), OutputError> {
+    fn record_delays(&mut self, t: f64, y: &[f64], starts: Option<u8>) -> Result<(), Failed> {
         if !self.has_delays() {
             return Ok(());
         }
@@ -325,7 +341,7 @@ impl Rows<'_> {
         Ok(())
     }
 
-    fn at(&mut self, t: f64, y: &[f64]) -> Result<&[f64], OutputError> {
+    fn at(&mut self, t: f64, y: &[f64]) -> Result<&[f64], Failed> {
         let model = self.model;
         self.values.clear();
         self.values.extend_from_slice(&y[..model.diffs.len()]);
@@ -353,7 +369,8 @@ impl Rows<'_> {
                 Some((dynamics, values)) => dynamics.run_values(t, y, values)?,
             };
             self.outputs
-                .outputs(t, y, &solved, &mut self.values[start..])?;
+                .outputs(t, y, &solved, &mut self.values[start..])
+                .map_err(Failed::Outputs)?;
         }
         Ok(&self.values[..columns])
     }
@@ -365,12 +382,7 @@ impl Rows<'_> {
 
     /// The first sensor that is active at `(t, y)` and was not at the last
     /// look (`active`, updated), or none.
-    fn tripped(
-        &mut self,
-        t: f64,
-        y: &[f64],
-        active: &mut [bool],
-    ) -> Result<Option<usize>, OutputError> {
+    fn tripped(&mut self, t: f64, y: &[f64], active: &mut [bool]) -> Result<Option<usize>, Failed> {
         if self.model.sensors.is_empty() {
             return Ok(None);
         }
@@ -503,21 +515,6 @@ impl Simulation<'_> {
             reactions,
             values: Vec::new(),
         };
-        let fail = |time: f64, error: OutputError| {
-            if error.output == JOINTS {
-                SimulateError::Integration {
-                    time,
-                    message: error.error.to_string(),
-                    cause: None,
-                }
-            } else {
-                SimulateError::Evaluation {
-                    time,
-                    expression: self.expression_of(program, error.output),
-                    error: error.error,
-                }
-            }
-        };
         let mut y0 = initial_state(model);
         let offsets = body_offsets(model);
         let inverse_inertia = model.inverse_inertia();
@@ -624,7 +621,7 @@ impl Simulation<'_> {
                 (&mut natural, &mut switching),
                 Some(settings.atol),
             )
-            .map_err(|error| fail(0.0, error))?;
+            .map_err(|error| self.failure(0.0, error))?;
         system.held.clone_from(&natural);
         // `starts`: the state begins a new piece of the DELAYs' records, at
         // a kink of this level (0: the start, a switch).
@@ -637,7 +634,8 @@ impl Simulation<'_> {
                 rows.accept(t, y)?;
                 rows.record_delays(t, y, starts)
             };
-        accept(&mut system, &mut rows, 0.0, &y0, Some(0)).map_err(|error| fail(0.0, error))?;
+        accept(&mut system, &mut rows, 0.0, &y0, Some(0))
+            .map_err(|error| self.failure(0.0, error))?;
         let delays = system.mechanics.has_delays() || rows.has_delays();
         // The DELAYs' expressions inside an accepted step that ends at
         // `end`, on its continuous output: SAMPLES_INSIDE samples equally
@@ -647,7 +645,7 @@ impl Simulation<'_> {
                              stepper: &Stepper,
                              end: f64,
                              state: &mut [f64]|
-         -> Result<(), (f64, OutputError)> {
+         -> Result<(), (f64, Failed)> {
             let start = stepper.t_previous();
             for sample in 1..=SAMPLES_INSIDE {
                 let t = start + (end - start) * f64::from(sample) / f64::from(SAMPLES_INSIDE + 1);
@@ -655,7 +653,8 @@ impl Simulation<'_> {
                 system
                     .mechanics
                     .record_delays(t, state, Some(&system.held), None)
-                    .and_then(|()| rows.record_delays(t, state, None))
+                    .map_err(|error| (t, error.into()))?;
+                rows.record_delays(t, state, None)
                     .map_err(|error| (t, error))?;
             }
             Ok(())
@@ -705,7 +704,9 @@ impl Simulation<'_> {
         };
         let mut active = vec![false; model.sensors.len()];
         let output_time = |index: usize| settings.end * index as f64 / settings.steps as f64;
-        let values = rows.at(0.0, &y0).map_err(|error| fail(0.0, error))?;
+        let values = rows
+            .at(0.0, &y0)
+            .map_err(|error| self.failure(0.0, error))?;
         summary.stopped = sink.row(0.0, values).is_break();
         let mut next_output = 1;
         let mut dense = vec![0.0; y0.len()];
@@ -772,7 +773,7 @@ impl Simulation<'_> {
                 &mut natural,
                 &mut switching,
             )
-            .map_err(|(time, error)| fail(time, error))?;
+            .map_err(|(time, error)| self.failure(time, error))?;
             let mut reached = switch.map_or(t1, |located| located.right);
             // A sensor that becomes active in a step without a switch, at
             // the time located on the step's continuous output.
@@ -792,7 +793,7 @@ impl Simulation<'_> {
                     let state = if time == t1 { stepper.y() } else { &dense };
                     if let Some(sensor) = rows
                         .tripped(time, state, &mut active)
-                        .map_err(|error| fail(time, error))?
+                        .map_err(|error| self.failure(time, error))?
                     {
                         tripped = Some((sensor, before, time));
                         break;
@@ -803,7 +804,7 @@ impl Simulation<'_> {
             if let Some((sensor, before, after)) = tripped {
                 let time = self
                     .locate_trip(&mut rows, &stepper, sensor, before, after, &mut dense)
-                    .map_err(|(time, error)| fail(time, error))?;
+                    .map_err(|(time, error)| self.failure(time, error))?;
                 let halts = model.sensors[sensor].action != SensorAction::Print;
                 if halts {
                     reached = time;
@@ -814,7 +815,9 @@ impl Simulation<'_> {
                 let time = output_time(next_output);
                 stepper.dense(time, &mut dense);
                 let state = if time == t1 { stepper.y() } else { &dense };
-                let values = rows.at(time, state).map_err(|error| fail(time, error))?;
+                let values = rows
+                    .at(time, state)
+                    .map_err(|error| self.failure(time, error))?;
                 if sink.row(time, values).is_break() {
                     summary.stopped = true;
                     break;
@@ -834,7 +837,9 @@ impl Simulation<'_> {
                         && output_time(next_output - 1) < time
                     {
                         stepper.dense(time, &mut dense);
-                        let values = rows.at(time, &dense).map_err(|error| fail(time, error))?;
+                        let values = rows
+                            .at(time, &dense)
+                            .map_err(|error| self.failure(time, error))?;
                         let _ = sink.row(time, values);
                     }
                     summary.stopped = true;
@@ -848,7 +853,7 @@ impl Simulation<'_> {
                     start_values.copy_from_slice(&switching);
                     if delays {
                         sample_inside(&mut system, &mut rows, &stepper, t1, &mut dense)
-                            .map_err(|(time, error)| fail(time, error))?;
+                            .map_err(|(time, error)| self.failure(time, error))?;
                     }
                     stepper.set_h_max(settings.h_max.min(floor(limit, t1)).min(delay_cap(&system)));
                     stepper.set_smooth(limit.is_infinite());
@@ -867,16 +872,16 @@ impl Simulation<'_> {
                         .filter(|&(time, _)| time == t1)
                         .map(|(_, level)| level + 1);
                     accept(&mut system, &mut rows, t1, &dense, starts)
-                        .map_err(|error| fail(t1, error))?;
+                        .map_err(|error| self.failure(t1, error))?;
                     continue;
                 }
             };
             let slope =
                 switching_slope(&mut system, &stepper, located, &mut natural, &mut switching)
-                    .map_err(|(time, error)| fail(time, error))?;
+                    .map_err(|(time, error)| self.failure(time, error))?;
             if delays {
                 sample_inside(&mut system, &mut rows, &stepper, located.right, &mut dense)
-                    .map_err(|(time, error)| fail(time, error))?;
+                    .map_err(|(time, error)| self.failure(time, error))?;
             }
             stepper.dense(located.right, &mut dense);
             let (right, state) = self.cut(
@@ -898,7 +903,7 @@ impl Simulation<'_> {
             system
                 .mechanics
                 .observe(right, &dense, None, (&mut natural, &mut switching), None)
-                .map_err(|error| fail(right, error))?;
+                .map_err(|error| self.failure(right, error))?;
             let first_event = summary.events.len();
             for (index, (held, now)) in system.held.iter().zip(&natural).enumerate() {
                 if let (Some(from), Some(to)) = (held, now)
@@ -913,10 +918,10 @@ impl Simulation<'_> {
             }
             system.held.clone_from(&natural);
             accept(&mut system, &mut rows, right, &dense, Some(0))
-                .map_err(|error| fail(right, error))?;
+                .map_err(|error| self.failure(right, error))?;
             if let Some(sensor) = rows
                 .tripped(right, &dense, &mut active)
-                .map_err(|error| fail(right, error))?
+                .map_err(|error| self.failure(right, error))?
             {
                 let halts = model.sensors[sensor].action != SensorAction::Print;
                 summary.sensor_trips.push(SensorTrip {
@@ -925,13 +930,17 @@ impl Simulation<'_> {
                     halted: halts,
                 });
                 if halts {
-                    let values = rows.at(right, &dense).map_err(|error| fail(right, error))?;
+                    let values = rows
+                        .at(right, &dense)
+                        .map_err(|error| self.failure(right, error))?;
                     let _ = sink.row(right, values);
                     summary.stopped = true;
                     break;
                 }
             }
-            let values = rows.at(right, &dense).map_err(|error| fail(right, error))?;
+            let values = rows
+                .at(right, &dense)
+                .map_err(|error| self.failure(right, error))?;
             for event in &mut summary.events[first_event..] {
                 event.values = values.to_vec();
                 event.residuals = residuals;
@@ -941,7 +950,7 @@ impl Simulation<'_> {
             }
             let limit = system
                 .look_and_limit(right, &dense, &mut natural, &mut start_values)
-                .map_err(|error| fail(right, error))?;
+                .map_err(|error| self.failure(right, error))?;
             recent.push_back(right);
             if recent.len() > CHATTER_COUNT {
                 recent.pop_front();
@@ -1034,6 +1043,28 @@ impl Simulation<'_> {
         Ok(best.unwrap_or_else(|| (located.right, located_state.to_vec())))
     }
 
+    /// The error of an evaluation that failed at `time`, placed in the
+    /// expression of its program's output.
+    fn failure(&self, time: f64, failed: impl Into<Failed>) -> SimulateError {
+        let (program, error) = match failed.into() {
+            Failed::Dynamics(error) => (&self.dynamics, error),
+            Failed::Outputs(error) => (&self.outputs, error),
+        };
+        if error.output == JOINTS {
+            SimulateError::Integration {
+                time,
+                message: error.error.to_string(),
+                cause: None,
+            }
+        } else {
+            SimulateError::Evaluation {
+                time,
+                expression: self.expression_of(program, error.output),
+                error: error.error,
+            }
+        }
+    }
+
     /// The model expression that output `output` of `program` computes.
     fn expression_of(&self, program: &Program, output: usize) -> usize {
         if std::ptr::eq(program, &self.dynamics) {
@@ -1120,13 +1151,13 @@ impl Simulation<'_> {
         t0: f64,
         t1: f64,
         dense: &mut [f64],
-    ) -> Result<f64, (f64, OutputError)> {
+    ) -> Result<f64, (f64, Failed)> {
         let watched = &self.model.sensors[sensor];
         let index = sensor;
         let mut active_at = |t: f64, dense: &mut [f64]| {
             stepper.dense(t, dense);
             rows.at(t, dense).map_err(|error| (t, error))?;
-            Ok::<bool, (f64, OutputError)>(watched.is_active(rows.sensed()[index]))
+            Ok::<bool, (f64, Failed)>(watched.is_active(rows.sensed()[index]))
         };
         if active_at(t0, dense)? {
             return Ok(t0);
