@@ -10,9 +10,10 @@
 //! polynomial reaches across one, so a kink in the expression stays a kink.
 //! The DELAY is itself a switch, from its history to its record, located
 //! where the time looked back to passes 0 (where the delayed expression
-//! jumps from the history to its value at the start). Between the last sample and the evaluation under way (a
-//! delay shorter than the step) the value is the straight line from the last
-//! sample to the expression's value now.
+//! jumps from the history to its value at the start). Between the last
+//! sample and the evaluation under way (a delay shorter than the step) the
+//! value is the straight line from the last sample to the expression's
+//! value now.
 
 use std::sync::{Arc, RwLock};
 

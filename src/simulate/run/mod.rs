@@ -336,8 +336,11 @@ impl Rows<'_> {
         if let Some((dynamics, _)) = &mut self.reactions {
             dynamics.record_delays(t, y, None, starts)?;
         }
-        self.at(t, y)?;
-        self.outputs.sample_delays(t, starts);
+        // The outputs are evaluated only for their own DELAYs.
+        if self.outputs.has_delays() {
+            self.at(t, y)?;
+            self.outputs.sample_delays(t, starts);
+        }
         Ok(())
     }
 
