@@ -417,6 +417,28 @@ fn large_files_read_in_pieces_as_whole() {
     }
 }
 
+/// A run of blanks is read whole: before, every blank of a run inside an
+/// expression or a value looked past the rest of it for a separator, so
+/// 100 000 blanks took minutes.
+#[test]
+fn long_runs_of_blanks_read_as_one() {
+    let blanks = " ".repeat(200_000);
+    let adm = format!(
+        "blanks\nMARKER/1, QP = 1{blanks}, 2, 3\nVARIABLE/2, FUNCTION = 1 +{blanks}2{blanks}\n, + (3{blanks}+ 4)\n"
+    );
+    let dataset = model::read(&adm, FileKind::Adm);
+    assert!(
+        dataset.problems.is_empty(),
+        "{:?}",
+        dataset.problems.first()
+    );
+    assert_eq!(dataset.statements.len(), 2);
+    let report = model::check_model(&adm, &dataset);
+    let found = &report.expressions[0];
+    let joined = found.text.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert_eq!(joined, "1 + 2 + (3 + 4)");
+}
+
 /// A VARIABLE read twice is compiled once (issue 19.2): sixty VARIABLEs,
 /// each reading the one before twice, would be 2^59 walks otherwise.
 #[test]

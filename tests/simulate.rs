@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 26] = [
+    let cases: [(&str, &str, Settings); 31] = [
         (
             "motions not simulated, and a primitive, a constraint not held yet",
             "joint
@@ -377,7 +377,78 @@ MARKER/3, PART = 2
 SFORCE/1, ROTATIONAL, I = 3, J = 1, FUNCTION = 0.5
 REQUEST/1, F2 = WZ(3), F3 = 1/(TIME-TIME)
 ",
-            short,
+            short.clone(),
+        ),
+        (
+            "a centre of mass on ground, an inertia marker that is no marker",
+            "cm
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 1, IM = 9, IP = 1, 1, 1
+MARKER/3, PART = 2
+",
+            short.clone(),
+        ),
+        (
+            "a motion whose FUNCTION fails at the start",
+            "motion
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+JOINT/1, REVOLUTE, I = 3, J = 1
+MOTION/1, JOINT = 1, ROTATION, FUNCTION = LOG(TIME - 1)
+",
+            short.clone(),
+        ),
+        (
+            "a joint whose repeated equations disagree with the others'",
+            "apart
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/2, PART = 1, QP = 5, 0, 0
+PART/2, MASS = 1, CM = 20, IP = 1, 1, 1
+MARKER/20, PART = 2, QP = 1, 0, 0
+MARKER/21, PART = 2
+MARKER/22, PART = 2, QP = 2, 0, 0
+JOINT/1, SPHERICAL, I = 21, J = 1
+JOINT/2, SPHERICAL, I = 22, J = 2
+",
+            short.clone(),
+        ),
+        (
+            "a static equilibrium where a massless part hangs from a free one",
+            "massless
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, IP = 1, 1, 1, CM = 20
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = 1, 0, 0
+PART/3
+MARKER/30, PART = 3, QP = 1, 0, 0
+JOINT/1, SPHERICAL, I = 30, J = 21
+ACCGRAV/JGRAV = -9.81
+",
+            Settings {
+                statics: true,
+                ..short.clone()
+            },
+        ),
+        (
+            "a static equilibrium under a gravity beyond the floating-point range",
+            "gravity
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, IP = 1, 1, 1, CM = 20
+MARKER/20, PART = 2, QP = 1, 0, 0
+MARKER/21, PART = 2
+JOINT/1, REVOLUTE, I = 21, J = 1
+ACCGRAV/JGRAV = 1e308
+",
+            Settings {
+                statics: true,
+                ..short
+            },
         ),
     ];
     let table: String = cases
@@ -1473,6 +1544,30 @@ fn command_files_give_one_run_of_equally_spaced_outputs() {
         (
             "sim/dyn, end = 1, steps = 2.5",
             "SIMULATE: give STEPS = a whole number of output steps (or DTOUT = the time between outputs), and an END after the last command's",
+        ),
+        (
+            "deactivate/joint, id = 1; sim/dyn, end = 1, steps = 10",
+            "DEACTIVATE changes the model before a SIMULATE command: mbexpr runs the dataset as it is written (make the change in the dataset, or run the part before it with --end and --steps)",
+        ),
+        (
+            "sim/dyn, end = 1, steps = 10; sforce/1, function = 0",
+            "1 10",
+        ),
+        (
+            "sim/dyn, end = 1, steps = 10; sforce/1, function = 0; sim/dyn, end = 2, steps = 10",
+            "SFORCE changes the model before a SIMULATE command: mbexpr runs the dataset as it is written (make the change in the dataset, or run the part before it with --end and --steps)",
+        ),
+        (
+            "integrator/gstiff, error = -1; sim/dyn, end = 1, steps = 10",
+            "INTEGRATOR: ERROR must be a positive number",
+        ),
+        (
+            "integrator/hmax = 0; sim/dyn, end = 1, steps = 10",
+            "INTEGRATOR: HMAX must be a positive number",
+        ),
+        (
+            "integrator/si2, error = 1e-4, hmax = 1e-3; sim/dyn, end = 1, steps = 10",
+            "1 10",
         ),
     ];
     for (commands, expected) in cases {

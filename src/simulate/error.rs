@@ -141,9 +141,10 @@ pub enum SimulateError {
         time: f64,
         /// Why, in words.
         message: String,
-        /// The expression whose evaluation failed at the last trial state,
-        /// when that was the cause, and its span there.
-        cause: Option<(usize, Span)>,
+        /// What caused it, where that is known: the expression whose
+        /// evaluation failed at the last trial state, or the statement
+        /// whose equations cannot be met.
+        place: Place,
     },
     /// A piecewise function switches branch over and over in a vanishing
     /// interval (a sliding contact, a force that balances on a kink).
@@ -322,13 +323,9 @@ impl SimulateError {
                 expression: *expression,
                 span: error.span(),
             },
-            SimulateError::Integration { cause, .. } => {
-                cause.map_or(Place::None, |(expression, span)| Place::Expression {
-                    expression,
-                    span,
-                })
+            SimulateError::Integration { place, .. } | SimulateError::Chattering { place, .. } => {
+                *place
             }
-            SimulateError::Chattering { place, .. } => *place,
         }
     }
 }

@@ -12,6 +12,7 @@ use num_dual::Dual2Vec;
 use super::general::GeneralConstraints;
 use super::quadrature::integrate;
 use crate::compile::{Program, compile_outputs};
+use crate::eval::{EvalError, OutputError};
 use crate::number::Directional;
 use crate::simulate::Model;
 use crate::simulate::model::Given;
@@ -108,10 +109,11 @@ impl Drives {
         })
     }
 
-    /// What the motions and general constraints impose at time `t`
-    /// (`None` where a motion's FUNCTION fails).
-    pub(crate) fn at(&self, t: f64) -> Option<Imposed<'_>> {
-        Some(Imposed {
+    /// What the motions and general constraints impose at time `t`, or
+    /// the error of the first motion whose FUNCTION fails (its output
+    /// [`motion_output`]).
+    pub(crate) fn at(&self, t: f64) -> Result<Imposed<'_>, OutputError> {
+        Ok(Imposed {
             drives: self.displacements(t)?,
             time: t,
             general: &self.general,
@@ -119,10 +121,15 @@ impl Drives {
     }
 
     /// Each motion's displacement and its derivatives at time `t` (an
-    /// empty list without motions; `None` where a FUNCTION fails).
-    fn displacements(&self, t: f64) -> Option<Vec<Drive>> {
+    /// empty list without motions), or the error of the first FUNCTION
+    /// that fails.
+    fn displacements(&self, t: f64) -> Result<Vec<Drive>, OutputError> {
         let Some(program) = &self.program else {
-            return Some(Vec::new());
+            return Ok(Vec::new());
+        };
+        let of_motion = |error: OutputError| OutputError {
+            output: motion_output(error.output),
+            error: error.error,
         };
         let inputs: Vec<TimeDual> = self
             .inputs
@@ -136,7 +143,7 @@ impl Drives {
         program
             .evaluator::<TimeDual>()
             .outputs(&inputs, None, &mut outputs)
-            .ok()?;
+            .map_err(of_motion)?;
         let mut drives: Vec<Drive> = outputs
             .iter()
             .map(|output| Drive {
@@ -164,13 +171,15 @@ impl Drives {
             let mut evaluator = program.evaluator::<f64>();
             let mut inputs: Vec<f64> = self.inputs.iter().map(|v| v.unwrap_or(0.0)).collect();
             let mut values = vec![0.0; n];
+            let mut failed = None;
             let rest = integrate(start, t, 2 * n, &mut |s, out| {
                 for (input, given) in inputs.iter_mut().zip(&self.inputs) {
                     if given.is_none() {
                         *input = s;
                     }
                 }
-                if evaluator.outputs(&inputs, None, &mut values).is_err() {
+                if let Err(error) = evaluator.outputs(&inputs, None, &mut values) {
+                    failed = Some(error);
                     return false;
                 }
                 for (k, value) in values.iter().enumerate() {
@@ -178,6 +187,16 @@ impl Drives {
                     out[n + k] = s * value;
                 }
                 true
+            })
+            .ok_or_else(|| {
+                of_motion(failed.take().unwrap_or_else(|| OutputError {
+                    output: 0,
+                    error: EvalError::NotFinite {
+                        operation: "the integral of a motion's FUNCTION".to_string(),
+                        value: f64::NAN,
+                        span: crate::span::Span::new(0, 0),
+                    },
+                }))
             })?;
             for (sum, part) in sums.iter_mut().zip(&rest) {
                 *sum += part;
@@ -207,6 +226,16 @@ impl Drives {
                 };
             }
         }
-        Some(drives)
+        Ok(drives)
     }
 }
+
+/// The output index an [`OutputError`] names when the FUNCTION of motion
+/// `motion` (in [`Model::motion_functions`]' order) fails: past every
+/// program's outputs, below [`super::JOINTS`].
+pub(crate) fn motion_output(motion: usize) -> usize {
+    MOTIONS + motion
+}
+
+/// The first output index of the motions' FUNCTIONs' errors.
+pub(crate) const MOTIONS: usize = usize::MAX / 2;

@@ -33,7 +33,7 @@ mod reactions;
 mod rows;
 mod solve;
 
-pub(crate) use drives::{Drive, Drives, Imposed};
+pub(crate) use drives::{Drive, Drives, Imposed, MOTIONS};
 pub(crate) use general::{GeneralConstraints, bodies_of};
 pub(crate) use reactions::{Component, Reactions, flags, pick};
 pub(crate) use rows::BodyMotion;
@@ -479,61 +479,71 @@ fn coupler_row<T: crate::number::Number>(
 
 /// The statement (`JOINT/3`, `MOTION/1`) whose equation is `row` of the
 /// held equations ([`active_rows`]' order; in the initial-conditions
-/// analysis, the joints' initial displacements after them).
-pub(crate) fn owner_of_row(model: &super::Model, row: usize) -> String {
+/// analysis, the joints' initial displacements after them), and its place
+/// in the file.
+pub(crate) fn owner_of_row(
+    model: &super::Model,
+    row: usize,
+) -> (String, Option<crate::span::Span>) {
     let mut first = 0;
     for joint in &model.joints {
         let held = joint.held_equations();
         if row < first + held {
-            return format!("{}/{}", joint.kind.statement(), joint.id);
+            return (
+                format!("{}/{}", joint.kind.statement(), joint.id),
+                Some(joint.span),
+            );
         }
         first += held;
     }
     let motions = model
         .motions
         .iter()
-        .map(|motion| format!("MOTION/{}", motion.id))
+        .map(|motion| (format!("MOTION/{}", motion.id), motion.span))
         .chain(
             model
                 .marker_motions
                 .iter()
-                .map(|motion| format!("MOTION/{}", motion.id)),
+                .map(|motion| (format!("MOTION/{}", motion.id), motion.span)),
         )
-        .chain(
-            model
-                .couplers
-                .iter()
-                .map(|coupler| format!("{}/{}", coupler.statement, coupler.id)),
-        )
+        .chain(model.couplers.iter().map(|coupler| {
+            (
+                format!("{}/{}", coupler.statement, coupler.id),
+                coupler.span,
+            )
+        }))
         .chain(
             model
                 .general_constraints
                 .iter()
-                .map(|constraint| format!("GCON/{}", constraint.id)),
+                .map(|constraint| (format!("GCON/{}", constraint.id), constraint.span)),
         )
         .chain(model.joint_initials.iter().map(|initial| {
             let joint = &model.joints[initial.joint];
-            format!(
-                "the initial {} of JOINT/{}",
-                if initial.rotation {
-                    "rotation"
-                } else {
-                    "translation"
-                },
-                joint.id
+            let which = if initial.rotation {
+                "rotation"
+            } else {
+                "translation"
+            };
+            (
+                format!("the initial {which} of JOINT/{}", joint.id),
+                initial.span,
             )
         }))
         .chain(model.exact.iter().flat_map(|part| {
             let name = &model.scene.bodies[part.body].name;
             std::iter::repeat_n(
-                format!("the EXACT coordinates of {name}"),
+                (format!("the EXACT coordinates of {name}"), part.span),
                 exact_row_count(part),
             )
         }));
     motions
         .enumerate()
         .find(|(index, _)| first + index == row)
-        .map_or_else(|| "a joint".to_string(), |(_, owner)| owner)
+        .map_or_else(
+            || ("a joint".to_string(), None),
+            |(_, (owner, span))| (owner, Some(span)),
+        )
 }
 
 /// The equations of `joint` held in the run: its rows but the redundant

@@ -42,7 +42,7 @@ use crate::laws::contact::ContactBranch;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input};
 use crate::simulate::constraints::{
-    BodyMotion, Component, Drives, Reactions, constraint_loads, joints_singular, joints_singular_in,
+    BodyMotion, Component, Drives, Reactions, constraint_loads, joints_singular_in,
 };
 use crate::simulate::model::{Contact, Force, Model};
 use accelerations::{Accelerations, Measure};
@@ -761,7 +761,7 @@ impl<'m> Mechanics<'m> {
         let equations = &self.equations;
         let fixed = Fixed::new(held, solved);
         let solved = equations.solve(&mut self.values, t, y, fixed, &mut self.buffers)?;
-        let drives = equations.drives.at(t).ok_or_else(joints_singular)?;
+        let drives = equations.drives.at(t)?;
         let multipliers = solved.multipliers.unwrap_or_default();
         Ok(Reactions::new(
             equations.model,
@@ -1213,7 +1213,7 @@ impl Equations<'_> {
         });
         if model.is_constrained() {
             let motions = body_motions(&kinematics);
-            let drives = self.drives.at(t).ok_or_else(joints_singular)?;
+            let drives = self.drives.at(t)?;
             let held = constraint_loads(
                 model,
                 &motions,

@@ -10,6 +10,44 @@ use crate::span::Span;
 /// rows; DTOUT = 1e-300 would otherwise ask for a run without end).
 pub const MOST_OUTPUT_STEPS: usize = 100_000_000;
 
+/// The commands that change the model (or hand it to a user subroutine)
+/// between analyses; mbexpr runs the dataset as it is, so a command file
+/// that changes it before a `SIMULATE` asks for a run mbexpr does not make.
+const MODEL_CHANGES: [&str; 28] = [
+    "ACTIVATE",
+    "ARRAY",
+    "BEAM",
+    "BUSHING",
+    "CONTROL",
+    "DEACTIVATE",
+    "DIFF",
+    "FIELD",
+    "FLEX_BODY",
+    "FRICTION",
+    "GCON",
+    "GFORCE",
+    "GSE",
+    "JOINT",
+    "MARKER",
+    "MOTION",
+    "NFORCE",
+    "PART",
+    "RELOAD",
+    "SENSOR",
+    "SFORCE",
+    "SPLINE",
+    "SPRINGDAMPER",
+    "STRING",
+    "UCON",
+    "VARIABLE",
+    "VFORCE",
+    "VTORQUE",
+];
+
+/// `INTEGRATOR`'s settings that must be positive numbers (Adams refuses
+/// others; mbexpr keeps its own error control, `--rtol` and `--hmax`).
+const POSITIVE_SETTINGS: [&str; 4] = ["ERROR", "HMAX", "HMIN", "HINIT"];
+
 /// A command file's run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RunCommands {
@@ -44,8 +82,17 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
     let mut last = None;
     let mut statics = None;
     let mut land_on_outputs = false;
+    let mut changed: Option<(&str, Span)> = None;
     for statement in &commands.statements {
-        if statement_name(&statement.name, COMMANDS) == Some("INTEGRATOR")
+        let name = statement_name(&statement.name, COMMANDS);
+        if let Some(name) = name.filter(|name| MODEL_CHANGES.contains(name)) {
+            changed = changed.or(Some((name, statement.span)));
+            continue;
+        }
+        if name == Some("INTEGRATOR") {
+            integrator_settings_are_positive(statement)?;
+        }
+        if name == Some("INTEGRATOR")
             && let Some(argument) = statement.argument("INTERPOLATE", 3)
         {
             land_on_outputs = match &argument.value {
@@ -77,6 +124,14 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
         if !dynamic {
             // SIMULATE/INITIAL_CONDITIONS: mbexpr assembles the start anyway.
             continue;
+        }
+        if let Some((name, span)) = changed {
+            return Err((
+                format!(
+                    "{name} changes the model before a SIMULATE command: mbexpr runs the dataset as it is written (make the change in the dataset, or run the part before it with --end and --steps)"
+                ),
+                span,
+            ));
         }
         let given = |keyword: &str| {
             statement
@@ -147,4 +202,24 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
         land_on_outputs,
         span,
     }))
+}
+
+/// An error, at the setting, for an `INTEGRATOR` setting of
+/// [`POSITIVE_SETTINGS`] that is not a positive number.
+fn integrator_settings_are_positive(
+    statement: &crate::model::Statement,
+) -> Result<(), (String, Span)> {
+    for keyword in POSITIVE_SETTINGS {
+        let Some(argument) = statement.argument(keyword, keyword.len()) else {
+            continue;
+        };
+        let value = number(statement, keyword, f64::NAN).unwrap_or(f64::NAN);
+        if !(value > 0.0 && value.is_finite()) {
+            return Err((
+                format!("INTEGRATOR: {keyword} must be a positive number"),
+                argument.span,
+            ));
+        }
+    }
+    Ok(())
 }

@@ -123,6 +123,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
     let units = units::consistency_factor(dataset);
     let mut model = reader.model(notes);
     reader.refuse_loose_massless_parts(&model);
+    note_unphysical_inertias(&mut model);
     match units {
         Ok((factor, note)) => {
             for mass in &mut model.masses {
@@ -176,6 +177,38 @@ fn linear_sum(terms: &[(f64, String)]) -> String {
         "0".to_string()
     } else {
         written.join(" + ")
+    }
+}
+
+/// Notes each part whose principal moments break the triangle inequality
+/// (the largest more than the sum of the other two): no body has them,
+/// though the run goes on with them.
+fn note_unphysical_inertias(model: &mut Model) {
+    for (mass, body) in model.masses.iter().zip(&model.scene.bodies) {
+        if mass.mass <= 0.0 {
+            continue;
+        }
+        let mut moments: Vec<f64> = mass
+            .inertia
+            .symmetric_eigenvalues()
+            .iter()
+            .copied()
+            .collect();
+        moments.sort_by(f64::total_cmp);
+        if let [smallest, middle, largest] = moments[..]
+            && largest > (smallest + middle) * (1.0 + 1e-9)
+        {
+            model.notes.push((
+                format!(
+                    "{}: the principal moments of inertia about the centre of mass ({}, {}, {}) break the triangle inequality (the largest is more than the sum of the others), which no body's do: check IP",
+                    body.name,
+                    Shown(smallest),
+                    Shown(middle),
+                    Shown(largest)
+                ),
+                mass.span,
+            ));
+        }
     }
 }
 
@@ -545,11 +578,17 @@ impl Reader<'_> {
         masses
     }
 
-    /// Refuses a PART's VM or WM (the marker whose origin's velocity VX,
-    /// VY, VZ give, or about whose axes WX, WY, WZ turn; the scene reads
-    /// them) that names no marker on the part.
-    fn velocity_markers_on_the_part(&mut self, statement: &Statement) {
-        for keyword in ["VM", "WM"] {
+    /// Refuses a PART's CM, IM, VM or WM (its centre of mass, the axes of
+    /// its IP, the marker whose origin's velocity VX, VY, VZ give, or
+    /// about whose axes WX, WY, WZ turn) that names no marker on the part.
+    fn markers_on_the_part(&mut self, statement: &Statement) {
+        const ROLES: [(&str, &str); 4] = [
+            ("CM", "its centre of mass"),
+            ("IM", "the marker whose axes IP is given in"),
+            ("VM", "the point whose velocity VX, VY, VZ give"),
+            ("WM", "the axes WX, WY, WZ turn about"),
+        ];
+        for (keyword, role) in ROLES {
             let Some(argument) = statement.argument(keyword, 2) else {
                 continue;
             };
@@ -567,7 +606,7 @@ impl Reader<'_> {
             if !on_part {
                 self.errors.push(SimulateError::Model {
                     message: format!(
-                        "{}: {keyword} must name a MARKER on the part (the point whose velocity VX, VY, VZ give, or the axes WX, WY, WZ turn about)",
+                        "{}: {keyword} must name a MARKER on the part ({role})",
                         statement.label()
                     ),
                     span: argument.span,
@@ -595,7 +634,7 @@ impl Reader<'_> {
                 ),
             );
         }
-        self.velocity_markers_on_the_part(statement);
+        self.markers_on_the_part(statement);
         let marker_of = |keyword: &str| {
             number(statement, keyword, f64::NAN)
                 .ok()

@@ -17,7 +17,8 @@ pub use sink::{MethodChange, Sink};
 pub use statics::Equilibrium;
 
 use super::constraints::{
-    Drives, JOINTS, Residuals, Tolerance, Unassembled, disagreeing_redundant, owner_of_row, project,
+    Drives, JOINTS, MOTIONS, Residuals, Tolerance, Unassembled, disagreeing_redundant,
+    owner_of_row, project,
 };
 use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
 use super::error::{Place, SimulateError};
@@ -522,30 +523,26 @@ impl Simulation<'_> {
         let offsets = body_offsets(model);
         let inverse_inertia = model.inverse_inertia();
         let drives = Drives::new(model);
-        let unevaluated = |time: f64| SimulateError::Integration {
-            time,
-            message: "a motion's FUNCTION cannot be evaluated at this time".to_string(),
-            cause: None,
-        };
         let assemble = |y: &mut [f64], time: f64, tolerance: Tolerance, initial: bool| {
-            let at = drives.at(time).ok_or_else(|| unevaluated(time))?;
+            let at = drives.at(time).map_err(|error| self.failure(time, error))?;
             project(model, y, &offsets, &at, &inverse_inertia, tolerance, initial).map_err(|error| {
-                let message = match error {
-                    Unassembled::Singular if initial && !(model.joint_initials.is_empty() && model.exact.is_empty()) => "the joints cannot be assembled: their equations and the initial conditions (the joints' IC, ICTRAN, ICROT, the parts' EXACT) are dependent at this state (an initial condition may set a coordinate the joints, motions or other initial conditions already set, or the configuration is singular)".to_string(),
-                    Unassembled::Singular => "the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(),
-                    Unassembled::Apart { row, residual } if residual.is_nan() => format!(
-                        "the joints cannot be assembled: the equation of {} cannot be evaluated at this state (its FUNCTION leaves its domain)",
-                        owner_of_row(model, row)
-                    ),
-                    Unassembled::Apart { row, residual } => format!(
-                        "the joints cannot be assembled: {} stays off by {residual:.3e} after Newton's iterations (the parts cannot be placed as the joints and motions ask: check the markers' places and axes and the motions' values at this time)",
-                        owner_of_row(model, row)
-                    ),
+                let (message, owner) = match error {
+                    Unassembled::Singular if initial && !(model.joint_initials.is_empty() && model.exact.is_empty()) => ("the joints cannot be assembled: their equations and the initial conditions (the joints' IC, ICTRAN, ICROT, the parts' EXACT) are dependent at this state (an initial condition may set a coordinate the joints, motions or other initial conditions already set, or the configuration is singular)".to_string(), None),
+                    Unassembled::Singular => ("the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(), None),
+                    Unassembled::Apart { row, residual } => {
+                        let (owner, span) = owner_of_row(model, row);
+                        let message = if residual.is_nan() {
+                            format!("the joints cannot be assembled: the equation of {owner} cannot be evaluated at this state (its FUNCTION leaves its domain)")
+                        } else {
+                            format!("the joints cannot be assembled: {owner} stays off by {residual:.3e} after Newton's iterations (the parts cannot be placed as the joints and motions ask: check the markers' places and axes and the motions' values at this time)")
+                        };
+                        (message, span)
+                    }
                 };
                 SimulateError::Integration {
                     time,
                     message,
-                    cause: None,
+                    place: owner.map_or(Place::None, Place::File),
                 }
             })
         };
@@ -574,13 +571,13 @@ impl Simulation<'_> {
                         joint.kind.statement(),
                         joint.id
                     ),
-                    cause: None,
+                    place: Place::File(joint.span),
                 });
             }
             found
         };
         let equilibrium = if settings.statics {
-            let at = drives.at(0.0).ok_or_else(|| unevaluated(0.0))?;
+            let at = drives.at(0.0).map_err(|error| self.failure(0.0, error))?;
             let mut put_back = |y: &mut [f64]| {
                 if model.is_constrained() {
                     assemble(
@@ -887,10 +884,11 @@ impl Simulation<'_> {
                     .map_err(|(time, error)| self.failure(time, error))?;
             }
             stepper.dense(located.right, &mut dense);
+            let step_end = stepper.t();
             let (right, state) = self.cut(
                 &mut system,
                 &mut stepper,
-                (t0, &step_start),
+                (t0, &step_start, step_end),
                 located,
                 &dense,
                 slope,
@@ -989,7 +987,8 @@ impl Simulation<'_> {
     }
 
     /// The state at a switch located on a step's continuous output, from
-    /// integrating again from the step's start `(t0, y0)` on the branches
+    /// integrating again from the start `(t0, y0)` of the step that ends at
+    /// `step_end` on the branches
     /// held through the step (the stepper restarted there): the continuous
     /// output may be of lower order than the steps (Radau's), so the time
     /// is refined on the integrated states, by Newton's rule with the
@@ -1002,7 +1001,7 @@ impl Simulation<'_> {
         &self,
         system: &mut Held<'_>,
         stepper: &mut Stepper,
-        (t0, y0): (f64, &[f64]),
+        (t0, y0, step_end): (f64, &[f64], f64),
         located: Switch,
         located_state: &[f64],
         slope: f64,
@@ -1037,7 +1036,9 @@ impl Simulation<'_> {
                     break;
                 }
             }
-            if !(root.is_finite() && root > t0) {
+            // Newton's rule is trusted inside the step only (a slope near
+            // zero throws it far past it).
+            if !(root.is_finite() && root > t0 && root <= step_end) {
                 break;
             }
             // Aim just past the switch.
@@ -1057,7 +1058,7 @@ impl Simulation<'_> {
             SimulateError::Integration {
                 time,
                 message: error.error.to_string(),
-                cause: None,
+                place: Place::None,
             }
         } else {
             SimulateError::Evaluation {
@@ -1068,9 +1069,15 @@ impl Simulation<'_> {
         }
     }
 
-    /// The model expression that output `output` of `program` computes.
+    /// The model expression that output `output` of `program` computes
+    /// (a motion's FUNCTION past [`MOTIONS`]).
     fn expression_of(&self, program: &Program, output: usize) -> usize {
-        if std::ptr::eq(program, &self.dynamics) {
+        if let Some(motion) = output.checked_sub(MOTIONS) {
+            self.model
+                .motion_functions()
+                .nth(motion)
+                .unwrap_or_default()
+        } else if std::ptr::eq(program, &self.dynamics) {
             self.computed[output]
         } else {
             self.output_expressions[output]
@@ -1139,7 +1146,7 @@ impl Simulation<'_> {
                 "more than {} steps, accepted and rejected, the most the settings allow{stiff}",
                 settings.max_steps
             ),
-            cause: None,
+            place: Place::None,
         }
     }
 
@@ -1182,14 +1189,14 @@ impl Simulation<'_> {
 
     /// The error of a static equilibrium that is not found.
     fn unsettled(&self, unsettled: statics::Unsettled) -> SimulateError {
-        let program = &self.dynamics;
         match unsettled {
-            statics::Unsettled::Evaluation(error) => SimulateError::Evaluation {
-                time: 0.0,
-                expression: self.expression_of(program, error.output),
-                error: error.error,
-            },
+            statics::Unsettled::Evaluation(error) => self.failure(0.0, Failed::Dynamics(error)),
             statics::Unsettled::Assembly(error) => error,
+            statics::Unsettled::NotFinite => SimulateError::Integration {
+                time: 0.0,
+                message: "no static equilibrium found: the accelerations' derivatives in the parts' places are not finite numbers (a force or the gravity is beyond the floating-point range; check ACCGRAV and the forces' sizes)".to_string(),
+                place: Place::None,
+            },
             statics::Unsettled::Moving { state, residual } => {
                 let model = self.model;
                 let what = if state < model.diffs.len() {
@@ -1208,7 +1215,7 @@ impl Simulation<'_> {
                     message: format!(
                         "no static equilibrium found from the initial conditions: Newton's iterations end with {what} at {residual:.3e} (the forces may have no balance near the start, or a freedom no force holds: start the dynamics from the initial conditions without SIMULATE/STATICS or --statics)"
                     ),
-                    cause: None,
+                    place: Place::None,
                 }
             }
         }
@@ -1227,7 +1234,7 @@ impl Simulation<'_> {
                 return SimulateError::Integration {
                     time: *t,
                     message: format!("the Jacobian: {}", error.error),
-                    cause: None,
+                    place: Place::None,
                 };
             }
             IntegrateError::Jacobian { t, error } => {
@@ -1244,17 +1251,17 @@ impl Simulation<'_> {
                 };
             }
         };
-        let cause = match cause {
-            Some(Rejection::System(failure)) if failure.output != JOINTS => Some((
-                self.expression_of(&self.dynamics, failure.output),
-                failure.error.span(),
-            )),
-            _ => None,
+        let place = match cause {
+            Some(Rejection::System(failure)) if failure.output != JOINTS => Place::Expression {
+                expression: self.expression_of(&self.dynamics, failure.output),
+                span: failure.error.span(),
+            },
+            _ => Place::None,
         };
         SimulateError::Integration {
             time,
             message: error.to_string(),
-            cause,
+            place,
         }
     }
 }

@@ -33,6 +33,10 @@ pub struct Equilibrium {
 /// Newton's iterations at most.
 const ITERATIONS: usize = 100;
 
+/// Sweeps of the singular value decomposition of Newton's matrix at most
+/// (it converges in a few dozen; past this it is not going to).
+const SVD_SWEEPS: usize = 10_000;
+
 /// Halvings of a step that does not lower the largest acceleration.
 const HALVINGS: usize = 20;
 
@@ -54,6 +58,9 @@ pub(super) enum Unsettled {
     Evaluation(OutputError),
     /// The joints cannot be assembled at a state.
     Assembly(SimulateError),
+    /// The accelerations' derivatives in the places are not finite numbers
+    /// (forces or gravity beyond the floating-point range).
+    NotFinite,
     /// Newton's iterations ended with state `state` still accelerating by
     /// `residual`.
     Moving { state: usize, residual: f64 },
@@ -254,11 +261,19 @@ pub(super) fn settle(
             }
             target[unknowns + r] = -weight * held[r];
         }
-        let svd = stacked.svd(true, true);
-        let tiny = 1e-12 * svd.singular_values.amax();
-        let newton = svd
-            .solve(&target, tiny)
-            .unwrap_or_else(|_| DVector::zeros(unknowns));
+        if !stacked
+            .iter()
+            .chain(target.iter())
+            .all(|value| value.is_finite())
+        {
+            return Err(Unsettled::NotFinite);
+        }
+        let newton = nalgebra::SVD::try_new(stacked, true, true, f64::EPSILON, SVD_SWEEPS)
+            .and_then(|svd| {
+                let tiny = 1e-12 * svd.singular_values.amax();
+                svd.solve(&target, tiny).ok()
+            })
+            .unwrap_or_else(|| DVector::zeros(unknowns));
         let before = largest(&residual);
         let size = y.iter().fold(1.0_f64, |most, value| most.max(value.abs()));
         // Newton's step, each halved until the largest acceleration falls;
