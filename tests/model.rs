@@ -353,6 +353,10 @@ MARKER/3, PART = 2
 MARKER/4, PART = 7
 MARKER/5, PART = 1, QP = 1, 2
 SPLINE/1, X = 1, 2, Y = 1, 2
+DIFF/1, IC = 1e400
+MARKER/6, PART = 1, QP = 0, -inf, 0
+ARRAY/2, NUMBERS = 1, 2
+VARIABLE/3, FUNCTION = ARYVAL(2, 1.5) + ARYVAL(1e30, 1) + ARYVAL(2, 3)
 ";
     insta::assert_snapshot!(check(adm, FileKind::Adm));
 }

@@ -355,7 +355,7 @@ impl Checker {
                 (Argument::Value(node), value)
             }
             kind @ (ArgKind::Marker | ArgKind::Object) => {
-                let reference = reference(arg).unwrap_or_else(|| {
+                let Some(reference) = reference(arg) else {
                     let (function, param) = (function.name().to_string(), param());
                     self.errors.push(if kind == ArgKind::Marker {
                         CheckError::MarkerExpected {
@@ -370,8 +370,11 @@ impl Checker {
                             span,
                         }
                     });
-                    Reference::Id(0)
-                });
+                    // Kept as written: no later check reads a reference
+                    // from it.
+                    let (node, _) = self.expr(arg);
+                    return (Argument::Value(node), None);
+                };
                 let argument = if kind == ArgKind::Marker {
                     Argument::Marker(reference, span)
                 } else {
@@ -380,7 +383,7 @@ impl Checker {
                 (argument, None)
             }
             ArgKind::Flag => {
-                let (_, value) = self.expr(arg);
+                let (node, value) = self.expr(arg);
                 match value.filter(|v| v.fract() == 0.0 && v.abs() < 1e15) {
                     Some(flag) => (Argument::Flag(flag as i64, span), None),
                     None => {
@@ -389,7 +392,9 @@ impl Checker {
                             param: param(),
                             span,
                         });
-                        (Argument::Flag(0, span), None)
+                        // Kept as written: no later check reads a number
+                        // from it.
+                        (Argument::Value(node), None)
                     }
                 }
             }

@@ -29,6 +29,21 @@ pub enum ConfigurationError {
         /// The argument.
         span: Span,
     },
+    /// A number written beyond the range of a double (`1e400`), or as
+    /// `inf` or `nan`.
+    #[error(
+        "{statement}: {keyword} = {text} is not a finite number (a double reaches about 1.8e308)"
+    )]
+    NotFinite {
+        /// `DIFF/3`.
+        statement: String,
+        /// `IC`.
+        keyword: String,
+        /// The number as written.
+        text: String,
+        /// The number.
+        span: Span,
+    },
     /// A marker on a part that is not defined.
     #[error("{statement}: there is no PART/{part}")]
     UnknownPart {
@@ -56,6 +71,7 @@ impl ConfigurationError {
     pub fn span(&self) -> Span {
         match self {
             ConfigurationError::Numbers { span, .. }
+            | ConfigurationError::NotFinite { span, .. }
             | ConfigurationError::UnknownPart { span, .. }
             | ConfigurationError::Spline { span, .. } => *span,
         }
@@ -77,7 +93,10 @@ pub(crate) fn numbers<const N: usize>(
         count: N,
         span: argument.span,
     };
-    let values = number_list(statement, argument).map_err(|_| error())?;
+    let values = number_list(statement, argument).map_err(|failed| match failed {
+        ConfigurationError::NotFinite { .. } => failed,
+        _ => error(),
+    })?;
     values.try_into().map_err(|_| error())
 }
 
@@ -91,6 +110,17 @@ pub(crate) fn number_list(
         _ => &[],
     };
     let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
+    if let Some(item) = items.iter().find(|item| {
+        let digits = item.text.trim().trim_end_matches(['d', 'D']);
+        digits.parse::<f64>().is_ok_and(|value| !value.is_finite())
+    }) {
+        return Err(ConfigurationError::NotFinite {
+            statement: statement.label(),
+            keyword: argument.keyword.to_string(),
+            text: item.text.to_string(),
+            span: item.span,
+        });
+    }
     if values.is_empty() || values.len() != items.len() {
         return Err(ConfigurationError::Numbers {
             statement: statement.label(),

@@ -22,7 +22,7 @@ use serde_json::json;
 
 use crate::support::files;
 use crate::support::plotting::{Curve, Plot, check_svg_name, render_svg};
-use crate::support::render::diagnostic;
+use crate::support::render::{diagnostic, diagnostics};
 use crate::{Fatal, Outcome};
 
 /// How rows are written.
@@ -138,13 +138,26 @@ impl Source {
         }
     }
 
+    /// Every error of `errors`, those placed in the file in one pass over
+    /// it (in file order), then those placed nowhere.
     fn render_all(&self, model: Option<&Model>, errors: &[SimulateError]) -> Fatal {
-        Fatal::input(
-            errors
-                .iter()
-                .map(|error| self.render(model, error))
-                .collect::<String>(),
-        )
+        let mut placed = Vec::new();
+        let mut nowhere = String::new();
+        for error in errors {
+            let message = error.to_string();
+            match (error.place(), model) {
+                (Place::File(span), _) => placed.push((span, message)),
+                (Place::Expression { expression, span }, Some(model)) => {
+                    let expression = &model.expressions[expression];
+                    placed.push((
+                        expression.file_span(span),
+                        format!("{}: {message}", expression.label),
+                    ));
+                }
+                _ => nowhere += &format!("{}: {message}\n", self.path),
+            }
+        }
+        Fatal::input(diagnostics(&self.path, &self.text, placed) + &nowhere)
     }
 }
 
@@ -169,13 +182,13 @@ fn read_model(
         Ok(model) => model,
         Err(Unread::Refused(errors)) => return Err(source.render_all(None, &errors)),
         Err(Unread::Unchecked(problems)) => {
-            let texts: String = problems
-                .iter()
-                .map(|problem| {
-                    let message = problem.error.to_string();
-                    diagnostic(path, &source.text, problem.error.span(), &message)
-                })
-                .collect();
+            let texts = diagnostics(
+                path,
+                &source.text,
+                problems
+                    .iter()
+                    .map(|problem| (problem.error.span(), problem.error.to_string())),
+            );
             return Err(Fatal::input(format!(
                 "{texts}{path}: the model does not check: nothing simulated\n"
             )));
@@ -327,13 +340,11 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         None => None,
     };
     let mut stderr = std::io::stderr();
-    for (note, span) in &model.notes {
-        let _ = write!(
-            stderr,
-            "{}",
-            diagnostic(&source.path, &source.text, *span, &format!("note: {note}"))
-        );
-    }
+    let notes = model
+        .notes
+        .iter()
+        .map(|(note, span)| (*span, format!("note: {note}")));
+    let _ = write!(stderr, "{}", diagnostics(&source.path, &source.text, notes));
     let simulation =
         Simulation::new(&model).map_err(|errors| source.render_all(Some(&model), &errors))?;
     let columns = simulate::columns(&model);

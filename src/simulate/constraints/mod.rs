@@ -618,9 +618,11 @@ pub(crate) fn joints_singular_in(model: &super::Model) -> crate::eval::OutputErr
 fn singular_because(reason: &str) -> crate::eval::OutputError {
     crate::eval::OutputError {
         output: JOINTS,
-        error: crate::eval::EvalError::NotFinite {
-            operation: format!("the joints' multipliers ({reason})"),
-            value: f64::INFINITY,
+        error: crate::eval::EvalError::Law {
+            error: crate::laws::LawError::Domain {
+                operation: "the joints",
+                reason: reason.to_string(),
+            },
             span: crate::span::Span::default(),
         },
     }

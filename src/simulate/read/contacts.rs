@@ -323,7 +323,10 @@ fn solid(graphic: &Statement, scene: &Scene) -> Result<Solid, String> {
         let [Some(x), Some(y), Some(z)] = scales else {
             return Err(bad("an ELLIPSOID without its three scales"));
         };
-        if x != y || y != z || x <= 0.0 {
+        if x <= 0.0 || y <= 0.0 || z <= 0.0 {
+            return Err(bad("an ELLIPSOID whose scales are not all positive"));
+        }
+        if x != y || y != z {
             return Err(bad("an ELLIPSOID of unequal scales (not a sphere)"));
         }
         return Ok(Solid {

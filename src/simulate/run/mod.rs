@@ -681,6 +681,7 @@ impl Simulation<'_> {
                 .max(1),
             ..Options::default()
         };
+        self.start_is_finite(&mut system, &y0)?;
         let mut stepper = Stepper::new(
             settings.method,
             options(limit, Stats::default(), delay_cap(&system)),
@@ -1185,6 +1186,62 @@ impl Simulation<'_> {
             }
         }
         Ok(active)
+    }
+
+    /// An error, at the statement of the part or DIFF it names, when the
+    /// state at the start or its rates of change are not finite numbers
+    /// (an initial velocity or force beyond the range of a double): no
+    /// step can start from it.
+    fn start_is_finite(&self, system: &mut Held<'_>, y0: &[f64]) -> Result<(), SimulateError> {
+        let mut rates = vec![0.0; y0.len()];
+        system
+            .mechanics
+            .rates(0.0, y0, Some(&system.held), &mut rates)
+            .map_err(|error| self.failure(0.0, error))?;
+        let found = |values: &[f64]| values.iter().position(|value| !value.is_finite());
+        let (state, what, value) = match (found(y0), found(&rates)) {
+            (Some(state), _) => (state, "value", y0[state]),
+            (None, Some(state)) => (state, "rate of change", rates[state]),
+            (None, None) => return Ok(()),
+        };
+        let model = self.model;
+        let (owner, place) = match model.diffs.get(state) {
+            Some(diff) => {
+                let expression = &model.expressions[diff.function];
+                (
+                    format!("DIFF/{}", diff.id),
+                    Place::Expression {
+                        expression: diff.function,
+                        span: crate::span::Span::new(0, expression.text.text.len()),
+                    },
+                )
+            }
+            None => {
+                let body = (state - model.diffs.len()) / BODY_STATES;
+                let component = (state - model.diffs.len()) % BODY_STATES;
+                let quantity = match component {
+                    0..3 => "position",
+                    3..7 => "orientation",
+                    7..10 => "velocity",
+                    _ => "angular velocity",
+                };
+                (
+                    format!("{}'s {quantity}", model.scene.bodies[body].name),
+                    model
+                        .masses
+                        .get(body)
+                        .map_or(Place::None, |mass| Place::File(mass.span)),
+                )
+            }
+        };
+        Err(SimulateError::Integration {
+            time: 0.0,
+            message: format!(
+                "the start is not finite: {owner} has the {what} {} (an initial condition, velocity or force beyond the range of a double: give smaller values)",
+                Shown(value)
+            ),
+            place,
+        })
     }
 
     /// The error of a static equilibrium that is not found.
