@@ -103,12 +103,33 @@ struct Turns {
 /// parabola.
 const ACCEPTED_ANGLES: usize = 3;
 
+/// An angle's extrapolation by a line, then by a parabola, reaches at
+/// most this many times the spread of the accepted values it passes
+/// through (a line's error grows as the reach, a parabola's as its square).
+const EXTRAPOLATION_REACH: [f64; ACCEPTED_ANGLES - 1] = [20.0, 4.0];
+
+/// Accepted angles closer in time than this (relative to the time, at
+/// least 1) are one point of the extrapolation.
+const ANGLE_TIME_GAP: f64 = 1e-9;
+
 impl Turns {
     /// The value of instruction `index` extrapolated to the time under way
     /// from its accepted values (Newton's divided differences), if any.
     fn expected(&self, index: usize) -> Option<f64> {
         let points = self.accepted.get(index)?;
-        let &(_, last) = points.last()?;
+        let &(last_time, last) = points.last()?;
+        // The newest points whose spread the time lies within a few times
+        // of: a polynomial through points close together, taken far past
+        // them, amplifies their rounding (after a restart's tiny steps).
+        let reach = (self.time - last_time).abs();
+        let used = (1..points.len())
+            .rev()
+            .find(|&degree| {
+                let spread = last_time - points[points.len() - 1 - degree].0;
+                reach <= EXTRAPOLATION_REACH[degree - 1] * spread
+            })
+            .map_or(1, |degree| degree + 1);
+        let points = &points[points.len() - used..];
         let mut table: Vec<f64> = points.iter().map(|&(_, value)| value).collect();
         let times: Vec<f64> = points.iter().map(|&(time, _)| time).collect();
         // The divided differences, in place: table[k] = f[t_0 .. t_k].
@@ -487,7 +508,11 @@ impl<T: Number> Evaluator<'_, T> {
         turns.accepted.resize(self.angles.len(), Vec::new());
         for (points, angle) in turns.accepted.iter_mut().zip(&self.angles) {
             let Some(value) = angle else { continue };
-            while points.last().is_some_and(|&(at, _)| at >= time) {
+            // A state accepted again at (nearly) the same time (a switch's
+            // cut, a restart) replaces the last: divided differences over
+            // a gap of rounding size would throw the extrapolation far off.
+            let gap = ANGLE_TIME_GAP * time.abs().max(1.0);
+            while points.last().is_some_and(|&(at, _)| at >= time - gap) {
                 points.pop();
             }
             if points.len() == ACCEPTED_ANGLES {

@@ -185,6 +185,15 @@ impl<'m> Simulation<'m> {
                     }),
             );
         }
+        // The motions' FUNCTIONs join the forces' program too: their values
+        // come from the drives, but their switches (a STEP's ends, an ABS's
+        // kink) are located as the forces' are, so that no step crosses a
+        // jump in a motion's velocity or acceleration.
+        for &function in &functions {
+            if !computed.contains(&function) {
+                computed.push(function);
+            }
+        }
         // Forces and DIFFs may read the running solver's values: they are
         // settled with the motion at each state (`Mechanics::settle`).
         let reaction =
