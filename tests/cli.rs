@@ -1112,3 +1112,39 @@ fn a_signal_ends_a_run_with_every_row_written() {
         );
     }
 }
+
+/// A run that fails keeps what it computed in the plot too: the rows up to
+/// the stop are drawn (before, the SVG was written only for a run that
+/// reached its end).
+#[test]
+fn a_failed_run_still_plots_its_rows() {
+    let dir = std::env::temp_dir().join(format!("mbexpr-failed-plot-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("ball.svg");
+    let path = svg.to_str().unwrap();
+    let model = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/simulate/a1_ball.adm");
+    let (stdout, stderr, code) = mbexpr(
+        &[
+            "simulate",
+            model,
+            "--end",
+            "1000",
+            "--steps",
+            "1000",
+            "--max-steps",
+            "500",
+            "--plot",
+            path,
+        ],
+        "",
+    );
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("more than 500 steps"), "{stderr}");
+    let rows = stdout.lines().count() - 1;
+    let drawn = std::fs::read_to_string(&svg).expect("the plot is written");
+    assert!(
+        drawn.starts_with("<svg") && drawn.contains(&format!("{rows} output rows")),
+        "{rows}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -93,6 +93,38 @@ fn sensors_that_cannot_be_watched_are_refused_at_their_place() {
         SENSOR/1, VALUE = 0.5, HALT
         SENSOR/1, VALUE = 0.5, ERROR = -1, HALT, FUNCTION = DIF(1)
         SENSOR/1, VALUE = 0.5, HALT, FUNCTION = USER(1, 2)
+        SENSOR/1, GE, LE, VALUE = 0.5, HALT, FUNCTION = DIF(1)
     ";
     insta::assert_snapshot!(super::table(cases, check));
+}
+
+/// An EQ sensor whose band (VALUE ± ERROR, here as narrow as 0) lies
+/// between two of the four looks a step gets trips where its function
+/// passes its value: a falling part passes DY = 5 at `sqrt(2 (10 − 5 −
+/// ERROR) / g)` (before, it fell through unseen).
+#[test]
+fn an_eq_sensor_stepped_over_trips_where_its_function_passes_the_value() {
+    for error in [0.0, 1e-6, 1e-3] {
+        let text = format!(
+            "falling
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 20, IP = 1, 1, 1, QG = 0, 10, 0
+MARKER/20, PART = 2
+ACCGRAV/JGRAV = -9.81
+SENSOR/1, EQ, VALUE = 5, ERROR = {error}, HALT, FUNCTION = DY(20, 1)
+END
+"
+        );
+        let run = run(&text, &settings(3.0, 3, 1e-10)).expect("it falls");
+        let expected = (2.0 * (5.0 - error) / 9.81_f64).sqrt();
+        let trip = run.summary.sensor_trips.first().expect("the sensor trips");
+        println!("ERROR {error}: halted at {} against {expected}", trip.time);
+        assert!(trip.halted, "ERROR {error}");
+        assert!(
+            (trip.time - expected).abs() < 1e-9,
+            "ERROR {error}: {}",
+            trip.time
+        );
+    }
 }

@@ -722,4 +722,12 @@ impl Sensor {
             Relation::AtMost => off <= self.error,
         }
     }
+
+    /// Whether an EQ sensor's function went from `before` to `value` past
+    /// its value (from one side of it to the other): it was within its
+    /// band between them, however narrow the band.
+    pub fn passes(&self, before: f64, value: f64) -> bool {
+        self.relation == Relation::Equal
+            && (before - self.value).signum() * (value - self.value).signum() < 0.0
+    }
 }

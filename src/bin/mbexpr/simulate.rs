@@ -374,7 +374,21 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     sink.progress.finish();
     sink.written?;
     sink.events.finish()?;
-    let summary = result.map_err(|error| Fatal::input(source.render(Some(&model), &error)))?;
+    // A run that fails keeps its rows: the plot draws those it has.
+    let plot_kept = |marks: &[f64]| match &args.plot {
+        Some(path) => plot_states(path, &columns, &sink.kept, marks)
+            .err()
+            .map(|message| format!("error: --plot {path}: {message}\n")),
+        None => None,
+    };
+    let summary = match result {
+        Ok(summary) => summary,
+        Err(error) => {
+            let failed = plot_kept(&[]).unwrap_or_default();
+            return Err(Fatal::input(source.render(Some(&model), &error) + &failed));
+        }
+    };
+    let marks: Vec<f64> = summary.events.iter().map(|event| event.time).collect();
     let signal = SIGNALLED.load(Ordering::SeqCst);
     let estimate = if args.estimate_error && signal == 0 {
         Some(
@@ -399,14 +413,14 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
         StatsFormat::Text => write!(stderr, "{}", report.text()),
         StatsFormat::Json => writeln!(stderr, "{}", report.json()),
     };
+    let failed = plot_kept(&marks);
     if signal != 0 {
         return Err(Fatal::signalled(signal as u8));
     }
-    if let Some(path) = &args.plot {
-        plot_states(path, &columns, &sink.kept, &summary)
-            .map_err(|message| Fatal::input(format!("error: --plot {path}: {message}\n")))?;
+    match failed {
+        Some(message) => Err(Fatal::input(message)),
+        None => Ok(Outcome::Success),
     }
-    Ok(Outcome::Success)
 }
 
 /// Where `mbexpr simulate` sends a run's results: each row written and
@@ -754,13 +768,13 @@ impl<'c> Rows<'c> {
 /// Up to how many rows a plot of a run draws each row as a dot.
 const MAX_DOTTED_ROWS: usize = 250;
 
-/// The states that change over the run, one panel each, with the switches
-/// marked.
+/// The states that change over the run (or the part of it that ran), one
+/// panel each, with the switches at `marks` marked.
 fn plot_states(
     path: &str,
     columns: &[String],
     rows: &[Vec<f64>],
-    summary: &Summary,
+    marks: &[f64],
 ) -> Result<(), String> {
     let curves: Vec<Curve> = (1..columns.len())
         .filter(|&column| {
@@ -777,7 +791,7 @@ fn plot_states(
     if curves.is_empty() {
         return Err("no state changes over the run".to_string());
     }
-    let mut marks: Vec<f64> = summary.events.iter().map(|event| event.time).collect();
+    let mut marks = marks.to_vec();
     marks.dedup();
     let range = (
         rows.first().map_or(0.0, |row| row[0]),

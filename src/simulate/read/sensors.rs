@@ -54,6 +54,17 @@ pub(super) fn settings(
         }
     }
     let has = |keyword: &str| statement.argument(keyword, keyword.len()).is_some();
+    if ["EQ", "NE", "GE", "LE"]
+        .iter()
+        .filter(|keyword| has(keyword))
+        .count()
+        > 1
+    {
+        return Err(Unread::Setting(
+            format!("{label}: give one comparison of EQ, NE, GE and LE"),
+            statement.span,
+        ));
+    }
     let relation = match (has("NE"), has("GE"), has("LE")) {
         (true, _, _) => Relation::NotEqual,
         (_, true, _) => Relation::AtLeast,

@@ -298,6 +298,10 @@ struct Rows<'m> {
     /// outputs read, when they read any.
     reactions: Option<(Mechanics<'m>, Vec<RunValue>)>,
     values: Vec<f64>,
+    /// The sensors' functions at the last look for a trip (NaN before the
+    /// first): an EQ sensor whose function passes its value between two
+    /// looks, stepping over the band of its ERROR, trips there.
+    sensed_before: Vec<f64>,
 }
 
 impl Rows<'_> {
@@ -396,10 +400,15 @@ impl Rows<'_> {
             .sensors
             .iter()
             .zip(self.sensed())
-            .map(|(sensor, &value)| sensor.is_active(value))
+            .zip(&self.sensed_before)
+            .map(|((sensor, &value), &before)| {
+                sensor.is_active(value) || sensor.passes(before, value)
+            })
             .collect();
         let first = (0..now.len()).find(|&k| now[k] && !active[k]);
         active.copy_from_slice(&now);
+        let sensed = self.sensed().to_vec();
+        self.sensed_before = sensed;
         Ok(first)
     }
 }
@@ -514,6 +523,7 @@ impl Simulation<'_> {
         let reactions = (!components.is_empty())
             .then(|| (Mechanics::new(model, program, &self.computed), components));
         let mut rows = Rows {
+            sensed_before: vec![f64::NAN; model.sensors.len()],
             model,
             outputs,
             reactions,
@@ -1165,14 +1175,21 @@ impl Simulation<'_> {
     ) -> Result<f64, (f64, Failed)> {
         let watched = &self.model.sensors[sensor];
         let index = sensor;
-        let mut active_at = |t: f64, dense: &mut [f64]| {
+        let mut sensed_at = |t: f64, dense: &mut [f64]| {
             stepper.dense(t, dense);
             rows.at(t, dense).map_err(|error| (t, error))?;
-            Ok::<bool, (f64, Failed)>(watched.is_active(rows.sensed()[index]))
+            Ok::<f64, (f64, Failed)>(rows.sensed()[index])
         };
-        if active_at(t0, dense)? {
+        let first = sensed_at(t0, dense)?;
+        if watched.is_active(first) {
             return Ok(t0);
         }
+        // Active from the first time it is within its band, or (an EQ
+        // sensor stepped over) past its value.
+        let mut active_at = |t: f64, dense: &mut [f64]| {
+            let value = sensed_at(t, dense)?;
+            Ok(watched.is_active(value) || watched.passes(first, value))
+        };
         let (mut inactive, mut active) = (t0, t1);
         while active - inactive > 4.0 * f64::EPSILON * active.abs().max(1e-300) {
             let middle = 0.5 * (inactive + active);

@@ -27,10 +27,18 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
         scene,
     } = read_in(path, &args.set)?;
     let lines = LineIndex::new(&text);
+    let mut directions = std::collections::HashSet::new();
     for name in &args.wrt {
         let state = scene.parse_state_name(name).is_some();
-        let diff = mbexpr::scene::parse_diff_input(name)
-            .is_some_and(|id| scene.statements.diffs.contains_key(&id));
+        let diff_id = mbexpr::scene::parse_diff_input(name);
+        let diff = diff_id.is_some_and(|id| scene.statements.diffs.contains_key(&id));
+        let direction = diff_id.map_or_else(
+            || name.trim().to_ascii_uppercase(),
+            |id| format!("DIF({id})"),
+        );
+        if !directions.insert(direction) {
+            return Err(Fatal::usage(format!("error: --wrt names {name} twice")));
+        }
         if !state && !diff && !name.eq_ignore_ascii_case("TIME") {
             return Err(Fatal::usage(format!(
                 "error: --wrt {name}: {}",
