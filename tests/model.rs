@@ -357,6 +357,7 @@ DIFF/1, IC = 1e400
 MARKER/6, PART = 1, QP = 0, -inf, 0
 ARRAY/2, NUMBERS = 1, 2
 VARIABLE/3, FUNCTION = ARYVAL(2, 1.5) + ARYVAL(1e30, 1) + ARYVAL(2, 3)
+DIFF/123456789012345678901, IC = 1
 ";
     insta::assert_snapshot!(check(adm, FileKind::Adm));
 }

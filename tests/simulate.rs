@@ -1605,6 +1605,23 @@ fn command_files_give_one_run_of_equally_spaced_outputs() {
             "integrator/si2, error = 1e-4, hmax = 1e-3; sim/dyn, end = 1, steps = 10",
             "1 10",
         ),
+        ("stop; sim/dyn, end = 1, steps = 10", "none"),
+        (
+            "sim/dyn, end = 1, steps = 10; stop; deactivate/joint, id = 1; sim/dyn, end = 2, steps = 5",
+            "1 10",
+        ),
+        (
+            "sim/dyn, end = 1, duration = 2, steps = 10",
+            "SIMULATE: give END or DURATION, not both",
+        ),
+        (
+            "sim/dyn, end = 1, steps = 10, dtout = 0.1",
+            "SIMULATE: give STEPS or DTOUT, not both",
+        ),
+        (
+            "sim/dyn, end = 1, dtout = 0.3",
+            "SIMULATE: DTOUT = 0.3 does not divide the command's 1 s into whole output steps (mbexpr writes a run's outputs equally spaced",
+        ),
     ];
     for (commands, expected) in cases {
         assert_eq!(check_commands(commands), expected, "{commands}");

@@ -52,7 +52,11 @@ pub fn read(text: &str, kind: FileKind) -> Dataset {
         for pair in top.into_inner() {
             match pair.as_rule() {
                 Rule::title => dataset.title = Some(pair.as_str().trim_end().to_string()),
-                Rule::statement => dataset.statements.push(statement(pair, base)),
+                Rule::statement => {
+                    let (statement, id_too_large) = statement(pair, base);
+                    dataset.problems.extend(id_too_large);
+                    dataset.statements.push(statement);
+                }
                 Rule::unreadable => dataset.problems.push(ReadError::Unreadable {
                     span: trimmed_span(&pair, base),
                 }),
@@ -69,26 +73,36 @@ fn trimmed_span(pair: &Pair<'_, Rule>, base: usize) -> Span {
     Span::new(span.start, span.start + pair.as_str().trim_end().len())
 }
 
-fn statement(pair: Pair<'_, Rule>, base: usize) -> Statement {
+/// A statement, and the error of its id when the id is too large to hold.
+fn statement(pair: Pair<'_, Rule>, base: usize) -> (Statement, Option<ReadError>) {
     let span = trimmed_span(&pair, base);
     let mut name = String::new();
     let mut id = None;
+    let mut id_too_large = None;
     let mut arguments = Vec::new();
     for part in pair.into_inner() {
         match part.as_rule() {
             Rule::statement_name => name = part.as_str().to_uppercase(),
-            Rule::id => id = part.as_str().parse().ok(),
+            Rule::id => {
+                id = part.as_str().parse().ok();
+                if id.is_none() {
+                    id_too_large = Some(ReadError::IdTooLarge {
+                        span: span_of(&part, base),
+                    });
+                }
+            }
             Rule::expression_argument => arguments.push(expression_argument(part, base)),
             Rule::plain_argument => arguments.push(plain_argument(part, base)),
             _ => {}
         }
     }
-    Statement {
+    let statement = Statement {
         name: name.into(),
         id,
         span,
         arguments,
-    }
+    };
+    (statement, id_too_large)
 }
 
 fn expression_argument(pair: Pair<'_, Rule>, base: usize) -> Argument {

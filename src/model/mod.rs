@@ -217,6 +217,12 @@ pub enum ReadError {
         /// The line.
         span: Span,
     },
+    /// A statement's id past the largest whole number mbexpr holds.
+    #[error("this id is too large: ids are whole numbers up to {}", u64::MAX)]
+    IdTooLarge {
+        /// The id.
+        span: Span,
+    },
     /// Brackets nested too deep for the recursive readers.
     #[error(
         "brackets nest deeper than {limit} levels here, so the file is not read (real models stay below 40)"
@@ -233,7 +239,9 @@ impl ReadError {
     /// Where the problem is.
     pub fn span(&self) -> Span {
         match self {
-            ReadError::Unreadable { span } | ReadError::TooDeep { span, .. } => *span,
+            ReadError::Unreadable { span }
+            | ReadError::IdTooLarge { span }
+            | ReadError::TooDeep { span, .. } => *span,
         }
     }
 }

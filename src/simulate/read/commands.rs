@@ -85,6 +85,10 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
     let mut changed: Option<(&str, Span)> = None;
     for statement in &commands.statements {
         let name = statement_name(&statement.name, COMMANDS);
+        if name == Some("STOP") {
+            // The command file ends here: Adams reads nothing after it.
+            break;
+        }
         if let Some(name) = name.filter(|name| MODEL_CHANGES.contains(name)) {
             changed = changed.or(Some((name, statement.span)));
             continue;
@@ -138,6 +142,14 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
                 .argument(keyword, keyword.len())
                 .and_then(|_| number(statement, keyword, f64::NAN).ok())
         };
+        for (one, other) in [("END", "DURATION"), ("STEPS", "DTOUT")] {
+            if given(one).is_some() && given(other).is_some() {
+                return Err((
+                    format!("{label}: give {one} or {other}, not both"),
+                    statement.span,
+                ));
+            }
+        }
         let segment_end = match (given("END"), given("DURATION")) {
             (Some(at), _) => at,
             (None, Some(duration)) => end + duration,
@@ -153,7 +165,18 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
             (Some(steps), _) if steps >= 1.0 && steps.fract() == 0.0 && length > 0.0 => {
                 length / steps
             }
-            (None, Some(dtout)) if dtout > 0.0 && length > 0.0 => dtout,
+            (None, Some(dtout)) if dtout > 0.0 && length > 0.0 => {
+                let steps = length / dtout;
+                if (steps - steps.round()).abs() > 1e-9 * steps.max(1.0) {
+                    return Err((
+                        format!(
+                            "{label}: DTOUT = {dtout} does not divide the command's {length} s into whole output steps (mbexpr writes a run's outputs equally spaced: give a DTOUT that divides it, or STEPS)"
+                        ),
+                        statement.span,
+                    ));
+                }
+                dtout
+            }
             _ => {
                 return Err((
                     format!(
