@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 33] = [
+    let cases: [(&str, &str, Settings); 34] = [
         (
             "motions not simulated, and a primitive, a constraint not held yet",
             "joint
@@ -440,6 +440,22 @@ ACCGRAV/JGRAV = -9.81
 PART/1, GROUND
 PART/2, MASS = 1, CM = 3, IP = 1, 2, 3, WX = 1e308, WZ = 1e308
 MARKER/3, PART = 2
+",
+            short.clone(),
+        ),
+        (
+            "two motions on one joint, a GCON that reads no place",
+            "dependent
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+PART/4, MASS = 1, CM = 5, IP = 1, 1, 1, QG = 3, 0, 0
+MARKER/5, PART = 4
+JOINT/1, REVOLUTE, I = 3, J = 1
+MOTION/1, JOINT = 1, ROTATION, FUNCTION = TIME
+MOTION/2, JOINT = 1, ROTATION, FUNCTION = 2 * TIME
+GCON/3, I = 5, FUNCTION = 1
 ",
             short.clone(),
         ),

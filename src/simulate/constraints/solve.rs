@@ -529,8 +529,12 @@ const ASSEMBLED: f64 = 1e-10;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum Unassembled {
     /// The equations are dependent at the state (a singular
-    /// configuration).
-    Singular,
+    /// configuration): equation `row` (in the order of [`active_rows`]),
+    /// where it is known, is the first that repeats those before it.
+    Singular {
+        /// The first dependent equation's index among the held equations.
+        row: Option<usize>,
+    },
     /// Newton's iterations ended with equation `row` (in the order of
     /// [`active_rows`]) still off by `residual`: the parts cannot be
     /// placed as the joints and motions ask.
@@ -545,9 +549,43 @@ pub(crate) enum Unassembled {
 
 impl From<Singular> for Unassembled {
     fn from(_: Singular) -> Unassembled {
-        Unassembled::Singular
+        Unassembled::Singular { row: None }
     }
 }
+
+/// The dependence of `rows` on `bodies` bodies, with the first row that
+/// repeats those before it (its part of `G` in the span of theirs, or
+/// zero: an equation the parts' places do not move), by Gram–Schmidt.
+fn dependence(rows: &[Row<f64>], bodies: usize) -> Unassembled {
+    let mut basis: Vec<DVector<f64>> = Vec::new();
+    for (index, row) in rows.iter().enumerate() {
+        let mut left = DVector::zeros(6 * bodies);
+        for (body, coefficients) in &row.coefficients {
+            for (k, coefficient) in coefficients.iter().enumerate() {
+                left[6 * body + k] += coefficient;
+            }
+        }
+        let size = left.norm();
+        // Twice, so that rounding leaves no part of the basis behind.
+        for _ in 0..2 {
+            for direction in &basis {
+                let along = direction.dot(&left);
+                left -= direction * along;
+            }
+        }
+        let remaining = left.norm();
+        // A row of NaN (an equation out of its domain) counts as dependent.
+        if remaining.is_nan() || remaining <= DEPENDENT * size {
+            return Unassembled::Singular { row: Some(index) };
+        }
+        basis.push(left / remaining);
+    }
+    Unassembled::Singular { row: None }
+}
+
+/// A row of `G` whose part outside the rows before it is at most this much
+/// of its size repeats them.
+const DEPENDENT: f64 = 1e-9;
 
 /// The integrator's error tolerance on a state: `atol + rtol |y|` for
 /// each component (zero: put every state on the constraints).
@@ -658,7 +696,8 @@ pub(crate) fn project(
             residual: f64::NAN,
         });
     }
-    let off_positions = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)?;
+    let off_positions = least_change(model, &rows, &bodies, inverse_inertia, |row| row.value)
+        .map_err(|_| dependence(&rows, bodies.len()))?;
     // The least change of the velocities at `bodies`, whose positions'
     // equations are `rows`: outside the initial analysis the velocities
     // hold the same equations.

@@ -537,8 +537,12 @@ impl Simulation<'_> {
             let at = drives.at(time).map_err(|error| self.failure(time, error))?;
             project(model, y, &offsets, &at, &inverse_inertia, tolerance, initial).map_err(|error| {
                 let (message, owner) = match error {
-                    Unassembled::Singular if initial && !(model.joint_initials.is_empty() && model.exact.is_empty()) => ("the joints cannot be assembled: their equations and the initial conditions (the joints' IC, ICTRAN, ICROT, the parts' EXACT) are dependent at this state (an initial condition may set a coordinate the joints, motions or other initial conditions already set, or the configuration is singular)".to_string(), None),
-                    Unassembled::Singular => ("the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(), None),
+                    Unassembled::Singular { row } if initial && !(model.joint_initials.is_empty() && model.exact.is_empty()) => ("the joints cannot be assembled: their equations and the initial conditions (the joints' IC, ICTRAN, ICROT, the parts' EXACT) are dependent at this state (an initial condition may set a coordinate the joints, motions or other initial conditions already set, or the configuration is singular)".to_string(), row.and_then(|row| owner_of_row(model, row).1)),
+                    Unassembled::Singular { row: Some(row) } => {
+                        let (owner, span) = owner_of_row(model, row);
+                        (format!("the joints cannot be assembled: their equations are dependent at this state: an equation of {owner} repeats those before it, or does not move with the parts (two motions or constraints set one freedom, a FUNCTION that reads no part's place, or a singular configuration)"), span)
+                    }
+                    Unassembled::Singular { row: None } => ("the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(), None),
                     Unassembled::Apart { row, residual } => {
                         let (owner, span) = owner_of_row(model, row);
                         let message = if residual.is_nan() {
