@@ -1148,3 +1148,56 @@ fn a_failed_run_still_plots_its_rows() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A MARKER's axes from the points ZP (on its z axis) and XP (in its xz
+/// plane), a PART's from ZG and XG, as Adams reads them (before, the
+/// points were ignored and the axes were ground's): the distances measured
+/// along them by hand.
+#[test]
+fn axes_given_by_points_are_the_axes_the_points_say() {
+    let dir = std::env::temp_dir().join(format!("mbexpr-axes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = dir.join("axes.adm");
+    std::fs::write(
+        &model,
+        "axes by points
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/2, PART = 1, QP = 2, 1, 0
+MARKER/3, PART = 1, QP = 5, 5, 5, ZP = 6, 5, 5, XP = 5, 6, 5
+PART/2, MASS = 1, IP = 1, 1, 1, CM = 20, QG = 1, 0, 0, ZG = 1, 0, 1, XG = 1, -1, 0
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = 1, 0, 0
+VARIABLE/1, FUNCTION = DX(2, 1, 3)
+VARIABLE/2, FUNCTION = DY(2, 1, 3)
+VARIABLE/3, FUNCTION = DZ(2, 1, 3)
+VARIABLE/4, FUNCTION = DX(21, 1)
+VARIABLE/5, FUNCTION = DY(21, 1)
+MARKER/4, PART = 1, ZP = 0, 0, 0
+",
+    )
+    .unwrap();
+    let path = model.to_str().unwrap();
+    let (_, stderr, code) = mbexpr(&["eval", "--model", path], "");
+    assert_eq!(code, 1);
+    assert!(stderr.contains("MARKER/4: ZP is the origin QP"), "{stderr}");
+    let text = std::fs::read_to_string(&model).unwrap();
+    std::fs::write(
+        &model,
+        text.replace("MARKER/4, PART = 1, ZP = 0, 0, 0\n", ""),
+    )
+    .unwrap();
+    let (stdout, stderr, code) = mbexpr(&["eval", "--model", path], "");
+    assert_eq!(code, 0, "{stderr}");
+    let values: Vec<f64> = stdout
+        .lines()
+        .filter(|line| line.starts_with("VARIABLE/"))
+        .map(|line| line.split_whitespace().last().unwrap().parse().unwrap())
+        .collect();
+    let expected = [1.0, 0.0, 2.0, 1.0, -1.0];
+    assert_eq!(values.len(), expected.len(), "{stdout}");
+    for (value, expected) in values.iter().zip(expected) {
+        assert!((value - expected).abs() < 1e-12, "{stdout}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -44,6 +44,16 @@ pub enum ConfigurationError {
         /// The number.
         span: Span,
     },
+    /// Axes that points or angles cannot give.
+    #[error("{statement}: {reason}")]
+    Axes {
+        /// `MARKER/3`.
+        statement: String,
+        /// What is wrong.
+        reason: String,
+        /// The statement.
+        span: Span,
+    },
     /// A marker on a part that is not defined.
     #[error("{statement}: there is no PART/{part}")]
     UnknownPart {
@@ -72,6 +82,7 @@ impl ConfigurationError {
         match self {
             ConfigurationError::Numbers { span, .. }
             | ConfigurationError::NotFinite { span, .. }
+            | ConfigurationError::Axes { span, .. }
             | ConfigurationError::UnknownPart { span, .. }
             | ConfigurationError::Spline { span, .. } => *span,
         }
@@ -173,9 +184,63 @@ pub(crate) fn number(
     numbers(statement, keyword, [default]).map(|[value]| value)
 }
 
+/// A PART's or MARKER's axes: `REULER` (body-fixed 3-1-3), or the points
+/// `ZG`/`ZP` on its z axis and `XG`/`XP` in its xz plane (with its origin
+/// `QG`/`QP`, in the same axes). With a z point alone, x is the part's x
+/// axis made square to z (its y axis where z lies along x); with an x point
+/// alone, z is the part's.
 fn orientation(statement: &Statement) -> Result<UnitQuaternion<f64>, ConfigurationError> {
-    let [psi, theta, phi] = numbers(statement, "REULER", [0.0; 3])?;
-    Ok(euler_313(psi, theta, phi))
+    let (origin, z_point, x_point) = if is_statement(statement, "PART") {
+        ("QG", "ZG", "XG")
+    } else {
+        ("QP", "ZP", "XP")
+    };
+    let given = |keyword: &str| statement.argument(keyword, keyword.len()).is_some();
+    if !given(z_point) && !given(x_point) {
+        let [psi, theta, phi] = numbers(statement, "REULER", [0.0; 3])?;
+        return Ok(euler_313(psi, theta, phi));
+    }
+    let wrong = |reason: String| ConfigurationError::Axes {
+        statement: statement.label(),
+        reason,
+        span: statement.span,
+    };
+    if given("REULER") {
+        return Err(wrong(format!(
+            "give its axes by REULER or by {z_point} and {x_point}, not both"
+        )));
+    }
+    let at = Vector3::from(numbers(statement, origin, [0.0; 3])?);
+    let z = if given(z_point) {
+        let toward = Vector3::from(numbers(statement, z_point, [0.0; 3])?) - at;
+        toward
+            .try_normalize(1e-12 * toward.amax().max(at.amax()).max(1.0))
+            .ok_or_else(|| {
+                wrong(format!(
+                    "{z_point} is the origin {origin}: it must lie on the z axis, away from it"
+                ))
+            })?
+    } else {
+        Vector3::z()
+    };
+    let toward_x = if given(x_point) {
+        Vector3::from(numbers(statement, x_point, [0.0; 3])?) - at
+    } else if z.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let x = (toward_x - z * z.dot(&toward_x))
+        .try_normalize(1e-9 * toward_x.norm().max(f64::MIN_POSITIVE))
+        .ok_or_else(|| {
+            wrong(format!(
+                "{x_point} lies on the z axis: it must give the xz plane, off the axis"
+            ))
+        })?;
+    let axes = nalgebra::Matrix3::from_columns(&[x, z.cross(&x), z]);
+    Ok(UnitQuaternion::from_rotation_matrix(
+        &nalgebra::Rotation3::from_matrix_unchecked(axes),
+    ))
 }
 
 /// The scene of a dataset's initial configuration, from the statements of

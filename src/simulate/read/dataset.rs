@@ -1069,6 +1069,13 @@ impl Reader<'_> {
             .iter()
             .filter(|statement| is_kind(&statement.name, "ACCGRAV"))
             .collect();
+        for again in statements.iter().skip(1) {
+            self.refuse(
+                "ACCGRAV given again: a model has one gravity (give it in one ACCGRAV statement)"
+                    .to_string(),
+                again.span,
+            );
+        }
         for statement in statements {
             for (axis, keyword) in ["IGRAV", "JGRAV", "KGRAV"].into_iter().enumerate() {
                 match number(statement, keyword, 0.0) {
