@@ -161,9 +161,10 @@ fn couplers_that_cannot_be_held_are_refused_at_their_place() {
         COUPLER/1, JOINTS = 1, 2, SCALES = 1, 1
         COUPLER/1, JOINTS = 1, 3, SCALES = 1, 1
         COUPLER/1, JOINTS = 1, SCALES = 1
-        COUPLER/1, JOINTS = 1, 1, SCALES = 1
-        COUPLER/1, JOINTS = 1, 1
+        COUPLER/1, JOINTS = 1, 2, SCALES = 1
+        COUPLER/1, JOINTS = 1, 2
         COUPLER/1, FUNCTION = USER(1, 2)
+        COUPLER/1, JOINTS = 1, 1, SCALES = 1, -1
     ";
     insta::assert_snapshot!(super::table(cases, check));
 }

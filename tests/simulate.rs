@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 34] = [
+    let cases: [(&str, &str, Settings); 35] = [
         (
             "motions not simulated, and a primitive, a constraint not held yet",
             "joint
@@ -123,7 +123,7 @@ JPRIM/2, INPLANE, I = 3, J = 1
             short.clone(),
         ),
         (
-            "a screw joint without its PITCH, joints with no type, with DELTA_V, with an IC of another joint type, without their markers",
+            "a screw joint without its PITCH, joints with no type or two, with DELTA_V, with an IC of another joint type, without their markers",
             "joints
 PART/1, GROUND
 MARKER/1, PART = 1
@@ -134,6 +134,7 @@ JOINT/2, I = 3, J = 1
 JOINT/3, REVOLUTE, I = 3, J = 1, DELTA_V = 0.1
 JOINT/4, SPHERICAL, I = 3
 JOINT/5, SPHERICAL, I = 3, J = 1, ICROT = 0, 0
+JOINT/6, REVOLUTE, TRANSLATIONAL, I = 3, J = 1
 ",
             short.clone(),
         ),
@@ -336,6 +337,19 @@ SFORCE/1, TRANSLATIONAL, I = 3, J = 1, FUNCTION = USER(7, 8)
             "a unit mbexpr does not know",
             "units
 UNITS/FORCE = NEWTON, MASS = STONE, LENGTH = INCH
+PART/1, GROUND
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+",
+            short.clone(),
+        ),
+        (
+            "units and gravity given twice",
+            "twice
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = MILLIMETER, TIME = SECOND
+ACCGRAV/JGRAV = -9.8
+ACCGRAV/JGRAV = 9.8
 PART/1, GROUND
 PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
@@ -1622,6 +1636,10 @@ fn command_files_give_one_run_of_equally_spaced_outputs() {
             "1 10",
         ),
         ("stop; sim/dyn, end = 1, steps = 10", "none"),
+        (
+            "sim/dyn, end = 0, steps = 10",
+            "SIMULATE: the command must end after it starts (END = 0, from 0)",
+        ),
         (
             "sim/dyn, end = 1, steps = 10; stop; deactivate/joint, id = 1; sim/dyn, end = 2, steps = 5",
             "1 10",

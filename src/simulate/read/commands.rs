@@ -161,6 +161,14 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
             }
         };
         let length = segment_end - end;
+        if !(length > 0.0 && length.is_finite()) {
+            return Err((
+                format!(
+                    "{label}: the command must end after it starts (END = {segment_end}, from {end}): give a later END or a positive DURATION"
+                ),
+                statement.span,
+            ));
+        }
         let step = match (given("STEPS"), given("DTOUT")) {
             (Some(steps), _) if steps >= 1.0 && steps.fract() == 0.0 && length > 0.0 => {
                 length / steps

@@ -87,6 +87,12 @@ fn coupler(statement: &Statement, joints: &[Joint]) -> Result<Coupler, (String, 
             listed.span,
         ));
     }
+    if named_twice(&ids) {
+        return Err((
+            format!("{label}: JOINTS names one joint twice: a COUPLER ties different joints"),
+            listed.span,
+        ));
+    }
     let scaled = required(
         statement,
         "SCALES",
@@ -209,7 +215,7 @@ fn gear(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Couple
     let label = statement.label();
     let listed = required(statement, "JOINTS", "the two joints it gears")?;
     let ids = number_list(statement, listed).unwrap_or_default();
-    if ids.len() != 2 {
+    if ids.len() != 2 || named_twice(&ids) {
         return Err((format!("{label}: JOINTS names two joints"), listed.span));
     }
     let cv_argument = required(
@@ -296,4 +302,11 @@ fn gear(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Couple
         joints: coupled,
         span: statement.span,
     })
+}
+
+/// Whether `ids` names one joint twice.
+fn named_twice(ids: &[f64]) -> bool {
+    ids.iter()
+        .enumerate()
+        .any(|(index, id)| ids[..index].contains(id))
 }

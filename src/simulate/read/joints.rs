@@ -32,10 +32,20 @@ pub(crate) fn joints(
 fn joint(statement: &Statement, scene: &Scene, errors: &mut Vec<SimulateError>) -> Option<Joint> {
     let label = statement.label();
     let names: Vec<&str> = JointKind::ALL.iter().map(|(_, name)| *name).collect();
-    let kind = JointKind::ALL
+    let given: Vec<&(JointKind, &str)> = JointKind::ALL
         .iter()
-        .find(|(_, name)| statement.argument(name, 3).is_some())
-        .map(|(kind, _)| *kind);
+        .filter(|(_, name)| statement.argument(name, 3).is_some())
+        .collect();
+    if let [(first, first_name), rest @ ..] = given.as_slice()
+        && let Some((_, other_name)) = rest.iter().find(|(kind, _)| kind != first)
+    {
+        errors.push(SimulateError::Model {
+            message: format!("{label}: give one type, not both {first_name} and {other_name}"),
+            span: statement.span,
+        });
+        return None;
+    }
+    let kind = given.first().map(|(kind, _)| *kind);
     let Some(kind) = kind else {
         errors.push(SimulateError::Unsupported {
             statement: label,

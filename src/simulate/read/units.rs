@@ -61,13 +61,19 @@ const TIMES: [(&str, f64); 4] = [
 pub(super) fn consistency_factor(
     dataset: &Dataset,
 ) -> Result<(f64, Option<String>), SimulateError> {
-    let Some(statement) = dataset
+    let mut statements = dataset
         .statements
         .iter()
-        .find(|statement| is_kind(&statement.name, "UNITS"))
-    else {
+        .filter(|statement| is_kind(&statement.name, "UNITS"));
+    let Some(statement) = statements.next() else {
         return Ok((1.0, None));
     };
+    if let Some(again) = statements.next() {
+        return Err(SimulateError::Model {
+            message: "UNITS given again: a model has one system of units (give it in one UNITS statement)".to_string(),
+            span: again.span,
+        });
+    }
     if let Some(argument) = statement.argument("UCF", 3) {
         let factor = crate::model::initial::number(statement, "UCF", f64::NAN)
             .ok()
