@@ -1021,7 +1021,6 @@ impl Simulation<'_> {
         located_state: &[f64],
         slope: f64,
     ) -> Result<(f64, Vec<f64>), SimulateError> {
-        let program = &self.dynamics;
         let mut natural = vec![None; system.mechanics.site_count()];
         let mut switching = vec![0.0; system.mechanics.switch_count()];
         let tolerance = 1e-13 * located.right.abs().max(located.right - t0);
@@ -1037,11 +1036,7 @@ impl Simulation<'_> {
             let state = stepper.y().to_vec();
             system
                 .look(time, &state, &mut natural, &mut switching)
-                .map_err(|error| SimulateError::Evaluation {
-                    time,
-                    expression: self.expression_of(program, error.output),
-                    error: error.error,
-                })?;
+                .map_err(|error| self.failure(time, error))?;
             let value = switching[located.index];
             let root = time - value / slope;
             if value < 0.0 {
