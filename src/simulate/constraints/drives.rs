@@ -11,8 +11,9 @@ use num_dual::Dual2Vec;
 
 use super::general::GeneralConstraints;
 use super::quadrature::integrate;
-use crate::compile::{Program, compile_outputs};
+use crate::compile::{Program, SiteKind, compile_outputs};
 use crate::eval::{EvalError, OutputError};
+use crate::laws::branch::Code;
 use crate::number::Directional;
 use crate::simulate::Model;
 use crate::simulate::model::Given;
@@ -54,6 +55,10 @@ pub(crate) struct Drives {
     checkpoints: Mutex<Vec<(f64, Vec<f64>)>>,
     /// The GCONs' FUNCTIONs.
     general: GeneralConstraints,
+    /// For each piecewise site of `program`, the site of the forces'
+    /// program that computes the same call ([`Drives::held_by`]): within a
+    /// step a motion stays on the branch its FUNCTION holds there.
+    held_sites: Vec<Option<usize>>,
 }
 
 /// How many integrals [`Drives`] keeps (a run's calls go back at most a
@@ -64,6 +69,20 @@ impl Drives {
     /// The drives of `model`'s motions (none without motions). The
     /// FUNCTIONs have compiled in the model's program already.
     pub(crate) fn new(model: &Model) -> Drives {
+        Drives::built(model, None)
+    }
+
+    /// The drives of `model`'s motions, held within a step on the branches
+    /// of `forces`, the forces' program, which computes the expressions
+    /// `computed` (the motions' FUNCTIONs among them, so that their
+    /// switches are located as events): a step that ends before a STEP's
+    /// start sees the motion continue smoothly, as the forces do, and the
+    /// switch is located after it.
+    pub(crate) fn held_by(model: &Model, forces: &Program, computed: &[usize]) -> Drives {
+        Drives::built(model, Some((forces, computed)))
+    }
+
+    fn built(model: &Model, forces: Option<(&Program, &[usize])>) -> Drives {
         let trees: Vec<&crate::Checked> = model
             .motion_functions()
             .map(|function| &model.expressions[function].checked)
@@ -83,12 +102,17 @@ impl Drives {
                 })
                 .collect()
         });
+        let held_sites = match (&program, forces) {
+            (Some(program), Some((forces, computed))) => site_map(model, program, forces, computed),
+            _ => Vec::new(),
+        };
         Drives {
             program,
             inputs,
             givens: model.motion_givens().collect(),
             checkpoints: Mutex::new(Vec::new()),
             general: GeneralConstraints::new(model),
+            held_sites,
         }
     }
 
@@ -109,21 +133,30 @@ impl Drives {
         })
     }
 
-    /// What the motions and general constraints impose at time `t`, or
-    /// the error of the first motion whose FUNCTION fails (its output
-    /// [`motion_output`]).
-    pub(crate) fn at(&self, t: f64) -> Result<Imposed<'_>, OutputError> {
+    /// What the motions and general constraints impose at time `t`, the
+    /// forces' program's sites on `held` (`None`: every branch as the
+    /// values decide), or the error of the first motion whose FUNCTION
+    /// fails (its output [`motion_output`]).
+    pub(crate) fn at(
+        &self,
+        t: f64,
+        held: Option<&[Option<Code>]>,
+    ) -> Result<Imposed<'_>, OutputError> {
         Ok(Imposed {
-            drives: self.displacements(t)?,
+            drives: self.displacements(t, held)?,
             time: t,
             general: &self.general,
         })
     }
 
-    /// Each motion's displacement and its derivatives at time `t` (an
-    /// empty list without motions), or the error of the first FUNCTION
-    /// that fails.
-    fn displacements(&self, t: f64) -> Result<Vec<Drive>, OutputError> {
+    /// Each motion's displacement and its derivatives at time `t` with the
+    /// forces' sites on `held` (an empty list without motions), or the
+    /// error of the first FUNCTION that fails.
+    fn displacements(
+        &self,
+        t: f64,
+        held: Option<&[Option<Code>]>,
+    ) -> Result<Vec<Drive>, OutputError> {
         let Some(program) = &self.program else {
             return Ok(Vec::new());
         };
@@ -140,9 +173,16 @@ impl Drives {
             })
             .collect();
         let mut outputs = vec![TimeDual::from(0.0); program.output_count()];
+        let own: Option<Vec<Option<Code>>> =
+            held.filter(|_| !self.held_sites.is_empty()).map(|held| {
+                self.held_sites
+                    .iter()
+                    .map(|site| site.and_then(|site| held.get(site).copied().flatten()))
+                    .collect()
+            });
         program
             .evaluator::<TimeDual>()
-            .outputs(&inputs, None, &mut outputs)
+            .outputs(&inputs, own.as_deref(), &mut outputs)
             .map_err(of_motion)?;
         let mut drives: Vec<Drive> = outputs
             .iter()
@@ -228,6 +268,59 @@ impl Drives {
         }
         Ok(drives)
     }
+}
+
+/// What a piecewise site computes, to find it in another program: its
+/// kind, its span in its expression's text and that text.
+type SiteKey<'t> = (SiteKind, crate::span::Span, Option<&'t str>);
+
+/// For each piecewise site of `drives` (the motions' FUNCTIONs), the site
+/// of `forces` (the program of the expressions `computed`) that computes
+/// the same call: the one compiled from the same text of the same
+/// FUNCTION, or, where the forces' program computes a call once for
+/// several expressions, a call of the same function written alike;
+/// `None` where there is none (that site goes as its values decide).
+fn site_map(
+    model: &Model,
+    drives: &Program,
+    forces: &Program,
+    computed: &[usize],
+) -> Vec<Option<usize>> {
+    let functions: Vec<usize> = model.motion_functions().collect();
+    let text_of = |expression: usize, span: crate::span::Span| {
+        model.expressions[expression].text.text.get(span.range())
+    };
+    let key = |program: &Program, site: &crate::compile::Site, expression: usize| {
+        let instruction = site.instruction as usize;
+        let span = program.span(instruction);
+        (program.site_kind(site), span, text_of(expression, span))
+    };
+    let forces_sites: Vec<(usize, SiteKey<'_>)> = forces
+        .sites()
+        .iter()
+        .map(|site| {
+            let expression = computed[forces.origin(site.instruction as usize)];
+            (expression, key(forces, site, expression))
+        })
+        .collect();
+    drives
+        .sites()
+        .iter()
+        .map(|site| {
+            let expression = functions[drives.origin(site.instruction as usize)];
+            let (kind, span, text) = key(drives, site, expression);
+            forces_sites
+                .iter()
+                .position(|(of, (k, s, _))| *of == expression && *k == kind && *s == span)
+                .or_else(|| {
+                    text.and_then(|text| {
+                        forces_sites
+                            .iter()
+                            .position(|(_, (k, _, t))| *k == kind && *t == Some(text))
+                    })
+                })
+        })
+        .collect()
 }
 
 /// The output index an [`OutputError`] names when the FUNCTION of motion

@@ -202,7 +202,7 @@ impl<'m> Mechanics<'m> {
                 output_of,
                 inverse_inertia,
                 joint_arms: joint_arms(model),
-                drives: Drives::new(model),
+                drives: Drives::held_by(model, program, computed),
                 solver_calls,
                 contacts: model
                     .forces
@@ -761,7 +761,7 @@ impl<'m> Mechanics<'m> {
         let equations = &self.equations;
         let fixed = Fixed::new(held, solved);
         let solved = equations.solve(&mut self.values, t, y, fixed, &mut self.buffers)?;
-        let drives = equations.drives.at(t)?;
+        let drives = equations.drives.at(t, held)?;
         let multipliers = solved.multipliers.unwrap_or_default();
         Ok(Reactions::new(
             equations.model,
@@ -1213,7 +1213,7 @@ impl Equations<'_> {
         });
         if model.is_constrained() {
             let motions = body_motions(&kinematics);
-            let drives = self.drives.at(t)?;
+            let drives = self.drives.at(t, fixed.sites)?;
             let held = constraint_loads(
                 model,
                 &motions,

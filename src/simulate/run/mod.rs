@@ -534,7 +534,9 @@ impl Simulation<'_> {
         let inverse_inertia = model.inverse_inertia();
         let drives = Drives::new(model);
         let assemble = |y: &mut [f64], time: f64, tolerance: Tolerance, initial: bool| {
-            let at = drives.at(time).map_err(|error| self.failure(time, error))?;
+            let at = drives
+                .at(time, None)
+                .map_err(|error| self.failure(time, error))?;
             project(model, y, &offsets, &at, &inverse_inertia, tolerance, initial).map_err(|error| {
                 let (message, owner) = match error {
                     Unassembled::Singular { row } if initial && !(model.joint_initials.is_empty() && model.exact.is_empty()) => ("the joints cannot be assembled: their equations and the initial conditions (the joints' IC, ICTRAN, ICROT, the parts' EXACT) are dependent at this state (an initial condition may set a coordinate the joints, motions or other initial conditions already set, or the configuration is singular)".to_string(), row.and_then(|row| owner_of_row(model, row).1)),
@@ -591,7 +593,9 @@ impl Simulation<'_> {
             found
         };
         let equilibrium = if settings.statics {
-            let at = drives.at(0.0).map_err(|error| self.failure(0.0, error))?;
+            let at = drives
+                .at(0.0, None)
+                .map_err(|error| self.failure(0.0, error))?;
             let mut put_back = |y: &mut [f64]| {
                 if model.is_constrained() {
                     assemble(
