@@ -342,6 +342,30 @@ SFORCE/3, I = 1, J = 1, FUNCTION = VARVAL(7)
     insta::assert_snapshot!(check(acf, FileKind::Acf));
 }
 
+/// A keyword given twice in a statement (abbreviated or not; a 3-D
+/// SPLINE's Y lists repeat), a second ground part, a number beyond a
+/// double's range in any statement's data and a statement named where a
+/// solver dataset wants its id are errors at their place.
+#[test]
+fn keywords_twice_second_grounds_and_overflowing_numbers() {
+    let adm = r"twice
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/2, PART = 1
+PART/5, GROUND
+PART/6, MASS = 1, CM = 7, IP = 1, 1, 1, MASS = 2
+MARKER/7, PART = 6
+REQUEST/1, F2 = TIME
+, F2 = 2*TIME
+VARIABLE/1, FUNC = 1, FUNCTION = 2
+VARIABLE/2, IC = 1e309, FUNCTION = 1
+SPLINE/1, X = 1, 2, 3, 4, Y = 0, 1, 2, 3, 4, Y = 1, 2, 3, 4, 5
+SPRINGDAMPER/1, TRANSLATION, I = 7, J = 1, K = 1, C = 1, LENGTH = 1
+DIFF/1, IC = 0, FUNCTION = DIF(FOO) + DX(BAR, 1)
+";
+    insta::assert_snapshot!(check(adm, FileKind::Adm));
+}
+
 /// What `eval --model` and the simulator refuse in the statements' data is
 /// an error of `check` too, at its statement.
 #[test]

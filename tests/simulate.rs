@@ -103,7 +103,20 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 35] = [
+    let cases: [(&str, &str, Settings); 36] = [
+        (
+            "a translational SFORCE and SPRINGDAMPER between a marker and itself",
+            "one marker
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+SFORCE/1, TRANSLATION, I = 3, J = 3, FUNCTION = 1
+SPRINGDAMPER/1, I = 3, J = 3, K = 1, C = 1, LENGTH = 1
+SFORCE/2, ROTATION, I = 3, J = 3, FUNCTION = 1
+",
+            short.clone(),
+        ),
         (
             "motions not simulated, and a primitive, a constraint not held yet",
             "joint
@@ -588,6 +601,24 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 0, 0.01)
         // inside a step).
         let bound = if method == Method::Radau5 { 5e-9 } else { 1e-9 };
         assert!(drift < bound, "{method}: relative energy drift {drift:e}");
+    }
+}
+
+/// A U array's entries are the values of its VARIABLES, as Adams reads
+/// them: `DIF(1)' = ARYVAL(1, 1) * ARYVAL(1, 2) = 3 t` gives `1.5 t²`.
+#[test]
+fn an_input_array_reads_its_variables() {
+    let text = "input array
+PART/1, GROUND
+ARRAY/1, U, VARIABLES = 4, 5
+VARIABLE/4, FUNCTION = TIME
+VARIABLE/5, FUNCTION = 3
+DIFF/1, IC = 0, FUNCTION = ARYVAL(1, 1) * ARYVAL(1, 2)
+";
+    let run = run(text, &settings(1.0, 4, 1e-10)).expect("runs");
+    for row in &run.rows {
+        let t = row[0];
+        assert!((row[1] - 1.5 * t * t).abs() < 1e-9, "t = {t}: {}", row[1]);
     }
 }
 

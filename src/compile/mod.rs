@@ -605,50 +605,34 @@ impl Compiler<'_> {
         }
         match (function, id) {
             (Function::Varval, Some(id)) if scene.statements.variables.contains_key(&id) => {
-                if self.variables_as_inputs {
-                    let name = variable_input(id);
-                    let index = self
-                        .input_index(&name)
-                        .unwrap_or_else(|| self.inputs.push(name));
-                    return Ok(self.input(index, span));
-                }
-                if let Some(&slot) = self
-                    .variable_slots
-                    .iter()
-                    .rev()
-                    .find_map(|scope| scope.get(&id))
+                self.model_variable(scene, id, span)
+            }
+            (Function::Aryval, Some(id)) if scene.statements.input_arrays.contains_key(&id) => {
+                let variables = &scene.statements.input_arrays[&id];
+                let entry = match args.get(1) {
+                    Some(Argument::Flag(entry, _)) => *entry,
+                    _ => 0,
+                };
+                match usize::try_from(entry)
+                    .ok()
+                    .and_then(|entry| variables.get(entry.checked_sub(1)?))
                 {
-                    return Ok(slot);
-                }
-                if self.inlining_set.contains(&id) {
-                    let mut cycle: Vec<String> = self
-                        .inlining
-                        .iter()
-                        .map(|id| format!("VARIABLE/{id}"))
-                        .collect();
-                    cycle.push(format!("VARIABLE/{id}"));
-                    return Err(CompileError::VariableLoop {
-                        cycle: cycle.join(" -> "),
+                    Some(&variable) if scene.statements.variables.contains_key(&variable) => {
+                        self.model_variable(scene, variable, span)
+                    }
+                    Some(&variable) => Err(CompileError::MissingStatement {
+                        function: "VARVAL",
+                        id: variable.to_string(),
+                        statement: format!("VARIABLE/{variable}"),
                         span,
-                    });
+                    }),
+                    None => Err(CompileError::ArrayEntry {
+                        id,
+                        entry,
+                        count: variables.len(),
+                        span,
+                    }),
                 }
-                self.inlining.push(id);
-                self.inlining_set.insert(id);
-                let root = &scene.statements.variables[&id].root;
-                // The VARIABLE's text is elsewhere: its instructions take the
-                // span of this VARVAL.
-                let spans_before = self.spans.len();
-                let slot = self.node(root);
-                for instruction_span in &mut self.spans[spans_before..] {
-                    *instruction_span = span;
-                }
-                self.inlining.pop();
-                self.inlining_set.remove(&id);
-                self.variable_slots
-                    .last_mut()
-                    .expect("a scope")
-                    .insert(id, slot);
-                Ok(slot)
             }
             (Function::Aryval, Some(id)) if scene.statements.arrays.contains_key(&id) => {
                 let values = &scene.statements.arrays[&id];
@@ -683,6 +667,56 @@ impl Compiler<'_> {
             }
             _ => Err(model_data_error(function, args, span, Some(scene))),
         }
+    }
+
+    /// `VARVAL(id)`: VARIABLE `id`'s FUNCTION, compiled in place (once per
+    /// scope) so that its derivatives flow, or an input where variables
+    /// are inputs.
+    fn model_variable(&mut self, scene: &Scene, id: u64, span: Span) -> Result<Slot, CompileError> {
+        if self.variables_as_inputs {
+            let name = variable_input(id);
+            let index = self
+                .input_index(&name)
+                .unwrap_or_else(|| self.inputs.push(name));
+            return Ok(self.input(index, span));
+        }
+        if let Some(&slot) = self
+            .variable_slots
+            .iter()
+            .rev()
+            .find_map(|scope| scope.get(&id))
+        {
+            return Ok(slot);
+        }
+        if self.inlining_set.contains(&id) {
+            let mut cycle: Vec<String> = self
+                .inlining
+                .iter()
+                .map(|id| format!("VARIABLE/{id}"))
+                .collect();
+            cycle.push(format!("VARIABLE/{id}"));
+            return Err(CompileError::VariableLoop {
+                cycle: cycle.join(" -> "),
+                span,
+            });
+        }
+        self.inlining.push(id);
+        self.inlining_set.insert(id);
+        let root = &scene.statements.variables[&id].root;
+        // The VARIABLE's text is elsewhere: its instructions take the
+        // span of this VARVAL.
+        let spans_before = self.spans.len();
+        let slot = self.node(root);
+        for instruction_span in &mut self.spans[spans_before..] {
+            *instruction_span = span;
+        }
+        self.inlining.pop();
+        self.inlining_set.remove(&id);
+        self.variable_slots
+            .last_mut()
+            .expect("a scope")
+            .insert(id, slot);
+        Ok(slot)
     }
 
     /// `DIF1(id)`: the FUNCTION of DIFF `id`, compiled in place so that its
@@ -1033,6 +1067,9 @@ fn model_data_error(
     }
     let statement = match function {
         Function::Varval => format!("VARIABLE/{id}"),
+        Function::Aryval if scene.is_some() => {
+            format!("ARRAY/{id} of NUMBERS (or a U array of VARIABLES)")
+        }
         Function::Aryval => format!("ARRAY/{id}"),
         Function::Curve => format!("CURVE/{id}"),
         Function::Interp => "a data table".to_string(),

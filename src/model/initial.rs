@@ -376,6 +376,18 @@ pub fn initial_scene(
             let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
             scene.statements.arrays.insert(id, values);
         }
+        if let (Some(id), Some(argument)) = (statement.id, statement.argument("VARIABLES", 3))
+            && statement.argument("U", 1).is_some()
+            && let Value::List(items) = &argument.value
+        {
+            let variables: Vec<u64> = items
+                .iter()
+                .filter_map(|item| item.number())
+                .filter(|id| id.fract() == 0.0 && *id > 0.0)
+                .map(|id| id as u64)
+                .collect();
+            scene.statements.input_arrays.insert(id, variables);
+        }
     }
     for (index, statement) in dataset
         .statements

@@ -11,7 +11,9 @@ use thiserror::Error;
 
 use super::initial::ConfigurationError;
 use super::variables::Reads;
-use super::{Dataset, Embedded, FileKind, ReadError, Statement, Value, is_kind, vocabulary};
+use super::{
+    Dataset, Embedded, FileKind, ReadError, Statement, Value, is_kind, is_statement, vocabulary,
+};
 use crate::ParseError;
 use crate::catalog::{ArgKind, Function};
 use crate::check::{Argument, Checked, NodeKind, Reference, visit};
@@ -115,6 +117,44 @@ pub enum ModelError {
         /// The statement's name and id.
         span: Span,
     },
+    /// A keyword given twice in one statement.
+    #[error("{statement}: {keyword} is given twice (first at line {first_line}): give it once")]
+    KeywordTwice {
+        /// The keyword, as its statement spells it in full.
+        keyword: String,
+        /// `REQUEST/4`.
+        statement: String,
+        /// The line of its first value.
+        first_line: usize,
+        /// The second keyword in the file.
+        span: Span,
+    },
+    /// A statement named, not numbered, in a solver dataset's expression.
+    #[error(
+        "{name} is not an id: a solver dataset refers to a {kind} by its number, as {function}(3) does"
+    )]
+    NamedReference {
+        /// The name as written.
+        name: String,
+        /// `MARKER`, `DIFF`.
+        kind: &'static str,
+        /// The function called.
+        function: &'static str,
+        /// The name in the file.
+        span: Span,
+    },
+    /// A second `PART/id, GROUND`.
+    #[error(
+        "{label}: a model has one ground part, and {first} is ground already: give this part a MASS, or join it to ground with a FIXED JOINT"
+    )]
+    SecondGround {
+        /// `PART/5`.
+        label: String,
+        /// `PART/1`.
+        first: String,
+        /// The GROUND keyword in the file.
+        span: Span,
+    },
     /// A name in a View command file that no command of the file creates.
     #[error("{what} {name} is not created in this file{suggestions}")]
     NotCreated {
@@ -161,6 +201,9 @@ impl ModelError {
             | ModelError::UnknownStatement { span, .. }
             | ModelError::UnknownKeyword { span, .. }
             | ModelError::Duplicate { span, .. }
+            | ModelError::KeywordTwice { span, .. }
+            | ModelError::NamedReference { span, .. }
+            | ModelError::SecondGround { span, .. }
             | ModelError::NotCreated { span, .. }
             | ModelError::VariableLoop { span, .. } => *span,
         }
@@ -348,6 +391,12 @@ pub fn check_model(text: &str, dataset: &Dataset) -> ModelCheck {
     check
         .problems
         .sort_by_key(|problem| problem.error.span().start);
+    // A number beyond a double's range is found both in every statement's
+    // data and where the initial configuration reads it.
+    check.problems.dedup_by(|later, earlier| {
+        later.error.span() == earlier.error.span()
+            && later.error.to_string() == earlier.error.to_string()
+    });
     check
 }
 
@@ -391,6 +440,7 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
         let Some(keywords) = vocabulary::keywords_of(&statement.name) else {
             continue;
         };
+        let mut given: HashMap<&str, Span> = HashMap::new();
         for argument in &statement.arguments {
             if !vocabulary::is_keyword(&argument.keyword, keywords) {
                 findings.push(
@@ -403,7 +453,87 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
                     Some(index),
                     None,
                 );
+                continue;
             }
+            // A 3-D SPLINE gives one Y list for each value of its second
+            // variable.
+            let repeats = is_statement(statement, "SPLINE") && argument.keyword.as_str() == "Y";
+            if let Some(keyword) = full_keyword(&argument.keyword, keywords)
+                && !repeats
+                && let Some(first) = given.insert(keyword, argument.keyword_span)
+            {
+                let first_line = findings.lines().location(first.start).line;
+                findings.push(
+                    ModelError::KeywordTwice {
+                        keyword: keyword.to_string(),
+                        statement: statement.label(),
+                        first_line,
+                        span: argument.keyword_span,
+                    },
+                    Some(index),
+                    None,
+                );
+            }
+            if let Some(error) = not_finite(statement, argument) {
+                findings.push(ModelError::Configuration { error }, Some(index), None);
+            }
+        }
+    }
+    check_grounds(dataset, findings);
+}
+
+/// The keyword of `keywords` that `written` is or abbreviates, when it
+/// names one only.
+fn full_keyword<'k>(written: &str, keywords: &[&'k str]) -> Option<&'k str> {
+    if let Some(exact) = keywords.iter().find(|known| **known == written) {
+        return Some(exact);
+    }
+    let mut starting = keywords.iter().filter(|known| known.starts_with(written));
+    match (starting.next(), starting.next()) {
+        (Some(only), None) => Some(only),
+        _ => None,
+    }
+}
+
+/// A number of `argument`'s value list written beyond the range of a
+/// double (`1e309`), as every statement's data is read.
+fn not_finite(statement: &Statement, argument: &super::Argument) -> Option<ConfigurationError> {
+    let Value::List(items) = &argument.value else {
+        return None;
+    };
+    let item = items.iter().find(|item| {
+        let digits = item.text.trim().trim_end_matches(['d', 'D']);
+        digits.parse::<f64>().is_ok_and(|value| !value.is_finite())
+    })?;
+    Some(ConfigurationError::NotFinite {
+        statement: statement.label(),
+        keyword: argument.keyword.to_string(),
+        text: item.text.to_string(),
+        span: item.span,
+    })
+}
+
+/// A second ground part, at its GROUND keyword.
+fn check_grounds(dataset: &Dataset, findings: &mut Findings<'_>) {
+    let mut ground = None;
+    for (index, statement) in dataset.statements.iter().enumerate() {
+        if !is_statement(statement, "PART") {
+            continue;
+        }
+        let Some(argument) = statement.argument("GROUND", 3) else {
+            continue;
+        };
+        match &ground {
+            None => ground = Some(statement.label()),
+            Some(first) => findings.push(
+                ModelError::SecondGround {
+                    label: statement.label(),
+                    first: first.clone(),
+                    span: argument.keyword_span,
+                },
+                Some(index),
+                None,
+            ),
         }
     }
 }
@@ -550,6 +680,22 @@ impl References {
                                 span: embedded.file_span(*span),
                             });
                         }
+                        (Argument::Marker(Reference::Name(name), span), ArgKind::Marker) => {
+                            report(ModelError::NamedReference {
+                                name: name.clone(),
+                                kind: "MARKER",
+                                function: function.name(),
+                                span: embedded.file_span(*span),
+                            });
+                        }
+                        (Argument::Object(Reference::Name(name), span), ArgKind::Object) => {
+                            report(ModelError::NamedReference {
+                                name: name.clone(),
+                                kind: statement_kind(*function).unwrap_or("statement"),
+                                function: function.name(),
+                                span: embedded.file_span(*span),
+                            });
+                        }
                         (Argument::Object(Reference::Id(id), span), ArgKind::Object) => {
                             let Some(kind) = statement_kind(*function) else {
                                 continue;
@@ -602,10 +748,16 @@ impl References {
     }
 }
 
-/// The number of entries of an ARRAY statement: its `NUMBERS`, else its `SIZE`.
+/// The number of entries of an ARRAY statement: its `NUMBERS` (a U
+/// array's `VARIABLES`), else its `SIZE`.
 fn array_size(statement: &Statement) -> Option<usize> {
     statement
         .argument("NUMBERS", 2)
+        .or_else(|| {
+            statement
+                .argument("U", 1)
+                .and(statement.argument("VARIABLES", 3))
+        })
         .and_then(|argument| match &argument.value {
             Value::List(items) => Some(items.len()),
             _ => None,

@@ -251,6 +251,9 @@ pub struct StatementData {
     pub variables: HashMap<u64, Checked>,
     /// ARRAY id to its NUMBERS: `ARYVAL(id, i)` is entry `i` (from 1).
     pub arrays: HashMap<u64, Vec<f64>>,
+    /// ARRAY id (of type U, a system's inputs) to its VARIABLES:
+    /// `ARYVAL(id, i)` is `VARVAL` of the `i`-th.
+    pub input_arrays: HashMap<u64, Vec<u64>>,
     /// SPLINE id to its points: `AKISPL(x, z, id)` and `CUBSPL(x, z, id)`
     /// interpolate them.
     pub splines: HashMap<u64, SplineData>,

@@ -762,6 +762,15 @@ impl Reader<'_> {
             let Some(i) = self.marker(statement, "I") else {
                 continue;
             };
+            if let Some(span) = one_marker_line(statement) {
+                let message = format!(
+                    "{}: I and J name one marker: a translational {} acts along the line between two markers, so give another J",
+                    statement.label(),
+                    kind
+                );
+                self.refuse(message, span);
+                continue;
+            }
             if ["BUSHING", "SPRINGDAMPER", "BEAM", "FIELD"]
                 .iter()
                 .any(|kind| is_kind(&statement.name, kind))
@@ -1221,4 +1230,18 @@ impl Reader<'_> {
         }
         outputs
     }
+}
+
+/// The J argument of a translational SFORCE or SPRINGDAMPER whose I and J
+/// name one marker: its line of action is not defined.
+fn one_marker_line(statement: &Statement) -> Option<Span> {
+    let translational = ["SFORCE", "SPRINGDAMPER"]
+        .iter()
+        .any(|kind| is_kind(&statement.name, kind))
+        && statement.argument("ROTATIONAL", 3).is_none();
+    let i = number(statement, "I", f64::NAN).ok()?;
+    let j = number(statement, "J", f64::NAN).ok()?;
+    (translational && i == j)
+        .then(|| statement.argument("J", 1).map(|argument| argument.span))
+        .flatten()
 }
