@@ -544,7 +544,7 @@ impl LoadedModel {
                     loaded.model.statics = run.is_some_and(|run| run.statics);
                     loaded.model.land_on_outputs = run.is_some_and(|run| run.land_on_outputs);
                 }
-                Err(problem) => loaded.run_problem = Some(problem),
+                Err(problem) => loaded.run_problem = Some(problem.to_string()),
             }
         }
         Ok(loaded)

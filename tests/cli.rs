@@ -1201,3 +1201,37 @@ MARKER/4, PART = 1, ZP = 0, 0, 0
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A command file beside a dataset that does not check (a command the
+/// solver does not know) or asks for a run mbexpr does not make stops
+/// `simulate` with the command's line and a caret, and `check` of the
+/// command file finds the same.
+#[test]
+fn a_command_file_that_gives_no_run_is_refused_at_its_place() {
+    let folder = std::env::temp_dir().join(format!("mbexpr-commands-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).expect("a temporary folder");
+    let ball = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/simulate/a1_ball.adm"
+    ))
+    .expect("the example");
+    let mut shown = String::new();
+    for (name, commands) in [
+        ("unknown", "ball\nball\nfrobnicate/all\nsimulate/dynamic, end = 1, steps = 4\nstop\n"),
+        ("end0", "ball\nball\nsimulate/dynamic, end = 0, steps = 10\nstop\n"),
+        ("dtout", "ball\nball\nsimulate/dynamic, end = 1, dtout = 0.3\nstop\n"),
+    ] {
+        let dataset = folder.join(format!("{name}.adm"));
+        let command_file = folder.join(format!("{name}.acf"));
+        std::fs::write(&dataset, &ball).expect("written");
+        std::fs::write(&command_file, commands).expect("written");
+        for args in [
+            vec!["simulate", dataset.to_str().expect("UTF-8")],
+            vec!["check", command_file.to_str().expect("UTF-8")],
+        ] {
+            shown += &check(&args, "").replace(folder.to_str().expect("UTF-8"), "DIR");
+        }
+    }
+    std::fs::remove_dir_all(&folder).ok();
+    insta::assert_snapshot!(shown);
+}

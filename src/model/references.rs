@@ -143,6 +143,16 @@ pub enum ModelError {
         /// The name in the file.
         span: Span,
     },
+    /// A command file's commands that ask for a run `mbexpr simulate` does
+    /// not make (its reader's message, added by the callers that read the
+    /// run: the model checker does not simulate).
+    #[error("{message}")]
+    Run {
+        /// What the run's reader said.
+        message: String,
+        /// The command.
+        span: Span,
+    },
     /// A second `PART/id, GROUND`.
     #[error(
         "{label}: a model has one ground part, and {first} is ground already: give this part a MASS, or join it to ground with a FIXED JOINT"
@@ -202,6 +212,7 @@ impl ModelError {
             | ModelError::UnknownKeyword { span, .. }
             | ModelError::Duplicate { span, .. }
             | ModelError::KeywordTwice { span, .. }
+            | ModelError::Run { span, .. }
             | ModelError::NamedReference { span, .. }
             | ModelError::SecondGround { span, .. }
             | ModelError::NotCreated { span, .. }

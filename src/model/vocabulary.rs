@@ -688,6 +688,7 @@ pub static DATASET_STATEMENTS: LazyLock<Vec<&'static str>> =
 
 /// The commands of a solver command file (`.acf`).
 pub const COMMANDS: &[&str] = &[
+    "ACCGRAV",
     "ACTIVATE",
     "ARRAY",
     "BEAM",

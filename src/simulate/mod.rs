@@ -61,8 +61,8 @@ pub use model::{
     JointInitial, JointKind, MarkerMotion, MassProperties, Model, Motion, Output, Shape, Solid,
 };
 pub use read::{
-    ModelFormat, RunCommands, Unread, format_of_path, from_scene, is_scene_path, run_settings,
-    run_settings_beside,
+    CommandFileError, ModelFormat, RunCommands, Unread, format_of_path, from_scene, is_scene_path,
+    run_settings, run_settings_beside,
 };
 pub use run::{
     DEFAULT_MAX_STEPS, Equations, ErrorEstimate, Event, MethodChange, SMALLEST_RTOL, SensorTrip,

@@ -135,7 +135,18 @@ fn check_model_file(
     out: &mut impl Write,
 ) -> Result<(usize, usize), Fatal> {
     let dataset = model::read(text, kind);
-    let report = model::check_model(text, &dataset);
+    let mut report = model::check_model(text, &dataset);
+    // A command file's run as `mbexpr simulate` reads it.
+    if kind == FileKind::Acf
+        && report.problems.is_empty()
+        && let Err((message, span)) = mbexpr::simulate::run_settings(&dataset)
+    {
+        report.problems.push(model::Problem {
+            error: model::ModelError::Run { message, span },
+            statement: None,
+            expression: None,
+        });
+    }
     let lines = LineIndex::new(text);
     let statement_fields =
         |index: Option<usize>| match index.map(|index| &dataset.statements[index]) {

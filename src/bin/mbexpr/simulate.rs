@@ -14,8 +14,8 @@ use std::time::{Duration, Instant};
 use clap::ValueEnum;
 use mbexpr::integrate::Method;
 use mbexpr::simulate::{
-    self, ErrorEstimate, Event, MethodChange, Model, ModelFormat, Place, Settings, SimulateError,
-    Simulation, Sink, Summary, Unread,
+    self, CommandFileError, ErrorEstimate, Event, MethodChange, Model, ModelFormat, Place,
+    Settings, SimulateError, Simulation, Sink, Summary, Unread,
 };
 use mbexpr::{Counted, Shown};
 use serde_json::json;
@@ -203,7 +203,12 @@ fn read_model(
                 model.statics = run.is_some_and(|run| run.statics);
                 model.land_on_outputs = run.is_some_and(|run| run.land_on_outputs);
             }
-            Err(problem) => run_problem = Some(problem),
+            Err(CommandFileError::Refused {
+                path,
+                text,
+                problems,
+            }) => run_problem = Some(diagnostics(&path, &text, problems)),
+            Err(problem) => run_problem = Some(format!("error: {problem}\n")),
         }
     }
     Ok((source, model, run_problem))
@@ -301,7 +306,7 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     let (end, steps) = match (args.end, args.steps, model.run) {
         (Some(end), Some(steps), _) => (end, steps),
         _ if let Some(problem) = run_problem => {
-            return Err(Fatal::usage(format!("error: {problem}")));
+            return Err(Fatal::usage(problem));
         }
         (end, steps, Some((file_end, file_steps))) => {
             (end.unwrap_or(file_end), steps.unwrap_or(file_steps))

@@ -13,7 +13,8 @@ pub const MOST_OUTPUT_STEPS: usize = 100_000_000;
 /// The commands that change the model (or hand it to a user subroutine)
 /// between analyses; mbexpr runs the dataset as it is, so a command file
 /// that changes it before a `SIMULATE` asks for a run mbexpr does not make.
-const MODEL_CHANGES: [&str; 28] = [
+const MODEL_CHANGES: [&str; 29] = [
+    "ACCGRAV",
     "ACTIVATE",
     "ARRAY",
     "BEAM",

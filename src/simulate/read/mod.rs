@@ -23,6 +23,7 @@ use std::path::Path;
 
 use super::error::SimulateError;
 use crate::model::{self, FileKind, Problem};
+use crate::span::Span;
 
 /// What a model's text is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,19 +73,74 @@ pub fn format_of_path(
     }
 }
 
+/// Why the `.acf` beside a dataset gives no run.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CommandFileError {
+    /// The file cannot be read.
+    #[error("cannot read {path}: {message}")]
+    Unreadable {
+        /// The command file's path.
+        path: String,
+        /// What the system said.
+        message: String,
+    },
+    /// The file does not check, or asks for a run mbexpr does not make.
+    #[error("{}", located(path, text, problems))]
+    Refused {
+        /// The command file's path.
+        path: String,
+        /// Its text.
+        text: String,
+        /// Each problem, at its place in the text.
+        problems: Vec<(Span, String)>,
+    },
+}
+
+/// `path:line:column: message`, a line each.
+fn located(path: &str, text: &str, problems: &[(Span, String)]) -> String {
+    problems
+        .iter()
+        .map(|(span, message)| {
+            let at = crate::Location::of(text, span.start);
+            format!("{path}:{at}: {message}")
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// The run of the `.acf` beside the dataset at `path` ([`run_settings`]);
 /// none for an `.acf` itself, for standard input (`-`) or when there is no
-/// such file.
-pub fn run_settings_beside(path: &str) -> Result<Option<RunCommands>, String> {
+/// such file. A command file that does not check (a command the solver
+/// does not know) is refused with its problems, as `mbexpr check` finds
+/// them.
+pub fn run_settings_beside(path: &str) -> Result<Option<RunCommands>, CommandFileError> {
     let commands = Path::new(path).with_extension("acf");
     if path == "-" || FileKind::of_path(path) == Some(FileKind::Acf) || !commands.exists() {
         return Ok(None);
     }
-    let text = std::fs::read_to_string(&commands)
-        .map_err(|error| format!("cannot read {}: {error}", commands.display()))?;
+    let shown = commands.display().to_string();
+    let bytes = std::fs::read(&commands).map_err(|error| CommandFileError::Unreadable {
+        path: shown.clone(),
+        message: error.to_string(),
+    })?;
+    // Command files are read as datasets are: bytes that are not UTF-8
+    // as Windows-1252.
+    let (text, _) = model::decode_owned(bytes);
+    let refused = |problems: Vec<(Span, String)>| CommandFileError::Refused {
+        path: shown.clone(),
+        text: text.clone(),
+        problems,
+    };
     let dataset = model::read(&text, FileKind::Acf);
-    run_settings(&dataset).map_err(|(message, span)| {
-        let at = crate::Location::of(&text, span.start);
-        format!("{}:{at}: {message}", commands.display())
-    })
+    let report = model::check_model(&text, &dataset);
+    if !report.problems.is_empty() {
+        return Err(refused(
+            report
+                .problems
+                .iter()
+                .map(|problem| (problem.error.span(), problem.error.to_string()))
+                .collect(),
+        ));
+    }
+    run_settings(&dataset).map_err(|(message, span)| refused(vec![(span, message)]))
 }
