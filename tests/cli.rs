@@ -1217,9 +1217,18 @@ fn a_command_file_that_gives_no_run_is_refused_at_its_place() {
     .expect("the example");
     let mut shown = String::new();
     for (name, commands) in [
-        ("unknown", "ball\nball\nfrobnicate/all\nsimulate/dynamic, end = 1, steps = 4\nstop\n"),
-        ("end0", "ball\nball\nsimulate/dynamic, end = 0, steps = 10\nstop\n"),
-        ("dtout", "ball\nball\nsimulate/dynamic, end = 1, dtout = 0.3\nstop\n"),
+        (
+            "unknown",
+            "ball\nball\nfrobnicate/all\nsimulate/dynamic, end = 1, steps = 4\nstop\n",
+        ),
+        (
+            "end0",
+            "ball\nball\nsimulate/dynamic, end = 0, steps = 10\nstop\n",
+        ),
+        (
+            "dtout",
+            "ball\nball\nsimulate/dynamic, end = 1, dtout = 0.3\nstop\n",
+        ),
     ] {
         let dataset = folder.join(format!("{name}.adm"));
         let command_file = folder.join(format!("{name}.acf"));

@@ -103,7 +103,19 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 36] = [
+    let cases: [(&str, &str, Settings); 37] = [
+        (
+            "a torque near the largest double: the steps shrink to nothing, and the part it spins is named",
+            "huge torque
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+VTORQUE/1, I = 3, JFLOAT = 4, RM = 1, TX = 0, TY = 0, TZ = 1e308
+MARKER/4, PART = 1, FLOATING
+",
+            short.clone(),
+        ),
         (
             "a translational SFORCE and SPRINGDAMPER between a marker and itself",
             "one marker

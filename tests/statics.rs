@@ -136,5 +136,5 @@ END
     )
     .err()
     .unwrap_or_default();
-    insta::assert_snapshot!(error.trim_end(), @"the run stops at t = 0: no static equilibrium found from the initial conditions: Newton's iterations end with PART/2's linear acceleration at 9.810e0 (the forces may have no balance near the start, or a freedom no force holds: start the dynamics from the initial conditions without SIMULATE/STATICS or --statics)");
+    insta::assert_snapshot!(error.trim_end(), @"4:1: the run stops at t = 0: no static equilibrium found from the initial conditions: Newton's iterations end with PART/2's linear acceleration at 9.810e0 (the forces may have no balance near the start, or a freedom no force holds: start the dynamics from the initial conditions without SIMULATE/STATICS or --statics)");
 }

@@ -769,7 +769,17 @@ impl Simulation<'_> {
             }
             stepper.step_to(&mut system, target).map_err(|error| {
                 let stiff_from = summary.stiff_from.or(stepper.stiff_from());
-                self.step_error(error, settings, stiff_from)
+                let stalled = matches!(
+                    error,
+                    IntegrateError::StepSizeTooSmall {
+                        cause: Rejection::Tolerance | Rejection::NonFinite,
+                        ..
+                    }
+                );
+                let fastest = stalled
+                    .then(|| Self::fastest_state(&mut system, (stepper.t(), stepper.y()), settings))
+                    .flatten();
+                self.step_error(error, settings, stiff_from, fastest)
             })?;
             summary.stiff_from = summary.stiff_from.or(stepper.stiff_from());
             if stepper.method() != method {
@@ -1144,7 +1154,24 @@ impl Simulation<'_> {
         error: IntegrateError<OutputError>,
         settings: &Settings,
         stiff_from: Option<f64>,
+        fastest: Option<(usize, f64)>,
     ) -> SimulateError {
+        if let Some((state, rate)) = fastest {
+            return match self.integration_error(error) {
+                SimulateError::Integration { time, message, .. } => {
+                    let (owner, place) = self.state_owner(state);
+                    SimulateError::Integration {
+                        time,
+                        message: format!(
+                            "{message}; the state that changes fastest for its tolerance is {owner} (its rate of change {}): check the initial conditions and forces that drive it",
+                            Shown(rate)
+                        ),
+                        place,
+                    }
+                }
+                other => other,
+            };
+        }
         let IntegrateError::TooManySteps { t, .. } = error else {
             return self.integration_error(error);
         };
@@ -1208,6 +1235,60 @@ impl Simulation<'_> {
         Ok(active)
     }
 
+    /// What state `state` is, `DIFF/3` or `PART/2's angular velocity`, and
+    /// the place of its DIFF's FUNCTION or its part's statement.
+    fn state_owner(&self, state: usize) -> (String, Place) {
+        let model = self.model;
+        if let Some(diff) = model.diffs.get(state) {
+            let expression = &model.expressions[diff.function];
+            return (
+                format!("DIFF/{}", diff.id),
+                Place::Expression {
+                    expression: diff.function,
+                    span: crate::span::Span::new(0, expression.text.text.len()),
+                },
+            );
+        }
+        let body = (state - model.diffs.len()) / BODY_STATES;
+        let quantity = match (state - model.diffs.len()) % BODY_STATES {
+            0..3 => "position",
+            3..7 => "orientation",
+            7..10 => "velocity",
+            _ => "angular velocity",
+        };
+        (
+            format!("{}'s {quantity}", model.scene.bodies[body].name),
+            model
+                .masses
+                .get(body)
+                .map_or(Place::None, |mass| Place::File(mass.span)),
+        )
+    }
+
+    /// The state that changes fastest for the error it may have, at `(t,
+    /// y)`: the largest `|dy/dt| / (atol + rtol |y|)` (where a run whose
+    /// steps shrink to nothing without a failing expression is stuck), with
+    /// its rate of change; `None` where the rates cannot be evaluated.
+    fn fastest_state(
+        system: &mut Held<'_>,
+        (t, y): (f64, &[f64]),
+        settings: &Settings,
+    ) -> Option<(usize, f64)> {
+        let mut rates = vec![0.0; y.len()];
+        system
+            .mechanics
+            .rates(t, y, Some(&system.held), &mut rates)
+            .ok()?;
+        let scaled = |i: usize| {
+            let scale = settings.atol + settings.rtol * y[i].abs();
+            let value = rates[i].abs() / scale;
+            if value.is_nan() { f64::INFINITY } else { value }
+        };
+        (0..y.len())
+            .max_by(|&a, &b| scaled(a).total_cmp(&scaled(b)))
+            .map(|state| (state, rates[state]))
+    }
+
     /// An error, at the statement of the part or DIFF it names, when the
     /// state at the start or its rates of change are not finite numbers
     /// (an initial velocity or force beyond the range of a double): no
@@ -1224,36 +1305,7 @@ impl Simulation<'_> {
             (None, Some(state)) => (state, "rate of change", rates[state]),
             (None, None) => return Ok(()),
         };
-        let model = self.model;
-        let (owner, place) = match model.diffs.get(state) {
-            Some(diff) => {
-                let expression = &model.expressions[diff.function];
-                (
-                    format!("DIFF/{}", diff.id),
-                    Place::Expression {
-                        expression: diff.function,
-                        span: crate::span::Span::new(0, expression.text.text.len()),
-                    },
-                )
-            }
-            None => {
-                let body = (state - model.diffs.len()) / BODY_STATES;
-                let component = (state - model.diffs.len()) % BODY_STATES;
-                let quantity = match component {
-                    0..3 => "position",
-                    3..7 => "orientation",
-                    7..10 => "velocity",
-                    _ => "angular velocity",
-                };
-                (
-                    format!("{}'s {quantity}", model.scene.bodies[body].name),
-                    model
-                        .masses
-                        .get(body)
-                        .map_or(Place::None, |mass| Place::File(mass.span)),
-                )
-            }
-        };
+        let (owner, place) = self.state_owner(state);
         Err(SimulateError::Integration {
             time: 0.0,
             message: format!(
@@ -1275,24 +1327,22 @@ impl Simulation<'_> {
                 place: Place::None,
             },
             statics::Unsettled::Moving { state, residual } => {
-                let model = self.model;
-                let what = if state < model.diffs.len() {
-                    format!("DIFF/{}'s rate", model.diffs[state].id)
+                let (owner, place) = self.state_owner(state);
+                // The residual is of the state's rate of change.
+                let what = owner
+                    .replace("angular velocity", "angular acceleration")
+                    .replace("'s velocity", "'s linear acceleration");
+                let what = if state < self.model.diffs.len() {
+                    format!("{what}'s rate")
                 } else {
-                    let body = (state - model.diffs.len()) / BODY_STATES;
-                    let angular = (state - model.diffs.len()) % BODY_STATES >= 10;
-                    format!(
-                        "{}'s {} acceleration",
-                        model.scene.bodies[body].name,
-                        if angular { "angular" } else { "linear" }
-                    )
+                    what
                 };
                 SimulateError::Integration {
                     time: 0.0,
                     message: format!(
                         "no static equilibrium found from the initial conditions: Newton's iterations end with {what} at {residual:.3e} (the forces may have no balance near the start, or a freedom no force holds: start the dynamics from the initial conditions without SIMULATE/STATICS or --statics)"
                     ),
-                    place: Place::None,
+                    place,
                 }
             }
         }
