@@ -395,20 +395,24 @@ impl Rows<'_> {
             return Ok(None);
         }
         self.at(t, y)?;
-        let now: Vec<bool> = self
+        let sensors = self.model.sensors.len();
+        let sensed = &self.values[self.values.len() - sensors..];
+        let mut first = None;
+        for (k, ((sensor, &value), before)) in self
             .model
             .sensors
             .iter()
-            .zip(self.sensed())
-            .zip(&self.sensed_before)
-            .map(|((sensor, &value), &before)| {
-                sensor.is_active(value) || sensor.passes(before, value)
-            })
-            .collect();
-        let first = (0..now.len()).find(|&k| now[k] && !active[k]);
-        active.copy_from_slice(&now);
-        let sensed = self.sensed().to_vec();
-        self.sensed_before = sensed;
+            .zip(sensed)
+            .zip(&mut self.sensed_before)
+            .enumerate()
+        {
+            let now = sensor.is_active(value) || sensor.passes(*before, value);
+            if now && !active[k] && first.is_none() {
+                first = Some(k);
+            }
+            active[k] = now;
+            *before = value;
+        }
         Ok(first)
     }
 }
