@@ -9,6 +9,9 @@
   chain N: N free balls along ground x, no gravity, every other one moving,
       meeting their neighbours through IMPACT(DM, VR, 1.0, 1e4, 1.5, 10, 1e-3):
       not stiff.
+  links N: N unit links (mass 1, IP 1) hanging along ground x from ground
+      on REVOLUTE joints, under gravity along -y: the jointed chain of
+      BENCHMARKS.md.
   diff-stack N: the stack as 2N DIFFs (heights and vertical speeds), for
       scipy beside mbexpr (scripts/sparse_core.py writes the same equations in
       Python).
@@ -61,6 +64,22 @@ def chain(n):
     return "\n".join(lines) + "\n"
 
 
+def links(n):
+    lines = [f"A chain of {n} links on REVOLUTE joints (scripts/stack_models.py)"]
+    lines += ["PART/1, GROUND", "MARKER/1, PART = 1"]
+    previous = 1
+    for part in range(2, n + 2):
+        x = part - 2
+        lines.append(f"PART/{part}, MASS = 1, IP = 1, 1, 1, CM = {part * 10}")
+        lines.append(f"MARKER/{part * 10}, PART = {part}, QP = {x}.5, 0, 0")
+        lines.append(f"MARKER/{part * 10 + 1}, PART = {part}, QP = {x}, 0, 0")
+        lines.append(f"MARKER/{part * 10 + 2}, PART = {part}, QP = {x + 1}, 0, 0")
+        lines.append(f"JOINT/{part}, REVOLUTE, I = {part * 10 + 1}, J = {previous}")
+        previous = part * 10 + 2
+    lines += ["ACCGRAV/JGRAV = -9.8", "END"]
+    return "\n".join(lines) + "\n"
+
+
 def diff_stack(n):
     """Heights z_k = DIF(k + 1), speeds v_k = DIF(n + k + 1)."""
     lines = [f"The stack of {n} balls as DIFFs (scripts/stack_models.py)", "!"]
@@ -86,5 +105,5 @@ def diff_stack(n):
 
 if __name__ == "__main__":
     kind, n = sys.argv[1], int(sys.argv[2])
-    write = {"stack": stack, "chain": chain, "diff-stack": diff_stack}[kind]
+    write = {"stack": stack, "chain": chain, "links": links, "diff-stack": diff_stack}[kind]
     sys.stdout.write(write(n))
