@@ -90,7 +90,7 @@ END
 #[test]
 fn a_massless_part_the_joints_leave_free_is_refused() {
     insta::assert_snapshot!(check("!"), @"4:1: PART/2 has no MASS and no joint, primitive or motion holds it: give MASS = a positive number (a massless part moves only as the joints take it)");
-    insta::assert_snapshot!(check("JOINT/1, TRANSLATIONAL, I = 20, J = 1"), @"the run stops at t = 0: the joints: their equations are singular: the joints leave a massless part (PART/2) a freedom no mass follows, or the configuration is singular; give the part MASS or hold it");
+    insta::assert_snapshot!(check("JOINT/1, TRANSLATIONAL, I = 20, J = 1"), @"4:1: the run stops at t = 0: the joints: their equations are singular: the joints leave a massless part (PART/2) a freedom no mass follows, or the configuration is singular; give the part MASS or hold it");
 }
 
 /// The rod pendulum with a spring pulling the massless rod's end toward a

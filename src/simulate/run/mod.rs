@@ -1086,7 +1086,7 @@ impl Simulation<'_> {
             SimulateError::Integration {
                 time,
                 message: error.error.to_string(),
-                place: Place::None,
+                place: self.joints_place(),
             }
         } else {
             SimulateError::Evaluation {
@@ -1094,6 +1094,18 @@ impl Simulation<'_> {
                 expression: self.expression_of(program, error.output),
                 error: error.error,
             }
+        }
+    }
+
+    /// Where the joints' failure is placed: at the massless part when the
+    /// model has one (the likelier cause is a freedom its joints leave it,
+    /// [`crate::simulate::constraints::joints_singular_in`]), else nowhere
+    /// in the file.
+    fn joints_place(&self) -> Place {
+        let mut massless = self.model.masses.iter().filter(|mass| mass.is_massless());
+        match (massless.next(), massless.next()) {
+            (Some(part), None) => Place::File(part.span),
+            _ => Place::None,
         }
     }
 
@@ -1365,7 +1377,7 @@ impl Simulation<'_> {
                 return SimulateError::Integration {
                     time: *t,
                     message: format!("the Jacobian: {}", error.error),
-                    place: Place::None,
+                    place: self.joints_place(),
                 };
             }
             IntegrateError::Jacobian { t, error } => {
@@ -1387,6 +1399,7 @@ impl Simulation<'_> {
                 expression: self.expression_of(&self.dynamics, failure.output),
                 span: failure.error.span(),
             },
+            Some(Rejection::System(_)) => self.joints_place(),
             _ => Place::None,
         };
         SimulateError::Integration {
