@@ -97,6 +97,9 @@ struct Turns {
     /// Per instruction, up to [`ACCEPTED_ANGLES`] `(time, value)` at
     /// accepted states, oldest first.
     accepted: Vec<Vec<(f64, f64)>>,
+    /// Per instruction, how many of its accepted values are of the piece of
+    /// the run under way (since its start or its last switch).
+    in_piece: Vec<usize>,
 }
 
 /// The accepted values an angle's extrapolation passes through: three, a
@@ -117,6 +120,13 @@ impl Turns {
     /// from its accepted values (Newton's divided differences), if any.
     fn expected(&self, index: usize) -> Option<f64> {
         let points = self.accepted.get(index)?;
+        // A parabola only through values of the piece under way: across a
+        // switch the angle's acceleration jumps (a motion's ramp ends),
+        // and a parabola through both sides, taken past it, bends off by
+        // turns; a line through the last value before the switch keeps
+        // the velocity, which a switch leaves whole.
+        let in_piece = self.in_piece.get(index).copied().unwrap_or(points.len());
+        let points = &points[points.len() - points.len().min(in_piece.max(2))..];
         let &(last_time, last) = points.last()?;
         // The newest points whose spread the time lies within a few times
         // of: a polynomial through points close together, taken far past
@@ -501,12 +511,20 @@ impl<T: Number> Evaluator<'_, T> {
     }
 
     /// The last evaluation was at a simulation's accepted state at `time`:
-    /// its AX, AY, AZ, INCANG values settle their turns from there on.
-    pub(crate) fn accept_angles(&mut self, time: f64) {
+    /// its AX, AY, AZ, INCANG values settle their turns from there on. A
+    /// state that `starts_piece` (the start, a switch) begins a piece of
+    /// the run: the extrapolation takes no parabola across it.
+    pub(crate) fn accept_angles(&mut self, time: f64, starts_piece: bool) {
         let turns = self.turns.get_or_insert_with(Box::default);
         turns.time = time;
         turns.accepted.resize(self.angles.len(), Vec::new());
-        for (points, angle) in turns.accepted.iter_mut().zip(&self.angles) {
+        turns.in_piece.resize(self.angles.len(), 0);
+        for ((points, in_piece), angle) in turns
+            .accepted
+            .iter_mut()
+            .zip(&mut turns.in_piece)
+            .zip(&self.angles)
+        {
             let Some(value) = angle else { continue };
             // A state accepted again at (nearly) the same time (a switch's
             // cut, a restart) replaces the last: divided differences over
@@ -514,11 +532,17 @@ impl<T: Number> Evaluator<'_, T> {
             let gap = ANGLE_TIME_GAP * time.abs().max(1.0);
             while points.last().is_some_and(|&(at, _)| at >= time - gap) {
                 points.pop();
+                *in_piece = in_piece.saturating_sub(1);
             }
             if points.len() == ACCEPTED_ANGLES {
                 points.remove(0);
             }
             points.push((time, *value));
+            *in_piece = if starts_piece {
+                1
+            } else {
+                (*in_piece + 1).min(ACCEPTED_ANGLES)
+            };
         }
     }
 

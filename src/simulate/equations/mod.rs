@@ -516,11 +516,12 @@ impl<'m> Mechanics<'m> {
         t: f64,
         y: &[f64],
         held: Option<&[Option<Code>]>,
+        starts_piece: bool,
     ) -> Result<(), OutputError> {
         if self.values.continues_angles() {
             let mut rates = vec![0.0; y.len()];
             self.rates(t, y, held, &mut rates)?;
-            self.values.accept_angles(t);
+            self.values.accept_angles(t, starts_piece);
         }
         Ok(())
     }
@@ -533,8 +534,8 @@ impl<'m> Mechanics<'m> {
 
     /// The program's AX, AY, AZ evaluated last were at an accepted state
     /// at `t` ([`Mechanics::accept`] for a program evaluated otherwise).
-    pub(crate) fn accept_angles(&mut self, t: f64) {
-        self.values.accept_angles(t);
+    pub(crate) fn accept_angles(&mut self, t: f64, starts_piece: bool) {
+        self.values.accept_angles(t, starts_piece);
     }
 
     /// The natural branch of every site and their switching values at

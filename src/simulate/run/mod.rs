@@ -307,16 +307,16 @@ struct Rows<'m> {
 impl Rows<'_> {
     /// `(t, y)` is an accepted state: the AX, AY, AZ the outputs (and the
     /// forces whose values they read) evaluate settle their turns there.
-    fn accept(&mut self, t: f64, y: &[f64]) -> Result<(), Failed> {
+    fn accept(&mut self, t: f64, y: &[f64], starts_piece: bool) -> Result<(), Failed> {
         let reactions = self
             .reactions
             .as_ref()
             .is_some_and(|(dynamics, _)| dynamics.continues_angles());
         if reactions || self.outputs.continues_angles() {
             self.at(t, y)?;
-            self.outputs.accept_angles(t);
+            self.outputs.accept_angles(t, starts_piece);
             if let Some((dynamics, _)) = &mut self.reactions {
-                dynamics.accept_angles(t);
+                dynamics.accept_angles(t, starts_piece);
             }
         }
         Ok(())
@@ -649,11 +649,12 @@ impl Simulation<'_> {
         // a kink of this level (0: the start, a switch).
         let accept =
             |system: &mut Held<'_>, rows: &mut Rows<'_>, t: f64, y: &[f64], starts: Option<u8>| {
-                system.mechanics.accept(t, y, Some(&system.held))?;
+                let piece = starts == Some(0);
+                system.mechanics.accept(t, y, Some(&system.held), piece)?;
                 system
                     .mechanics
                     .record_delays(t, y, Some(&system.held), starts)?;
-                rows.accept(t, y)?;
+                rows.accept(t, y, piece)?;
                 rows.record_delays(t, y, starts)
             };
         accept(&mut system, &mut rows, 0.0, &y0, Some(0))
