@@ -608,50 +608,21 @@ impl Compiler<'_> {
                 self.model_variable(scene, id, span)
             }
             (Function::Aryval, Some(id)) if scene.statements.input_arrays.contains_key(&id) => {
-                let variables = &scene.statements.input_arrays[&id];
-                let entry = match args.get(1) {
-                    Some(Argument::Flag(entry, _)) => *entry,
-                    _ => 0,
-                };
-                match usize::try_from(entry)
-                    .ok()
-                    .and_then(|entry| variables.get(entry.checked_sub(1)?))
-                {
-                    Some(&variable) if scene.statements.variables.contains_key(&variable) => {
+                match *array_entry(id, &scene.statements.input_arrays[&id], args, span)? {
+                    variable if scene.statements.variables.contains_key(&variable) => {
                         self.model_variable(scene, variable, span)
                     }
-                    Some(&variable) => Err(CompileError::MissingStatement {
+                    variable => Err(CompileError::MissingStatement {
                         function: "VARVAL",
                         id: variable.to_string(),
                         statement: format!("VARIABLE/{variable}"),
                         span,
                     }),
-                    None => Err(CompileError::ArrayEntry {
-                        id,
-                        entry,
-                        count: variables.len(),
-                        span,
-                    }),
                 }
             }
             (Function::Aryval, Some(id)) if scene.statements.arrays.contains_key(&id) => {
-                let values = &scene.statements.arrays[&id];
-                let entry = match args.get(1) {
-                    Some(Argument::Flag(entry, _)) => *entry,
-                    _ => 0,
-                };
-                match usize::try_from(entry)
-                    .ok()
-                    .and_then(|entry| values.get(entry.checked_sub(1)?))
-                {
-                    Some(&value) => Ok(self.constant(value)),
-                    None => Err(CompileError::ArrayEntry {
-                        id,
-                        entry,
-                        count: values.len(),
-                        span,
-                    }),
-                }
+                let value = *array_entry(id, &scene.statements.arrays[&id], args, span)?;
+                Ok(self.constant(value))
             }
             (Function::Dif, Some(id)) if scene.statements.diffs.contains_key(&id) => {
                 let name = crate::scene::diff_input(id);
@@ -1034,6 +1005,29 @@ fn constant_stops(arguments: &[Option<f64>]) -> Option<Stops> {
         _ => return None,
     };
     Some(Stops::new(lower, upper, parameters))
+}
+
+/// Entry `i` (from 1) of ARRAY `id`'s `entries` that `ARYVAL(id, i)` asks
+/// for with `args`, or the error of an entry it does not have.
+fn array_entry<'e, V>(
+    id: u64,
+    entries: &'e [V],
+    args: &[Argument],
+    span: Span,
+) -> Result<&'e V, CompileError> {
+    let entry = match args.get(1) {
+        Some(Argument::Flag(entry, _)) => *entry,
+        _ => 0,
+    };
+    usize::try_from(entry)
+        .ok()
+        .and_then(|entry| entries.get(entry.checked_sub(1)?))
+        .ok_or(CompileError::ArrayEntry {
+            id,
+            entry,
+            count: entries.len(),
+            span,
+        })
 }
 
 /// The error for a model-data function: which statement would provide it

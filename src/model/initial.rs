@@ -111,6 +111,24 @@ pub(crate) fn numbers<const N: usize>(
     values.try_into().map_err(|_| error())
 }
 
+/// The error of the first number of `argument`'s value list written beyond
+/// the range of a double (`1e309`), or as `inf` or `nan`.
+pub(crate) fn not_finite(statement: &Statement, argument: &Argument) -> Option<ConfigurationError> {
+    let Value::List(items) = &argument.value else {
+        return None;
+    };
+    let item = items.iter().find(|item| {
+        let digits = item.text.trim().trim_end_matches(['d', 'D']);
+        digits.parse::<f64>().is_ok_and(|value| !value.is_finite())
+    })?;
+    Some(ConfigurationError::NotFinite {
+        statement: statement.label(),
+        keyword: argument.keyword.to_string(),
+        text: item.text.to_string(),
+        span: item.span,
+    })
+}
+
 /// All the numbers of `argument`, a value list.
 pub(crate) fn number_list(
     statement: &Statement,
@@ -121,16 +139,8 @@ pub(crate) fn number_list(
         _ => &[],
     };
     let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
-    if let Some(item) = items.iter().find(|item| {
-        let digits = item.text.trim().trim_end_matches(['d', 'D']);
-        digits.parse::<f64>().is_ok_and(|value| !value.is_finite())
-    }) {
-        return Err(ConfigurationError::NotFinite {
-            statement: statement.label(),
-            keyword: argument.keyword.to_string(),
-            text: item.text.to_string(),
-            span: item.span,
-        });
+    if let Some(error) = not_finite(statement, argument) {
+        return Err(error);
     }
     if values.is_empty() || values.len() != items.len() {
         return Err(ConfigurationError::Numbers {

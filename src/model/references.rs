@@ -9,7 +9,7 @@ use std::collections::{HashMap, HashSet};
 use compact_str::CompactString;
 use thiserror::Error;
 
-use super::initial::ConfigurationError;
+use super::initial::{ConfigurationError, not_finite};
 use super::variables::Reads;
 use super::{
     Dataset, Embedded, FileKind, ReadError, Statement, Value, is_kind, is_statement, vocabulary,
@@ -504,24 +504,6 @@ fn full_keyword<'k>(written: &str, keywords: &[&'k str]) -> Option<&'k str> {
         (Some(only), None) => Some(only),
         _ => None,
     }
-}
-
-/// A number of `argument`'s value list written beyond the range of a
-/// double (`1e309`), as every statement's data is read.
-fn not_finite(statement: &Statement, argument: &super::Argument) -> Option<ConfigurationError> {
-    let Value::List(items) = &argument.value else {
-        return None;
-    };
-    let item = items.iter().find(|item| {
-        let digits = item.text.trim().trim_end_matches(['d', 'D']);
-        digits.parse::<f64>().is_ok_and(|value| !value.is_finite())
-    })?;
-    Some(ConfigurationError::NotFinite {
-        statement: statement.label(),
-        keyword: argument.keyword.to_string(),
-        text: item.text.to_string(),
-        span: item.span,
-    })
 }
 
 /// A second ground part, at its GROUND keyword.

@@ -157,9 +157,10 @@ fn dense<T: Number>(m: usize, entries: Vec<(usize, usize, T)>) -> DMatrix<T> {
 /// costs the cube of its size (a chain of 200 links on revolute joints
 /// holds 1 000 equations: 0.1 s simulated with DOP853 took 11 s with the
 /// dense LU, 1.4 s with the sparse one, the rest of which was the dense
-/// Gram-Schmidt [`independent`] replaced). The sparse LU analyses the pattern at every solve: chains of
-/// 16 links (80 equations) cost 34 ms sparse against 30 ms dense for 2 s
-/// simulated, of 25 links (125) 67 against 85 ms.
+/// Gram-Schmidt [`independent`] replaced). The sparse LU analyses the
+/// pattern at every solve: chains of 16 links (80 equations) cost 34 ms
+/// sparse against 30 ms dense for 2 s simulated, of 25 links (125) 67
+/// against 85 ms.
 const SPARSE_FROM: usize = 100;
 
 /// The solution of `W x = rhs`, `W` given by its `entries` (of size `m`),
@@ -637,6 +638,11 @@ impl From<Singular> for Unassembled {
 /// The dependence of `rows` on `bodies` bodies, with the first row that
 /// repeats those before it (its part of `G` in the span of theirs, or
 /// zero: an equation the parts' places do not move), by Gram–Schmidt.
+/// Only when the joints cannot be solved, so on dense rows: its bound,
+/// [`DEPENDENT`], is a remainder of 1e-9 of a row's length, whose square
+/// is below the rounding of the squared lengths that [`independent`]'s
+/// Cholesky factorisation subtracts (its bound of 1e-6 squares to 1e-12,
+/// well above it).
 fn dependence(rows: &[Row<f64>], bodies: usize) -> Unassembled {
     let mut basis: Vec<DVector<f64>> = Vec::new();
     for (index, row) in rows.iter().enumerate() {

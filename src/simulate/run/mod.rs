@@ -1255,11 +1255,17 @@ impl Simulation<'_> {
     /// What state `state` is, `DIFF/3` or `PART/2's angular velocity`, and
     /// the place of its DIFF's FUNCTION or its part's statement.
     fn state_owner(&self, state: usize) -> (String, Place) {
+        self.state_or_rate_owner(state, false)
+    }
+
+    /// [`Self::state_owner`], or, with `rate`, what state `state`'s rate
+    /// of change is: `DIFF/3's rate`, `PART/2's angular acceleration`.
+    fn state_or_rate_owner(&self, state: usize, rate: bool) -> (String, Place) {
         let model = self.model;
         if let Some(diff) = model.diffs.get(state) {
             let expression = &model.expressions[diff.function];
             return (
-                format!("DIFF/{}", diff.id),
+                format!("DIFF/{}{}", diff.id, if rate { "'s rate" } else { "" }),
                 Place::Expression {
                     expression: diff.function,
                     span: crate::span::Span::new(0, expression.text.text.len()),
@@ -1267,12 +1273,13 @@ impl Simulation<'_> {
             );
         }
         let body = (state - model.diffs.len()) / BODY_STATES;
-        let quantity = match (state - model.diffs.len()) % BODY_STATES {
-            0..3 => "position",
-            3..7 => "orientation",
-            7..10 => "velocity",
-            _ => "angular velocity",
+        let (quantity, its_rate) = match (state - model.diffs.len()) % BODY_STATES {
+            0..3 => ("position", "velocity"),
+            3..7 => ("orientation", "orientation's rate"),
+            7..10 => ("velocity", "linear acceleration"),
+            _ => ("angular velocity", "angular acceleration"),
         };
+        let quantity = if rate { its_rate } else { quantity };
         (
             format!("{}'s {quantity}", model.scene.bodies[body].name),
             model
@@ -1344,16 +1351,8 @@ impl Simulation<'_> {
                 place: Place::None,
             },
             statics::Unsettled::Moving { state, residual } => {
-                let (owner, place) = self.state_owner(state);
                 // The residual is of the state's rate of change.
-                let what = owner
-                    .replace("angular velocity", "angular acceleration")
-                    .replace("'s velocity", "'s linear acceleration");
-                let what = if state < self.model.diffs.len() {
-                    format!("{what}'s rate")
-                } else {
-                    what
-                };
+                let (what, place) = self.state_or_rate_owner(state, true);
                 SimulateError::Integration {
                     time: 0.0,
                     message: format!(
