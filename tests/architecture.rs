@@ -157,6 +157,7 @@ fn violations(source_root: &Path) -> String {
 /// equations and constraints know nothing of a run.
 const SIMULATE_ROOMS: &[&str] = &[
     "error",
+    "curve",
     "model",
     "read",
     "constraints",

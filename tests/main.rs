@@ -32,6 +32,7 @@ mod motions;
 mod numerics;
 mod parse;
 mod plot;
+mod point_curves;
 mod probes;
 mod properties;
 mod reactions;

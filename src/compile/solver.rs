@@ -30,9 +30,10 @@ pub struct SolverCall {
 
 impl SolverCall {
     /// The functions whose calls become inputs.
-    pub const FUNCTIONS: [Function; 11] = [
+    pub const FUNCTIONS: [Function; 12] = [
         Function::Joint,
         Function::Jprim,
+        Function::Ptcv,
         Function::Motion,
         Function::Sforce,
         Function::Vforce,

@@ -47,6 +47,7 @@
 //! ```
 
 mod constraints;
+mod curve;
 mod equations;
 mod error;
 mod initial;
@@ -55,10 +56,12 @@ mod read;
 mod run;
 
 pub use constraints::Residuals;
+pub use curve::{Curve, CurvePoint};
 pub use error::{Place, SimulateError};
 pub use model::{
     Along, Contact, Diff, ExactPart, Expression, Force, Friction, GeneralConstraint, Given, Joint,
-    JointInitial, JointKind, MarkerMotion, MassProperties, Model, Motion, Output, Shape, Solid,
+    JointInitial, JointKind, MarkerMotion, MassProperties, Model, Motion, OnCurve, Output, Shape,
+    Solid,
 };
 pub use read::{
     CommandFileError, ModelFormat, RunCommands, Unread, format_of_path, from_scene, is_scene_path,

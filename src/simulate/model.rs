@@ -9,6 +9,7 @@ use crate::check::Checked;
 use crate::laws::contact::Stops;
 use crate::model::Embedded;
 use crate::scene::{Scene, Target};
+use crate::simulate::curve::Curve;
 use crate::span::Span;
 
 /// A model ready to simulate (see [`crate::simulate::from_dataset`] and
@@ -407,6 +408,10 @@ pub enum JointKind {
     ParallelAxes,
     /// `JPRIM`, PERPENDICULAR: I's z axis perpendicular to J's (1).
     Perpendicular,
+    /// `PTCV`: I's origin on a curve drawn in the axes of a marker of J's
+    /// part ([`Joint::curve`]), J the floating marker at the point of
+    /// contact (2).
+    PointCurve,
 }
 
 impl JointKind {
@@ -448,7 +453,7 @@ impl JointKind {
             | JointKind::Planar
             | JointKind::AtPoint
             | JointKind::Orientation => 3,
-            JointKind::InLine | JointKind::ParallelAxes => 2,
+            JointKind::InLine | JointKind::ParallelAxes | JointKind::PointCurve => 2,
             JointKind::InPlane
             | JointKind::Perpendicular
             | JointKind::RackPin
@@ -462,9 +467,11 @@ impl JointKind {
         JointKind::PRIMITIVES.iter().any(|(kind, _)| *kind == self)
     }
 
-    /// The statement that gives it: `JOINT` or `JPRIM`.
+    /// The statement that gives it: `JOINT`, `JPRIM` or `PTCV`.
     pub fn statement(self) -> &'static str {
-        if self.is_primitive() {
+        if self == JointKind::PointCurve {
+            "PTCV"
+        } else if self.is_primitive() {
             "JPRIM"
         } else {
             "JOINT"
@@ -487,11 +494,23 @@ pub struct Joint {
     /// turn), a RACKPIN's PD (the pinion's pitch diameter); 0 for the
     /// others.
     pub pitch: f64,
+    /// A PTCV's curve and the marker it is drawn in; `None` for the other
+    /// kinds.
+    pub curve: Option<OnCurve>,
     /// Its equations (indices below [`JointKind::equations`]) that repeat
     /// other joints' at the initial state, left out of the run.
     pub redundant: Vec<usize>,
     /// The statement.
     pub span: Span,
+}
+
+/// The curve a `PTCV` holds its I marker's origin on.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OnCurve {
+    /// The curve, in the RM marker's axes from its origin.
+    pub curve: Curve,
+    /// The RM marker (on the part of the joint's J marker).
+    pub frame: Target,
 }
 
 impl Joint {

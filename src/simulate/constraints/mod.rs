@@ -28,6 +28,7 @@
 
 mod drives;
 mod general;
+mod on_curve;
 pub(crate) mod quadrature;
 mod reactions;
 mod rows;
@@ -138,6 +139,10 @@ fn joint_rows<T: crate::number::Number>(
         JointKind::Orientation => parallel().into_iter().chain([xi.dot(yj)]).collect(),
         JointKind::ParallelAxes => parallel().into_iter().collect(),
         JointKind::Perpendicular => vec![zi.dot(zj)],
+        JointKind::PointCurve => match &joint.curve {
+            Some(on) => on_curve::curve_rows(model, joint, on, bodies),
+            None => unreachable!("a PTCV is read with its curve"),
+        },
     }
 }
 
@@ -615,6 +620,39 @@ pub(crate) fn joints_singular_in(model: &super::Model) -> crate::eval::OutputErr
     ))
 }
 
+/// The error of joints whose multipliers cannot be solved at the state
+/// `bodies` give: where an open curve's PTCV has lost its point (I's
+/// origin past an end of the curve), that PTCV's, at its statement;
+/// otherwise [`joints_singular_in`].
+pub(crate) fn joints_failed_in<T: crate::number::Number>(
+    model: &super::Model,
+    bodies: &[BodyMotion<T>],
+) -> crate::eval::OutputError {
+    let off_end = model.joints.iter().find(|joint| {
+        joint
+            .curve
+            .as_ref()
+            .is_some_and(|on| on_curve::past_an_end(model, joint, on, bodies))
+    });
+    match off_end {
+        Some(joint) => {
+            let curve = joint.curve.as_ref().map_or(0, |on| on.curve.id);
+            let mut error = singular_because(&format!(
+                "PTCV/{}: its I marker has run past an end of CURVE/{curve}, an OPEN curve: a PTCV holds the point between the curve's ends (lengthen the curve, or close it)",
+                joint.id
+            ));
+            if let crate::eval::EvalError::Law { span, .. } = &mut error.error {
+                *span = joint.span;
+            }
+            error
+        }
+        None => joints_singular_in(model),
+    }
+}
+
+/// The joints' error for `reason`. Its span is empty, or the place in the
+/// file of the statement that fails (the joints' errors are no
+/// expression's).
 fn singular_because(reason: &str) -> crate::eval::OutputError {
     crate::eval::OutputError {
         output: JOINTS,

@@ -273,7 +273,15 @@ impl Reactions {
             Some(body) => (1.0, Some(body)),
             None => (-1.0, body_of(model, other)),
         };
-        let origin = self.place(model, marker).0;
+        // A PTCV's J side is its floating marker, at the point of contact:
+        // I's origin.
+        let point_curve =
+            matches!(holder, Holder::Joint(index) if model.joints[index].curve.is_some());
+        let origin = if point_curve {
+            self.place(model, i).0
+        } else {
+            self.place(model, marker).0
+        };
         let mut force = Vector3::zeros();
         let mut torque = Vector3::zeros();
         if let Some(body) = body {

@@ -224,6 +224,20 @@ impl<T: Number> Row<T> {
         self
     }
 
+    /// `self` with `factor` times `other`'s row of `G` added to its own
+    /// (its value, rate and bias unchanged): the chain rule's part of a
+    /// function of rows whose other parts are worked out on their own.
+    pub(crate) fn plus_coefficients(mut self, other: &Row<T>, factor: &T) -> Row<T> {
+        for (body, columns) in &other.coefficients {
+            add_coefficients(
+                &mut self.coefficients,
+                *body,
+                columns.clone().map(|entry| entry * factor.clone()),
+            );
+        }
+        self
+    }
+
     /// The row of `factor · self`.
     pub(crate) fn scaled(self, factor: f64) -> Row<T> {
         Row {

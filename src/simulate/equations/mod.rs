@@ -42,7 +42,7 @@ use crate::laws::contact::ContactBranch;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input};
 use crate::simulate::constraints::{
-    BodyMotion, Component, Drives, Reactions, constraint_loads, joints_singular_in,
+    BodyMotion, Component, Drives, Reactions, constraint_loads, joints_failed_in,
 };
 use crate::simulate::model::{Contact, Force, Model};
 use accelerations::{Accelerations, Measure};
@@ -1223,7 +1223,7 @@ impl Equations<'_> {
                 &mut loads.force,
                 &mut loads.torque,
             )
-            .map_err(|_| joints_singular_in(model))?;
+            .map_err(|_| joints_failed_in(model, &motions))?;
             multipliers = Some(held.multipliers);
             massless = held.massless;
         }

@@ -26,7 +26,7 @@ use crate::simulate::model::{
 use crate::span::Span;
 
 /// Statements that need a constraint solver.
-const CONSTRAINTS: [&str; 5] = ["UCON", "PTCV", "CVCV", "FLEX_BODY", "CONSTRAINT"];
+const CONSTRAINTS: [&str; 4] = ["UCON", "CVCV", "FLEX_BODY", "CONSTRAINT"];
 
 /// Statements that take no part in the motion (output, graphics, units,
 /// solver settings and data read by elements that are refused anyway).
@@ -69,9 +69,9 @@ const FORCE_ELEMENTS: [&str; 8] = [
 ];
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`].
-const SIMULATED: [&str; 16] = [
+const SIMULATED: [&str; 17] = [
     "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
-    "JPRIM", "MOTION", "COUPLER", "GEAR", "GCON", "SENSOR", "CONTACT",
+    "JPRIM", "PTCV", "MOTION", "COUPLER", "GEAR", "GCON", "SENSOR", "CONTACT",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -97,7 +97,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&FORCE_ELEMENTS) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, CONTACT, ACCGRAV)"
+                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, PTCV, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, CONTACT, ACCGRAV)"
                     .to_string(),
                 span: statement.span,
             });
@@ -281,7 +281,13 @@ impl Reader<'_> {
             force_statements.push(("CONTACT", contact.id));
             forces.push(Force::Contact(Box::new(contact)));
         }
-        let joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
+        let mut joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
+        joints.extend(super::curves::point_curves(
+            self.dataset,
+            &self.scene,
+            &mut notes,
+            &mut self.errors,
+        ));
         let (motions, marker_motions) = self.motions(&joints);
         let mut couplers = super::couplers::couplers(self.dataset, &joints, &mut self.errors);
         couplers.extend(super::couplers::gears(
@@ -391,7 +397,7 @@ impl Reader<'_> {
             let id = number(statement, "JOINT", f64::NAN).unwrap_or(f64::NAN);
             let Some(joint) = joints
                 .iter()
-                .position(|joint| joint.id as f64 == id && !joint.kind.is_primitive())
+                .position(|joint| joint.id as f64 == id && joint.kind.statement() == "JOINT")
             else {
                 self.refuse(
                     format!("{label}: JOINT must name a JOINT of the model"),

@@ -155,6 +155,7 @@ fn between_markers(
         i,
         j,
         pitch: 0.0,
+        curve: None,
         redundant: Vec::new(),
         span: statement.span,
     })
@@ -203,7 +204,7 @@ pub(crate) fn initials(
         let id = statement.id.unwrap_or(0);
         let Some(joint) = joints
             .iter()
-            .position(|joint| joint.id == id && !joint.kind.is_primitive())
+            .position(|joint| joint.id == id && joint.kind.statement() == "JOINT")
         else {
             continue;
         };

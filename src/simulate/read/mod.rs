@@ -6,6 +6,7 @@
 mod commands;
 mod contacts;
 mod couplers;
+mod curves;
 mod dataset;
 mod exact;
 mod joints;

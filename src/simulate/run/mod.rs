@@ -1087,7 +1087,7 @@ impl Simulation<'_> {
             SimulateError::Integration {
                 time,
                 message: error.error.to_string(),
-                place: self.joints_place(),
+                place: self.joints_place(&error),
             }
         } else {
             SimulateError::Evaluation {
@@ -1098,11 +1098,16 @@ impl Simulation<'_> {
         }
     }
 
-    /// Where the joints' failure is placed: at the massless part when the
-    /// model has one (the likelier cause is a freedom its joints leave it,
-    /// [`crate::simulate::constraints::joints_singular_in`]), else nowhere
-    /// in the file.
-    fn joints_place(&self) -> Place {
+    /// Where the joints' failure `error` is placed: at the statement it
+    /// names (a PTCV that lost its curve), else at the massless part when
+    /// the model has one (the likelier cause is a freedom its joints leave
+    /// it, [`crate::simulate::constraints::joints_singular_in`]), else
+    /// nowhere in the file.
+    fn joints_place(&self, error: &OutputError) -> Place {
+        let span = error.error.span();
+        if span != crate::span::Span::default() {
+            return Place::File(span);
+        }
         let mut massless = self.model.masses.iter().filter(|mass| mass.is_massless());
         match (massless.next(), massless.next()) {
             (Some(part), None) => Place::File(part.span),
@@ -1377,7 +1382,7 @@ impl Simulation<'_> {
                 return SimulateError::Integration {
                     time: *t,
                     message: format!("the Jacobian: {}", error.error),
-                    place: self.joints_place(),
+                    place: self.joints_place(error),
                 };
             }
             IntegrateError::Jacobian { t, error } => {
@@ -1399,7 +1404,7 @@ impl Simulation<'_> {
                 expression: self.expression_of(&self.dynamics, failure.output),
                 span: failure.error.span(),
             },
-            Some(Rejection::System(_)) => self.joints_place(),
+            Some(Rejection::System(failure)) => self.joints_place(failure),
             _ => Place::None,
         };
         SimulateError::Integration {

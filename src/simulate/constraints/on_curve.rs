@@ -1,0 +1,133 @@
+//! The two equations of a `PTCV`: the I marker's origin on a curve drawn
+//! in the axes of the RM marker.
+//!
+//! In RM's axes the I marker's origin is at `ρ` (three [`Row`]s, exact
+//! with their rates and biases). The point of contact is the curve's point
+//! nearest it, at the parameter `α(ρ)` where `s'(α) · (ρ − s(α)) = 0`;
+//! the equations are the offset `e = ρ − s(α)` along the two normals `n₁,
+//! n₂` square to the tangent there (`n₁` the part of a fixed axis square to
+//! the tangent, `n₂ = t × n₁`):
+//!
+//! ```text
+//! g_k(ρ) = n_k(α(ρ)) · (ρ − s(α(ρ)))
+//! ∇g_k  = n_k + (n_k' · e) ∂α/∂ρ,        ∂α/∂ρ = s' / (|s'|² − s'' · e)
+//! g_k'' = ∇g_k · ρ'' + 2 (n_k' · ρ') α' + (n_k · s'') α'²   (on the curve)
+//! ```
+//!
+//! (`'` on `n` and `s` a derivative in `α`; `α' = ∂α/∂ρ · ρ'`). The
+//! parameter is found in plain numbers and carried over dual numbers by one
+//! Newton step on its equation, so the rows carry their exact derivatives.
+
+use nalgebra::Vector3;
+
+use super::rows::{BodyMotion, Row};
+use crate::number::Number;
+use crate::simulate::model::{Joint, Model, OnCurve};
+
+/// The two equations of PTCV `joint` on `on`, bodies moving as `bodies`
+/// say (their values not a number where the curve has no point near I's
+/// origin, or I has run past an open curve's end).
+pub(super) fn curve_rows<T: Number>(
+    model: &Model,
+    joint: &Joint,
+    on: &OnCurve,
+    bodies: &[BodyMotion<T>],
+) -> Vec<Row<T>> {
+    let i = super::frame(model, &joint.i, bodies);
+    let rm = super::frame(model, &on.frame, bodies);
+    let apart = i.origin.minus(&rm.origin);
+    let local: Vec<Row<T>> = rm.axes.iter().map(|axis| axis.dot(&apart)).collect();
+    let vector = |part: fn(&Row<T>) -> &T| {
+        Vector3::new(
+            part(&local[0]).clone(),
+            part(&local[1]).clone(),
+            part(&local[2]).clone(),
+        )
+    };
+    let place = vector(|row| &row.value);
+    let rate = vector(|row| &row.rate);
+    let bias = vector(|row| &row.bias);
+    let curve = &on.curve;
+    let alpha = match curve.nearest(&place.map(|v| v.value())) {
+        Some(alpha) if curve.closed || alpha.abs() <= 1.0 + PAST_END => alpha,
+        _ => return vec![failed(), failed()],
+    };
+    // One Newton step on s'(α) · (ρ − s(α)) = 0 carries α's derivatives.
+    let at = curve.at(&alpha);
+    let (offset, tangent, bend) = (
+        place.clone() - at.place.map(T::from),
+        at.tangent.map(T::from),
+        at.bend.map(T::from),
+    );
+    let slope = tangent.dot(&offset);
+    let curvature = bend.dot(&offset).value() - at.tangent.norm_squared();
+    let alpha = T::from(alpha) - slope / T::from(curvature);
+    let at = curve.at(&alpha);
+    let offset = place - &at.place;
+    let speed = at.tangent.norm();
+    let unit = &at.tangent / speed.clone();
+    let unit_turn = (&at.bend - &unit * unit.dot(&at.bend)) / speed.clone();
+    let reference = curve.reference.map(T::from);
+    let along = reference.dot(&unit);
+    let square = &reference - &unit * along.clone();
+    let length = square.norm();
+    let first = &square / length.clone();
+    let square_turn = -(&unit_turn * along) - &unit * reference.dot(&unit_turn);
+    let first_turn = (&square_turn - &first * first.dot(&square_turn)) / length;
+    let second = unit.cross(&first);
+    let second_turn = unit_turn.cross(&first) + unit.cross(&first_turn);
+    let alpha_gradient = &at.tangent / (at.tangent.norm_squared() - at.bend.dot(&offset));
+    let alpha_rate = alpha_gradient.dot(&rate);
+    [(first, first_turn), (second, second_turn)]
+        .into_iter()
+        .map(|(normal, turn)| {
+            let gradient = &normal + &alpha_gradient * turn.dot(&offset);
+            let mut row = Row {
+                value: normal.dot(&offset),
+                rate: gradient.dot(&rate),
+                bias: gradient.dot(&bias)
+                    + turn.dot(&rate) * alpha_rate.clone() * T::from(2.0)
+                    + normal.dot(&at.bend) * alpha_rate.clone() * alpha_rate.clone(),
+                coefficients: Vec::new(),
+            };
+            for (k, component) in local.iter().enumerate() {
+                row = row.plus_coefficients(component, &gradient[k]);
+            }
+            row
+        })
+        .collect()
+}
+
+/// Whether PTCV `joint`'s I marker has run past an end of its open curve
+/// at the state `bodies` give.
+pub(super) fn past_an_end<T: Number>(
+    model: &Model,
+    joint: &Joint,
+    on: &OnCurve,
+    bodies: &[BodyMotion<T>],
+) -> bool {
+    if on.curve.closed {
+        return false;
+    }
+    let i = super::frame(model, &joint.i, bodies);
+    let rm = super::frame(model, &on.frame, bodies);
+    let apart = i.origin.minus(&rm.origin);
+    let place: Vector3<f64> = Vector3::from_fn(|k, _| rm.axes[k].dot(&apart).value.value());
+    on.curve
+        .nearest(&place)
+        .is_some_and(|alpha| alpha.abs() > 1.0 + PAST_END)
+}
+
+/// How far past ±1 an open curve's parameter may go before the point of
+/// contact is off the curve: rounding's room.
+const PAST_END: f64 = 1e-9;
+
+/// A row whose value is not a number: the curve has no point of contact.
+fn failed<T: Number>() -> Row<T> {
+    Row {
+        value: T::from(f64::NAN),
+        rate: T::zero(),
+        bias: T::zero(),
+        coefficients: Vec::new(),
+    }
+}

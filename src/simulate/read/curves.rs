@@ -1,0 +1,341 @@
+//! `PTCV` statements of a dataset, with the `CURVE` and `MATRIX`
+//! statements their curves are made of.
+
+use nalgebra::Vector3;
+
+use crate::model::initial::{number, number_list};
+use crate::model::{Dataset, Statement, Value, is_kind};
+use crate::scene::{Scene, Target};
+use crate::simulate::SimulateError;
+use crate::simulate::curve::{Curve, MAX_ORDER};
+use crate::simulate::model::{Joint, JointKind, OnCurve};
+use crate::span::Span;
+
+/// The PTCV statements of `dataset` as joints, their markers found in
+/// `scene`, every problem added to `errors` at its place; notes (DISP
+/// taken as a guess) added to `notes`.
+pub(crate) fn point_curves(
+    dataset: &Dataset,
+    scene: &Scene,
+    notes: &mut Vec<(String, Span)>,
+    errors: &mut Vec<SimulateError>,
+) -> Vec<Joint> {
+    let mut joints = Vec::new();
+    for statement in &dataset.statements {
+        if is_kind(&statement.name, "PTCV") {
+            joints.extend(point_curve(dataset, statement, scene, notes, errors));
+        }
+    }
+    joints
+}
+
+fn point_curve(
+    dataset: &Dataset,
+    statement: &Statement,
+    scene: &Scene,
+    notes: &mut Vec<(String, Span)>,
+    errors: &mut Vec<SimulateError>,
+) -> Option<Joint> {
+    let label = statement.label();
+    let model_error = |message: String, span: Span| SimulateError::Model { message, span };
+    if let Some(argument) = statement.argument("VEL", 3) {
+        errors.push(SimulateError::Unsupported {
+            statement: label.clone(),
+            reason: "sets VEL, the initial speed along the curve, which mbexpr does not take: give the parts' initial velocities (PART VX ... WZ)".to_string(),
+            span: argument.span,
+        });
+    }
+    if let Some(argument) = statement.argument("DISP", 4) {
+        notes.push((
+            format!(
+                "{label}: DISP is taken as a guess only: the point of contact is the curve's point nearest the I marker"
+            ),
+            argument.span,
+        ));
+    }
+    let mut marker = |keyword: &str| -> Option<(Target, u64)> {
+        let id = number(statement, keyword, f64::NAN)
+            .ok()
+            .filter(|id| id.fract() == 0.0 && *id > 0.0)
+            .map(|id| id as u64);
+        let found = id.and_then(|id| {
+            let target = scene.find_marker(&crate::check::Reference::Id(id)).ok()?;
+            Some((target, id))
+        });
+        if found.is_none() {
+            errors.push(model_error(
+                format!("{label}: {keyword} must name a fixed MARKER of the model"),
+                statement.place_of(keyword, keyword.len()),
+            ));
+        }
+        found
+    };
+    let i = marker("I");
+    let rm = marker("RM");
+    let float = floating_part(dataset, statement, errors);
+    let curve = statement_curve(dataset, statement, errors);
+    let ((i, _), (rm, rm_id), float, curve) = (i?, rm?, float?, curve?);
+    let rm_part = marker_part(dataset, rm_id);
+    if rm_part != Some(float) {
+        errors.push(model_error(
+            format!(
+                "{label}: JFLOAT and RM must be markers of the same part: the curve is drawn in RM's axes and the floating marker moves on that part"
+            ),
+            statement.place_of("JFLOAT", 2),
+        ));
+        return None;
+    }
+    let body = |target: Target| match target {
+        Target::Ground => None,
+        Target::Marker(index) => scene.markers[index].body,
+    };
+    if body(i) == body(rm) {
+        errors.push(model_error(
+            format!(
+                "{label}: its I marker and its curve are on one part: a PTCV holds a point of one part on a curve of another"
+            ),
+            statement.span,
+        ));
+        return None;
+    }
+    Some(Joint {
+        id: statement.id.unwrap_or(0),
+        kind: JointKind::PointCurve,
+        i,
+        j: rm,
+        pitch: 0.0,
+        curve: Some(OnCurve { curve, frame: rm }),
+        redundant: Vec::new(),
+        span: statement.span,
+    })
+}
+
+/// The PART id of the marker `id`.
+fn marker_part(dataset: &Dataset, id: u64) -> Option<u64> {
+    let marker = dataset
+        .statements
+        .iter()
+        .find(|statement| is_kind(&statement.name, "MARKER") && statement.id == Some(id))?;
+    number(marker, "PART", f64::NAN)
+        .ok()
+        .filter(|part| part.fract() == 0.0 && *part >= 0.0)
+        .map(|part| part as u64)
+}
+
+/// The PART id of `statement`'s JFLOAT, a floating marker.
+fn floating_part(
+    dataset: &Dataset,
+    statement: &Statement,
+    errors: &mut Vec<SimulateError>,
+) -> Option<u64> {
+    let id = number(statement, "JFLOAT", f64::NAN).unwrap_or(f64::NAN);
+    let floating = dataset.statements.iter().any(|marker| {
+        is_kind(&marker.name, "MARKER")
+            && marker.id.is_some_and(|marker_id| marker_id as f64 == id)
+            && marker.argument("FLOATING", 3).is_some()
+    });
+    let part = floating.then(|| marker_part(dataset, id as u64)).flatten();
+    if part.is_none() {
+        errors.push(SimulateError::Model {
+            message: format!(
+                "{}: JFLOAT must name a floating MARKER (MARKER/id, PART = ..., FLOATING) on the part of the curve",
+                statement.label()
+            ),
+            span: statement.place_of("JFLOAT", 2),
+        });
+    }
+    part
+}
+
+/// The curve `statement`'s CURVE names.
+fn statement_curve(
+    dataset: &Dataset,
+    statement: &Statement,
+    errors: &mut Vec<SimulateError>,
+) -> Option<Curve> {
+    let id = number(statement, "CURVE", f64::NAN).unwrap_or(f64::NAN);
+    let found = dataset
+        .statements
+        .iter()
+        .find(|curve| is_kind(&curve.name, "CURVE") && curve.id.is_some_and(|c| c as f64 == id));
+    let Some(found) = found else {
+        errors.push(SimulateError::Model {
+            message: format!(
+                "{}: CURVE must name a CURVE statement of the model",
+                statement.label()
+            ),
+            span: statement.place_of("CURVE", 2),
+        });
+        return None;
+    };
+    curve(dataset, found)
+        .map_err(|error| errors.push(error))
+        .ok()
+}
+
+/// The curve of CURVE statement `statement`.
+fn curve(dataset: &Dataset, statement: &Statement) -> Result<Curve, SimulateError> {
+    let label = statement.label();
+    let refused = |reason: String, span: Span| SimulateError::Unsupported {
+        statement: label.clone(),
+        reason,
+        span,
+    };
+    let wrong = |message: String, span: Span| SimulateError::Model {
+        message: format!("{label}: {message}"),
+        span,
+    };
+    if let Some(argument) = statement.argument("FUNCTION", 3) {
+        return Err(refused(
+            "is given by FUNCTION = USER(...), which calls CURSUB, the user subroutine an Adams solver loads from the user's library and mbexpr cannot call: give the curve's points in a MATRIX".to_string(),
+            argument.span,
+        ));
+    }
+    let Some(matrix_argument) = statement.argument("MATRIX", 3) else {
+        return Err(wrong(
+            "needs MATRIX = the id of a MATRIX of its points".to_string(),
+            statement.span,
+        ));
+    };
+    let id = number(statement, "MATRIX", f64::NAN).unwrap_or(f64::NAN);
+    let matrix = dataset
+        .statements
+        .iter()
+        .find(|matrix| is_kind(&matrix.name, "MATRIX") && matrix.id.is_some_and(|m| m as f64 == id))
+        .ok_or_else(|| {
+            wrong(
+                "MATRIX must name a MATRIX statement of the model".to_string(),
+                matrix_argument.span,
+            )
+        })?;
+    let points = matrix_points(matrix)?;
+    let order = number(statement, "ORDER", 4.0)
+        .ok()
+        .filter(|order| order.fract() == 0.0 && (2.0..=MAX_ORDER as f64).contains(order));
+    let Some(order) = order else {
+        return Err(wrong(
+            format!("ORDER must be a whole number from 2 (straight pieces) to {MAX_ORDER}"),
+            statement.place_of("ORDER", 3),
+        ));
+    };
+    let closed = statement.argument("CLOSED", 3).is_some();
+    let through = statement.argument("CURVE_POINTS", 3).is_some();
+    Curve::new(
+        statement.id.unwrap_or(0),
+        &points,
+        order as usize,
+        closed,
+        through,
+    )
+    .map_err(|reason| wrong(reason, statement.span))
+}
+
+/// The rows of MATRIX `statement` as points: three columns (x, y, z in the
+/// curve's axes), one row a point.
+fn matrix_points(statement: &Statement) -> Result<Vec<Vector3<f64>>, SimulateError> {
+    let label = statement.label();
+    let wrong = |message: String, span: Span| SimulateError::Model {
+        message: format!("{label}: {message}"),
+        span,
+    };
+    if let Some(argument) = statement.argument("FILE", 3) {
+        return Err(SimulateError::Unsupported {
+            statement: label.clone(),
+            reason: "reads its values from a file, which mbexpr does not read: give them as VALUES"
+                .to_string(),
+            span: argument.span,
+        });
+    }
+    let count = |keyword: &str| {
+        number(statement, keyword, f64::NAN)
+            .ok()
+            .filter(|count| count.fract() == 0.0 && *count >= 1.0 && *count <= 1e6)
+            .map(|count| count as usize)
+            .ok_or_else(|| {
+                wrong(
+                    format!("{keyword} must be a whole number above zero"),
+                    statement.place_of(keyword, 3),
+                )
+            })
+    };
+    let (rows, columns) = (count("ROWS")?, count("COLUMNS")?);
+    if columns != 3 {
+        return Err(wrong(
+            format!("a curve's MATRIX has 3 columns (x, y, z of each point), not {columns}"),
+            statement.place_of("COLUMNS", 3),
+        ));
+    }
+    let values_argument = statement
+        .argument("VALUES", 3)
+        .ok_or_else(|| wrong("needs VALUES".to_string(), statement.span))?;
+    let values = number_list(statement, values_argument).map_err(|error| SimulateError::Model {
+        message: error.to_string(),
+        span: error.span(),
+    })?;
+    let mut entries = vec![0.0; rows * 3];
+    if statement.argument("SPARSE", 3).is_some() {
+        let indices = |keyword: &str, limit: usize| -> Result<Vec<usize>, SimulateError> {
+            let argument = statement.argument(keyword, keyword.len()).ok_or_else(|| {
+                wrong(
+                    format!(
+                        "a SPARSE matrix needs {keyword} = the entries' {}",
+                        if keyword == "I" { "rows" } else { "columns" }
+                    ),
+                    statement.span,
+                )
+            })?;
+            let listed = number_list(statement, argument).unwrap_or_default();
+            listed
+                .iter()
+                .map(|index| {
+                    (index.fract() == 0.0 && *index >= 1.0 && *index <= limit as f64)
+                        .then(|| *index as usize - 1)
+                        .ok_or_else(|| {
+                            wrong(
+                                format!("{keyword} lists {index}, outside 1 to {limit}"),
+                                argument.span,
+                            )
+                        })
+                })
+                .collect()
+        };
+        let (row_of, column_of) = (indices("I", rows)?, indices("J", 3)?);
+        if row_of.len() != values.len() || column_of.len() != values.len() {
+            return Err(wrong(
+                "I, J and VALUES list one entry each, so they have as many items".to_string(),
+                values_argument.span,
+            ));
+        }
+        for ((row, column), value) in row_of.iter().zip(&column_of).zip(&values) {
+            entries[row * 3 + column] = *value;
+        }
+    } else {
+        if values.len() != rows * 3 {
+            return Err(wrong(
+                format!(
+                    "VALUES lists {} numbers where ROWS = {rows} and COLUMNS = 3 ask for {}",
+                    values.len(),
+                    rows * 3
+                ),
+                values_argument.span,
+            ));
+        }
+        let by_columns = matches!(
+            statement.argument("FULL", 3).map(|argument| &argument.value),
+            Some(Value::List(items)) if items.len() == 1
+                && items[0].text.trim().eq_ignore_ascii_case("CORDER")
+        );
+        for (k, value) in values.iter().enumerate() {
+            let (row, column) = if by_columns {
+                (k % rows, k / rows)
+            } else {
+                (k / 3, k % 3)
+            };
+            entries[row * 3 + column] = *value;
+        }
+    }
+    Ok(entries
+        .chunks(3)
+        .map(|point| Vector3::new(point[0], point[1], point[2]))
+        .collect())
+}
