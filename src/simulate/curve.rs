@@ -39,12 +39,54 @@ pub struct Curve {
     pub reference: Vector3<f64>,
 }
 
-/// One piece: `s(α) = Σ c_k (α − start)^k` on `[start, end]`.
+/// One piece: `s(α) = Σ c_k (α − start)^k` on `[start, end]`, within
+/// `radius` of `centre`.
 #[derive(Clone, Debug, PartialEq)]
 struct Piece {
     start: f64,
     end: f64,
     coefficients: Vec<Vector3<f64>>,
+    centre: Vector3<f64>,
+    radius: f64,
+}
+
+impl Piece {
+    /// The piece's point at `alpha`.
+    fn place(&self, alpha: f64) -> Vector3<f64> {
+        let local = alpha - self.start;
+        self.coefficients
+            .iter()
+            .rev()
+            .fold(Vector3::zeros(), |sum, c| sum * local + c)
+    }
+
+    /// Sets `centre` and `radius` to a ball that holds the piece: the
+    /// samples' mean, their farthest distance from it, and the most the
+    /// piece can bulge between samples (`h² max|s''| / 8`, doubled).
+    fn bound(&mut self) {
+        const SAMPLES: u32 = 32;
+        let at = |k: u32| self.start + (self.end - self.start) * f64::from(k) / f64::from(SAMPLES);
+        let centre = (0..=SAMPLES)
+            .map(|k| self.place(at(k)))
+            .sum::<Vector3<f64>>()
+            / f64::from(SAMPLES + 1);
+        let farthest = (0..=SAMPLES)
+            .map(|k| (self.place(at(k)) - centre).norm())
+            .fold(0.0, f64::max);
+        let bend = (0..=SAMPLES)
+            .map(|k| {
+                let local = at(k) - self.start;
+                let mut sum = Vector3::zeros();
+                for (power, c) in self.coefficients.iter().enumerate().skip(2).rev() {
+                    sum = sum * local + c * (power * (power - 1)) as f64;
+                }
+                sum.norm()
+            })
+            .fold(0.0, f64::max);
+        let step = (self.end - self.start) / f64::from(SAMPLES);
+        self.centre = centre;
+        self.radius = farthest + step * step * bend / 4.0;
+    }
 }
 
 /// A point of a curve with its first two derivatives in the parameter.
@@ -126,10 +168,15 @@ impl Curve {
                 start: -1.0 + (a - low) / scale,
                 end: -1.0 + (b - low) / scale,
                 coefficients,
+                centre: Vector3::zeros(),
+                radius: 0.0,
             });
         }
         if let Some(last) = pieces.last_mut() {
             last.end = 1.0;
+        }
+        for piece in &mut pieces {
+            piece.bound();
         }
         if pieces.iter().any(|piece| {
             piece
@@ -178,17 +225,6 @@ impl Curve {
         })
     }
 
-    /// The piece `alpha` (a value of the parameter, wrapped for a closed
-    /// curve) falls in: the first or last for an open curve's `alpha`
-    /// beyond its ends.
-    fn piece(&self, alpha: f64) -> &Piece {
-        let index = self
-            .pieces
-            .partition_point(|piece| piece.end <= alpha)
-            .min(self.pieces.len() - 1);
-        &self.pieces[index]
-    }
-
     /// `alpha` brought into [−1, 1) for a closed curve (whole periods of
     /// 2 taken off), as it is for an open one.
     fn wrapped<T: Number>(&self, alpha: &T) -> T {
@@ -199,11 +235,53 @@ impl Curve {
         alpha.clone() - T::from(2.0 * turns)
     }
 
+    /// The number of pieces (one a knot span).
+    pub fn piece_count(&self) -> usize {
+        self.pieces.len()
+    }
+
+    /// The index of the piece `alpha` falls in (wrapped for a closed
+    /// curve; the first or last for an open curve's `alpha` beyond its
+    /// ends).
+    pub fn piece_of(&self, alpha: f64) -> usize {
+        self.pieces
+            .partition_point(|piece| piece.end <= self.wrapped(&alpha))
+            .min(self.pieces.len() - 1)
+    }
+
+    /// `alpha` moved by whole periods of a closed curve to lie nearest the
+    /// middle of piece `piece` (unchanged for an open curve).
+    fn near_piece(&self, alpha: f64, piece: usize) -> f64 {
+        if !self.closed {
+            return alpha;
+        }
+        let piece = &self.pieces[piece];
+        let middle = 0.5 * (piece.start + piece.end);
+        alpha - 2.0 * ((alpha - middle) / 2.0).round()
+    }
+
     /// The point at `alpha` and its first two derivatives (an open curve's
     /// end pieces continued beyond its ends).
     pub fn at<T: Number>(&self, alpha: &T) -> CurvePoint<T> {
-        let alpha = self.wrapped(alpha);
-        let piece = self.piece(alpha.value());
+        self.at_on(alpha, None)
+    }
+
+    /// [`Curve::at`], on the polynomial of piece `piece` when one is given
+    /// (continued past its ends, `alpha` taken in the period nearest it):
+    /// within a step the curve is held on one piece, as a law on one
+    /// branch, so that its next knot is crossed as a located switch.
+    pub fn at_on<T: Number>(&self, alpha: &T, piece: Option<usize>) -> CurvePoint<T> {
+        let (alpha, piece) = match piece {
+            Some(index) => {
+                let shifted = self.near_piece(alpha.value(), index) - alpha.value();
+                (alpha.clone() + T::from(shifted), &self.pieces[index])
+            }
+            None => {
+                let alpha = self.wrapped(alpha);
+                let index = self.piece_of(alpha.value());
+                (alpha, &self.pieces[index])
+            }
+        };
         let local = alpha - T::from(piece.start);
         let lift = |c: &Vector3<f64>| c.map(T::from);
         let mut place = Vector3::zeros();
@@ -225,40 +303,87 @@ impl Curve {
         }
     }
 
-    /// The parameter of the curve's point nearest `point` (an open curve's
-    /// `α` may fall beyond ±1 where the point has run past an end), or
-    /// `None` where no nearest point is found.
-    pub fn nearest(&self, point: &Vector3<f64>) -> Option<f64> {
-        let distance = |alpha: f64| (self.at(&alpha).place - point).norm_squared();
-        let mut best: Option<(f64, f64)> = None;
-        for piece in &self.pieces {
-            let start = (0..=8)
-                .map(|k| piece.start + (piece.end - piece.start) * f64::from(k) / 8.0)
-                .min_by(|a, b| distance(*a).total_cmp(&distance(*b)))?;
-            let alpha = self.refine(point, start, piece);
-            let found = distance(alpha);
-            if best.is_none_or(|(_, least)| found < least) {
-                best = Some((alpha, found));
-            }
-        }
-        best.map(|(alpha, _)| alpha)
+    /// The two switching values of piece `piece` at `alpha`: its distance
+    /// past the piece's start and short of its end (in the period nearest
+    /// the piece), one changing sign where the point of contact crosses a
+    /// knot; an open curve's own ends never switch (there the point leaves
+    /// the curve).
+    pub fn switching(&self, alpha: f64, piece: usize) -> [f64; 2] {
+        let alpha = self.near_piece(alpha, piece);
+        let span = &self.pieces[piece];
+        let first = self.closed || piece > 0;
+        let last = self.closed || piece + 1 < self.pieces.len();
+        [
+            if first { alpha - span.start } else { 1.0 },
+            if last { span.end - alpha } else { 1.0 },
+        ]
     }
 
-    /// Newton's iterations on `s'(α) · (point − s(α)) = 0` from `alpha`,
-    /// kept within `piece` (an open curve's end pieces continued beyond
-    /// its ends).
-    fn refine(&self, point: &Vector3<f64>, mut alpha: f64, piece: &Piece) -> f64 {
-        let first = self.pieces.first().is_some_and(|p| std::ptr::eq(p, piece)) && !self.closed;
-        let last = self.pieces.last().is_some_and(|p| std::ptr::eq(p, piece)) && !self.closed;
-        let low = if first {
-            f64::NEG_INFINITY
-        } else {
-            piece.start
-        };
-        let high = if last { f64::INFINITY } else { piece.end };
-        let width = piece.end - piece.start;
+    /// The parameter of the curve's point nearest `point` (an open curve's
+    /// `α` may fall beyond ±1 where the point has run past an end), or
+    /// `None` where no nearest point is found: the pieces' samples nearest
+    /// the point, refined by Newton's iterations.
+    pub fn nearest(&self, point: &Vector3<f64>) -> Option<f64> {
+        const SAMPLES: u32 = 8;
+        // No point of a piece is nearer than its ball's near side, and
+        // some point is no farther than the ball's far side.
+        let within = self
+            .pieces
+            .iter()
+            .map(|piece| (point - piece.centre).norm() + piece.radius)
+            .fold(f64::INFINITY, f64::min);
+        let distance = |alpha: f64| (self.at(&alpha).place - point).norm_squared();
+        let closest: Vec<(f64, f64)> = self
+            .pieces
+            .iter()
+            .filter(|piece| (point - piece.centre).norm() - piece.radius <= within)
+            .map(|piece| {
+                (0..=SAMPLES)
+                    .map(|k| {
+                        let alpha = piece.start
+                            + (piece.end - piece.start) * f64::from(k) / f64::from(SAMPLES);
+                        (alpha, (piece.place(alpha) - point).norm_squared())
+                    })
+                    .fold((f64::NAN, f64::INFINITY), |best, next| {
+                        if next.1 < best.1 { next } else { best }
+                    })
+            })
+            .collect();
+        let least = closest
+            .iter()
+            .map(|(_, d)| *d)
+            .fold(f64::INFINITY, f64::min);
+        if !least.is_finite() {
+            return None;
+        }
+        // Each piece whose samples come near the nearest one's is a
+        // candidate (two arcs of a curve can pass near one point).
+        closest
+            .iter()
+            .filter(|(_, d)| *d <= 4.0 * least + f64::EPSILON)
+            .map(|(start, _)| {
+                let alpha = self.refine(point, *start, None);
+                (alpha, distance(alpha))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(alpha, _)| alpha)
+    }
+
+    /// [`Curve::nearest`] on the polynomial of piece `piece` (continued
+    /// past its ends), in the period nearest the piece.
+    pub fn nearest_on(&self, point: &Vector3<f64>, piece: usize) -> Option<f64> {
+        let start = self.near_piece(self.nearest(point)?, piece);
+        let alpha = self.refine(point, start, Some(piece));
+        alpha.is_finite().then_some(alpha)
+    }
+
+    /// Newton's iterations on `s'(α) · (point − s(α)) = 0` from `alpha`
+    /// (a closed curve's parameter wrapped into [−1, 1), an open curve's
+    /// end pieces continued beyond its ends), on piece `piece`'s
+    /// polynomial when one is given (its `α` not wrapped).
+    fn refine(&self, point: &Vector3<f64>, mut alpha: f64, piece: Option<usize>) -> f64 {
         for _ in 0..50 {
-            let at = self.at(&alpha);
+            let at = self.at_on(&alpha, piece);
             let apart = point - at.place;
             let slope = at.tangent.dot(&apart);
             let curvature = at.bend.dot(&apart) - at.tangent.norm_squared();
@@ -266,16 +391,21 @@ impl Curve {
                 -slope / curvature
             } else {
                 // Not a minimum's basin: a step down the slope.
-                slope.signum() * 0.25 * width
+                let span = &self.pieces[piece.unwrap_or_else(|| self.piece_of(alpha))];
+                slope.signum() * 0.25 * (span.end - span.start)
             };
-            let next = (alpha + step).clamp(low, high);
+            let next = alpha + step;
             let done = (next - alpha).abs() <= 1e-15 * (1.0 + alpha.abs());
             alpha = next;
-            if done {
+            if done || !alpha.is_finite() {
                 break;
             }
         }
-        alpha
+        if piece.is_some() {
+            alpha
+        } else {
+            self.wrapped(&alpha)
+        }
     }
 }
 
@@ -529,5 +659,20 @@ mod tests {
                 .samples()
                 .all(|alpha| (curve.at(&alpha).place.norm() - 1.0).abs() < 2e-3)
         );
+        // Held on the first piece, a point just before the wrap at α = 1
+        // is just before that piece's start: its first switching value is
+        // small and negative, and the held polynomial continues the curve
+        // there.
+        let last = curve.piece_count() - 1;
+        let alpha = 1.0 - 1e-6;
+        assert_eq!(curve.piece_of(alpha), last);
+        let [before_start, before_end] = curve.switching(alpha, 0);
+        assert!(before_start < 0.0 && before_start > -1e-5, "{before_start}");
+        assert!(before_end > 0.0);
+        let held = curve.at_on(&alpha, Some(0)).place;
+        assert!((held - curve.at(&alpha).place).norm() < 1e-9);
+        let point = curve.at(&alpha).place;
+        let on_first = curve.nearest_on(&point, 0).unwrap();
+        assert!((on_first - (-1.0 - 1e-6)).abs() < 1e-9, "{on_first}");
     }
 }

@@ -39,6 +39,17 @@ pub(crate) struct Imposed<'d> {
     pub(crate) time: f64,
     /// The general constraints, compiled.
     pub(crate) general: &'d GeneralConstraints,
+    /// For each joint, the piece of its curve a PTCV is held on within a
+    /// step (empty, or `None` for a joint, where each PTCV takes the piece
+    /// of its point of contact).
+    pub(crate) pieces: Vec<Option<usize>>,
+}
+
+impl Imposed<'_> {
+    /// The piece joint `joint`'s curve is held on, if it is.
+    pub(crate) fn piece(&self, joint: usize) -> Option<usize> {
+        self.pieces.get(joint).copied().flatten()
+    }
 }
 
 /// The motions' FUNCTIONs compiled together, to be evaluated in time, and
@@ -59,6 +70,24 @@ pub(crate) struct Drives {
     /// program that computes the same call ([`Drives::held_by`]): within a
     /// step a motion stays on the branch its FUNCTION holds there.
     held_sites: Vec<Option<usize>>,
+    /// The first of the PTCVs' sites among the held sites (after the
+    /// forces' program's and the contacts'), one for each joint of
+    /// `curve_joints` in order, when the drives are held on a program.
+    curve_sites: Option<usize>,
+    /// The PTCVs, by their index among the joints.
+    curve_joints: Vec<usize>,
+}
+
+/// The joints of `model` that are PTCVs, by index: each has a site after
+/// the forces' program's and the contacts', in this order.
+pub(crate) fn curve_joints(model: &Model) -> Vec<usize> {
+    model
+        .joints
+        .iter()
+        .enumerate()
+        .filter(|(_, joint)| joint.curve.is_some())
+        .map(|(index, _)| index)
+        .collect()
 }
 
 /// How many integrals [`Drives`] keeps (a run's calls go back at most a
@@ -106,6 +135,11 @@ impl Drives {
             (Some(program), Some((forces, computed))) => site_map(model, program, forces, computed),
             _ => Vec::new(),
         };
+        let contacts = model
+            .forces
+            .iter()
+            .filter(|force| matches!(force, crate::simulate::Force::Contact(_)))
+            .count();
         Drives {
             program,
             inputs,
@@ -113,6 +147,8 @@ impl Drives {
             checkpoints: Mutex::new(Vec::new()),
             general: GeneralConstraints::new(model),
             held_sites,
+            curve_sites: forces.map(|(forces, _)| forces.sites().len() + contacts),
+            curve_joints: curve_joints(model),
         }
     }
 
@@ -142,10 +178,21 @@ impl Drives {
         t: f64,
         held: Option<&[Option<Code>]>,
     ) -> Result<Imposed<'_>, OutputError> {
+        let mut pieces = Vec::new();
+        if let (Some(sites), Some(first)) = (held, self.curve_sites) {
+            for (k, &joint) in self.curve_joints.iter().enumerate() {
+                let piece = sites.get(first + k).copied().flatten();
+                if let Some(piece) = piece.and_then(|code| usize::try_from(code).ok()) {
+                    pieces.resize(pieces.len().max(joint + 1), None);
+                    pieces[joint] = Some(piece);
+                }
+            }
+        }
         Ok(Imposed {
             drives: self.displacements(t, held)?,
             time: t,
             general: &self.general,
+            pieces,
         })
     }
 

@@ -34,8 +34,9 @@ mod reactions;
 mod rows;
 mod solve;
 
-pub(crate) use drives::{Drive, Drives, Imposed, MOTIONS};
+pub(crate) use drives::{Drive, Drives, Imposed, MOTIONS, curve_joints};
 pub(crate) use general::{GeneralConstraints, bodies_of};
+pub(crate) use on_curve::contact_parameter;
 pub(crate) use reactions::{Component, Reactions, flags, pick};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
@@ -84,12 +85,17 @@ fn frame<T: crate::number::Number>(
     }
 }
 
-/// The equations of `joint` (all of them, redundant ones too), in order.
+/// The equations of `joint` (all of them, redundant ones too), in order;
+/// a PTCV's on piece `piece` of its curve when one is given.
 fn joint_rows<T: crate::number::Number>(
     model: &super::Model,
     joint: &Joint,
     bodies: &[BodyMotion<T>],
+    piece: Option<usize>,
 ) -> Vec<Row<T>> {
+    if let Some(on) = &joint.curve {
+        return on_curve::curve_rows(model, joint, on, bodies, piece);
+    }
     let i = frame(model, &joint.i, bodies);
     let j = frame(model, &joint.j, bodies);
     let apart = i.origin.minus(&j.origin);
@@ -139,10 +145,7 @@ fn joint_rows<T: crate::number::Number>(
         JointKind::Orientation => parallel().into_iter().chain([xi.dot(yj)]).collect(),
         JointKind::ParallelAxes => parallel().into_iter().collect(),
         JointKind::Perpendicular => vec![zi.dot(zj)],
-        JointKind::PointCurve => match &joint.curve {
-            Some(on) => on_curve::curve_rows(model, joint, on, bodies),
-            None => unreachable!("a PTCV is read with its curve"),
-        },
+        JointKind::PointCurve => unreachable!("a PTCV is read with its curve"),
     }
 }
 
@@ -439,8 +442,8 @@ fn active_rows<T: crate::number::Number>(
 ) -> Vec<Row<T>> {
     let drives = &imposed.drives;
     let mut rows = Vec::new();
-    for joint in &model.joints {
-        rows.extend(kept_rows(model, joint, bodies));
+    for (index, joint) in model.joints.iter().enumerate() {
+        rows.extend(kept_rows(model, joint, bodies, imposed.piece(index)));
     }
     for (motion, drive) in model.motions.iter().zip(drives) {
         rows.push(motion_row(model, motion, drive, bodies));
@@ -557,8 +560,9 @@ fn kept_rows<T: crate::number::Number>(
     model: &super::Model,
     joint: &super::Joint,
     bodies: &[BodyMotion<T>],
+    piece: Option<usize>,
 ) -> impl Iterator<Item = Row<T>> {
-    joint_rows(model, joint, bodies)
+    joint_rows(model, joint, bodies, piece)
         .into_iter()
         .enumerate()
         .filter(|(index, _)| !joint.redundant.contains(index))

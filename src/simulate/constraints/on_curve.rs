@@ -25,13 +25,15 @@ use crate::number::Number;
 use crate::simulate::model::{Joint, Model, OnCurve};
 
 /// The two equations of PTCV `joint` on `on`, bodies moving as `bodies`
-/// say (their values not a number where the curve has no point near I's
-/// origin, or I has run past an open curve's end).
+/// say, on piece `piece` of the curve when one is given (their values not
+/// a number where the curve has no point near I's origin, or I has run
+/// past an open curve's end).
 pub(super) fn curve_rows<T: Number>(
     model: &Model,
     joint: &Joint,
     on: &OnCurve,
     bodies: &[BodyMotion<T>],
+    piece: Option<usize>,
 ) -> Vec<Row<T>> {
     let i = super::frame(model, &joint.i, bodies);
     let rm = super::frame(model, &on.frame, bodies);
@@ -48,12 +50,17 @@ pub(super) fn curve_rows<T: Number>(
     let rate = vector(|row| &row.rate);
     let bias = vector(|row| &row.bias);
     let curve = &on.curve;
-    let alpha = match curve.nearest(&place.map(|v| v.value())) {
+    let point = place.map(|v| v.value());
+    let nearest = match piece {
+        Some(piece) => curve.nearest_on(&point, piece),
+        None => curve.nearest(&point),
+    };
+    let alpha = match nearest {
         Some(alpha) if curve.closed || alpha.abs() <= 1.0 + PAST_END => alpha,
         _ => return vec![failed(), failed()],
     };
     // One Newton step on s'(α) · (ρ − s(α)) = 0 carries α's derivatives.
-    let at = curve.at(&alpha);
+    let at = curve.at_on(&alpha, piece);
     let (offset, tangent, bend) = (
         place.clone() - at.place.map(T::from),
         at.tangent.map(T::from),
@@ -62,7 +69,7 @@ pub(super) fn curve_rows<T: Number>(
     let slope = tangent.dot(&offset);
     let curvature = bend.dot(&offset).value() - at.tangent.norm_squared();
     let alpha = T::from(alpha) - slope / T::from(curvature);
-    let at = curve.at(&alpha);
+    let at = curve.at_on(&alpha, piece);
     let offset = place - &at.place;
     let speed = at.tangent.norm();
     let unit = &at.tangent / speed.clone();
@@ -98,6 +105,30 @@ pub(super) fn curve_rows<T: Number>(
         .collect()
 }
 
+/// The parameter of the point of contact of PTCV `joint` on `on` at the
+/// state `bodies` give (`None` where none is found).
+pub(crate) fn contact_parameter(
+    model: &Model,
+    joint: &Joint,
+    on: &OnCurve,
+    bodies: &[BodyMotion<f64>],
+) -> Option<f64> {
+    on.curve.nearest(&local_place(model, joint, on, bodies))
+}
+
+/// I's origin in RM's axes, from RM's origin.
+fn local_place<T: Number>(
+    model: &Model,
+    joint: &Joint,
+    on: &OnCurve,
+    bodies: &[BodyMotion<T>],
+) -> Vector3<f64> {
+    let i = super::frame(model, &joint.i, bodies);
+    let rm = super::frame(model, &on.frame, bodies);
+    let apart = i.origin.minus(&rm.origin);
+    Vector3::from_fn(|k, _| rm.axes[k].dot(&apart).value.value())
+}
+
 /// Whether PTCV `joint`'s I marker has run past an end of its open curve
 /// at the state `bodies` give.
 pub(super) fn past_an_end<T: Number>(
@@ -109,12 +140,8 @@ pub(super) fn past_an_end<T: Number>(
     if on.curve.closed {
         return false;
     }
-    let i = super::frame(model, &joint.i, bodies);
-    let rm = super::frame(model, &on.frame, bodies);
-    let apart = i.origin.minus(&rm.origin);
-    let place: Vector3<f64> = Vector3::from_fn(|k, _| rm.axes[k].dot(&apart).value.value());
     on.curve
-        .nearest(&place)
+        .nearest(&local_place(model, joint, on, bodies))
         .is_some_and(|alpha| alpha.abs() > 1.0 + PAST_END)
 }
 

@@ -1002,7 +1002,10 @@ pub(crate) fn find_redundant(model: &Model, y: &[f64], offsets: &[usize]) -> Vec
     let mut labels = Vec::new();
     let mut rows = Vec::new();
     for (joint_index, joint) in model.joints.iter().enumerate() {
-        for (equation, row) in joint_rows(model, joint, &bodies).into_iter().enumerate() {
+        for (equation, row) in joint_rows(model, joint, &bodies, None)
+            .into_iter()
+            .enumerate()
+        {
             labels.push((joint_index, equation));
             rows.push(row);
         }
@@ -1034,7 +1037,7 @@ pub(crate) fn disagreeing_redundant(
         .enumerate()
         .filter(|(_, joint)| !joint.redundant.is_empty())
         .flat_map(|(index, joint)| {
-            let rows = joint_rows(model, joint, &bodies);
+            let rows = joint_rows(model, joint, &bodies, None);
             joint
                 .redundant
                 .iter()

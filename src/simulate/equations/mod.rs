@@ -42,7 +42,8 @@ use crate::laws::contact::ContactBranch;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input};
 use crate::simulate::constraints::{
-    BodyMotion, Component, Drives, Reactions, constraint_loads, joints_failed_in,
+    BodyMotion, Component, Drives, Reactions, constraint_loads, contact_parameter, curve_joints,
+    joints_failed_in,
 };
 use crate::simulate::model::{Contact, Force, Model};
 use accelerations::{Accelerations, Measure};
@@ -212,6 +213,7 @@ impl<'m> Mechanics<'m> {
                         _ => None,
                     })
                     .collect(),
+                curves: curve_joints(model),
             },
             values,
             buffers: Buffers::new(program),
@@ -285,15 +287,27 @@ impl<'m> Mechanics<'m> {
     }
 
     /// The number of sites whose branches a run holds: the program's, then
-    /// one for each contact's law.
+    /// one for each contact's law, then one for each PTCV's curve (its
+    /// piece).
     pub(crate) fn site_count(&self) -> usize {
-        self.equations.program.sites().len() + self.equations.contacts.len()
+        let equations = &self.equations;
+        equations.program.sites().len() + equations.contacts.len() + equations.curves.len()
     }
 
     /// The number of switching values [`Mechanics::observe`] gives: the
-    /// program's, then three for each contact.
+    /// program's, then three for each contact, then two for each PTCV.
     pub(crate) fn switch_count(&self) -> usize {
-        self.equations.program.switch_count() + 3 * self.equations.contacts.len()
+        let equations = &self.equations;
+        equations.program.switch_count() + 3 * equations.contacts.len() + 2 * equations.curves.len()
+    }
+
+    /// The PTCV of site `site`, when it is one.
+    pub(crate) fn curve_of_site(&self, site: usize) -> Option<&'m crate::simulate::Joint> {
+        let equations = &self.equations;
+        let first = equations.program.sites().len() + equations.contacts.len();
+        let index = site.checked_sub(first)?;
+        let joint = *equations.curves.get(index)?;
+        Some(&equations.model.joints[joint])
     }
 
     /// The contact of site `site`, when it is one (its index among the
@@ -597,6 +611,28 @@ impl<'m> Mechanics<'m> {
                 if separation > 0.0 {
                     apart.push((contact, separation, rate));
                 }
+            }
+        }
+        // Each PTCV's curve is a site after the contacts', its branch the
+        // piece of its point of contact, with two switching values: the
+        // distances to the held piece's ends.
+        if !equations.curves.is_empty() {
+            let contacts = equations.contacts.len();
+            let first_site = program_sites + contacts;
+            let bodies = body_motions(&kinematics);
+            for (k, &index) in equations.curves.iter().enumerate() {
+                let joint = &model.joints[index];
+                let Some(on) = &joint.curve else { continue };
+                let alpha = contact_parameter(model, joint, on, &bodies).unwrap_or(f64::NAN);
+                let natural = on.curve.piece_of(alpha);
+                let piece = held
+                    .and_then(|sites| sites[first_site + k])
+                    .and_then(|code| usize::try_from(code).ok())
+                    .unwrap_or(natural);
+                contact_natural[contacts + k] = Some(natural as Code);
+                let values = on.curve.switching(alpha, piece);
+                let first_switch = 3 * contacts + 2 * k;
+                contact_switching[first_switch..first_switch + 2].copy_from_slice(&values);
             }
         }
         // Solids apart bound the step by their approach, which needs the
@@ -1057,6 +1093,10 @@ struct Equations<'m> {
     /// The model's contacts, in the order of their sites (after the
     /// program's).
     contacts: Vec<&'m Contact>,
+    /// The model's PTCVs by their index among the joints, in the order of
+    /// their sites (after the contacts'): each holds its curve on one
+    /// piece within a step.
+    curves: Vec<usize>,
 }
 
 impl Equations<'_> {

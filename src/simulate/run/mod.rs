@@ -267,6 +267,24 @@ fn contact_event(contact: &Contact, time: f64, from: Code, to: Code) -> Event {
     }
 }
 
+/// The event of PTCV `joint`'s point of contact crossing from piece
+/// `from` of its curve to piece `to` at `time` (a knot, where the curve's
+/// third derivative changes).
+fn curve_event(joint: &crate::simulate::Joint, time: f64, from: Code, to: Code) -> Event {
+    let curve = joint.curve.as_ref().map_or(0, |on| on.curve.id);
+    let describe = |code: Code| format!("on piece {} of CURVE/{curve}", code + 1);
+    Event {
+        time,
+        function: "PTCV".to_string(),
+        place: Place::File(joint.span),
+        label: format!("PTCV/{}", joint.id),
+        from: describe(from),
+        to: describe(to),
+        values: Vec::new(),
+        residuals: None,
+    }
+}
+
 /// A step limit of the sites, raised to what the integrator can take at
 /// time `t` (a hundred times its smallest step).
 fn floor(limit: f64, t: f64) -> f64 {
@@ -944,9 +962,16 @@ impl Simulation<'_> {
                 if let (Some(from), Some(to)) = (held, now)
                     && from != to
                 {
-                    let event = match system.mechanics.contact_of_site(index) {
-                        Some(contact) => contact_event(contact, right, *from, *to),
-                        None => self.event(program, &program.sites()[index], right, *from, *to),
+                    let mechanics = &system.mechanics;
+                    let event = match (
+                        mechanics.contact_of_site(index),
+                        mechanics.curve_of_site(index),
+                    ) {
+                        (Some(contact), _) => contact_event(contact, right, *from, *to),
+                        (None, Some(joint)) => curve_event(joint, right, *from, *to),
+                        (None, None) => {
+                            self.event(program, &program.sites()[index], right, *from, *to)
+                        }
                     };
                     summary.events.push(event);
                 }
