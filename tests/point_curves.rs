@@ -342,3 +342,24 @@ END
         }
     }
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(8))]
+
+    /// The Jacobian of a bead on a PTCV of a turning parabola (the
+    /// curve's parameter carried over the dual numbers by a Newton step,
+    /// the normals' turn and the curvature in the bias) agrees with
+    /// central differences of the rates, off the curve too.
+    #[test]
+    fn the_jacobian_with_a_ptcv_agrees_with_finite_differences(
+        shifts in proptest::collection::vec(-0.02f64..0.02, 26),
+        time in 0.0f64..3.0,
+    ) {
+        let text = wire(
+            2.0,
+            "PTCV/1, I = 20, JFLOAT = 33, RM = 31, CURVE = 1",
+            ["PTCV(1, 0, 2, 0)", "PTCV(1, 0, 3, 0)", "PTCV(1, 0, 4, 0)"],
+        );
+        super::simulate::the_jacobian_agrees_with_finite_differences(&text, &shifts, time)?;
+    }
+}
