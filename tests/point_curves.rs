@@ -265,6 +265,10 @@ END
             model(curve, "PTCV/1, I = 20, JFLOAT = 11, RM = 10, CURVE = 7, VEL = 2", 0.0),
         ),
         (
+            "DISP beyond the curve's end",
+            model(curve, "PTCV/1, I = 20, JFLOAT = 11, RM = 10, CURVE = 1, DISP = 5, 25, 0", 0.0),
+        ),
+        (
             "JFLOAT on the point's part",
             model(curve, "PTCV/1, I = 20, JFLOAT = 21, RM = 10, CURVE = 1", 0.0),
         ),
@@ -386,5 +390,31 @@ fn the_cam_follower_example_rises_as_the_eccentric_circle_says() {
         println!("{method:?}: the tip's height within {worst:.1e} of the closed form");
         assert!(worst < 1e-7, "{method:?}: {worst}");
         assert!(turned.events.iter().any(|event| event.function == "PTCV"));
+    }
+}
+
+/// DISP places the point of contact where it says, as Adams does (the
+/// curve's point nearest it, here `(−0.5, 0.25)` of the parabola, given in
+/// RM's axes and in those of an ICM marker turned a quarter turn about z
+/// and moved to (1, 0)), not where the I marker is drawn (at `(1, 1)`).
+#[test]
+fn disp_places_the_point_of_contact() {
+    for (holder, extra) in [
+        ("CURVE = 1, DISP = -0.5, 0.25, 0", ""),
+        (
+            "CURVE = 1, DISP = 0.25, 1.5, 0, ICM = 34",
+            "MARKER/34, PART = 3, QP = 1, 0, 0, REULER = 90D, 0, 0\n",
+        ),
+    ] {
+        let text = wire(
+            0.0,
+            &format!("{extra}PTCV/1, I = 20, JFLOAT = 33, RM = 31, {holder}"),
+            ["PTCV(1, 0, 2, 0)", "PTCV(1, 0, 3, 0)", "PTCV(1, 0, 4, 0)"],
+        );
+        let ran = run(&text, &settings(0.1, 1, 1e-9)).unwrap_or_else(|error| panic!("{error}"));
+        let first = &ran.rows[0];
+        let n = first.len();
+        assert!((first[n - 6] + 0.5).abs() < 1e-9, "{holder}: {first:?}");
+        assert!((first[n - 5] - 0.25).abs() < 1e-9, "{holder}: {first:?}");
     }
 }

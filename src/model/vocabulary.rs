@@ -102,7 +102,8 @@ pub const STATEMENTS: &[(&str, Option<&[&str]>)] = &[
     (
         "CVCV",
         Some(&[
-            "ICURVE", "IDISP", "IFLOAT", "IRM", "IVEL", "JCURVE", "JDISP", "JFLOAT", "JRM", "JVEL",
+            "ICURVE", "IDISP", "IFLOAT", "IICM", "IRM", "IVEL", "JCURVE", "JDISP", "JFLOAT",
+            "JICM", "JRM", "JVEL",
         ]),
     ),
     (
@@ -529,7 +530,10 @@ pub const STATEMENTS: &[(&str, Option<&[&str]>)] = &[
             "STATUS_MESSAGE",
         ]),
     ),
-    ("PTCV", Some(&["CURVE", "DISP", "I", "JFLOAT", "RM", "VEL"])),
+    (
+        "PTCV",
+        Some(&["CURVE", "DISP", "I", "ICM", "JFLOAT", "RM", "VEL"]),
+    ),
     (
         "REQUEST",
         Some(&[

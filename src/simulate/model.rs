@@ -511,6 +511,9 @@ pub struct OnCurve {
     pub curve: Curve,
     /// The RM marker (on the part of the joint's J marker).
     pub frame: Target,
+    /// The parameter of the curve's point nearest `DISP`, where the
+    /// initial analysis places the I marker's origin, when DISP is given.
+    pub start: Option<f64>,
 }
 
 impl Joint {

@@ -206,6 +206,11 @@ fn initial_rows(
         for part in &model.exact {
             rows.extend(exact_rows(part, &bodies[part.body]));
         }
+        for joint in &model.joints {
+            if let Some((on, start)) = curve_start(joint) {
+                rows.push(on_curve::start_row(model, joint, on, start, bodies));
+            }
+        }
     }
     rows
 }
@@ -348,6 +353,13 @@ fn exact_rows(part: &super::model::ExactPart, body: &BodyMotion<f64>) -> Vec<Row
         }
     }
     rows
+}
+
+/// A PTCV's curve and the parameter its DISP sets at the start, when it
+/// gives one.
+fn curve_start(joint: &Joint) -> Option<(&super::OnCurve, f64)> {
+    let on = joint.curve.as_ref()?;
+    Some((on, on.start?))
 }
 
 /// Whether `part` was drawn with its CM marker's z axis along ground's
@@ -544,6 +556,9 @@ pub(crate) fn owner_of_row(
                 (format!("the EXACT coordinates of {name}"), part.span),
                 exact_row_count(part),
             )
+        }))
+        .chain(model.joints.iter().filter_map(|joint| {
+            curve_start(joint).map(|_| (format!("the DISP of PTCV/{}", joint.id), joint.span))
         }));
     motions
         .enumerate()

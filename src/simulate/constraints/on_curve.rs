@@ -105,6 +105,45 @@ pub(super) fn curve_rows<T: Number>(
         .collect()
 }
 
+/// The equation that puts PTCV `joint`'s point of contact at the
+/// parameter `start` of its curve (its DISP), in the initial analysis of
+/// the positions: the parameter of the curve's point nearest I's origin
+/// less `start` (for a closed curve, in the period nearest it), its row
+/// that of `α(ρ)`, `∂α/∂ρ = s' / (|s'|² − s'' · e)`, so that Newton's
+/// iterations move the point along the curve.
+pub(super) fn start_row(
+    model: &Model,
+    joint: &Joint,
+    on: &OnCurve,
+    start: f64,
+    bodies: &[BodyMotion<f64>],
+) -> Row<f64> {
+    let i = super::frame(model, &joint.i, bodies);
+    let rm = super::frame(model, &on.frame, bodies);
+    let apart = i.origin.minus(&rm.origin);
+    let local: Vec<Row<f64>> = rm.axes.iter().map(|axis| axis.dot(&apart)).collect();
+    let place = Vector3::new(local[0].value, local[1].value, local[2].value);
+    let Some(alpha) = on.curve.nearest(&place) else {
+        return failed();
+    };
+    let at = on.curve.at(&alpha);
+    let gradient = at.tangent / (at.tangent.norm_squared() - at.bend.dot(&(place - at.place)));
+    let mut away = alpha - start;
+    if on.curve.closed {
+        away -= 2.0 * (away / 2.0).round();
+    }
+    let mut row = Row {
+        value: away,
+        rate: 0.0,
+        bias: 0.0,
+        coefficients: Vec::new(),
+    };
+    for (k, component) in local.iter().enumerate() {
+        row = row.plus_coefficients(component, &gradient[k]);
+    }
+    row
+}
+
 /// The parameter of the point of contact of PTCV `joint` on `on` at the
 /// state `bodies` give (`None` where none is found).
 pub(crate) fn contact_parameter(

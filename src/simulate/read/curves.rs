@@ -3,7 +3,7 @@
 
 use nalgebra::Vector3;
 
-use crate::model::initial::{number, number_list};
+use crate::model::initial::{number, number_list, numbers};
 use crate::model::{Dataset, Statement, Value, is_kind};
 use crate::scene::{Scene, Target};
 use crate::simulate::SimulateError;
@@ -12,18 +12,16 @@ use crate::simulate::model::{Joint, JointKind, OnCurve};
 use crate::span::Span;
 
 /// The PTCV statements of `dataset` as joints, their markers found in
-/// `scene`, every problem added to `errors` at its place; notes (DISP
-/// taken as a guess) added to `notes`.
+/// `scene`, every problem added to `errors` at its place.
 pub(crate) fn point_curves(
     dataset: &Dataset,
     scene: &Scene,
-    notes: &mut Vec<(String, Span)>,
     errors: &mut Vec<SimulateError>,
 ) -> Vec<Joint> {
     let mut joints = Vec::new();
     for statement in &dataset.statements {
         if is_kind(&statement.name, "PTCV") {
-            joints.extend(point_curve(dataset, statement, scene, notes, errors));
+            joints.extend(point_curve(dataset, statement, scene, errors));
         }
     }
     joints
@@ -33,7 +31,6 @@ fn point_curve(
     dataset: &Dataset,
     statement: &Statement,
     scene: &Scene,
-    notes: &mut Vec<(String, Span)>,
     errors: &mut Vec<SimulateError>,
 ) -> Option<Joint> {
     let label = statement.label();
@@ -44,14 +41,6 @@ fn point_curve(
             reason: "sets VEL, the initial speed along the curve, which mbexpr does not take: give the parts' initial velocities (PART VX ... WZ)".to_string(),
             span: argument.span,
         });
-    }
-    if let Some(argument) = statement.argument("DISP", 4) {
-        notes.push((
-            format!(
-                "{label}: DISP is taken as a guess only: the point of contact is the curve's point nearest the I marker"
-            ),
-            argument.span,
-        ));
     }
     let mut marker = |keyword: &str| -> Option<(Target, u64)> {
         let id = number(statement, keyword, f64::NAN)
@@ -98,16 +87,100 @@ fn point_curve(
         ));
         return None;
     }
+    let start = start_parameter(statement, scene, rm, &curve, errors)?;
     Some(Joint {
         id: statement.id.unwrap_or(0),
         kind: JointKind::PointCurve,
         i,
         j: rm,
         pitch: 0.0,
-        curve: Some(OnCurve { curve, frame: rm }),
+        curve: Some(OnCurve {
+            curve,
+            frame: rm,
+            start,
+        }),
         redundant: Vec::new(),
         span: statement.span,
     })
+}
+
+/// The parameter of the curve's point nearest `statement`'s DISP (given
+/// in the axes of its ICM marker, or of `rm`), where the initial analysis
+/// places the point of contact, as Adams does; `Some(None)` without DISP,
+/// `None` when DISP or ICM cannot be read (the error in `errors`).
+fn start_parameter(
+    statement: &Statement,
+    scene: &Scene,
+    rm: Target,
+    curve: &Curve,
+    errors: &mut Vec<SimulateError>,
+) -> Option<Option<f64>> {
+    let Some(argument) = statement.argument("DISP", 4) else {
+        return Some(None);
+    };
+    let label = statement.label();
+    let Ok([x, y, z]) = numbers(statement, "DISP", [0.0; 3]) else {
+        errors.push(SimulateError::Model {
+            message: format!("{label}: DISP = x, y, z: three numbers"),
+            span: argument.span,
+        });
+        return None;
+    };
+    let place = |target: Target| match target {
+        Target::Ground => (Vector3::zeros(), nalgebra::Matrix3::identity()),
+        Target::Marker(index) => {
+            let marker = &scene.markers[index];
+            (
+                marker.position,
+                marker.orientation.to_rotation_matrix().into_inner(),
+            )
+        }
+    };
+    let within = match statement.argument("ICM", 3) {
+        None => rm,
+        Some(icm) => {
+            let found = number(statement, "ICM", f64::NAN)
+                .ok()
+                .filter(|id| id.fract() == 0.0 && *id > 0.0)
+                .and_then(|id| {
+                    scene
+                        .find_marker(&crate::check::Reference::Id(id as u64))
+                        .ok()
+                });
+            let body = |target: Target| match target {
+                Target::Ground => None,
+                Target::Marker(index) => scene.markers[index].body,
+            };
+            match found {
+                Some(target) if body(target) == body(rm) => target,
+                _ => {
+                    errors.push(SimulateError::Model {
+                        message: format!(
+                            "{label}: ICM must name a fixed MARKER on the part of RM (DISP is given in its axes)"
+                        ),
+                        span: icm.span,
+                    });
+                    return None;
+                }
+            }
+        }
+    };
+    let (origin, axes) = place(within);
+    let (rm_origin, rm_axes) = place(rm);
+    let point = rm_axes.transpose() * (origin + axes * Vector3::new(x, y, z) - rm_origin);
+    match curve.nearest(&point) {
+        Some(alpha) if curve.closed || alpha.abs() <= 1.0 => Some(Some(alpha)),
+        _ => {
+            errors.push(SimulateError::Model {
+                message: format!(
+                    "{label}: DISP lies beyond an end of CURVE/{}: give a point by the curve",
+                    curve.id
+                ),
+                span: argument.span,
+            });
+            None
+        }
+    }
 }
 
 /// The PART id of the marker `id`.

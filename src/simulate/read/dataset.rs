@@ -285,7 +285,6 @@ impl Reader<'_> {
         joints.extend(super::curves::point_curves(
             self.dataset,
             &self.scene,
-            &mut notes,
             &mut self.errors,
         ));
         let (motions, marker_motions) = self.motions(&joints);
