@@ -33,10 +33,6 @@ pub struct Curve {
     pieces: Vec<Piece>,
     /// Whether it closes on itself (its parameter wraps around).
     pub closed: bool,
-    /// The axis (x, y or z of the curve's frame) least along the curve:
-    /// the normals of the point on the curve are taken square to the
-    /// tangent starting from it.
-    pub reference: Vector3<f64>,
 }
 
 /// One piece: `s(α) = Σ c_k (α − start)^k` on `[start, end]`, within
@@ -48,6 +44,10 @@ struct Piece {
     coefficients: Vec<Vector3<f64>>,
     centre: Vector3<f64>,
     radius: f64,
+    /// The axis (x, y or z of the curve's frame) least along the piece:
+    /// the normals of a point of contact on it are taken square to the
+    /// tangent starting from it.
+    reference: Vector3<f64>,
 }
 
 impl Piece {
@@ -86,6 +86,41 @@ impl Piece {
         let step = (self.end - self.start) / f64::from(SAMPLES);
         self.centre = centre;
         self.radius = farthest + step * step * bend / 4.0;
+    }
+
+    /// The piece's tangent at `alpha`.
+    fn tangent(&self, alpha: f64) -> Vector3<f64> {
+        let local = alpha - self.start;
+        let mut sum = Vector3::zeros();
+        for (power, c) in self.coefficients.iter().enumerate().skip(1).rev() {
+            sum = sum * local + c * power as f64;
+        }
+        sum
+    }
+
+    /// Parameters along the piece.
+    fn samples(&self) -> impl Iterator<Item = f64> + '_ {
+        const SAMPLES: u32 = 12;
+        (0..=SAMPLES)
+            .map(move |k| self.start + (self.end - self.start) * f64::from(k) / f64::from(SAMPLES))
+    }
+
+    /// Sets `reference` to the axis of x, y and z whose largest cosine
+    /// with the piece's tangent, over points along it, is least.
+    fn choose_reference(&mut self) {
+        let mut worst = [0.0f64; 3];
+        for alpha in self.samples() {
+            let Some(unit) = self.tangent(alpha).try_normalize(0.0) else {
+                continue;
+            };
+            for (axis, worst) in worst.iter_mut().enumerate() {
+                *worst = worst.max(unit[axis].abs());
+            }
+        }
+        let axis = (0..3)
+            .min_by(|&a, &b| worst[a].total_cmp(&worst[b]))
+            .unwrap_or(2);
+        self.reference = Vector3::ith(axis, 1.0);
     }
 }
 
@@ -170,6 +205,7 @@ impl Curve {
                 coefficients,
                 centre: Vector3::zeros(),
                 radius: 0.0,
+                reference: Vector3::z(),
             });
         }
         if let Some(last) = pieces.last_mut() {
@@ -177,6 +213,7 @@ impl Curve {
         }
         for piece in &mut pieces {
             piece.bound();
+            piece.choose_reference();
         }
         if pieces.iter().any(|piece| {
             piece
@@ -186,43 +223,26 @@ impl Curve {
         }) {
             return Err("its points give no curve (they are not apart)".to_string());
         }
-        let mut curve = Curve {
-            id,
-            pieces,
-            closed,
-            reference: Vector3::z(),
-        };
-        curve.reference = curve.least_along();
-        Ok(curve)
-    }
-
-    /// The axis of x, y and z whose largest cosine with the curve's
-    /// tangent, over points along it, is least.
-    fn least_along(&self) -> Vector3<f64> {
-        let mut worst = [0.0f64; 3];
-        for alpha in self.samples() {
-            let tangent = self.at(&alpha).tangent;
-            let Some(unit) = tangent.try_normalize(0.0) else {
-                continue;
-            };
-            for (axis, worst) in worst.iter_mut().enumerate() {
-                *worst = worst.max(unit[axis].abs());
-            }
+        // A point of contact needs a tangent: a curve that stops (repeated
+        // points) has none there.
+        let size = points.iter().map(|p| p.amax()).fold(0.0, f64::max);
+        let stops = pieces.iter().any(|piece| {
+            piece
+                .samples()
+                .any(|alpha| piece.tangent(alpha).norm() <= 1e-9 * size.max(f64::MIN_POSITIVE))
+        });
+        if stops {
+            return Err(
+                "its points give a curve that stops (its tangent vanishes where points repeat): give points apart".to_string(),
+            );
         }
-        let axis = (0..3)
-            .min_by(|&a, &b| worst[a].total_cmp(&worst[b]))
-            .unwrap_or(2);
-        Vector3::ith(axis, 1.0)
+        Ok(Curve { id, pieces, closed })
     }
 
-    /// Parameters along the whole curve, several a piece.
-    fn samples(&self) -> impl Iterator<Item = f64> + '_ {
-        const PER_PIECE: usize = 12;
-        self.pieces.iter().flat_map(|piece| {
-            (0..PER_PIECE).map(move |k| {
-                piece.start + (piece.end - piece.start) * (k as f64 + 0.5) / PER_PIECE as f64
-            })
-        })
+    /// The axis the normals at `alpha` start from: the least along the
+    /// piece `piece`, or along the piece `alpha` falls in.
+    pub fn reference(&self, alpha: f64, piece: Option<usize>) -> Vector3<f64> {
+        self.pieces[piece.unwrap_or_else(|| self.piece_of(alpha))].reference
     }
 
     /// `alpha` brought into [−1, 1) for a closed curve (whole periods of
@@ -623,6 +643,21 @@ mod tests {
     }
 
     #[test]
+    fn a_curve_that_stops_is_refused() {
+        let repeated = points(&[
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+        ]);
+        assert!(Curve::new(1, &repeated, 2, false, false).is_err());
+        assert!(Curve::new(1, &repeated, 4, false, false).is_ok());
+        let same = points(&[[1.0, 1.0, 1.0]; 4]);
+        assert!(Curve::new(1, &same, 2, false, true).is_err());
+        assert!(Curve::new(1, &same, 4, true, false).is_err());
+    }
+
+    #[test]
     fn curves_through_points_meet_them() {
         let circle: Vec<Vector3<f64>> = (0..12)
             .map(|k| {
@@ -656,7 +691,9 @@ mod tests {
         assert!((end.tangent - start.tangent).norm() < 1e-8);
         assert!(
             curve
-                .samples()
+                .pieces
+                .iter()
+                .flat_map(|piece| piece.samples().collect::<Vec<_>>())
                 .all(|alpha| (curve.at(&alpha).place.norm() - 1.0).abs() < 2e-3)
         );
         // Held on the first piece, a point just before the wrap at α = 1

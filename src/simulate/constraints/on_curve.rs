@@ -74,7 +74,7 @@ pub(super) fn curve_rows<T: Number>(
     let speed = at.tangent.norm();
     let unit = &at.tangent / speed.clone();
     let unit_turn = (&at.bend - &unit * unit.dot(&at.bend)) / speed.clone();
-    let reference = curve.reference.map(T::from);
+    let reference = curve.reference(alpha.value(), piece).map(T::from);
     let along = reference.dot(&unit);
     let square = &reference - &unit * along.clone();
     let length = square.norm();
