@@ -26,8 +26,8 @@ use crate::simulate::model::{Joint, Model, OnCurve};
 
 /// The two equations of PTCV `joint` on `on`, bodies moving as `bodies`
 /// say, on piece `piece` of the curve when one is given (their values not
-/// a number where the curve has no point near I's origin, or I has run
-/// past an open curve's end).
+/// a number where the curve has no point near I's origin, or, on a held
+/// piece, where I has run past an open curve's end).
 pub(super) fn curve_rows<T: Number>(
     model: &Model,
     joint: &Joint,
@@ -55,8 +55,12 @@ pub(super) fn curve_rows<T: Number>(
         Some(piece) => curve.nearest_on(&point, piece),
         None => curve.nearest(&point),
     };
+    // Within a run's step (a piece held) a point past an open curve's end
+    // has left the curve; outside one (the assembly, the projections) the
+    // end pieces are continued, so that a point drawn past an end can be
+    // put back on the curve.
     let alpha = match nearest {
-        Some(alpha) if curve.closed || alpha.abs() <= 1.0 + PAST_END => alpha,
+        Some(alpha) if curve.closed || piece.is_none() || alpha.abs() <= 1.0 + PAST_END => alpha,
         _ => return vec![failed(), failed()],
     };
     // One Newton step on s'(α) · (ρ − s(α)) = 0 carries α's derivatives.

@@ -1010,11 +1010,21 @@ pub(crate) fn find_redundant(model: &Model, y: &[f64], offsets: &[usize]) -> Vec
             rows.push(row);
         }
     }
+    // An equation that cannot be evaluated here (a GCON's FUNCTION out of
+    // its domain) is no repetition: the assembly names it.
+    let finite = |row: &Row<f64>| {
+        row.value.is_finite()
+            && row
+                .coefficients
+                .iter()
+                .all(|(_, entries)| entries.iter().all(|entry| entry.is_finite()))
+    };
     independent(&[], &rows)
         .into_iter()
         .zip(labels)
-        .filter(|(independent, _)| !independent)
-        .map(|(_, label)| label)
+        .zip(&rows)
+        .filter(|((independent, _), row)| !independent && finite(row))
+        .map(|((_, label), _)| label)
         .collect()
 }
 
