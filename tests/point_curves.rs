@@ -393,7 +393,8 @@ fn the_cam_follower_example_rises_as_the_eccentric_circle_says() {
 /// DISP places the point of contact where it says, as Adams does (the
 /// curve's point nearest it, here `(−0.5, 0.25)` of the parabola, given in
 /// RM's axes and in those of an ICM marker turned a quarter turn about z
-/// and moved to (1, 0)), not where the I marker is drawn (at `(1, 1)`).
+/// and moved to (1, 0)), not where the I marker is drawn (at `(1, 1)`, or
+/// past the curve's end at `(2.5, 6)`).
 #[test]
 fn disp_places_the_point_of_contact() {
     for (holder, extra) in [
@@ -408,11 +409,16 @@ fn disp_places_the_point_of_contact() {
             &format!("{extra}PTCV/1, I = 20, JFLOAT = 33, RM = 31, {holder}"),
             ["PTCV(1, 0, 2, 0)", "PTCV(1, 0, 3, 0)", "PTCV(1, 0, 4, 0)"],
         );
-        let ran = run(&text, &settings(0.1, 1, 1e-9)).unwrap_or_else(|error| panic!("{error}"));
-        let first = &ran.rows[0];
-        let n = first.len();
-        assert!((first[n - 6] + 0.5).abs() < 1e-9, "{holder}: {first:?}");
-        assert!((first[n - 5] - 0.25).abs() < 1e-9, "{holder}: {first:?}");
+        // Drawn past the parabola's end (x = 2) too: outside a run's step
+        // the curve's end pieces are continued, so the point is put back.
+        let past_the_end = text.replace("QP = 1, 1, 0", "QP = 2.5, 6, 0");
+        for text in [text, past_the_end] {
+            let ran = run(&text, &settings(0.1, 1, 1e-9)).unwrap_or_else(|error| panic!("{error}"));
+            let first = &ran.rows[0];
+            let n = first.len();
+            assert!((first[n - 6] + 0.5).abs() < 1e-9, "{holder}: {first:?}");
+            assert!((first[n - 5] - 0.25).abs() < 1e-9, "{holder}: {first:?}");
+        }
     }
 }
 
