@@ -916,10 +916,7 @@ impl Compiler<'_> {
                 index
             }
         };
-        let body = match target {
-            Target::Marker(index) => scene.markers[index].body,
-            Target::Ground => None,
-        };
+        let body = scene.body_of(&target);
         let state = body.map(|body| {
             StateComponent::ALL.map(|component| {
                 let name = scene.state_name(body, component);

@@ -294,6 +294,14 @@ pub enum Target {
 }
 
 impl Scene {
+    /// The body marker `target` is on (`None`: ground, or a marker on it).
+    pub fn body_of(&self, target: &Target) -> Option<usize> {
+        match target {
+            Target::Ground => None,
+            Target::Marker(index) => self.markers[*index].body,
+        }
+    }
+
     /// The marker of id `id` when it is fixed on body `body`.
     pub fn marker_on(&self, id: u64, body: usize) -> Option<&Marker> {
         match self.find_marker(&Reference::Id(id)) {

@@ -51,13 +51,34 @@ struct Piece {
 }
 
 impl Piece {
-    /// The piece's point at `alpha`.
-    fn place(&self, alpha: f64) -> Vector3<f64> {
-        let local = alpha - self.start;
-        self.coefficients
-            .iter()
-            .rev()
-            .fold(Vector3::zeros(), |sum, c| sum * local + c)
+    /// The piece's point at `alpha` and its first two derivatives (its
+    /// polynomial continued past its ends).
+    fn at<T: Number>(&self, alpha: &T) -> CurvePoint<T> {
+        let local = alpha.clone() - T::from(self.start);
+        let lift = |c: &Vector3<f64>| c.map(T::from);
+        let mut place = Vector3::zeros();
+        let mut tangent = Vector3::zeros();
+        let mut bend = Vector3::zeros();
+        for (k, c) in self.coefficients.iter().enumerate().rev() {
+            place = place * local.clone() + lift(c);
+            if k >= 1 {
+                tangent = tangent * local.clone() + lift(&(c * k as f64));
+            }
+            if k >= 2 {
+                bend = bend * local.clone() + lift(&(c * (k * (k - 1)) as f64));
+            }
+        }
+        CurvePoint {
+            place,
+            tangent,
+            bend,
+        }
+    }
+
+    /// `count + 1` parameters evenly along the piece, its ends included.
+    fn samples(&self, count: u32) -> impl Iterator<Item = f64> + '_ {
+        (0..=count)
+            .map(move |k| self.start + (self.end - self.start) * f64::from(k) / f64::from(count))
     }
 
     /// Sets `centre` and `radius` to a ball that holds the piece: the
@@ -65,52 +86,25 @@ impl Piece {
     /// piece can bulge between samples (`h² max|s''| / 8`, doubled).
     fn bound(&mut self) {
         const SAMPLES: u32 = 32;
-        let at = |k: u32| self.start + (self.end - self.start) * f64::from(k) / f64::from(SAMPLES);
-        let centre = (0..=SAMPLES)
-            .map(|k| self.place(at(k)))
-            .sum::<Vector3<f64>>()
-            / f64::from(SAMPLES + 1);
-        let farthest = (0..=SAMPLES)
-            .map(|k| (self.place(at(k)) - centre).norm())
+        let points: Vec<CurvePoint<f64>> =
+            self.samples(SAMPLES).map(|alpha| self.at(&alpha)).collect();
+        let centre = points.iter().map(|at| at.place).sum::<Vector3<f64>>() / points.len() as f64;
+        let farthest = points
+            .iter()
+            .map(|at| (at.place - centre).norm())
             .fold(0.0, f64::max);
-        let bend = (0..=SAMPLES)
-            .map(|k| {
-                let local = at(k) - self.start;
-                let mut sum = Vector3::zeros();
-                for (power, c) in self.coefficients.iter().enumerate().skip(2).rev() {
-                    sum = sum * local + c * (power * (power - 1)) as f64;
-                }
-                sum.norm()
-            })
-            .fold(0.0, f64::max);
+        let bend = points.iter().map(|at| at.bend.norm()).fold(0.0, f64::max);
         let step = (self.end - self.start) / f64::from(SAMPLES);
         self.centre = centre;
         self.radius = farthest + step * step * bend / 4.0;
-    }
-
-    /// The piece's tangent at `alpha`.
-    fn tangent(&self, alpha: f64) -> Vector3<f64> {
-        let local = alpha - self.start;
-        let mut sum = Vector3::zeros();
-        for (power, c) in self.coefficients.iter().enumerate().skip(1).rev() {
-            sum = sum * local + c * power as f64;
-        }
-        sum
-    }
-
-    /// Parameters along the piece.
-    fn samples(&self) -> impl Iterator<Item = f64> + '_ {
-        const SAMPLES: u32 = 12;
-        (0..=SAMPLES)
-            .map(move |k| self.start + (self.end - self.start) * f64::from(k) / f64::from(SAMPLES))
     }
 
     /// Sets `reference` to the axis of x, y and z whose largest cosine
     /// with the piece's tangent, over points along it, is least.
     fn choose_reference(&mut self) {
         let mut worst = [0.0f64; 3];
-        for alpha in self.samples() {
-            let Some(unit) = self.tangent(alpha).try_normalize(0.0) else {
+        for alpha in self.samples(TANGENT_SAMPLES) {
+            let Some(unit) = self.at(&alpha).tangent.try_normalize(0.0) else {
                 continue;
             };
             for (axis, worst) in worst.iter_mut().enumerate() {
@@ -123,6 +117,10 @@ impl Piece {
         self.reference = Vector3::ith(axis, 1.0);
     }
 }
+
+/// How many steps along a piece its tangent is looked at (for the
+/// normals' reference axis, and for a tangent that vanishes).
+const TANGENT_SAMPLES: u32 = 12;
 
 /// A point of a curve with its first two derivatives in the parameter.
 pub struct CurvePoint<T: Number> {
@@ -228,8 +226,8 @@ impl Curve {
         let size = points.iter().map(|p| p.amax()).fold(0.0, f64::max);
         let stops = pieces.iter().any(|piece| {
             piece
-                .samples()
-                .any(|alpha| piece.tangent(alpha).norm() <= 1e-9 * size.max(f64::MIN_POSITIVE))
+                .samples(TANGENT_SAMPLES)
+                .any(|alpha| piece.at(&alpha).tangent.norm() <= 1e-9 * size.max(f64::MIN_POSITIVE))
         });
         if stops {
             return Err(
@@ -291,35 +289,15 @@ impl Curve {
     /// within a step the curve is held on one piece, as a law on one
     /// branch, so that its next knot is crossed as a located switch.
     pub fn at_on<T: Number>(&self, alpha: &T, piece: Option<usize>) -> CurvePoint<T> {
-        let (alpha, piece) = match piece {
+        match piece {
             Some(index) => {
                 let shifted = self.near_piece(alpha.value(), index) - alpha.value();
-                (alpha.clone() + T::from(shifted), &self.pieces[index])
+                self.pieces[index].at(&(alpha.clone() + T::from(shifted)))
             }
             None => {
                 let alpha = self.wrapped(alpha);
-                let index = self.piece_of(alpha.value());
-                (alpha, &self.pieces[index])
+                self.pieces[self.piece_of(alpha.value())].at(&alpha)
             }
-        };
-        let local = alpha - T::from(piece.start);
-        let lift = |c: &Vector3<f64>| c.map(T::from);
-        let mut place = Vector3::zeros();
-        let mut tangent = Vector3::zeros();
-        let mut bend = Vector3::zeros();
-        for (k, c) in piece.coefficients.iter().enumerate().rev() {
-            place = place * local.clone() + lift(c);
-            if k >= 1 {
-                tangent = tangent * local.clone() + lift(&(c * k as f64));
-            }
-            if k >= 2 {
-                bend = bend * local.clone() + lift(&(c * (k * (k - 1)) as f64));
-            }
-        }
-        CurvePoint {
-            place,
-            tangent,
-            bend,
         }
     }
 
@@ -344,7 +322,6 @@ impl Curve {
     /// `None` where no nearest point is found: the pieces' samples nearest
     /// the point, refined by Newton's iterations.
     pub fn nearest(&self, point: &Vector3<f64>) -> Option<f64> {
-        const SAMPLES: u32 = 8;
         // No point of a piece is nearer than its ball's near side, and
         // some point is no farther than the ball's far side.
         let within = self
@@ -357,17 +334,7 @@ impl Curve {
             .pieces
             .iter()
             .filter(|piece| (point - piece.centre).norm() - piece.radius <= within)
-            .map(|piece| {
-                (0..=SAMPLES)
-                    .map(|k| {
-                        let alpha = piece.start
-                            + (piece.end - piece.start) * f64::from(k) / f64::from(SAMPLES);
-                        (alpha, (piece.place(alpha) - point).norm_squared())
-                    })
-                    .fold((f64::NAN, f64::INFINITY), |best, next| {
-                        if next.1 < best.1 { next } else { best }
-                    })
-            })
+            .map(|piece| closest_sample(piece, point))
             .collect();
         let least = closest
             .iter()
@@ -390,9 +357,9 @@ impl Curve {
     }
 
     /// [`Curve::nearest`] on the polynomial of piece `piece` (continued
-    /// past its ends), in the period nearest the piece.
+    /// past its ends), from the piece's sample nearest `point`.
     pub fn nearest_on(&self, point: &Vector3<f64>, piece: usize) -> Option<f64> {
-        let start = self.near_piece(self.nearest(point)?, piece);
+        let (start, _) = closest_sample(&self.pieces[piece], point);
         let alpha = self.refine(point, start, Some(piece));
         alpha.is_finite().then_some(alpha)
     }
@@ -429,6 +396,18 @@ impl Curve {
     }
 }
 
+/// The parameter of `piece`'s sample nearest `point`, and its squared
+/// distance.
+fn closest_sample(piece: &Piece, point: &Vector3<f64>) -> (f64, f64) {
+    const SAMPLES: u32 = 8;
+    piece
+        .samples(SAMPLES)
+        .map(|alpha| (alpha, (piece.at(&alpha).place - point).norm_squared()))
+        .fold((f64::NAN, f64::INFINITY), |best, next| {
+            if next.1 < best.1 { next } else { best }
+        })
+}
+
 /// The knots and control points of an open (clamped) B-spline of `degree`
 /// from `points`: its control points, or points it passes through.
 fn clamped(
@@ -450,15 +429,7 @@ fn clamped(
     if !through {
         return Ok((knots, points.to_vec()));
     }
-    let mut system = DMatrix::zeros(n, n);
-    for (row, &u) in parameters.iter().enumerate() {
-        let span = find_span(&knots, degree, n, u);
-        let basis = basis_derivatives(&knots, degree, span, u, 0);
-        for (k, value) in basis[0].iter().enumerate() {
-            system[(row, span - degree + k)] += value;
-        }
-    }
-    solve(system, points).map(|controls| (knots, controls))
+    interpolated(&knots, degree, n, &parameters, points).map(|controls| (knots, controls))
 }
 
 /// The knots and control points (wrapped: the first `degree` again at the
@@ -478,23 +449,30 @@ fn periodic(
         return Ok((knots, wrap(points)));
     }
     let shift = if degree % 2 == 1 { 0.0 } else { 0.5 };
+    let parameters: Vec<f64> = (0..n).map(|row| (degree + row) as f64 + shift).collect();
+    let controls = interpolated(&knots, degree, n + degree, &parameters, points)?;
+    Ok((knots, wrap(&controls)))
+}
+
+/// The control points of the B-spline of `knots` and `degree` (with
+/// `count` control points, the last beyond `points.len()` wrapped onto the
+/// first, as a periodic curve's are) that meets `points` at `parameters`.
+fn interpolated(
+    knots: &[f64],
+    degree: usize,
+    count: usize,
+    parameters: &[f64],
+    points: &[Vector3<f64>],
+) -> Result<Vec<Vector3<f64>>, String> {
+    let n = points.len();
     let mut system = DMatrix::zeros(n, n);
-    for row in 0..n {
-        let u = (degree + row) as f64 + shift;
-        let span = find_span(&knots, degree, n + degree, u);
-        let basis = basis_derivatives(&knots, degree, span, u, 0);
+    for (row, &u) in parameters.iter().enumerate() {
+        let span = find_span(knots, degree, count, u);
+        let basis = basis_derivatives(knots, degree, span, u, 0);
         for (k, value) in basis[0].iter().enumerate() {
             system[(row, (span - degree + k) % n)] += value;
         }
     }
-    let controls = solve(system, points)?;
-    Ok((knots, wrap(&controls)))
-}
-
-/// The control points that meet `points` through the basis values
-/// `system`.
-fn solve(system: DMatrix<f64>, points: &[Vector3<f64>]) -> Result<Vec<Vector3<f64>>, String> {
-    let n = points.len();
     let right = DMatrix::from_fn(n, 3, |row, column| points[row][column]);
     let solved = system
         .lu()
@@ -693,7 +671,7 @@ mod tests {
             curve
                 .pieces
                 .iter()
-                .flat_map(|piece| piece.samples().collect::<Vec<_>>())
+                .flat_map(|piece| piece.samples(TANGENT_SAMPLES).collect::<Vec<_>>())
                 .all(|alpha| (curve.at(&alpha).place.norm() - 1.0).abs() < 2e-3)
         );
         // Held on the first piece, a point just before the wrap at α = 1

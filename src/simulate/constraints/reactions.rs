@@ -383,8 +383,5 @@ impl Reactions {
 
 /// The body `target` is on (`None`: ground).
 fn body_of(model: &Model, target: &Target) -> Option<usize> {
-    match target {
-        Target::Ground => None,
-        Target::Marker(index) => model.scene.markers[*index].body,
-    }
+    model.scene.body_of(target)
 }

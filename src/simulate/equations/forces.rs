@@ -47,10 +47,7 @@ pub(super) fn place<T: Number>(
 
 /// The body a marker is on (`None`: ground).
 pub(super) fn body_of(model: &Model, target: &Target) -> Option<usize> {
-    match target {
-        Target::Marker(index) => model.scene.markers[*index].body,
-        Target::Ground => None,
-    }
+    model.scene.body_of(target)
 }
 
 /// A marker's axes in ground (worked out only for the elements that read

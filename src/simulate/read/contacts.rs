@@ -14,7 +14,7 @@ use nalgebra::Vector3;
 use crate::check::Reference;
 use crate::model::initial::{number, number_list};
 use crate::model::{Dataset, Statement, Value, is_kind};
-use crate::scene::{Scene, Target};
+use crate::scene::Scene;
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{Contact, Friction, Shape, Solid};
 
@@ -397,10 +397,7 @@ fn check_pair(
     (j, _): &(Solid, crate::span::Span),
     scene: &Scene,
 ) -> Result<(), SimulateError> {
-    let body = |solid: &Solid| match solid.marker {
-        Target::Marker(index) => scene.markers[index].body,
-        Target::Ground => None,
-    };
+    let body = |solid: &Solid| scene.body_of(&solid.marker);
     if body(i) == body(j) {
         return Err(SimulateError::Model {
             message: format!(

@@ -1,6 +1,8 @@
 //! `PTCV` statements of a dataset, with the `CURVE` and `MATRIX`
 //! statements their curves are made of.
 
+use std::collections::HashMap;
+
 use nalgebra::Vector3;
 
 use crate::model::initial::{number, number_list, numbers};
@@ -12,16 +14,18 @@ use crate::simulate::model::{Joint, JointKind, OnCurve};
 use crate::span::Span;
 
 /// The PTCV statements of `dataset` as joints, their markers found in
-/// `scene`, every problem added to `errors` at its place.
+/// `scene` (the floating ones in `floating`, by id with their bodies),
+/// every problem added to `errors` at its place.
 pub(crate) fn point_curves(
     dataset: &Dataset,
     scene: &Scene,
+    floating: &HashMap<u64, Option<usize>>,
     errors: &mut Vec<SimulateError>,
 ) -> Vec<Joint> {
     let mut joints = Vec::new();
     for statement in &dataset.statements {
         if is_kind(&statement.name, "PTCV") {
-            joints.extend(point_curve(dataset, statement, scene, errors));
+            joints.extend(point_curve(dataset, statement, scene, floating, errors));
         }
     }
     joints
@@ -31,6 +35,7 @@ fn point_curve(
     dataset: &Dataset,
     statement: &Statement,
     scene: &Scene,
+    floating: &HashMap<u64, Option<usize>>,
     errors: &mut Vec<SimulateError>,
 ) -> Option<Joint> {
     let label = statement.label();
@@ -42,15 +47,15 @@ fn point_curve(
             span: argument.span,
         });
     }
-    let mut marker = |keyword: &str| -> Option<(Target, u64)> {
-        let id = number(statement, keyword, f64::NAN)
+    let mut marker = |keyword: &str| -> Option<Target> {
+        let found = number(statement, keyword, f64::NAN)
             .ok()
             .filter(|id| id.fract() == 0.0 && *id > 0.0)
-            .map(|id| id as u64);
-        let found = id.and_then(|id| {
-            let target = scene.find_marker(&crate::check::Reference::Id(id)).ok()?;
-            Some((target, id))
-        });
+            .and_then(|id| {
+                scene
+                    .find_marker(&crate::check::Reference::Id(id as u64))
+                    .ok()
+            });
         if found.is_none() {
             errors.push(model_error(
                 format!("{label}: {keyword} must name a fixed MARKER of the model"),
@@ -61,11 +66,10 @@ fn point_curve(
     };
     let i = marker("I");
     let rm = marker("RM");
-    let float = floating_part(dataset, statement, errors);
+    let float = floating_body(statement, floating, errors);
     let curve = statement_curve(dataset, statement, errors);
-    let ((i, _), (rm, rm_id), float, curve) = (i?, rm?, float?, curve?);
-    let rm_part = marker_part(dataset, rm_id);
-    if rm_part != Some(float) {
+    let (i, rm, float, curve) = (i?, rm?, float?, curve?);
+    if scene.body_of(&rm) != float {
         errors.push(model_error(
             format!(
                 "{label}: JFLOAT and RM must be markers of the same part: the curve is drawn in RM's axes and the floating marker moves on that part"
@@ -74,11 +78,7 @@ fn point_curve(
         ));
         return None;
     }
-    let body = |target: Target| match target {
-        Target::Ground => None,
-        Target::Marker(index) => scene.markers[index].body,
-    };
-    if body(i) == body(rm) {
+    if scene.body_of(&i) == scene.body_of(&rm) {
         errors.push(model_error(
             format!(
                 "{label}: its I marker and its curve are on one part: a PTCV holds a point of one part on a curve of another"
@@ -147,12 +147,8 @@ fn start_parameter(
                         .find_marker(&crate::check::Reference::Id(id as u64))
                         .ok()
                 });
-            let body = |target: Target| match target {
-                Target::Ground => None,
-                Target::Marker(index) => scene.markers[index].body,
-            };
             match found {
-                Some(target) if body(target) == body(rm) => target,
+                Some(target) if scene.body_of(&target) == scene.body_of(&rm) => target,
                 _ => {
                     errors.push(SimulateError::Model {
                         message: format!(
@@ -183,32 +179,18 @@ fn start_parameter(
     }
 }
 
-/// The PART id of the marker `id`.
-fn marker_part(dataset: &Dataset, id: u64) -> Option<u64> {
-    let marker = dataset
-        .statements
-        .iter()
-        .find(|statement| is_kind(&statement.name, "MARKER") && statement.id == Some(id))?;
-    number(marker, "PART", f64::NAN)
-        .ok()
-        .filter(|part| part.fract() == 0.0 && *part >= 0.0)
-        .map(|part| part as u64)
-}
-
-/// The PART id of `statement`'s JFLOAT, a floating marker.
-fn floating_part(
-    dataset: &Dataset,
+/// The body of `statement`'s JFLOAT, a floating marker (`Some(None)`
+/// for one on ground), or `None` when it names none.
+fn floating_body(
     statement: &Statement,
+    floating: &HashMap<u64, Option<usize>>,
     errors: &mut Vec<SimulateError>,
-) -> Option<u64> {
-    let id = number(statement, "JFLOAT", f64::NAN).unwrap_or(f64::NAN);
-    let floating = dataset.statements.iter().any(|marker| {
-        is_kind(&marker.name, "MARKER")
-            && marker.id.is_some_and(|marker_id| marker_id as f64 == id)
-            && marker.argument("FLOATING", 3).is_some()
-    });
-    let part = floating.then(|| marker_part(dataset, id as u64)).flatten();
-    if part.is_none() {
+) -> Option<Option<usize>> {
+    let id = number(statement, "JFLOAT", f64::NAN)
+        .ok()
+        .filter(|id| id.fract() == 0.0 && *id > 0.0);
+    let body = id.and_then(|id| floating.get(&(id as u64)).copied());
+    if body.is_none() {
         errors.push(SimulateError::Model {
             message: format!(
                 "{}: JFLOAT must name a floating MARKER (MARKER/id, PART = ..., FLOATING) on the part of the curve",
@@ -217,7 +199,21 @@ fn floating_part(
             span: statement.place_of("JFLOAT", 2),
         });
     }
-    part
+    body
+}
+
+/// The statement of kind `kind` whose id is `keyword`'s value in
+/// `statement`.
+fn named<'d>(
+    dataset: &'d Dataset,
+    statement: &Statement,
+    keyword: &str,
+    kind: &str,
+) -> Option<&'d Statement> {
+    let id = number(statement, keyword, f64::NAN).unwrap_or(f64::NAN);
+    dataset.statements.iter().find(|named| {
+        is_kind(&named.name, kind) && named.id.is_some_and(|found| found as f64 == id)
+    })
 }
 
 /// The curve `statement`'s CURVE names.
@@ -226,12 +222,7 @@ fn statement_curve(
     statement: &Statement,
     errors: &mut Vec<SimulateError>,
 ) -> Option<Curve> {
-    let id = number(statement, "CURVE", f64::NAN).unwrap_or(f64::NAN);
-    let found = dataset
-        .statements
-        .iter()
-        .find(|curve| is_kind(&curve.name, "CURVE") && curve.id.is_some_and(|c| c as f64 == id));
-    let Some(found) = found else {
+    let Some(found) = named(dataset, statement, "CURVE", "CURVE") else {
         errors.push(SimulateError::Model {
             message: format!(
                 "{}: CURVE must name a CURVE statement of the model",
@@ -270,17 +261,12 @@ fn curve(dataset: &Dataset, statement: &Statement) -> Result<Curve, SimulateErro
             statement.span,
         ));
     };
-    let id = number(statement, "MATRIX", f64::NAN).unwrap_or(f64::NAN);
-    let matrix = dataset
-        .statements
-        .iter()
-        .find(|matrix| is_kind(&matrix.name, "MATRIX") && matrix.id.is_some_and(|m| m as f64 == id))
-        .ok_or_else(|| {
-            wrong(
-                "MATRIX must name a MATRIX statement of the model".to_string(),
-                matrix_argument.span,
-            )
-        })?;
+    let matrix = named(dataset, statement, "MATRIX", "MATRIX").ok_or_else(|| {
+        wrong(
+            "MATRIX must name a MATRIX statement of the model".to_string(),
+            matrix_argument.span,
+        )
+    })?;
     let points = matrix_points(matrix)?;
     let order = number(statement, "ORDER", 4.0)
         .ok()

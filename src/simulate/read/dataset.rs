@@ -276,7 +276,8 @@ impl Reader<'_> {
     fn model(&mut self, mut notes: Vec<(String, Span)>) -> Model {
         let masses = self.masses();
         let diffs = self.diffs();
-        let (mut forces, mut force_statements) = self.forces();
+        let floating = self.floating_markers();
+        let (mut forces, mut force_statements) = self.forces(&floating);
         for contact in super::contacts::contacts(self.dataset, &self.scene, &mut self.errors) {
             force_statements.push(("CONTACT", contact.id));
             forces.push(Force::Contact(Box::new(contact)));
@@ -285,6 +286,7 @@ impl Reader<'_> {
         joints.extend(super::curves::point_curves(
             self.dataset,
             &self.scene,
+            &floating,
             &mut self.errors,
         ));
         let (motions, marker_motions) = self.motions(&joints);
@@ -740,9 +742,12 @@ impl Reader<'_> {
     }
 
     /// The force elements, with the statement (its kind as
-    /// [`FORCE_ELEMENTS`] spells it) and id of each.
-    fn forces(&mut self) -> (Vec<Force>, Vec<(&'static str, u64)>) {
-        let floating: HashMap<u64, Option<usize>> = self.floating_markers();
+    /// [`FORCE_ELEMENTS`] spells it) and id of each; `floating` the
+    /// floating markers a JFLOAT may name, with their bodies.
+    fn forces(
+        &mut self,
+        floating: &HashMap<u64, Option<usize>>,
+    ) -> (Vec<Force>, Vec<(&'static str, u64)>) {
         let mut forces = Vec::new();
         let elements: Vec<(usize, &'static str)> = self
             .dataset

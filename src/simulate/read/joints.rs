@@ -131,10 +131,7 @@ fn between_markers(
     let i = marker(statement, "I", scene, errors);
     let j = marker(statement, "J", scene, errors);
     let (i, j) = (i?, j?);
-    let body = |target: Target| match target {
-        Target::Ground => None,
-        Target::Marker(index) => scene.markers[index].body,
-    };
+    let body = |target: Target| scene.body_of(&target);
     if body(i) == body(j) {
         errors.push(SimulateError::Model {
             message: format!(
