@@ -61,12 +61,12 @@ fn factorise(c: &mut Criterion) {
             matrix[entry] = *value;
         }
         let dense = Jacobian::Dense(matrix);
-        let mut sparse_lu = SparseLu::new(&pattern);
+        let mut sparse_lu = SparseLu::new(&pattern, n);
         group.bench_with_input(BenchmarkId::new("sparse", n), &sparse, |b, jacobian| {
             b.iter(|| black_box(sparse_lu.factorise(jacobian, real, complex)));
         });
         if bodies <= 32 {
-            let mut dense_lu = DenseLu::new(n);
+            let mut dense_lu = DenseLu::new(n, n);
             group.bench_with_input(BenchmarkId::new("dense", n), &dense, |b, jacobian| {
                 b.iter(|| black_box(dense_lu.factorise(jacobian, real, complex)));
             });

@@ -346,3 +346,107 @@ fn dop853_tells_a_stiff_problem() {
         );
     }
 }
+
+/// A Jacobian with algebraic unknowns after the states (the index-1
+/// form's, `f_y f_z; g_y g_z`) factorises, sparse and dense alike, to the
+/// ODE's own iteration matrices `σ I − (f_y − f_z g_z⁻¹ g_y)`: drawn at
+/// random, each solve agrees with the dense solve of the Schur complement.
+#[test]
+fn a_jacobian_with_algebraic_unknowns_solves_as_its_schur_complement() {
+    use mbexpr::integrate::linalg::{DenseLu, Factorisation, Jacobian, Pattern, SparseLu};
+    use nalgebra::{Complex, DVector};
+    use proptest::prelude::*;
+    use proptest::test_runner::{Config, TestRunner};
+    let sizes = (1usize..60, 1usize..20, 0usize..400, any::<u64>());
+    TestRunner::new(Config::with_cases(40))
+        .run(&sizes, |(n, m, extra, seed)| {
+            // A generator of its own, so the values follow from the seed.
+            let mut state = seed | 1;
+            let mut next = move || {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+            };
+            let dimension = n + m;
+            // Each algebraic unknown coupled to a state both ways (so that
+            // `g_z` with a dominant diagonal is regular), and entries
+            // anywhere else.
+            let mut entries: Vec<(usize, usize)> = (0..m)
+                .flat_map(|k| [(k % n, n + k), (n + k, k % n)])
+                .collect();
+            for _ in 0..extra {
+                let row = ((next() + 1.0) / 2.0 * dimension as f64) as usize;
+                let column = ((next() + 1.0) / 2.0 * dimension as f64) as usize;
+                entries.push((row.min(dimension - 1), column.min(dimension - 1)));
+            }
+            let pattern = std::rc::Rc::new(Pattern::new(dimension, entries));
+            let values: Vec<f64> = pattern
+                .entries()
+                .map(|(row, column)| {
+                    let value = next();
+                    if row == column && row >= n {
+                        value + 4.0
+                    } else {
+                        value
+                    }
+                })
+                .collect();
+            let mut full = DMatrix::zeros(dimension, dimension);
+            for ((row, column), value) in pattern.entries().zip(&values) {
+                full[(row, column)] = *value;
+            }
+            let schur = full.view((0, 0), (n, n))
+                - full.view((0, n), (n, m))
+                    * full
+                        .view((n, n), (m, m))
+                        .into_owned()
+                        .lu()
+                        .solve(&full.view((n, 0), (m, n)).into_owned())
+                        .expect("g_z is regular");
+            let (real_shift, complex_shift) = (20.0 + next(), Complex::new(18.0, 10.0 + next()));
+            let rhs: Vec<f64> = (0..n).map(|_| next()).collect();
+            let mut real_matrix = -schur.clone();
+            let mut complex_matrix = schur.map(|value| Complex::new(-value, 0.0));
+            for i in 0..n {
+                real_matrix[(i, i)] += real_shift;
+                complex_matrix[(i, i)] += complex_shift;
+            }
+            let real_expected = real_matrix.lu().solve(&DVector::from_column_slice(&rhs));
+            let complex_rhs: Vec<Complex<f64>> = rhs
+                .iter()
+                .map(|&value| Complex::new(value, -value))
+                .collect();
+            let complex_expected = complex_matrix
+                .lu()
+                .solve(&DVector::from_column_slice(&complex_rhs));
+            let (Some(real_expected), Some(complex_expected)) = (real_expected, complex_expected)
+            else {
+                return Ok(());
+            };
+            let jacobian = Jacobian::Sparse {
+                pattern: pattern.clone(),
+                values,
+            };
+            let factorisations: [Box<dyn Factorisation>; 2] = [
+                Box::new(SparseLu::new(&pattern, n)),
+                Box::new(DenseLu::new(dimension, n)),
+            ];
+            let scale = 1e-9 * (1.0 + real_expected.amax() + complex_expected.camax());
+            for mut factorisation in factorisations {
+                prop_assert!(factorisation.factorise(&jacobian, real_shift, complex_shift));
+                let mut real = rhs.clone();
+                factorisation.solve_real(&mut real);
+                let mut complex = complex_rhs.clone();
+                factorisation.solve_complex(&mut complex);
+                for (got, expected) in real.iter().zip(real_expected.iter()) {
+                    prop_assert!((got - expected).abs() <= scale, "{got} against {expected}");
+                }
+                for (got, expected) in complex.iter().zip(complex_expected.iter()) {
+                    prop_assert!((got - expected).norm() <= scale, "{got} against {expected}");
+                }
+            }
+            Ok(())
+        })
+        .expect("every drawn system");
+}

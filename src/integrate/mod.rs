@@ -158,6 +158,11 @@ pub trait System {
     /// pattern must hold for every state of the run). With a pattern, the
     /// integrator asks for [`System::sparse_jacobian`] instead of
     /// [`System::jacobian`] and may factorise sparse (see [`linalg`]).
+    /// A pattern larger than the system has algebraic unknowns after the
+    /// states: the system's equations are then `y' = f(y, z)` with `z`
+    /// solving `0 = g(y, z)`, and [`System::sparse_jacobian`] gives the
+    /// Jacobian of `(f, g)` in `(y, z)` ([`linalg`]'s module documentation);
+    /// [`System::jacobian`] stays the ODE's.
     /// The default, `None`, is a dense Jacobian.
     fn jacobian_pattern(&mut self) -> Option<Pattern> {
         None

@@ -1,23 +1,33 @@
 //! The dense path: nalgebra's LU with partial pivoting.
 
-use nalgebra::{Complex, DMatrix, DVectorViewMut, Dyn, LU};
+use nalgebra::{Complex, DMatrix, DVector, Dyn, LU};
 
 use super::{Factorisation, Jacobian};
 
 /// Dense LU factorisations of the two iteration matrices.
 pub struct DenseLu {
-    n: usize,
+    /// The matrices' dimension: the states, then the algebraic unknowns.
+    dimension: usize,
+    /// How many of the unknowns are states (shifted on the diagonal).
+    states: usize,
     real: Option<LU<f64, Dyn, Dyn>>,
     complex: Option<LU<Complex<f64>, Dyn, Dyn>>,
+    /// A right-hand side extended with zeros for the algebraic unknowns.
+    real_work: DVector<f64>,
+    complex_work: DVector<Complex<f64>>,
 }
 
 impl DenseLu {
-    /// For `n×n` matrices.
-    pub fn new(n: usize) -> DenseLu {
+    /// For `dimension × dimension` matrices whose first `states` unknowns
+    /// are states, the rest algebraic (see [`super::Pattern`]).
+    pub fn new(dimension: usize, states: usize) -> DenseLu {
         DenseLu {
-            n,
+            dimension,
+            states,
             real: None,
             complex: None,
+            real_work: DVector::zeros(dimension),
+            complex_work: DVector::zeros(dimension),
         }
     }
 }
@@ -32,7 +42,7 @@ impl Factorisation for DenseLu {
         let mut real = match jacobian {
             Jacobian::Dense(matrix) => -matrix,
             Jacobian::Sparse { pattern, values } => {
-                let mut matrix = DMatrix::zeros(self.n, self.n);
+                let mut matrix = DMatrix::zeros(self.dimension, self.dimension);
                 for ((row, column), value) in pattern.entries().zip(values) {
                     matrix[(row, column)] = -value;
                 }
@@ -40,7 +50,7 @@ impl Factorisation for DenseLu {
             }
         };
         let mut complex = real.map(|value| Complex::new(value, 0.0));
-        for i in 0..self.n {
+        for i in 0..self.states {
             real[(i, i)] += real_shift;
             complex[(i, i)] += complex_shift;
         }
@@ -53,13 +63,26 @@ impl Factorisation for DenseLu {
 
     fn solve_real(&mut self, rhs: &mut [f64]) {
         if let Some(lu) = &self.real {
-            lu.solve_mut(&mut DVectorViewMut::from_slice(rhs, self.n));
+            solve_bordered(lu, &mut self.real_work, rhs);
         }
     }
 
     fn solve_complex(&mut self, rhs: &mut [Complex<f64>]) {
         if let Some(lu) = &self.complex {
-            lu.solve_mut(&mut DVectorViewMut::from_slice(rhs, self.n));
+            solve_bordered(lu, &mut self.complex_work, rhs);
         }
     }
+}
+
+/// Solves with `lu` for `rhs` (the states' part) extended by zeros in
+/// `work`, and writes the states' part of the solution back.
+fn solve_bordered<T: nalgebra::ComplexField + Copy>(
+    lu: &LU<T, Dyn, Dyn>,
+    work: &mut DVector<T>,
+    rhs: &mut [T],
+) {
+    work.fill(T::zero());
+    work.rows_mut(0, rhs.len()).copy_from_slice(rhs);
+    lu.solve_mut(work);
+    rhs.copy_from_slice(work.rows(0, rhs.len()).as_slice());
 }

@@ -12,11 +12,24 @@
 //! per pattern, only the numbers refactorised) beyond
 //! [`SPARSE_FROM`] states. A system without a pattern gets the dense path.
 //!
-//! Constrained systems (Lagrange multipliers, next to come) fit as they
-//! are: their constraint rows and columns are entries of the pattern, and
-//! an algebraic row's zero diagonal is still an entry of it, so the shift
-//! never asks for an entry the pattern lacks; both LUs pivot, so a zero
-//! diagonal is no breakdown.
+//! A pattern may be larger than the system: its trailing unknowns are then
+//! algebraic. A system `y' = f(y, z)` whose `z` solves `0 = g(y, z)` (the
+//! multipliers of a constrained mechanism) gives the Jacobian of `(f, g)`
+//! in `(y, z)`, and the iteration matrices are
+//!
+//! ```text
+//! [ σ I − f_y   −f_z ]
+//! [   −g_y      −g_z ]
+//! ```
+//!
+//! whose Schur complement on the states is `σ I − (f_y − f_z g_z⁻¹ g_y)`,
+//! the ODE's own. A right-hand side gets zeros in the algebraic rows and
+//! only the states' part of the solution is read, so the integrator sees
+//! the ODE's matrices; they stay as sparse as `f` and `g` are, where the
+//! ODE's Jacobian `f_y − f_z g_z⁻¹ g_y` is dense (a chain's every body
+//! moves every other through the multipliers). An algebraic row's zero
+//! diagonal is an entry of the pattern, and both LUs pivot, so it is no
+//! breakdown.
 
 mod dense;
 mod sparse;
@@ -42,7 +55,9 @@ pub const SPARSE_DENSITY: f64 = 2.0 / 3.0;
 
 /// Where the entries of an `n×n` matrix may be nonzero, by columns: the
 /// rows of column `j` are `rows[starts[j]..starts[j + 1]]`, increasing.
-/// Every diagonal entry is in the pattern.
+/// Every diagonal entry is in the pattern. A system of fewer than `n`
+/// states gives a pattern of `n` for a Jacobian with algebraic unknowns
+/// after its states (see the module's documentation).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Pattern {
     n: usize,
@@ -128,7 +143,8 @@ impl Pattern {
 }
 
 /// A system's Jacobian as the integrator holds it: every entry, or the
-/// values of a pattern's entries in its storage order.
+/// values of a pattern's entries in its storage order (with the algebraic
+/// unknowns' rows and columns when the pattern has them).
 #[derive(Clone, Debug)]
 pub enum Jacobian {
     /// An `n×n` matrix.
@@ -143,7 +159,7 @@ pub enum Jacobian {
 }
 
 impl Jacobian {
-    /// Zeros, dense (no pattern) or on `pattern`.
+    /// Zeros, dense (no pattern: `n×n`) or on `pattern`.
     pub fn zeros(n: usize, pattern: Option<Rc<Pattern>>) -> Jacobian {
         match pattern {
             None => Jacobian::Dense(DMatrix::zeros(n, n)),
@@ -184,21 +200,35 @@ pub trait Factorisation {
         complex_shift: Complex<f64>,
     ) -> bool;
 
-    /// Overwrites `rhs` with the solution of the real system.
+    /// Overwrites `rhs` (the states' part) with the solution of the real
+    /// system (its states' part; the algebraic unknowns' right-hand side
+    /// is zero).
     fn solve_real(&mut self, rhs: &mut [f64]);
 
-    /// Overwrites `rhs` with the solution of the complex system.
+    /// Overwrites `rhs` with the solution of the complex system, as
+    /// [`Factorisation::solve_real`] does.
     fn solve_complex(&mut self, rhs: &mut [Complex<f64>]);
 }
 
 /// The factorisation for a system of `n` states whose Jacobian has
-/// `pattern` (`None`: dense): sparse from [`SPARSE_FROM`] states when the
-/// pattern is no denser than [`SPARSE_DENSITY`], dense otherwise.
+/// `pattern` (`None`: dense; a pattern of more than `n` unknowns: the
+/// algebraic ones after the states): sparse from [`SPARSE_FROM`] unknowns
+/// when the pattern is no denser than [`SPARSE_DENSITY`], dense otherwise.
+///
+/// # Panics
+///
+/// When the pattern is smaller than the system.
 pub fn factorisation_for(n: usize, pattern: Option<&Pattern>) -> Box<dyn Factorisation> {
     match pattern {
-        Some(pattern) if n >= SPARSE_FROM && pattern.density() <= SPARSE_DENSITY => {
-            Box::new(SparseLu::new(pattern))
+        Some(pattern) => {
+            let dimension = pattern.dimension();
+            assert!(dimension >= n, "a pattern smaller than the system");
+            if dimension >= SPARSE_FROM && pattern.density() <= SPARSE_DENSITY {
+                Box::new(SparseLu::new(pattern, n))
+            } else {
+                Box::new(DenseLu::new(dimension, n))
+            }
         }
-        _ => Box::new(DenseLu::new(n)),
+        None => Box::new(DenseLu::new(n, n)),
     }
 }

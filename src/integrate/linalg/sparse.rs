@@ -13,7 +13,10 @@ use super::{Factorisation, Jacobian, Pattern};
 
 /// Sparse LU factorisations of the two iteration matrices, on one pattern.
 pub struct SparseLu {
-    n: usize,
+    /// The matrices' dimension: the states, then the algebraic unknowns.
+    dimension: usize,
+    /// How many of the unknowns are states (shifted on the diagonal).
+    states: usize,
     structure: SymbolicSparseColMat<usize>,
     /// Where each diagonal entry is among the entries.
     diagonal: Vec<usize>,
@@ -25,15 +28,20 @@ pub struct SparseLu {
     /// Both matrices factorised without a zero pivot.
     factorised: bool,
     scratch: MemBuffer,
+    /// A right-hand side extended with zeros for the algebraic unknowns.
+    real_work: Vec<f64>,
+    complex_work: Vec<Complex<f64>>,
 }
 
 impl SparseLu {
-    /// The symbolic analysis of `pattern` (its column ordering and fill).
+    /// The symbolic analysis of `pattern` (its column ordering and fill),
+    /// whose first `states` unknowns are states, the rest algebraic (see
+    /// [`Pattern`]).
     ///
     /// # Panics
     ///
     /// When the analysis runs out of memory.
-    pub fn new(pattern: &Pattern) -> SparseLu {
+    pub fn new(pattern: &Pattern, states: usize) -> SparseLu {
         let n = pattern.dimension();
         let structure = SymbolicSparseColMat::new_checked(
             n,
@@ -59,7 +67,8 @@ impl SparseLu {
             symbolic.solve_in_place_scratch::<Complex<f64>>(1, Par::Seq),
         ]);
         SparseLu {
-            n,
+            dimension: n,
+            states,
             diagonal: pattern.diagonal.clone(),
             real_values: vec![0.0; pattern.len()],
             complex_values: vec![Complex::new(0.0, 0.0); pattern.len()],
@@ -69,6 +78,8 @@ impl SparseLu {
             complex: NumericLu::new(),
             factorised: false,
             scratch: MemBuffer::new(scratch),
+            real_work: vec![0.0; n],
+            complex_work: vec![Complex::new(0.0, 0.0); n],
         }
     }
 }
@@ -92,7 +103,7 @@ impl Factorisation for SparseLu {
             *real = -value;
             *complex = Complex::new(-value, 0.0);
         }
-        for &at in &self.diagonal {
+        for &at in &self.diagonal[..self.states] {
             self.real_values[at] += real_shift;
             self.complex_values[at] += complex_shift;
         }
@@ -123,12 +134,14 @@ impl Factorisation for SparseLu {
             return;
         }
         let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&self.symbolic, &self.real);
+        let work = bordered(&mut self.real_work, rhs);
         lu.solve_in_place_with_conj(
             Conj::No,
-            MatMut::from_column_major_slice_mut(rhs, self.n, 1),
+            MatMut::from_column_major_slice_mut(work, self.dimension, 1),
             Par::Seq,
             MemStack::new(&mut self.scratch),
         );
+        rhs.copy_from_slice(&work[..rhs.len()]);
     }
 
     fn solve_complex(&mut self, rhs: &mut [Complex<f64>]) {
@@ -136,11 +149,21 @@ impl Factorisation for SparseLu {
             return;
         }
         let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&self.symbolic, &self.complex);
+        let work = bordered(&mut self.complex_work, rhs);
         lu.solve_in_place_with_conj(
             Conj::No,
-            MatMut::from_column_major_slice_mut(rhs, self.n, 1),
+            MatMut::from_column_major_slice_mut(work, self.dimension, 1),
             Par::Seq,
             MemStack::new(&mut self.scratch),
         );
+        rhs.copy_from_slice(&work[..rhs.len()]);
     }
+}
+
+/// `work` holding `rhs` (the states' part) and zeros for the algebraic
+/// unknowns.
+fn bordered<'w, T: Copy + Default>(work: &'w mut [T], rhs: &[T]) -> &'w mut [T] {
+    work[..rhs.len()].copy_from_slice(rhs);
+    work[rhs.len()..].fill(T::default());
+    work
 }

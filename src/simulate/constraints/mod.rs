@@ -41,8 +41,8 @@ pub(crate) use reactions::{Component, Reactions, flags, pick};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
 pub(crate) use solve::{
-    Tolerance, Unassembled, constraint_loads, disagreeing_redundant, find_redundant,
-    held_equations, project,
+    Tolerance, Unassembled, acceleration_residual, constraint_loads, disagreeing_redundant,
+    find_redundant, held_equations, multiplier_loads, project,
 };
 
 use nalgebra::Vector3;
@@ -471,6 +471,61 @@ fn active_rows<T: crate::number::Number>(
         rows.push(imposed.general.row(model, index, imposed.time, bodies));
     }
     rows
+}
+
+/// A holder of equations (a joint, a motion, a coupler, a GCON) as the
+/// Jacobian's pattern sees it: how many of the held equations it gives and
+/// the bodies they move.
+pub(crate) struct Holder {
+    /// Its held equations (a joint's without the redundant ones).
+    pub(crate) equations: usize,
+    /// The bodies its equations move, without repeats (none on ground).
+    pub(crate) bodies: Vec<usize>,
+}
+
+/// The holders of `model`'s held equations, in [`active_rows`]' order, so
+/// that their equations follow one another in it.
+pub(crate) fn holders(model: &super::Model) -> Vec<Holder> {
+    let body_of = |target: &Target| model.scene.body_of(target);
+    let joint_bodies = |joint: &Joint| [body_of(&joint.i), body_of(&joint.j)];
+    let holder = |equations: usize, bodies: Vec<Option<usize>>| {
+        let mut bodies: Vec<usize> = bodies.into_iter().flatten().collect();
+        bodies.sort_unstable();
+        bodies.dedup();
+        Holder { equations, bodies }
+    };
+    let joints = model
+        .joints
+        .iter()
+        .map(|joint| holder(joint.held_equations(), joint_bodies(joint).to_vec()));
+    let motions = model
+        .motions
+        .iter()
+        .map(|motion| holder(1, joint_bodies(&model.joints[motion.joint]).to_vec()));
+    let marker_motions = model
+        .marker_motions
+        .iter()
+        .map(|motion| holder(1, vec![body_of(&motion.i), body_of(&motion.j)]));
+    let couplers = model.couplers.iter().map(|coupler| {
+        let bodies = coupler
+            .joints
+            .iter()
+            .flat_map(|&(index, _, _)| joint_bodies(&model.joints[index]))
+            .collect();
+        holder(1, bodies)
+    });
+    let general = model.general_constraints.iter().map(|constraint| {
+        holder(
+            1,
+            bodies_of(model, constraint).into_iter().map(Some).collect(),
+        )
+    });
+    joints
+        .chain(motions)
+        .chain(marker_motions)
+        .chain(couplers)
+        .chain(general)
+        .collect()
 }
 
 /// The equation of `coupler`, `Σ s q = 0`, held at the level of the

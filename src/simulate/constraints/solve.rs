@@ -337,13 +337,7 @@ pub(crate) fn constraint_loads<T: Number>(
         .collect();
     let rhs = DVector::from_iterator(
         rows.len(),
-        rows.iter().map(|row| {
-            row.coefficients
-                .iter()
-                .fold(row.bias.clone(), |sum, (body, c)| {
-                    sum + dot6(c, &free[*body])
-                })
-        }),
+        rows.iter().map(|row| acceleration_residual(row, &free)),
     );
     let mut massless: Vec<usize> = rows
         .iter()
@@ -370,6 +364,46 @@ pub(crate) fn constraint_loads<T: Number>(
         }
     }
     Ok(held)
+}
+
+/// Adds the loads `−Gᵀ λ` of the given `multipliers` (one for each held
+/// equation, in [`active_rows`]' order) to the applied `force` and
+/// `torque`, and gives the held equations: each one's `G u' + bias`
+/// ([`acceleration_residual`]) is zero at the multipliers
+/// [`constraint_loads`] finds. Over dual numbers seeded in the states and
+/// the multipliers, these are the index-1 form's equations in `(y, λ)`,
+/// whose Jacobian is as sparse as the joints are (the ODE's, with the
+/// multipliers eliminated, is dense along a chain).
+pub(crate) fn multiplier_loads<T: Number>(
+    model: &Model,
+    bodies: &[BodyMotion<T>],
+    imposed: &Imposed<'_>,
+    multipliers: &[T],
+    force: &mut [Vector3<T>],
+    torque: &mut [Vector3<T>],
+) -> Vec<Row<T>> {
+    let rows = active_rows(model, bodies, imposed);
+    let multipliers = DVector::from_column_slice(multipliers);
+    for (body, load) in generalised(&rows, &multipliers, bodies.len())
+        .into_iter()
+        .enumerate()
+    {
+        for k in 0..3 {
+            force[body][k] -= load[k].clone();
+            torque[body][k] -= load[k + 3].clone();
+        }
+    }
+    rows
+}
+
+/// `G u' + bias` of `row` at the bodies' `accelerations` (`[v' | ω']` of
+/// each centre, in ground): zero where the accelerations keep the equation.
+pub(crate) fn acceleration_residual<T: Number>(row: &Row<T>, accelerations: &[[T; 6]]) -> T {
+    row.coefficients
+        .iter()
+        .fold(row.bias.clone(), |sum, (body, c)| {
+            sum + dot6(c, &accelerations[*body])
+        })
 }
 
 /// The multipliers and the accelerations of the `massless` parts, from the

@@ -42,10 +42,11 @@ use crate::laws::contact::ContactBranch;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input};
 use crate::simulate::constraints::{
-    BodyMotion, Component, Drives, Reactions, constraint_loads, contact_parameter, curve_joints,
-    joints_failed_in,
+    BodyMotion, Component, Drives, Reactions, acceleration_residual, constraint_loads,
+    contact_parameter, curve_joints, holders, joints_failed_in, joints_singular_in,
+    multiplier_loads,
 };
-use crate::simulate::model::{Contact, Force, Model};
+use crate::simulate::model::{Contact, Force, MassProperties, Model};
 use accelerations::{Accelerations, Measure};
 pub(crate) use bodies::{BODY_STATES, body_offset};
 use bodies::{Kinematics, Loads};
@@ -77,6 +78,12 @@ pub(crate) struct Mechanics<'m> {
     /// The Jacobian's pattern and evaluator, built when first asked for.
     /// The count is the number of directions the evaluator seeds.
     jacobian: Option<(Sparsity, DualEvaluator<'m>, usize)>,
+    /// The Jacobian is the index-1 form's in the states and the joints'
+    /// multipliers (algebraic unknowns after the states), as sparse as
+    /// the joints, rather than the ODE's with the multipliers eliminated
+    /// (dense along a chain): for a constrained model without massless
+    /// parts or loop values.
+    bordered: bool,
     /// The values of the running solver the program itself reads (a
     /// force that reads a joint's reaction, as joint friction does), each
     /// solved with the motion it acts on ([`Mechanics::settle`]).
@@ -98,9 +105,12 @@ pub(crate) struct Mechanics<'m> {
 const SETTLING_ITERATIONS: usize = 30;
 
 /// The evaluator of the Jacobian's dual numbers: a size fixed at compile
-/// time for up to 4 directions (DIFFs only) and for one, two and three body
+/// time for up to 4 directions (DIFFs only), for one, two and three body
 /// colours (13, 26 and 39: the unused directions of a smaller count stay
-/// zero), so that no dual operation allocates; dynamic beyond.
+/// zero) and for bodies with the joints' multipliers (72: a chain of
+/// revolute joints needs four body colours and three of the multipliers,
+/// 67 directions), so that no dual operation
+/// allocates; dynamic beyond.
 enum DualEvaluator<'m> {
     One(Evaluator<'m, DualSVec64<1>>),
     Two(Evaluator<'m, DualSVec64<2>>),
@@ -109,7 +119,26 @@ enum DualEvaluator<'m> {
     OneBody(Evaluator<'m, DualSVec64<13>>),
     TwoBodies(Evaluator<'m, DualSVec64<26>>),
     ThreeBodies(Evaluator<'m, DualSVec64<39>>),
+    Joined(Evaluator<'m, DualSVec64<72>>),
     Many(Evaluator<'m, DualDVec64>),
+}
+
+/// `$body` with `$evaluator` bound to the evaluator `$duals` holds,
+/// whatever its size: one arm per variant.
+macro_rules! with_evaluator {
+    ($duals:expr, $evaluator:ident => $body:expr) => {
+        match $duals {
+            DualEvaluator::One($evaluator) => $body,
+            DualEvaluator::Two($evaluator) => $body,
+            DualEvaluator::Three($evaluator) => $body,
+            DualEvaluator::Four($evaluator) => $body,
+            DualEvaluator::OneBody($evaluator) => $body,
+            DualEvaluator::TwoBodies($evaluator) => $body,
+            DualEvaluator::ThreeBodies($evaluator) => $body,
+            DualEvaluator::Joined($evaluator) => $body,
+            DualEvaluator::Many($evaluator) => $body,
+        }
+    };
 }
 
 impl<'m> DualEvaluator<'m> {
@@ -122,14 +151,7 @@ impl<'m> DualEvaluator<'m> {
     ) -> (DualEvaluator<'m>, usize) {
         let (mut duals, count) = Self::of_size(program, directions);
         if let Some(record) = delays {
-            macro_rules! share {
-                ($($variant:ident),*) => {
-                    match &mut duals {
-                        $(DualEvaluator::$variant(evaluator) => evaluator.share_delays(record.clone()),)*
-                    }
-                };
-            }
-            share!(One, Two, Three, Four, OneBody, TwoBodies, ThreeBodies, Many);
+            with_evaluator!(&mut duals, evaluator => evaluator.share_delays(record.clone()));
         }
         (duals, count)
     }
@@ -144,6 +166,7 @@ impl<'m> DualEvaluator<'m> {
             5..=13 => (DualEvaluator::OneBody(program.evaluator()), 13),
             14..=26 => (DualEvaluator::TwoBodies(program.evaluator()), 26),
             27..=39 => (DualEvaluator::ThreeBodies(program.evaluator()), 39),
+            40..=72 => (DualEvaluator::Joined(program.evaluator()), 72),
             _ => (DualEvaluator::Many(program.evaluator()), directions),
         }
     }
@@ -194,7 +217,11 @@ impl<'m> Mechanics<'m> {
         if let Some(record) = &delays {
             values.share_delays(record.clone());
         }
+        let bordered = model.is_constrained()
+            && loop_values.is_empty()
+            && !model.masses.iter().any(MassProperties::is_massless);
         Mechanics {
+            bordered,
             equations: Equations {
                 model,
                 program,
@@ -817,17 +844,19 @@ impl<'m> Mechanics<'m> {
     /// The Jacobian's pattern and its evaluator, built once.
     fn sparsity(&mut self) -> &Sparsity {
         let equations = &self.equations;
+        let bordered = self.bordered;
         // A program that reads loop values is differentiated by
         // differences: its evaluator over duals is the smallest.
         let differenced = !self.loop_values.is_empty();
         &self
             .jacobian
             .get_or_insert_with(|| {
+                let holders = bordered.then(|| holders(equations.model));
                 let sparsity = Sparsity::new(
                     equations.model,
                     equations.program,
-                    &equations.sources,
-                    &equations.output_of,
+                    (&equations.sources, &equations.output_of),
+                    holders.as_deref(),
                 );
                 let directions = if differenced { 1 } else { sparsity.directions };
                 let (duals, count) = DualEvaluator::for_directions(
@@ -842,7 +871,10 @@ impl<'m> Mechanics<'m> {
 
     /// `d(dy/dt)/dy` at `(t, y)` with the sites on `held`: the values of
     /// the [`pattern`](Mechanics::pattern)'s entries, in its order, into
-    /// `values`, from one evaluation over dual numbers.
+    /// `values`, from one evaluation over dual numbers. In the bordered
+    /// form the pattern has the joints' multipliers after the states, and
+    /// the values are the index-1 form's Jacobian in `(y, λ)` at the
+    /// multipliers of `(t, y)`.
     pub(crate) fn sparse_jacobian(
         &mut self,
         t: f64,
@@ -854,21 +886,29 @@ impl<'m> Mechanics<'m> {
         if !self.loop_values.is_empty() {
             return self.differenced_jacobian(t, y, held, values);
         }
+        let multipliers = if self.bordered {
+            let fixed = Fixed::new(held, &[]);
+            let solved = self
+                .equations
+                .solve(&mut self.values, t, y, fixed, &mut self.buffers)?;
+            Some(solved.multipliers.unwrap_or_default())
+        } else {
+            None
+        };
+        let multipliers = multipliers
+            .as_ref()
+            .map(|multipliers| multipliers.as_slice());
         let Some((sparsity, duals, count)) = &mut self.jacobian else {
             unreachable!("built above");
         };
         let equations = &self.equations;
-        // Each size's evaluator fills the same way: one arm per variant.
-        macro_rules! fill_with {
-            ($($variant:ident),*) => {
-                match duals {
-                    $(DualEvaluator::$variant(evaluator) => {
-                        equations.fill(evaluator, t, y, held, sparsity, *count, values)
-                    })*
-                }
-            };
-        }
-        fill_with!(One, Two, Three, Four, OneBody, TwoBodies, ThreeBodies, Many)
+        let at = JacobianAt {
+            t,
+            y,
+            multipliers,
+            held,
+        };
+        with_evaluator!(duals, evaluator => equations.fill(evaluator, at, sparsity, *count, values))
     }
 
     /// The Jacobian of a program that reads loop values, by central
@@ -909,7 +949,9 @@ impl<'m> Mechanics<'m> {
     }
 
     /// `d(dy/dt)/dy` at `(t, y)` with the sites on `held`, into the dense
-    /// `jacobian` (the entries outside the pattern set to zero).
+    /// `jacobian` (the entries outside the pattern set to zero); in the
+    /// bordered form the Schur complement `f_y − f_λ g_λ⁻¹ g_y` of the
+    /// index-1 form's Jacobian.
     pub(crate) fn jacobian(
         &mut self,
         t: f64,
@@ -917,12 +959,26 @@ impl<'m> Mechanics<'m> {
         held: Option<&[Option<Code>]>,
         jacobian: &mut DMatrix<f64>,
     ) -> Result<(), OutputError> {
-        let mut values = vec![0.0; self.pattern().len()];
+        let pattern = self.pattern().clone();
+        let mut values = vec![0.0; pattern.len()];
         self.sparse_jacobian(t, y, held, &mut values)?;
-        jacobian.fill(0.0);
-        for (entry, value) in self.pattern().entries().zip(values) {
-            jacobian[entry] = value;
+        let mut full = DMatrix::zeros(pattern.dimension(), pattern.dimension());
+        for (entry, value) in pattern.entries().zip(values) {
+            full[entry] = value;
         }
+        let n = y.len();
+        let m = pattern.dimension() - n;
+        if m == 0 {
+            jacobian.copy_from(&full);
+            return Ok(());
+        }
+        let eliminated = full
+            .view((n, n), (m, m))
+            .into_owned()
+            .lu()
+            .solve(&full.view((n, 0), (m, n)).into_owned())
+            .ok_or_else(|| joints_singular_in(self.equations.model))?;
+        jacobian.copy_from(&(full.view((0, 0), (n, n)) - full.view((0, n), (n, m)) * eliminated));
         Ok(())
     }
 }
@@ -1047,6 +1103,16 @@ impl<'a> Fixed<'a> {
     }
 }
 
+/// Where a Jacobian is taken: the time, the states, the joints'
+/// multipliers there (for the bordered form) and the sites held.
+#[derive(Clone, Copy)]
+struct JacobianAt<'a> {
+    t: f64,
+    y: &'a [f64],
+    multipliers: Option<&'a [f64]>,
+    held: Option<&'a [Option<Code>]>,
+}
+
 /// The program's inputs and outputs, kept from call to call.
 struct Buffers<T> {
     inputs: Vec<T>,
@@ -1158,23 +1224,9 @@ impl Equations<'_> {
         rates: &mut [T],
         buffers: &mut Buffers<T>,
     ) -> Result<(), OutputError> {
-        let model = self.model;
         let solved = self.solve(evaluator, t, y, fixed, buffers)?;
-        let outputs = &buffers.outputs;
-        for (rate, output) in rates.iter_mut().zip(&self.diff_outputs) {
-            *rate = output.map_or_else(T::zero, |output| outputs[output].clone());
-        }
-        for (body, state) in solved.kinematics.iter().enumerate() {
-            let offset = body_offset(model, body);
-            state.rates(
-                &model.masses[body],
-                &self.inverse_inertia[body],
-                &model.gravity,
-                &solved.loads.force[body],
-                &solved.loads.torque[body],
-                &mut rates[offset..offset + BODY_STATES],
-            );
-        }
+        self.fill_rates(&solved.kinematics, &solved.loads, buffers, rates);
+        let model = self.model;
         for (body, accelerations) in &solved.massless {
             // The angular acceleration in the body's axes: `ω_b = Rᵀ ω`
             // and `Ṙᵀ ω = −ω_b × ω_b = 0`.
@@ -1199,17 +1251,97 @@ impl Equations<'_> {
         Ok(())
     }
 
-    /// The bodies' kinematics at `(t, y)` and the loads on them, the joints'
-    /// reactions among them, with the joints' multipliers (the program's
-    /// outputs left in `buffers`), with what `fixed` holds.
-    fn solve<T: Number>(
+    /// The DIFFs' rates from the program's outputs in `buffers` and the
+    /// bodies' from their `loads`.
+    fn fill_rates<T: Number>(
+        &self,
+        kinematics: &[Kinematics<T>],
+        loads: &Loads<T>,
+        buffers: &Buffers<T>,
+        rates: &mut [T],
+    ) {
+        let model = self.model;
+        let outputs = &buffers.outputs;
+        for (rate, output) in rates.iter_mut().zip(&self.diff_outputs) {
+            *rate = output.map_or_else(T::zero, |output| outputs[output].clone());
+        }
+        for (body, state) in kinematics.iter().enumerate() {
+            let offset = body_offset(model, body);
+            state.rates(
+                &model.masses[body],
+                &self.inverse_inertia[body],
+                &model.gravity,
+                &loads.force[body],
+                &loads.torque[body],
+                &mut rates[offset..offset + BODY_STATES],
+            );
+        }
+    }
+
+    /// The index-1 form's equations at the states `y` and the joints'
+    /// given `multipliers`: `dy/dt` under the loads `−Gᵀ λ` into `rates`,
+    /// and each held equation's `G u' + bias` into `residuals` (zero where
+    /// the multipliers are those [`Equations::solve`] finds). For a model
+    /// without massless parts or loop values.
+    #[allow(clippy::too_many_arguments)]
+    fn bordered_rates<T: Number>(
+        &self,
+        evaluator: &mut Evaluator<'_, T>,
+        t: f64,
+        (y, multipliers): (&[T], &[T]),
+        fixed: Fixed<'_>,
+        rates: &mut [T],
+        residuals: &mut [T],
+        buffers: &mut Buffers<T>,
+    ) -> Result<(), OutputError> {
+        let model = self.model;
+        let (kinematics, mut loads) = self.loaded(evaluator, t, y, (fixed.sites, &[]), buffers)?;
+        let motions = body_motions(&kinematics);
+        let drives = self.drives.at(t, fixed.sites)?;
+        let rows = multiplier_loads(
+            model,
+            &motions,
+            &drives,
+            multipliers,
+            &mut loads.force,
+            &mut loads.torque,
+        );
+        self.fill_rates(&kinematics, &loads, buffers, rates);
+        // `[v' | ω']` of each centre, in ground: `ω' = R ω_b'`.
+        let accelerations: Vec<[T; 6]> = kinematics
+            .iter()
+            .enumerate()
+            .map(|(body, state)| {
+                let offset = body_offset(model, body);
+                let rate = |k: usize| rates[offset + k].clone();
+                let angular = &state.rotation * Vector3::new(rate(10), rate(11), rate(12));
+                [
+                    rate(7),
+                    rate(8),
+                    rate(9),
+                    angular[0].clone(),
+                    angular[1].clone(),
+                    angular[2].clone(),
+                ]
+            })
+            .collect();
+        for (residual, row) in residuals.iter_mut().zip(&rows) {
+            *residual = acceleration_residual(row, &accelerations);
+        }
+        Ok(())
+    }
+
+    /// The bodies' kinematics at `(t, y)` and the loads the force elements
+    /// put on them, the program's sites on `sites` (its outputs left in
+    /// `buffers`).
+    fn loaded<T: Number>(
         &self,
         evaluator: &mut Evaluator<'_, T>,
         t: f64,
         y: &[T],
-        fixed: Fixed<'_>,
+        (sites, loop_values): (Option<&[Option<Code>]>, &[f64]),
         buffers: &mut Buffers<T>,
-    ) -> Result<Solved<T>, OutputError> {
+    ) -> Result<(Vec<Kinematics<T>>, Loads<T>), OutputError> {
         let model = self.model;
         let kinematics = self.kinematics(y);
         fill_inputs(
@@ -1217,13 +1349,13 @@ impl Equations<'_> {
             t,
             y,
             &kinematics,
-            fixed.loop_values,
+            loop_values,
             &mut buffers.inputs,
         );
         reorient(evaluator, &kinematics);
         let program_sites = self.program.sites().len();
-        let sites = fixed.sites.map(|sites| &sites[..program_sites]);
-        evaluator.outputs(&buffers.inputs, sites, &mut buffers.outputs)?;
+        let program_held = sites.map(|sites| &sites[..program_sites]);
+        evaluator.outputs(&buffers.inputs, program_held, &mut buffers.outputs)?;
         let outputs = &buffers.outputs;
         let bodies = model.scene.bodies.len();
         let mut loads = Loads {
@@ -1237,8 +1369,7 @@ impl Equations<'_> {
             let branch = match force {
                 Force::Contact(_) => {
                     contacts += 1;
-                    fixed
-                        .sites
+                    sites
                         .and_then(|sites| sites[program_sites + contacts - 1])
                         .map(ContactBranch::from_code)
                 }
@@ -1246,6 +1377,23 @@ impl Equations<'_> {
             };
             forces::apply(model, force, &kinematics, (&value, branch), &mut loads);
         }
+        Ok((kinematics, loads))
+    }
+
+    /// The bodies' kinematics at `(t, y)` and the loads on them, the joints'
+    /// reactions among them, with the joints' multipliers (the program's
+    /// outputs left in `buffers`), with what `fixed` holds.
+    fn solve<T: Number>(
+        &self,
+        evaluator: &mut Evaluator<'_, T>,
+        t: f64,
+        y: &[T],
+        fixed: Fixed<'_>,
+        buffers: &mut Buffers<T>,
+    ) -> Result<Solved<T>, OutputError> {
+        let model = self.model;
+        let (kinematics, mut loads) =
+            self.loaded(evaluator, t, y, (fixed.sites, fixed.loop_values), buffers)?;
         let mut multipliers = None;
         let mut massless = Vec::new();
         let applied = fixed.keep_applied.then(|| Loads {
@@ -1277,30 +1425,52 @@ impl Equations<'_> {
     }
 
     /// The Jacobian's entries into `values`, by one evaluation over dual
-    /// numbers of `count` directions seeded as `sparsity` says.
-    #[allow(clippy::too_many_arguments)]
+    /// numbers of `count` directions seeded as `sparsity` says, at `(t,
+    /// y)` with the sites on `held`; with `multipliers`, the index-1
+    /// form's in the states and those multipliers
+    /// ([`Equations::bordered_rates`]).
     fn fill<T: Directional>(
         &self,
         evaluator: &mut Evaluator<'_, T>,
-        t: f64,
-        y: &[f64],
-        held: Option<&[Option<Code>]>,
+        JacobianAt {
+            t,
+            y,
+            multipliers,
+            held,
+        }: JacobianAt<'_>,
         sparsity: &Sparsity,
         count: usize,
         values: &mut [f64],
     ) -> Result<(), OutputError> {
-        let seeded: Vec<T> = y
-            .iter()
-            .zip(&sparsity.direction)
-            .map(|(&value, &direction)| T::variable(value, direction, count))
-            .collect();
+        let seed = |(&value, &direction): (&f64, &usize)| T::variable(value, direction, count);
+        let seeded: Vec<T> = y.iter().zip(&sparsity.direction).map(seed).collect();
         let mut rates = vec![T::zero(); y.len()];
         let mut buffers = Buffers::new(self.program);
         // Programs that read loop values are differentiated by differences
         // instead (`Mechanics::sparse_jacobian`).
         let fixed = Fixed::new(held, &[]);
-        self.rates(evaluator, t, &seeded, fixed, &mut rates, &mut buffers)?;
-        for (row, rate) in rates.iter().enumerate() {
+        let mut residuals = Vec::new();
+        match multipliers {
+            None => self.rates(evaluator, t, &seeded, fixed, &mut rates, &mut buffers)?,
+            Some(multipliers) => {
+                let seeded_multipliers: Vec<T> = multipliers
+                    .iter()
+                    .zip(&sparsity.direction[y.len()..])
+                    .map(seed)
+                    .collect();
+                residuals = vec![T::zero(); multipliers.len()];
+                self.bordered_rates(
+                    evaluator,
+                    t,
+                    (&seeded, &seeded_multipliers),
+                    fixed,
+                    &mut rates,
+                    &mut residuals,
+                    &mut buffers,
+                )?;
+            }
+        }
+        for (row, rate) in rates.iter().chain(&residuals).enumerate() {
             let gradient = rate.gradient(count);
             for &(position, direction) in sparsity.row(row) {
                 values[position] = gradient[direction];

@@ -18,6 +18,13 @@
 //! or chain of bodies, whose rates read a body and its two neighbours, needs
 //! three body colours (39 directions) whatever its length.
 //!
+//! A constrained model's multipliers are algebraic unknowns after the
+//! states (the bordered pattern, [`Sparsity::new`]'s `holders`): a body's
+//! rates read the multipliers of the equations moving it, and each
+//! equation's residual what its bodies' rates read, so the pattern stays
+//! as sparse as the joints. Without them (a model with massless parts)
+//! bodies joined through any chain of joints read one another.
+//!
 //! A program that reads values of the running solver (a force reading a
 //! joint's reaction) has a dense pattern: those values are settled with
 //! the motion of every body.
@@ -27,6 +34,7 @@ use super::{BODY_STATES, Source, body_offset};
 use crate::compile::Program;
 use crate::integrate::linalg::Pattern;
 use crate::scene::Target;
+use crate::simulate::constraints::{Holder, holders};
 use crate::simulate::model::{Force, Model};
 
 /// The pattern of a model's Jacobian and the seeding that fills it.
@@ -46,22 +54,53 @@ pub(crate) struct Sparsity {
 impl Sparsity {
     /// The sparsity of `model`'s equations, whose expression `e` is output
     /// `output_of[e]` of `program`, the program's inputs coming from
-    /// `sources`.
+    /// `sources`. With `holders` (the joints' held equations by holder),
+    /// the multipliers are algebraic unknowns after the states (the
+    /// index-1 form's Jacobian in `(y, λ)`, see [`crate::integrate::linalg`]):
+    /// a body's rates read the multipliers of the equations that move it,
+    /// and each equation's residual the states and multipliers its
+    /// bodies' rates read. Without, the multipliers are eliminated and
+    /// bodies joined through any chain of joints read what any of them
+    /// reads.
     pub(crate) fn new(
         model: &Model,
         program: &Program,
-        sources: &[Source],
-        output_of: &[Option<usize>],
+        (sources, output_of): (&[Source], &[Option<usize>]),
+        holders: Option<&[Holder]>,
     ) -> Sparsity {
         let bodies = model.scene.bodies.len();
-        let groups = bodies + model.diffs.len();
-        let states_of = |group: usize| {
+        let diffs = model.diffs.len();
+        let n = diffs + BODY_STATES * bodies;
+        let held = holders.unwrap_or_default();
+        let mut first_equation = Vec::with_capacity(held.len());
+        let mut equations = 0;
+        for holder in held {
+            first_equation.push(equations);
+            equations += holder.equations;
+        }
+        let groups = bodies + diffs + held.len();
+        let kind_of = |group: usize| {
             if group < bodies {
+                Kind::Body
+            } else if group < bodies + diffs {
+                Kind::Diff
+            } else {
+                Kind::Equations
+            }
+        };
+        let states_of = |group: usize| match kind_of(group) {
+            Kind::Body => {
                 let offset = body_offset(model, group);
                 offset..offset + BODY_STATES
-            } else {
+            }
+            Kind::Diff => {
                 let diff = group - bodies;
                 diff..diff + 1
+            }
+            Kind::Equations => {
+                let holder = group - bodies - diffs;
+                let first = n + first_equation[holder];
+                first..first + held[holder].equations
             }
         };
         // The groups each output reads.
@@ -133,17 +172,38 @@ impl Sparsity {
                 reads[body].extend(&read);
             }
         }
-        // Bodies joined (through any chain of joints) share their
-        // multipliers: each one's rates read what any of them reads.
-        for component in joined(model) {
-            let mut read: Vec<usize> = component
-                .iter()
-                .flat_map(|&body| reads[body].clone())
-                .collect();
-            read.sort_unstable();
-            read.dedup();
-            for &body in &component {
-                reads[body].clone_from(&read);
+        if holders.is_some() {
+            // A body's rates read the multipliers of the equations moving
+            // it and the states of the bodies those equations move (the
+            // rows of `G` the multipliers load it through); an equation's
+            // residual reads its bodies' rates.
+            for (holder, group) in held.iter().zip(bodies + diffs..) {
+                for &body in &holder.bodies {
+                    reads[body].push(group);
+                    reads[body].extend(&holder.bodies);
+                }
+            }
+            for (holder, group) in held.iter().zip(bodies + diffs..) {
+                let read: Vec<usize> = holder
+                    .bodies
+                    .iter()
+                    .flat_map(|&body| reads[body].clone())
+                    .collect();
+                reads[group].extend(read);
+            }
+        } else {
+            // Bodies joined (through any chain of joints) share their
+            // multipliers: each one's rates read what any of them reads.
+            for component in joined(model) {
+                let mut read: Vec<usize> = component
+                    .iter()
+                    .flat_map(|&body| reads[body].clone())
+                    .collect();
+                read.sort_unstable();
+                read.dedup();
+                for &body in &component {
+                    reads[body].clone_from(&read);
+                }
             }
         }
         // The values of the running solver a force reads (a joint's
@@ -161,30 +221,46 @@ impl Sparsity {
             read.sort_unstable();
             read.dedup();
         }
-        let colour = colouring(&reads, bodies);
-        let body_colours = colour[..bodies].iter().map(|c| c + 1).max().unwrap_or(0);
-        let diff_colours = colour[bodies..].iter().map(|c| c + 1).max().unwrap_or(0);
-        let n = model.diffs.len() + BODY_STATES * bodies;
-        let mut direction = vec![0; n];
+        let colour = colouring(&reads, kind_of);
+        let colours_of = |kind: Kind| {
+            (0..groups)
+                .filter(|&group| kind_of(group) == kind)
+                .map(|group| colour[group] + 1)
+                .max()
+                .unwrap_or(0)
+        };
+        let body_colours = colours_of(Kind::Body);
+        let diff_colours = colours_of(Kind::Diff);
+        let width = held
+            .iter()
+            .map(|holder| holder.equations)
+            .max()
+            .unwrap_or(0);
+        let dimension = n + equations;
+        let mut direction = vec![0; dimension];
         for (group, &group_colour) in colour.iter().enumerate() {
             for (index, state) in states_of(group).enumerate() {
-                direction[state] = if group < bodies {
-                    BODY_STATES * group_colour + index
-                } else {
-                    BODY_STATES * body_colours + group_colour
+                direction[state] = match kind_of(group) {
+                    Kind::Body => BODY_STATES * group_colour + index,
+                    Kind::Diff => BODY_STATES * body_colours + group_colour,
+                    Kind::Equations => {
+                        BODY_STATES * body_colours + diff_colours + width * group_colour + index
+                    }
                 };
             }
         }
+        let directions =
+            BODY_STATES * body_colours + diff_colours + width * colours_of(Kind::Equations);
         let entries_of = |group: usize| {
             let columns: Vec<usize> = reads[group].iter().flat_map(|&g| states_of(g)).collect();
             states_of(group).flat_map(move |row| columns.clone().into_iter().map(move |c| (row, c)))
         };
-        let pattern = Pattern::new(n, (0..groups).flat_map(entries_of));
-        let mut row_entries: Vec<Vec<(usize, usize)>> = vec![Vec::new(); n];
+        let pattern = Pattern::new(dimension, (0..groups).flat_map(entries_of));
+        let mut row_entries: Vec<Vec<(usize, usize)>> = vec![Vec::new(); dimension];
         for (position, (row, column)) in pattern.entries().enumerate() {
             row_entries[row].push((position, direction[column]));
         }
-        let mut row_starts = Vec::with_capacity(n + 1);
+        let mut row_starts = Vec::with_capacity(dimension + 1);
         row_starts.push(0);
         let mut entries = Vec::with_capacity(pattern.len());
         for row in row_entries {
@@ -194,7 +270,7 @@ impl Sparsity {
         Sparsity {
             pattern,
             direction,
-            directions: BODY_STATES * body_colours + diff_colours,
+            directions,
             row_starts,
             entries,
         }
@@ -207,10 +283,19 @@ impl Sparsity {
     }
 }
 
+/// What a group of states is: a body's 13, a DIFF's one, or a holder's
+/// multipliers (algebraic unknowns).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Body,
+    Diff,
+    Equations,
+}
+
 /// A colour for each group such that no two groups read by one group's
-/// rates share one; bodies (the first `bodies` groups) and DIFFs are
-/// coloured apart. Greedy, in group order: the smallest colour free.
-fn colouring(reads: &[Vec<usize>], bodies: usize) -> Vec<usize> {
+/// rates share one; each kind of group is coloured apart (its own
+/// directions). Greedy, in group order: the smallest colour free.
+fn colouring(reads: &[Vec<usize>], kind_of: impl Fn(usize) -> Kind) -> Vec<usize> {
     let groups = reads.len();
     let mut readers: Vec<Vec<usize>> = vec![Vec::new(); groups];
     for (row, read) in reads.iter().enumerate() {
@@ -224,8 +309,7 @@ fn colouring(reads: &[Vec<usize>], bodies: usize) -> Vec<usize> {
         taken.clear();
         for &row in &readers[group] {
             for &other in &reads[row] {
-                let same_kind = (other < bodies) == (group < bodies);
-                if same_kind && colour[other] != usize::MAX {
+                if kind_of(other) == kind_of(group) && colour[other] != usize::MAX {
                     taken.push(colour[other]);
                 }
             }
@@ -252,38 +336,8 @@ fn joined(model: &Model) -> Vec<Vec<usize>> {
         }
         body
     }
-    let body_of = |target: &Target| body_of(model, target);
-    // Each holder's bodies: a joint's, a motion's between markers, those
-    // of every joint a coupler ties, and those a GCON's FUNCTION reads.
-    let held = model
-        .joints
-        .iter()
-        .map(|joint| vec![body_of(&joint.i), body_of(&joint.j)])
-        .chain(
-            model
-                .marker_motions
-                .iter()
-                .map(|motion| vec![body_of(&motion.i), body_of(&motion.j)]),
-        )
-        .chain(model.couplers.iter().map(|coupler| {
-            coupler
-                .joints
-                .iter()
-                .flat_map(|&(index, _, _)| {
-                    let joint = &model.joints[index];
-                    [body_of(&joint.i), body_of(&joint.j)]
-                })
-                .collect()
-        }))
-        .chain(model.general_constraints.iter().map(|constraint| {
-            crate::simulate::constraints::bodies_of(model, constraint)
-                .into_iter()
-                .map(Some)
-                .collect()
-        }));
-    for bodies in held {
-        let bodies: Vec<usize> = bodies.into_iter().flatten().collect();
-        for pair in bodies.windows(2) {
+    for holder in holders(model) {
+        for pair in holder.bodies.windows(2) {
             let (a, b) = (find(&mut root, pair[0]), find(&mut root, pair[1]));
             root[a] = b;
         }
