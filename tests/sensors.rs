@@ -77,7 +77,14 @@ END
 fn check(sensor: &str) -> String {
     let text = format!("sensor\nDIFF/1, IC = 1, FUNCTION = -DIF(1)\n{sensor}\nEND\n");
     match run(&text, &settings(1.0, 1, 1e-6)) {
-        Ok(run) => format!("ran: {} trips", run.summary.sensor_trips.len()),
+        Ok(run) => {
+            let notes = super::simulate::model_of(&text).expect("it reads").notes;
+            let mut shown = format!("ran: {} trips", run.summary.sensor_trips.len());
+            for (note, _) in notes {
+                shown += &format!("; note: {note}");
+            }
+            shown
+        }
         Err(error) => error.trim_end().to_string(),
     }
 }
@@ -88,6 +95,9 @@ fn sensors_that_cannot_be_watched_are_refused_at_their_place() {
         SENSOR/1, VALUE = 0.5, ERROR = 0.1, HALT, FUNCTION = DIF(1)
         SENSOR/1, VALUE = 0.5, CODGEN, FUNCTION = DIF(1)
         SENSOR/1, VALUE = 0.5, STEPSIZE = 0.1, HALT, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, ERROR = 0.01, RESTART, YYDUMP, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, DT = 0.01, PRINT, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, HALT, FUNCTION = DIF(1)\\, EVALUATE = TIME
         SENSOR/1, VALUE = 0.5, FUNCTION = DIF(1)
         SENSOR/1, HALT, FUNCTION = DIF(1)
         SENSOR/1, VALUE = 0.5, HALT

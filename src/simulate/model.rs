@@ -731,6 +731,17 @@ pub enum SensorAction {
     Return,
     /// `PRINT`: the time is reported and the run goes on.
     Print,
+    /// Only actions that steer Adams' integrator (CODGEN, RESTART,
+    /// STEPSIZE, YYDUMP), which leave the answer as it is: the trip is
+    /// counted and the run goes on.
+    Watch,
+}
+
+impl SensorAction {
+    /// Whether the run ends at a trip.
+    pub fn halts(self) -> bool {
+        matches!(self, SensorAction::Halt | SensorAction::Return)
+    }
 }
 
 impl Sensor {

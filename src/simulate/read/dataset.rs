@@ -309,7 +309,7 @@ impl Reader<'_> {
         let given_velocities = super::exact::given_velocities(self.dataset, &self.scene);
         let gravity = self.gravity();
         let outputs = self.outputs(&mut notes);
-        let sensors = self.sensors();
+        let sensors = self.sensors(&mut notes);
         Model {
             scene: std::mem::take(&mut self.scene),
             masses,
@@ -1003,8 +1003,9 @@ impl Reader<'_> {
         Some(self.expressions.len() - 1)
     }
 
-    /// The SENSOR statements ([`super::sensors`] reads their settings).
-    fn sensors(&mut self) -> Vec<Sensor> {
+    /// The SENSOR statements ([`super::sensors`] reads their settings),
+    /// the notes on their steering actions added to `notes`.
+    fn sensors(&mut self, notes: &mut Vec<(String, Span)>) -> Vec<Sensor> {
         let indices: Vec<usize> = self.statements("SENSOR").map(|(index, _)| index).collect();
         let mut sensors = Vec::new();
         for index in indices {
@@ -1044,14 +1045,16 @@ impl Reader<'_> {
                 }
             };
             let Some(function) = function else { continue };
-            let (relation, value, error, action) = settings;
+            if let Some(note) = settings.steering {
+                notes.push((note, statement.span));
+            }
             sensors.push(Sensor {
                 id: statement.id.unwrap_or(0),
                 function,
-                relation,
-                value,
-                error,
-                action,
+                relation: settings.relation,
+                value: settings.value,
+                error: settings.error,
+                action: settings.action,
                 span: statement.span,
             });
         }

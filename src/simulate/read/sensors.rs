@@ -1,7 +1,11 @@
 //! A `SENSOR` statement's settings: its comparison (EQ, the default, NE,
 //! GE, LE) with VALUE within ERROR, and its action (HALT, RETURN or
-//! PRINT); the other actions (CODGEN, DT, RESTART, STEPSIZE, YYDUMP,
-//! EVALUATE) are refused at their keyword.
+//! PRINT). The actions that steer Adams' integrator at the trip (CODGEN,
+//! RESTART, STEPSIZE, YYDUMP: a new pivot order, a restart, a trial step,
+//! a dump of the states) leave the answer as it is: they are read and
+//! named in a note, the sensor watched (a sensor with no other action
+//! only counts its trips). DT (which changes the output times) and
+//! EVALUATE are refused at their keyword.
 
 use crate::model::Statement;
 use crate::model::initial::number;
@@ -25,21 +29,28 @@ pub(super) enum Unread {
     Setting(String, Span),
 }
 
+/// The actions that steer Adams' integrator at a trip and leave the
+/// answer as it is.
+const STEERING: [&str; 4] = ["CODGEN", "RESTART", "STEPSIZE", "YYDUMP"];
+
+/// What a sensor statement sets.
+pub(super) struct Settings {
+    /// How its function is compared with `value`.
+    pub(super) relation: Relation,
+    /// What its function is compared with.
+    pub(super) value: f64,
+    /// The comparison's tolerance.
+    pub(super) error: f64,
+    /// What the run does at a trip.
+    pub(super) action: SensorAction,
+    /// The note on its steering actions, when it has any.
+    pub(super) steering: Option<String>,
+}
+
 /// A sensor's comparison, value, tolerance and action, or why it has none.
-pub(super) fn settings(
-    statement: &Statement,
-) -> Result<(Relation, f64, f64, SensorAction), Unread> {
+pub(super) fn settings(statement: &Statement) -> Result<Settings, Unread> {
     let label = statement.label();
-    for keyword in [
-        "CODGEN",
-        "DT",
-        "RESTART",
-        "STEPSIZE",
-        "YYDUMP",
-        "EVALUATE",
-        "EVALUATE_ROUTINE",
-        "ROUTINE",
-    ] {
+    for keyword in ["DT", "EVALUATE", "EVALUATE_ROUTINE", "ROUTINE"] {
         if let Some(argument) = statement
             .arguments
             .iter()
@@ -47,13 +58,17 @@ pub(super) fn settings(
         {
             return Err(Unread::Action {
                 reason: format!(
-                    "has {keyword}, an action mbexpr does not carry out (its sensors HALT, RETURN or PRINT)"
+                    "has {keyword}, an action mbexpr does not carry out (its sensors HALT, RETURN or PRINT, and read CODGEN, RESTART, STEPSIZE and YYDUMP)"
                 ),
                 span: argument.span,
             });
         }
     }
     let has = |keyword: &str| statement.argument(keyword, keyword.len()).is_some();
+    let steers: Vec<&str> = STEERING
+        .into_iter()
+        .filter(|keyword| has(keyword))
+        .collect();
     if ["EQ", "NE", "GE", "LE"]
         .iter()
         .filter(|keyword| has(keyword))
@@ -77,12 +92,37 @@ pub(super) fn settings(
         SensorAction::Return
     } else if has("PRINT") {
         SensorAction::Print
+    } else if !steers.is_empty() {
+        SensorAction::Watch
     } else {
         return Err(Unread::Setting(
             format!("{label}: give its action: HALT, RETURN or PRINT"),
             statement.span,
         ));
     };
+    let steering = (!steers.is_empty()).then(|| {
+        let named: Vec<String> = steers
+            .iter()
+            .map(|keyword| {
+                let what = match *keyword {
+                    "CODGEN" => "a new pivot order",
+                    "RESTART" => "a restart",
+                    "STEPSIZE" => "a trial step",
+                    _ => "a dump of the states",
+                };
+                format!("{keyword} ({what})")
+            })
+            .collect();
+        let (verb, pronoun) = if steers.len() == 1 {
+            ("steers", "it is")
+        } else {
+            ("steer", "they are")
+        };
+        format!(
+            "{label}: {} {verb} Adams' integrator at a trip; mbexpr's error control chooses its own steps, so {pronoun} read and change nothing in the answer",
+            named.join(", ")
+        )
+    });
     let refusal = |error: crate::model::initial::ConfigurationError| {
         Unread::Setting(error.to_string(), error.span())
     };
@@ -100,5 +140,11 @@ pub(super) fn settings(
             statement.span,
         ));
     }
-    Ok((relation, value, error, action))
+    Ok(Settings {
+        relation,
+        value,
+        error,
+        action,
+        steering,
+    })
 }

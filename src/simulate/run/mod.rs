@@ -23,7 +23,7 @@ use super::constraints::{
 use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
 use super::error::{Place, SimulateError};
 use super::initial::initial_state;
-use super::model::{Contact, SensorAction};
+use super::model::Contact;
 use super::{Model, Simulation};
 use crate::Shown;
 use crate::compile::{Program, SiteKind};
@@ -857,7 +857,7 @@ impl Simulation<'_> {
                 let time = self
                     .locate_trip(&mut rows, &stepper, sensor, before, after, &mut dense)
                     .map_err(|(time, error)| self.failure(time, error))?;
-                let halts = model.sensors[sensor].action != SensorAction::Print;
+                let halts = model.sensors[sensor].action.halts();
                 if halts {
                     reached = time;
                 }
@@ -983,7 +983,7 @@ impl Simulation<'_> {
                 .tripped(right, &dense, &mut active)
                 .map_err(|error| self.failure(right, error))?
             {
-                let halts = model.sensors[sensor].action != SensorAction::Print;
+                let halts = model.sensors[sensor].action.halts();
                 summary.sensor_trips.push(SensorTrip {
                     sensor: model.sensors[sensor].id,
                     time: right,
