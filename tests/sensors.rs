@@ -98,6 +98,9 @@ fn sensors_that_cannot_be_watched_are_refused_at_their_place() {
         SENSOR/1, VALUE = 0.5, ERROR = 0.01, RESTART, YYDUMP, FUNCTION = DIF(1)
         SENSOR/1, VALUE = 0.5, DT = 0.01, PRINT, FUNCTION = DIF(1)
         SENSOR/1, VALUE = 0.5, HALT, FUNCTION = DIF(1)\\, EVALUATE = TIME
+        SENSOR/1, VALUE = 0.5, HALT, FUNCTION = DIF(1)\\, EVALUATE_ROUTINE = SEV
+        SENSOR/2, VALUE = 0.5, HALT, FUNCTION = SENVAL(1)
+        SENSOR/2, VALUE = 0.5, HALT, FUNCTION = SENVAL(2)
         SENSOR/1, VALUE = 0.5, FUNCTION = DIF(1)
         SENSOR/1, HALT, FUNCTION = DIF(1)
         SENSOR/1, VALUE = 0.5, HALT
@@ -136,5 +139,58 @@ END
             "ERROR {error}: {}",
             trip.time
         );
+    }
+}
+
+/// The oscillator `x = cos t` with a sensor `x ≤ 0` (ERROR 1e-12) whose
+/// only action is `EVALUATE = TIME`: `SENVAL(1)` is 0 until `x` first
+/// reaches 0 at `π/2`, then `π/2` until it does again at `5π/2`, then
+/// `5π/2`. A DIFF integrates it, so its value at `t = 9` is
+/// `π/2 (5π/2 − π/2) + 5π/2 (9 − 5π/2)`, and a REQUEST shows it; the same
+/// with PRINT beside EVALUATE. Without the step cut at each trip the
+/// DIFF would take the new value from the step's end, not the trip.
+#[test]
+fn a_sensor_evaluate_stores_its_value_at_each_trip_for_senval() {
+    use std::f64::consts::PI;
+    for action in ["", ", PRINT"] {
+        let text = format!(
+            "oscillator
+DIFF/1, IC = 1, FUNCTION = DIF(2)
+DIFF/2, IC = 0, FUNCTION = -DIF(1)
+DIFF/3, IC = 0, FUNCTION = SENVAL(1)
+SENSOR/1, LE, VALUE = 0, ERROR = 1e-12{action}, FUNCTION = DIF(1)\\
+, EVALUATE = TIME
+REQUEST/1, F2 = SENVAL(1)
+END
+"
+        );
+        let settings = Settings {
+            end: 9.0,
+            steps: 9,
+            rtol: 1e-10,
+            atol: 1e-12,
+            ..Settings::default()
+        };
+        let run = run(&text, &settings).expect("it oscillates");
+        let times: Vec<f64> = run
+            .summary
+            .sensor_trips
+            .iter()
+            .map(|trip| trip.time)
+            .collect();
+        println!("{action:?}: trips {times:?}");
+        assert_eq!(times.len(), 2, "{times:?}");
+        assert!((times[0] - PI / 2.0).abs() < 1e-9 && (times[1] - 2.5 * PI).abs() < 1e-9);
+        let last = run.rows.last().expect("rows");
+        let expected = PI / 2.0 * (2.5 * PI - PI / 2.0) + 2.5 * PI * (9.0 - 2.5 * PI);
+        println!("DIF(3)(9) = {} against {expected}", last[3]);
+        assert!((last[3] - expected).abs() < 1e-7, "{}", last[3]);
+        // The REQUEST's column: SENVAL at the rows t = 1 (0), 2 (π/2), 8
+        // (5π/2).
+        let column = last.len() - 1;
+        let senval_at = |t: f64| run.rows.iter().find(|row| row[0] == t).expect("a row")[column];
+        assert_eq!(senval_at(1.0), 0.0);
+        assert!((senval_at(2.0) - PI / 2.0).abs() < 1e-9);
+        assert!((senval_at(8.0) - 2.5 * PI).abs() < 1e-9);
     }
 }

@@ -579,9 +579,17 @@ impl Compiler<'_> {
         u32::try_from(index).expect("fewer than 2^32 contact laws")
     }
 
+    /// The input named `name` (added at its first use).
+    fn named_input(&mut self, name: String, span: Span) -> Slot {
+        let index = self
+            .input_index(&name)
+            .unwrap_or_else(|| self.inputs.push(name));
+        self.input(index, span)
+    }
+
     /// `VARVAL(id)` as the VARIABLE's own expression, compiled in place (so
-    /// its derivatives flow), `ARYVAL(id, i)` and `DIF(id)` as constants,
-    /// from the scene's statement data.
+    /// its derivatives flow), `ARYVAL(id, i)` as a constant, and `DIF(id)`
+    /// and `SENVAL(id)` as inputs, from the scene's statement data.
     fn statement_data(
         &mut self,
         scene: &Scene,
@@ -625,11 +633,10 @@ impl Compiler<'_> {
                 Ok(self.constant(value))
             }
             (Function::Dif, Some(id)) if scene.statements.diffs.contains_key(&id) => {
-                let name = crate::scene::diff_input(id);
-                let index = self
-                    .input_index(&name)
-                    .unwrap_or_else(|| self.inputs.push(name));
-                Ok(self.input(index, span))
+                Ok(self.named_input(crate::scene::diff_input(id), span))
+            }
+            (Function::Senval, Some(id)) if scene.statements.evaluated_sensors.contains(&id) => {
+                Ok(self.named_input(crate::scene::sensor_input(id), span))
             }
             (Function::Akispl | Function::Cubspl, Some(id))
                 if scene.statements.splines.contains_key(&id) =>
@@ -1041,6 +1048,17 @@ fn model_data_error(
         _ => None,
     });
     let id = object.map_or_else(String::new, Reference::to_string);
+    if function == Function::Senval && scene.is_some() {
+        // The model's sensors with an EVALUATE are bound; this one has none.
+        return CompileError::MissingStatement {
+            function: function.name(),
+            statement: format!(
+                "SENSOR/{id} with an EVALUATE (whose value at each trip SENVAL returns)"
+            ),
+            id,
+            span,
+        };
+    }
     let solver_state = match function {
         Function::Dif | Function::Dif1 => Some("DIFF"),
         Function::Pinval => Some("PINPUT"),

@@ -432,6 +432,17 @@ pub fn initial_scene(
     for statement in dataset
         .statements
         .iter()
+        .filter(|s| is_statement(s, "SENSOR"))
+    {
+        if let Some(id) = statement.id
+            && statement.argument("EVALUATE", 4).is_some()
+        {
+            scene.statements.evaluated_sensors.insert(id);
+        }
+    }
+    for statement in dataset
+        .statements
+        .iter()
         .filter(|s| is_statement(s, "SPLINE"))
     {
         let Some(id) = statement.id else { continue };

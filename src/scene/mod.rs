@@ -261,6 +261,11 @@ pub struct StatementData {
     /// [`diff_input`]`(id)` (the initial condition outside a simulation),
     /// `DIF1(id)` the DIFF's FUNCTION, evaluated in place.
     pub diffs: HashMap<u64, DiffData>,
+    /// The ids of the SENSORs with an EVALUATE expression: `SENVAL(id)` is
+    /// an input named [`sensor_input`]`(id)`, the value that expression
+    /// had at the sensor's last trip (0 before the first, and outside a
+    /// simulation).
+    pub evaluated_sensors: std::collections::HashSet<u64>,
 }
 
 /// A differential state `DIFF/id` (explicit form: `d DIF(id)/dt = FUNCTION`).
@@ -276,6 +281,20 @@ pub struct DiffData {
 /// The name of the input that holds `DIF(id)`: `DIF(3)`.
 pub fn diff_input(id: u64) -> String {
     format!("DIF({id})")
+}
+
+/// The name of the input that holds `SENVAL(id)`: `SENVAL(3)`.
+pub fn sensor_input(id: u64) -> String {
+    format!("SENVAL({id})")
+}
+
+/// The SENSOR id of an input named `SENVAL(3)` (as [`sensor_input`]
+/// writes it).
+pub fn parse_sensor_input(name: &str) -> Option<u64> {
+    name.strip_prefix("SENVAL(")?
+        .strip_suffix(')')?
+        .parse()
+        .ok()
 }
 
 /// The DIFF id of an input named `DIF(3)` (as [`diff_input`] writes it).
@@ -430,6 +449,11 @@ impl Scene {
         }
         if let Some(diff) = parse_diff_input(name).and_then(|id| self.statements.diffs.get(&id)) {
             return Ok(diff.initial);
+        }
+        if parse_sensor_input(name)
+            .is_some_and(|id| self.statements.evaluated_sensors.contains(&id))
+        {
+            return Ok(0.0);
         }
         if let Some((index, component)) = self.parse_state_name(name) {
             let body = &self.bodies[index];

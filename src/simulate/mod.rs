@@ -147,12 +147,14 @@ impl<'m> Simulation<'m> {
                 }
             }
         }
-        // The output columns, then the sensors' functions.
+        // The output columns, then the sensors' functions, then their
+        // EVALUATEs.
         let output_expressions: Vec<usize> = model
             .outputs
             .iter()
             .map(|output| output.expression)
             .chain(model.sensors.iter().map(|sensor| sensor.function))
+            .chain(model.sensors.iter().filter_map(|sensor| sensor.evaluate))
             .collect();
         let mut errors = Vec::new();
         let functions: Vec<usize> = model.motion_functions().collect();

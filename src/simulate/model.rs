@@ -704,6 +704,9 @@ pub struct Sensor {
     pub error: f64,
     /// What the run does when the sensor becomes active.
     pub action: SensorAction,
+    /// Its EVALUATE, an index into [`Model::expressions`]: the value of
+    /// `SENVAL(id)` from each trip on is this expression's there.
+    pub evaluate: Option<usize>,
     /// The statement's place in the file.
     pub span: Span,
 }
@@ -731,9 +734,9 @@ pub enum SensorAction {
     Return,
     /// `PRINT`: the time is reported and the run goes on.
     Print,
-    /// Only actions that steer Adams' integrator (CODGEN, RESTART,
-    /// STEPSIZE, YYDUMP), which leave the answer as it is: the trip is
-    /// counted and the run goes on.
+    /// Only EVALUATE (the value stored) or actions that steer Adams'
+    /// integrator (CODGEN, RESTART, STEPSIZE, YYDUMP), which leave the
+    /// answer as it is: the trip is counted and the run goes on.
     Watch,
 }
 

@@ -217,9 +217,13 @@ fn inputs_of(model: &Model, program: &Program) -> Result<Vec<Input>, String> {
                 Some((body, StateComponent::AngularVelocity(axis))) => {
                     Ok(Input::AngularVelocity(body, axis))
                 }
-                None if crate::scene::parse_diff_input(name).is_some() => Err(format!(
-                    "its FUNCTION reads {name}, a state of the run: a GCON keeps a function of the parts' places and of time at 0"
-                )),
+                None if crate::scene::parse_diff_input(name).is_some()
+                    || crate::scene::parse_sensor_input(name).is_some() =>
+                {
+                    Err(format!(
+                        "its FUNCTION reads {name}, a value of the run: a GCON keeps a function of the parts' places and of time at 0"
+                    ))
+                }
                 None => model
                     .scene
                     .value_of(name)

@@ -40,7 +40,7 @@ use crate::integrate::linalg::Pattern;
 use crate::laws::branch::Code;
 use crate::laws::contact::ContactBranch;
 use crate::number::{Directional, Number};
-use crate::scene::{StateComponent, parse_diff_input};
+use crate::scene::{StateComponent, parse_diff_input, parse_sensor_input};
 use crate::simulate::constraints::{
     BodyMotion, Component, Drives, Reactions, acceleration_residual, constraint_loads,
     contact_parameter, curve_joints, holders, joints_failed_in, joints_singular_in,
@@ -68,6 +68,9 @@ pub(crate) enum Source {
     /// accelerations), the one at this index of [`Mechanics::solver_calls`]
     /// (only in the programs of output columns, which have no Jacobian).
     Solver(usize),
+    /// `SENVAL` of the sensor at this index of the model's sensors: its
+    /// EVALUATE's value at its last trip (0 before the first).
+    Sensor(usize),
 }
 
 /// The equations of motion of a model, with its compiled expressions.
@@ -190,6 +193,12 @@ impl<'m> Mechanics<'m> {
                     Source::Solver(solver_calls.len() - 1)
                 } else if name.eq_ignore_ascii_case("TIME") {
                     Source::Time
+                } else if let Some(id) = parse_sensor_input(name) {
+                    model
+                        .sensors
+                        .iter()
+                        .position(|sensor| sensor.id == id && sensor.evaluate.is_some())
+                        .map_or(Source::Constant(0.0), Source::Sensor)
                 } else if let Some(id) = parse_diff_input(name) {
                     let index = model.diffs.iter().position(|diff| diff.id == id);
                     Source::State(index.expect("the compiler binds only DIFFs of the model"))
@@ -241,6 +250,7 @@ impl<'m> Mechanics<'m> {
                     })
                     .collect(),
                 curves: curve_joints(model),
+                sensed: vec![0.0; model.sensors.len()],
             },
             values,
             buffers: Buffers::new(program),
@@ -250,6 +260,12 @@ impl<'m> Mechanics<'m> {
             settling_matrix: None,
             delays,
         }
+    }
+
+    /// Stores `value` as `SENVAL` of the model's sensor `sensor` (its
+    /// EVALUATE's value at a trip), which the program reads from then on.
+    pub(crate) fn store_sensor_value(&mut self, sensor: usize, value: f64) {
+        self.equations.sensed[sensor] = value;
     }
 
     /// Whether the program has DELAYs, whose expressions the run records.
@@ -596,14 +612,7 @@ impl<'m> Mechanics<'m> {
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
         let buffers = &mut self.buffers;
-        fill_inputs(
-            &equations.sources,
-            t,
-            y,
-            &kinematics,
-            &self.settled,
-            &mut buffers.inputs,
-        );
+        equations.fill_inputs(t, y, &kinematics, &self.settled, &mut buffers.inputs);
         reorient(&mut self.values, &kinematics);
         let (natural, switching) = branches;
         let (program_sites, program_switches) = (
@@ -712,7 +721,7 @@ impl<'m> Mechanics<'m> {
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
         let inputs = &mut self.buffers.inputs;
-        fill_inputs(&equations.sources, t, y, &kinematics, solved, inputs);
+        equations.fill_inputs(t, y, &kinematics, solved, inputs);
         reorient(&mut self.values, &kinematics);
         self.values.outputs(inputs, None, outputs)
     }
@@ -777,7 +786,7 @@ impl<'m> Mechanics<'m> {
             .any(|value| matches!(value, RunValue::Element(_) | RunValue::NetForce(_)))
         {
             let inputs = &mut self.buffers.inputs;
-            fill_inputs(&equations.sources, t, y, &kinematics, solved, inputs);
+            equations.fill_inputs(t, y, &kinematics, solved, inputs);
             reorient(&mut self.values, &kinematics);
             let program_sites = equations.program.sites().len();
             let held = held.map(|sites| &sites[..program_sites]);
@@ -1014,26 +1023,6 @@ impl RunValue {
     }
 }
 
-/// The program input values from the state and the solver's reactions
-/// `solved`, into `inputs`.
-fn fill_inputs<T: Number>(
-    sources: &[Source],
-    t: f64,
-    y: &[T],
-    kinematics: &[Kinematics<T>],
-    solved: &[f64],
-    inputs: &mut Vec<T>,
-) {
-    inputs.clear();
-    inputs.extend(sources.iter().map(|source| match *source {
-        Source::Time => T::from(t),
-        Source::Constant(value) => T::from(value),
-        Source::State(index) => y[index].clone(),
-        Source::Body(body, component) => kinematics[body].input(component),
-        Source::Solver(index) => T::from(solved[index]),
-    }));
-}
-
 /// The largest distance from each body's centre of mass to a joint's
 /// marker on it (0 for a body no joint holds).
 fn joint_arms(model: &Model) -> Vec<f64> {
@@ -1163,6 +1152,9 @@ struct Equations<'m> {
     /// their sites (after the contacts'): each holds its curve on one
     /// piece within a step.
     curves: Vec<usize>,
+    /// `SENVAL` of each of the model's sensors: its EVALUATE's value at its
+    /// last trip (0 before the first, and for a sensor without one).
+    sensed: Vec<f64>,
 }
 
 impl Equations<'_> {
@@ -1197,6 +1189,27 @@ impl Equations<'_> {
         expression
             .and_then(|expression| self.output_of[expression])
             .map_or_else(T::zero, |output| outputs[output].clone())
+    }
+
+    /// The program's inputs at `(t, y)`, the bodies moving as
+    /// `kinematics` say, the loop values at `solved`.
+    fn fill_inputs<T: Number>(
+        &self,
+        t: f64,
+        y: &[T],
+        kinematics: &[Kinematics<T>],
+        solved: &[f64],
+        inputs: &mut Vec<T>,
+    ) {
+        inputs.clear();
+        inputs.extend(self.sources.iter().map(|source| match *source {
+            Source::Time => T::from(t),
+            Source::Constant(value) => T::from(value),
+            Source::State(index) => y[index].clone(),
+            Source::Body(body, component) => kinematics[body].input(component),
+            Source::Solver(index) => T::from(solved[index]),
+            Source::Sensor(index) => T::from(self.sensed[index]),
+        }));
     }
 
     fn kinematics<T: Number>(&self, y: &[T]) -> Vec<Kinematics<T>> {
@@ -1344,14 +1357,7 @@ impl Equations<'_> {
     ) -> Result<(Vec<Kinematics<T>>, Loads<T>), OutputError> {
         let model = self.model;
         let kinematics = self.kinematics(y);
-        fill_inputs(
-            &self.sources,
-            t,
-            y,
-            &kinematics,
-            loop_values,
-            &mut buffers.inputs,
-        );
+        self.fill_inputs(t, y, &kinematics, loop_values, &mut buffers.inputs);
         reorient(evaluator, &kinematics);
         let program_sites = self.program.sites().len();
         let program_held = sites.map(|sites| &sites[..program_sites]);

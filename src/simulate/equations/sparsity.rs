@@ -113,7 +113,10 @@ impl Sparsity {
                     .filter_map(|&input| match sources[input] {
                         Source::Body(body, _) => Some(body),
                         Source::State(diff) => Some(bodies + diff),
-                        Source::Time | Source::Constant(_) | Source::Solver(_) => None,
+                        Source::Time
+                        | Source::Constant(_)
+                        | Source::Solver(_)
+                        | Source::Sensor(_) => None,
                     })
                     .collect();
                 read.sort_unstable();

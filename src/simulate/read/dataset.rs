@@ -1045,6 +1045,14 @@ impl Reader<'_> {
                 }
             };
             let Some(function) = function else { continue };
+            let evaluate = if statement.argument("EVALUATE", 4).is_some() {
+                let Some(evaluate) = self.expression(index, "EVALUATE") else {
+                    continue;
+                };
+                Some(evaluate)
+            } else {
+                None
+            };
             if let Some(note) = settings.steering {
                 notes.push((note, statement.span));
             }
@@ -1055,6 +1063,7 @@ impl Reader<'_> {
                 value: settings.value,
                 error: settings.error,
                 action: settings.action,
+                evaluate,
                 span: statement.span,
             });
         }

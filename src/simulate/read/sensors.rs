@@ -4,8 +4,11 @@
 //! RESTART, STEPSIZE, YYDUMP: a new pivot order, a restart, a trial step,
 //! a dump of the states) leave the answer as it is: they are read and
 //! named in a note, the sensor watched (a sensor with no other action
-//! only counts its trips). DT (which changes the output times) and
-//! EVALUATE are refused at their keyword.
+//! only counts its trips). EVALUATE is read by the dataset reader (its
+//! expression's value at each trip is `SENVAL`), a sensor with no other
+//! action only storing it. DT (which changes the output times) and the
+//! user subroutines' ROUTINE and EVALUATE_ROUTINE are refused at their
+//! keyword.
 
 use crate::model::Statement;
 use crate::model::initial::number;
@@ -50,7 +53,7 @@ pub(super) struct Settings {
 /// A sensor's comparison, value, tolerance and action, or why it has none.
 pub(super) fn settings(statement: &Statement) -> Result<Settings, Unread> {
     let label = statement.label();
-    for keyword in ["DT", "EVALUATE", "EVALUATE_ROUTINE", "ROUTINE"] {
+    for keyword in ["DT", "EVALUATE_ROUTINE", "ROUTINE"] {
         if let Some(argument) = statement
             .arguments
             .iter()
@@ -58,7 +61,7 @@ pub(super) fn settings(statement: &Statement) -> Result<Settings, Unread> {
         {
             return Err(Unread::Action {
                 reason: format!(
-                    "has {keyword}, an action mbexpr does not carry out (its sensors HALT, RETURN or PRINT, and read CODGEN, RESTART, STEPSIZE and YYDUMP)"
+                    "has {keyword}, an action mbexpr does not carry out (its sensors HALT, RETURN, PRINT or EVALUATE, and read CODGEN, RESTART, STEPSIZE and YYDUMP)"
                 ),
                 span: argument.span,
             });
@@ -92,11 +95,11 @@ pub(super) fn settings(statement: &Statement) -> Result<Settings, Unread> {
         SensorAction::Return
     } else if has("PRINT") {
         SensorAction::Print
-    } else if !steers.is_empty() {
+    } else if !steers.is_empty() || statement.argument("EVALUATE", 4).is_some() {
         SensorAction::Watch
     } else {
         return Err(Unread::Setting(
-            format!("{label}: give its action: HALT, RETURN or PRINT"),
+            format!("{label}: give its action: HALT, RETURN, PRINT or EVALUATE"),
             statement.span,
         ));
     };
@@ -113,13 +116,13 @@ pub(super) fn settings(statement: &Statement) -> Result<Settings, Unread> {
                 format!("{keyword} ({what})")
             })
             .collect();
-        let (verb, pronoun) = if steers.len() == 1 {
-            ("steers", "it is")
+        let (verb, rest) = if steers.len() == 1 {
+            ("steers", "it is read and changes")
         } else {
-            ("steer", "they are")
+            ("steer", "they are read and change")
         };
         format!(
-            "{label}: {} {verb} Adams' integrator at a trip; mbexpr's error control chooses its own steps, so {pronoun} read and change nothing in the answer",
+            "{label}: {} {verb} Adams' integrator at a trip; mbexpr's error control chooses its own steps, so {rest} nothing in the answer",
             named.join(", ")
         )
     });

@@ -388,8 +388,10 @@ impl Rows<'_> {
         }
         let start = self.values.len();
         let columns = start + model.outputs.len();
-        self.values.resize(columns + model.sensors.len(), 0.0);
-        if columns + model.sensors.len() > start {
+        let evaluated = model.sensors.iter().filter(|s| s.evaluate.is_some());
+        let end = columns + model.sensors.len() + evaluated.count();
+        self.values.resize(end, 0.0);
+        if end > start {
             let solved: Vec<f64> = match &mut self.reactions {
                 None => Vec::new(),
                 Some((dynamics, values)) => dynamics.run_values(t, y, values)?,
@@ -403,7 +405,43 @@ impl Rows<'_> {
 
     /// The sensors' functions at the state [`Rows::at`] last looked at.
     fn sensed(&self) -> &[f64] {
-        &self.values[self.values.len() - self.model.sensors.len()..]
+        let first = self.values.len() - self.evaluated() - self.model.sensors.len();
+        &self.values[first..first + self.model.sensors.len()]
+    }
+
+    /// How many sensors have an EVALUATE (its values last among the
+    /// outputs).
+    fn evaluated(&self) -> usize {
+        let sensors = &self.model.sensors;
+        sensors.iter().filter(|s| s.evaluate.is_some()).count()
+    }
+
+    /// Sensor `sensor`'s trip at `(t, y)`: the value of its EVALUATE
+    /// there, when it has one, becomes its `SENVAL` for the equations of
+    /// motion `dynamics` and the outputs (true: the equations changed, and
+    /// the integrator must start again from there).
+    fn store(
+        &mut self,
+        sensor: usize,
+        (t, y): (f64, &[f64]),
+        dynamics: &mut Mechanics<'_>,
+    ) -> Result<bool, Failed> {
+        let sensors = &self.model.sensors;
+        if sensors[sensor].evaluate.is_none() {
+            return Ok(false);
+        }
+        let slot = sensors[..sensor]
+            .iter()
+            .filter(|s| s.evaluate.is_some())
+            .count();
+        self.at(t, y)?;
+        let value = self.values[self.values.len() - self.evaluated() + slot];
+        dynamics.store_sensor_value(sensor, value);
+        self.outputs.store_sensor_value(sensor, value);
+        if let Some((reactions, _)) = &mut self.reactions {
+            reactions.store_sensor_value(sensor, value);
+        }
+        Ok(true)
     }
 
     /// The first sensor that is active at `(t, y)` and was not at the last
@@ -413,14 +451,13 @@ impl Rows<'_> {
             return Ok(None);
         }
         self.at(t, y)?;
-        let sensors = self.model.sensors.len();
-        let sensed = &self.values[self.values.len() - sensors..];
+        let from = self.values.len() - self.evaluated() - self.model.sensors.len();
         let mut first = None;
         for (k, ((sensor, &value), before)) in self
             .model
             .sensors
             .iter()
-            .zip(sensed)
+            .zip(&self.values[from..])
             .zip(&mut self.sensed_before)
             .enumerate()
         {
@@ -858,7 +895,9 @@ impl Simulation<'_> {
                     .locate_trip(&mut rows, &stepper, sensor, before, after, &mut dense)
                     .map_err(|(time, error)| self.failure(time, error))?;
                 let halts = model.sensors[sensor].action.halts();
-                if halts {
+                // A sensor's EVALUATE changes SENVAL at the trip: the step
+                // is cut there too.
+                if halts || model.sensors[sensor].evaluate.is_some() {
                     reached = time;
                 }
                 trip = Some((sensor, time, halts));
@@ -897,6 +936,44 @@ impl Simulation<'_> {
                     summary.stopped = true;
                     break;
                 }
+            }
+            if let Some((sensor, time, _)) = trip
+                && model.sensors[sensor].evaluate.is_some()
+            {
+                // SENVAL takes its EVALUATE's value at the trip: the run
+                // starts again from there, as after a switch.
+                if delays {
+                    sample_inside(&mut system, &mut rows, &stepper, time, &mut dense)
+                        .map_err(|(time, error)| self.failure(time, error))?;
+                }
+                if time == t1 {
+                    dense.copy_from_slice(stepper.y());
+                } else {
+                    stepper.dense(time, &mut dense);
+                }
+                if model.is_constrained() {
+                    let found = assemble(&mut dense, time, tolerance, false)?;
+                    summary.residuals = summary.residuals.max(found);
+                }
+                let at = |error: Failed| self.failure(time, error);
+                rows.store(sensor, (time, &dense), &mut system.mechanics)
+                    .map_err(at)?;
+                // The sensors' states at the trip, not at the look after it.
+                rows.tripped(time, &dense, &mut active).map_err(at)?;
+                accept(&mut system, &mut rows, time, &dense, Some(0)).map_err(at)?;
+                let limit = system
+                    .look_and_limit(time, &dense, &mut natural, &mut start_values)
+                    .map_err(|error| at(error.into()))?;
+                before = add(before, stepper.stats());
+                stepper = stepper
+                    .fresh_start(
+                        options(limit, before, delay_cap(&system)),
+                        time,
+                        &dense,
+                        &mut system,
+                    )
+                    .map_err(|error| self.integration_error(error))?;
+                continue;
             }
             let located = match switch {
                 Ok(located) => located,
@@ -997,6 +1074,10 @@ impl Simulation<'_> {
                     summary.stopped = true;
                     break;
                 }
+                // SENVAL takes its EVALUATE's value; the fresh start below
+                // begins with it.
+                rows.store(sensor, (right, &dense), &mut system.mechanics)
+                    .map_err(|error| self.failure(right, error))?;
             }
             let values = rows
                 .at(right, &dense)
