@@ -42,11 +42,11 @@ use crate::laws::contact::ContactBranch;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, parse_diff_input, parse_sensor_input};
 use crate::simulate::constraints::{
-    BodyMotion, Component, Drives, Reactions, acceleration_residual, constraint_loads,
+    BodyMotion, Component, Drives, Holder, Reactions, acceleration_residual, constraint_loads,
     contact_parameter, curve_joints, holders, joints_failed_in, joints_singular_in,
     multiplier_loads,
 };
-use crate::simulate::model::{Contact, Force, MassProperties, Model};
+use crate::simulate::model::{Contact, Force, Model};
 use accelerations::{Accelerations, Measure};
 pub(crate) use bodies::{BODY_STATES, body_offset};
 use bodies::{Kinematics, Loads};
@@ -81,11 +81,11 @@ pub(crate) struct Mechanics<'m> {
     /// The Jacobian's pattern and evaluator, built when first asked for.
     /// The count is the number of directions the evaluator seeds.
     jacobian: Option<(Sparsity, DualEvaluator<'m>, usize)>,
-    /// The Jacobian is the index-1 form's in the states and the joints'
-    /// multipliers (algebraic unknowns after the states), as sparse as
-    /// the joints, rather than the ODE's with the multipliers eliminated
-    /// (dense along a chain): for a constrained model without massless
-    /// parts or loop values.
+    /// The Jacobian is the index-1 form's in the states, the joints'
+    /// multipliers and the massless parts' accelerations (algebraic
+    /// unknowns after the states), as sparse as the joints, rather than the
+    /// ODE's with them eliminated (dense along a chain): for a constrained
+    /// model without loop values.
     bordered: bool,
     /// The values of the running solver the program itself reads (a
     /// force that reads a joint's reaction, as joint friction does), each
@@ -226,9 +226,7 @@ impl<'m> Mechanics<'m> {
         if let Some(record) = &delays {
             values.share_delays(record.clone());
         }
-        let bordered = model.is_constrained()
-            && loop_values.is_empty()
-            && !model.masses.iter().any(MassProperties::is_massless);
+        let bordered = model.is_constrained() && loop_values.is_empty();
         Mechanics {
             bordered,
             equations: Equations {
@@ -251,6 +249,9 @@ impl<'m> Mechanics<'m> {
                     .collect(),
                 curves: curve_joints(model),
                 sensed: vec![0.0; model.sensors.len()],
+                massless: (0..model.masses.len())
+                    .filter(|&body| model.masses[body].is_massless())
+                    .collect(),
             },
             values,
             buffers: Buffers::new(program),
@@ -860,7 +861,16 @@ impl<'m> Mechanics<'m> {
         &self
             .jacobian
             .get_or_insert_with(|| {
-                let holders = bordered.then(|| holders(equations.model));
+                // The joints' multipliers, then the massless parts'
+                // accelerations, each part's six moved by its own.
+                let holders = bordered.then(|| {
+                    let mut holders = holders(equations.model);
+                    holders.extend(equations.massless.iter().map(|&body| Holder {
+                        equations: 6,
+                        bodies: vec![body],
+                    }));
+                    holders
+                });
                 let sparsity = Sparsity::new(
                     equations.model,
                     equations.program,
@@ -900,13 +910,16 @@ impl<'m> Mechanics<'m> {
             let solved = self
                 .equations
                 .solve(&mut self.values, t, y, fixed, &mut self.buffers)?;
-            Some(solved.multipliers.unwrap_or_default())
+            let mut unknowns: Vec<f64> = solved.multipliers.unwrap_or_default().as_slice().to_vec();
+            for body in &self.equations.massless {
+                let found = solved.massless.iter().find(|(other, _)| other == body);
+                unknowns.extend(found.map_or([0.0; 6], |(_, accelerations)| *accelerations));
+            }
+            Some(unknowns)
         } else {
             None
         };
-        let multipliers = multipliers
-            .as_ref()
-            .map(|multipliers| multipliers.as_slice());
+        let multipliers = multipliers.as_deref();
         let Some((sparsity, duals, count)) = &mut self.jacobian else {
             unreachable!("built above");
         };
@@ -1155,6 +1168,9 @@ struct Equations<'m> {
     /// `SENVAL` of each of the model's sensors: its EVALUATE's value at its
     /// last trip (0 before the first, and for a sensor without one).
     sensed: Vec<f64>,
+    /// The massless parts, in order: in the bordered form their
+    /// accelerations are algebraic unknowns after the multipliers.
+    massless: Vec<usize>,
 }
 
 impl Equations<'_> {
@@ -1239,29 +1255,41 @@ impl Equations<'_> {
     ) -> Result<(), OutputError> {
         let solved = self.solve(evaluator, t, y, fixed, buffers)?;
         self.fill_rates(&solved.kinematics, &solved.loads, buffers, rates);
-        let model = self.model;
         for (body, accelerations) in &solved.massless {
-            // The angular acceleration in the body's axes: `ω_b = Rᵀ ω`
-            // and `Ṙᵀ ω = −ω_b × ω_b = 0`.
-            let angular = solved.kinematics[*body].rotation.transpose()
-                * Vector3::new(
-                    accelerations[3].clone(),
-                    accelerations[4].clone(),
-                    accelerations[5].clone(),
-                );
-            let offset = body_offset(model, *body);
-            let given = accelerations[..3]
-                .iter()
-                .cloned()
-                .chain(angular.iter().cloned());
-            for (rate, value) in rates[offset + 7..offset + BODY_STATES]
-                .iter_mut()
-                .zip(given)
-            {
-                *rate = value;
-            }
+            self.set_massless_rates(&solved.kinematics, *body, accelerations, rates);
         }
         Ok(())
+    }
+
+    /// The rates of massless part `body`'s velocities from its
+    /// `accelerations` (`[v' | ω']` of its centre, in ground), which no
+    /// mass gives.
+    fn set_massless_rates<T: Number>(
+        &self,
+        kinematics: &[Kinematics<T>],
+        body: usize,
+        accelerations: &[T],
+        rates: &mut [T],
+    ) {
+        // The angular acceleration in the body's axes: `ω_b = Rᵀ ω` and
+        // `Ṙᵀ ω = −ω_b × ω_b = 0`.
+        let angular = kinematics[body].rotation.transpose()
+            * Vector3::new(
+                accelerations[3].clone(),
+                accelerations[4].clone(),
+                accelerations[5].clone(),
+            );
+        let offset = body_offset(self.model, body);
+        let given = accelerations[..3]
+            .iter()
+            .cloned()
+            .chain(angular.iter().cloned());
+        for (rate, value) in rates[offset + 7..offset + BODY_STATES]
+            .iter_mut()
+            .zip(given)
+        {
+            *rate = value;
+        }
     }
 
     /// The DIFFs' rates from the program's outputs in `buffers` and the
@@ -1291,11 +1319,14 @@ impl Equations<'_> {
         }
     }
 
-    /// The index-1 form's equations at the states `y` and the joints'
-    /// given `multipliers`: `dy/dt` under the loads `−Gᵀ λ` into `rates`,
-    /// and each held equation's `G u' + bias` into `residuals` (zero where
-    /// the multipliers are those [`Equations::solve`] finds). For a model
-    /// without massless parts or loop values.
+    /// The index-1 form's equations at the states `y` and the algebraic
+    /// unknowns `multipliers` (the joints' `λ`, then each massless part's
+    /// accelerations `a₀`, `[v' | ω']` in ground): `dy/dt` under the loads
+    /// `−Gᵀ λ` (a massless part's velocities' rates `a₀`) into `rates`, and
+    /// into `residuals` each held equation's `G u' + bias`, then each
+    /// massless part's balance `f₀ − G₀ᵀ λ` (force, torque), all zero at
+    /// the unknowns [`Equations::solve`] finds. For a model without loop
+    /// values.
     #[allow(clippy::too_many_arguments)]
     fn bordered_rates<T: Number>(
         &self,
@@ -1311,6 +1342,8 @@ impl Equations<'_> {
         let (kinematics, mut loads) = self.loaded(evaluator, t, y, (fixed.sites, &[]), buffers)?;
         let motions = body_motions(&kinematics);
         let drives = self.drives.at(t, fixed.sites)?;
+        let held = multipliers.len() - 6 * self.massless.len();
+        let (multipliers, massless) = multipliers.split_at(held);
         let rows = multiplier_loads(
             model,
             &motions,
@@ -1320,6 +1353,9 @@ impl Equations<'_> {
             &mut loads.torque,
         );
         self.fill_rates(&kinematics, &loads, buffers, rates);
+        for (&body, accelerations) in self.massless.iter().zip(massless.chunks(6)) {
+            self.set_massless_rates(&kinematics, body, accelerations, rates);
+        }
         // `[v' | ω']` of each centre, in ground: `ω' = R ω_b'`.
         let accelerations: Vec<[T; 6]> = kinematics
             .iter()
@@ -1338,8 +1374,19 @@ impl Equations<'_> {
                 ]
             })
             .collect();
-        for (residual, row) in residuals.iter_mut().zip(&rows) {
+        let (held_residuals, balances) = residuals.split_at_mut(held);
+        for (residual, row) in held_residuals.iter_mut().zip(&rows) {
             *residual = acceleration_residual(row, &accelerations);
+        }
+        for (&body, balance) in self.massless.iter().zip(balances.chunks_mut(6)) {
+            let (force, torque) = (&loads.force[body], &loads.torque[body]);
+            for (k, residual) in balance.iter_mut().enumerate() {
+                *residual = if k < 3 {
+                    force[k].clone()
+                } else {
+                    torque[k - 3].clone()
+                };
+            }
         }
         Ok(())
     }

@@ -18,12 +18,13 @@
 //! or chain of bodies, whose rates read a body and its two neighbours, needs
 //! three body colours (39 directions) whatever its length.
 //!
-//! A constrained model's multipliers are algebraic unknowns after the
-//! states (the bordered pattern, [`Sparsity::new`]'s `holders`): a body's
-//! rates read the multipliers of the equations moving it, and each
-//! equation's residual what its bodies' rates read, so the pattern stays
-//! as sparse as the joints. Without them (a model with massless parts)
-//! bodies joined through any chain of joints read one another.
+//! A constrained model's multipliers (and its massless parts'
+//! accelerations) are algebraic unknowns after the states (the bordered
+//! pattern, [`Sparsity::new`]'s `holders`): a body's rates read the
+//! multipliers of the equations moving it, and each equation's residual
+//! what its bodies' rates read, so the pattern stays as sparse as the
+//! joints. Without them (a model whose forces read the running solver's
+//! values) bodies joined through any chain of joints read one another.
 //!
 //! A program that reads values of the running solver (a force reading a
 //! joint's reaction) has a dense pattern: those values are settled with
