@@ -366,3 +366,25 @@ fn random_chains_keep_their_energy_and_both_methods_agree() {
     }
     assert!(!failed, "{report}");
 }
+
+/// The exact Jacobian of random chains (every joint kind above, the
+/// multipliers as unknowns beside the states and eliminated by their
+/// Schur complement) agrees with finite differences of the right-hand
+/// side, at the drawn state moved off it a little.
+#[test]
+fn the_jacobian_of_random_chains_agrees_with_finite_differences() {
+    let mut draw = Draw(0x6a61_636f_6269);
+    for draw_index in 0..12 {
+        let chain = chain(&mut draw);
+        let shifts: Vec<f64> = (0..7).map(|_| 0.02 * draw.uniform(-1.0, 1.0)).collect();
+        println!("draw {draw_index}: {:?}", chain.kinds);
+        if let Err(error) =
+            super::simulate::the_jacobian_agrees_with_finite_differences(&chain.text, &shifts, 0.0)
+        {
+            panic!(
+                "draw {draw_index} {:?}: {error}\n{}",
+                chain.kinds, chain.text
+            );
+        }
+    }
+}
