@@ -112,8 +112,7 @@ const SETTLING_ITERATIONS: usize = 30;
 /// colours (13, 26 and 39: the unused directions of a smaller count stay
 /// zero) and for bodies with the joints' multipliers (72: a chain of
 /// revolute joints needs four body colours and three of the multipliers,
-/// 67 directions), so that no dual operation
-/// allocates; dynamic beyond.
+/// 67 directions), so that no dual operation allocates; dynamic beyond.
 enum DualEvaluator<'m> {
     One(Evaluator<'m, DualSVec64<1>>),
     Two(Evaluator<'m, DualSVec64<2>>),
