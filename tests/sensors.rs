@@ -101,6 +101,7 @@ fn sensors_that_cannot_be_watched_are_refused_at_their_place() {
         SENSOR/1, VALUE = 0.5, HALT, FUNCTION = DIF(1)\\, EVALUATE_ROUTINE = SEV
         SENSOR/2, VALUE = 0.5, HALT, FUNCTION = SENVAL(1)
         SENSOR/2, VALUE = 0.5, HALT, FUNCTION = SENVAL(2)
+        SENSOR/1, GE, VALUE = 0, ERROR = 0, FUNCTION = SENVAL(1) - DIF(1) + 1\\, EVALUATE = DIF(1) - 1 - 1e-13
         SENSOR/1, VALUE = 0.5, FUNCTION = DIF(1)
         SENSOR/1, HALT, FUNCTION = DIF(1)
         SENSOR/1, VALUE = 0.5, HALT

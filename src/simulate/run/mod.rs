@@ -308,6 +308,19 @@ fn add(a: Stats, b: Stats) -> Stats {
 const CHATTER_WINDOW: f64 = 1e-9;
 const CHATTER_COUNT: usize = 100;
 
+/// Adds a switch at `time` to the `recent` ones, and gives how long the
+/// last [`CHATTER_COUNT`] of them took when that is within
+/// [`CHATTER_WINDOW`] of the time: the run chatters.
+fn chatters(recent: &mut VecDeque<f64>, time: f64) -> Option<f64> {
+    recent.push_back(time);
+    if recent.len() > CHATTER_COUNT {
+        recent.pop_front();
+    }
+    let (first, last) = (*recent.front()?, *recent.back()?);
+    (recent.len() == CHATTER_COUNT && last - first <= CHATTER_WINDOW * last.abs().max(1.0))
+        .then_some(last - first)
+}
+
 /// The rows' values at state `y` (everything but the time).
 struct Rows<'m> {
     model: &'m Model,
@@ -955,6 +968,16 @@ impl Simulation<'_> {
                     let found = assemble(&mut dense, time, tolerance, false)?;
                     summary.residuals = summary.residuals.max(found);
                 }
+                let watched = &model.sensors[sensor];
+                if let Some(window) = chatters(&mut recent, time) {
+                    return Err(SimulateError::Chattering {
+                        time,
+                        function: format!("SENSOR/{} (its EVALUATE setting SENVAL)", watched.id),
+                        count: CHATTER_COUNT,
+                        window,
+                        place: Place::File(watched.span),
+                    });
+                }
                 let at = |error: Failed| self.failure(time, error);
                 rows.store(sensor, (time, &dense), &mut system.mechanics)
                     .map_err(at)?;
@@ -1092,20 +1115,14 @@ impl Simulation<'_> {
             let limit = system
                 .look_and_limit(right, &dense, &mut natural, &mut start_values)
                 .map_err(|error| self.failure(right, error))?;
-            recent.push_back(right);
-            if recent.len() > CHATTER_COUNT {
-                recent.pop_front();
-            }
-            if recent.len() == CHATTER_COUNT
-                && let (Some(first), Some(last)) = (recent.front(), recent.back())
-                && last - first <= CHATTER_WINDOW * last.abs().max(1.0)
+            if let Some(window) = chatters(&mut recent, right)
                 && let Some(event) = summary.events.last()
             {
                 return Err(SimulateError::Chattering {
-                    time: *last,
+                    time: right,
                     function: event.function.clone(),
                     count: CHATTER_COUNT,
-                    window: last - first,
+                    window,
                     place: event.place,
                 });
             }
