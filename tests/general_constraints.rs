@@ -8,6 +8,7 @@
 use std::f64::consts::PI;
 
 use mbexpr::integrate::Method;
+use mbexpr::simulate::Settings;
 
 use super::joints::elliptic_k;
 use super::simulate::{run, settings};
@@ -166,8 +167,10 @@ END
 
 /// What a GCON may not read, and a GCON with no I, refused at its place; a
 /// GCON whose FUNCTION cannot be evaluated where the parts start, named;
-/// and a net force at a joint a COUPLER ties (whose reaction is not
-/// computed), which would leave it out.
+/// a GCON on velocities (held at their level) that runs, and one whose
+/// velocities do not move it (`0 * WZ`: no row of `G`), named; and a net
+/// force at a joint a COUPLER ties (whose reaction is not computed), which
+/// would leave it out.
 #[test]
 fn what_a_gcon_cannot_hold_is_refused_at_its_place() {
     let model = |gcon: &str| {
@@ -187,6 +190,7 @@ END
         GCON/1, I = 1, FUNCTION = DM(20) - 1 + 0 * WZ(20)
         GCON/1, FUNCTION = DM(20) - 1
         GCON/1, I = 1, FUNCTION = DM(20) - 1 + DIF(3)
+        GCON/1, I = 1, FUNCTION = DM(20) - 1 + ACCX(20)
         GCON/1, I = 1
         GCON/1, I = 1, FUNCTION = SQRT(DX(20) - 2.5) - 0.1
         MARKER/21, PART = 2 | JOINT/1, REVOLUTE, I = 21, J = 1 | MARKER/22, PART = 1 | PART/3, MASS = 1, CM = 30, IP = 1, 1, 1 | MARKER/30, PART = 3 | JOINT/2, REVOLUTE, I = 30, J = 22 | COUPLER/1, JOINTS = 1, 2, TYPE = R:R, SCALES = 1, -1 | REQUEST/1, F2 = FX(21, 1)
@@ -229,5 +233,52 @@ proptest::proptest! {
         time in 0.0f64..3.0,
     ) {
         super::simulate::the_jacobian_agrees_with_finite_differences(TWO_GCONS, &shifts, time)?;
+    }
+}
+
+/// A knife edge: a part turning at `ω` about z whose centre may not slide
+/// sideways, `VY(20, 1, 20) = 0` (its velocity along its own y axis), a
+/// GCON on velocities. Nothing else acts, so the centre runs round a circle
+/// of radius `v₀/ω` at its start speed: `x = v₀/ω sin ωt`,
+/// `y = v₀/ω (1 − cos ωt)`, with both methods.
+const KNIFE_EDGE: &str = "knife edge
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 20, IP = 1, 1, 1, VX = 2, WZ = 0.5
+MARKER/20, PART = 2
+GCON/1, I = 20, FUNCTION = VY(20, 1, 20)
+ACCGRAV/JGRAV = 0
+END
+";
+
+#[test]
+fn a_knife_edge_gcon_on_velocities_runs_round_its_circle() {
+    let (speed, turn) = (2.0, 0.5);
+    for method in [Method::Dop853, Method::Radau5] {
+        let settings = Settings {
+            method,
+            ..settings(6.0, 6, 1e-9)
+        };
+        let run = run(KNIFE_EDGE, &settings).expect("it runs");
+        let mut worst: f64 = 0.0;
+        for row in &run.rows {
+            let t = row[0];
+            let x = speed / turn * (turn * t).sin();
+            let y = speed / turn * (1.0 - (turn * t).cos());
+            worst = worst.max((row[1] - x).abs()).max((row[2] - y).abs());
+        }
+        println!("{method:?}: off the circle by {worst:.2e}");
+        assert!(worst < 1e-7, "{method:?}: {worst}");
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(16))]
+    #[test]
+    fn the_jacobian_of_a_gcon_on_velocities_agrees_with_finite_differences(
+        shifts in proptest::collection::vec(-0.3..0.3_f64, 13),
+        time in 0.0..2.0_f64,
+    ) {
+        super::simulate::the_jacobian_agrees_with_finite_differences(KNIFE_EDGE, &shifts, time)?;
     }
 }

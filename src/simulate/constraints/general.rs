@@ -1,5 +1,7 @@
 //! General constraints (`GCON`): the equation `FUNCTION = 0`, its FUNCTION
-//! an expression of the parts' positions and orientations and of time.
+//! an expression of the parts' positions and orientations and of time, or
+//! of their velocities too (held at the level of the velocities, as a
+//! coupler is: a nonholonomic constraint such as a knife edge's).
 //!
 //! Each FUNCTION is compiled on its own and evaluated in plain numbers at
 //! the bodies' current motion: once with dual numbers in the positions
@@ -46,6 +48,9 @@ enum Input {
 struct Compiled {
     program: Program,
     inputs: Vec<Input>,
+    /// The FUNCTION reads velocities (`VX` ... `WM`): the equation
+    /// `c(q, u, t) = 0` is held at the level of the velocities.
+    on_velocities: bool,
 }
 
 /// The model's general constraints, compiled.
@@ -69,9 +74,9 @@ impl GeneralConstraints {
         GeneralConstraints { compiled }
     }
 
-    /// Why each GCON whose FUNCTION compiles cannot be held: it reads a
-    /// velocity (a constraint on velocities is not simulated) or a state
-    /// of the run other than the parts' places (a DIFF).
+    /// Why each GCON whose FUNCTION compiles cannot be held: it reads an
+    /// acceleration (a constraint on accelerations is not simulated) or a
+    /// state of the run other than the parts' motion (a DIFF).
     pub(crate) fn refusals(model: &Model) -> Vec<(u64, crate::span::Span, String)> {
         model
             .general_constraints
@@ -197,7 +202,11 @@ fn compile(model: &Model, constraint: &GeneralConstraint) -> Option<Result<Compi
     let program = compile_outputs(&[tree], &["TIME"], Some(&model.scene)).ok()?;
     Some(match (inputs_of(model, &program), rate_reading(tree)) {
         (Err(reason), _) | (Ok(_), Some(reason)) => Err(reason),
-        (Ok(inputs), None) => Ok(Compiled { program, inputs }),
+        (Ok(inputs), None) => Ok(Compiled {
+            program,
+            inputs,
+            on_velocities: tree.functions().into_iter().any(is_velocity),
+        }),
     })
 }
 
@@ -234,24 +243,25 @@ fn inputs_of(model: &Model, program: &Program) -> Result<Vec<Input>, String> {
         .collect()
 }
 
-/// Why a GCON's FUNCTION `tree` cannot be held, when it reads a rate (a
-/// velocity or acceleration measure: a constraint on velocities is not
-/// simulated) or a value that may (a VARIABLE, a DIFF).
+/// Whether `function` measures a velocity: a GCON reading one is held at
+/// the level of the velocities.
+fn is_velocity(function: crate::catalog::Function) -> bool {
+    use crate::catalog::Function as F;
+    matches!(
+        function,
+        F::Vx | F::Vy | F::Vz | F::Vm | F::Vr | F::Wx | F::Wy | F::Wz | F::Wm
+    )
+}
+
+/// Why a GCON's FUNCTION `tree` cannot be held, when it reads an
+/// acceleration (a constraint on accelerations is not simulated) or a value
+/// that may (a VARIABLE, a DIFF).
 fn rate_reading(tree: &crate::Checked) -> Option<String> {
     use crate::catalog::Function as F;
     let read = tree.functions().into_iter().find(|function| {
         matches!(
             function,
-            F::Vx
-                | F::Vy
-                | F::Vz
-                | F::Vm
-                | F::Vr
-                | F::Wx
-                | F::Wy
-                | F::Wz
-                | F::Wm
-                | F::Accx
+            F::Accx
                 | F::Accy
                 | F::Accz
                 | F::Accm
@@ -265,7 +275,7 @@ fn rate_reading(tree: &crate::Checked) -> Option<String> {
         )
     })?;
     Some(format!(
-        "its FUNCTION reads {}: a GCON keeps a function of the parts' places and of time at 0 (a constraint on velocities is not simulated)",
+        "its FUNCTION reads {}: a GCON keeps a function of the parts' places and velocities and of time at 0 (a constraint on accelerations is not simulated)",
         read.name()
     ))
 }
@@ -329,10 +339,20 @@ impl Compiled {
     }
 
     /// The row in plain numbers, or `None` where the FUNCTION fails.
+    ///
+    /// On velocities the equation `c(q, u, t) = 0` is held as a coupler's
+    /// is: its value zero (the positions' projection leaves it alone), its
+    /// rate `c`, its row of `G` the gradient `∂c/∂u`, its bias `dc/dt`
+    /// along the motion with no acceleration.
     fn row(&self, time: f64, bodies: &[Motion]) -> Option<Row<f64>> {
-        // The directions of the gradient: each position and rotation input.
+        // The directions of the gradient: each position and rotation
+        // input, or each velocity one.
         let directions: Vec<usize> = (0..self.inputs.len())
-            .filter(|&k| matches!(self.inputs[k], Input::Position(..) | Input::Rotation(..)))
+            .filter(|&k| match self.inputs[k] {
+                Input::Position(..) | Input::Rotation(..) => !self.on_velocities,
+                Input::Velocity(..) | Input::AngularVelocity(..) => self.on_velocities,
+                Input::Time | Input::Constant(_) => false,
+            })
             .collect();
         let count = directions.len();
         let value_of = |input: &Input| match *input {
@@ -375,6 +395,13 @@ impl Compiled {
                     PathDual::from(value_of(input)) + s * rate[axis] + s * s * (0.5 * curve[axis])
                 }
                 Input::Rotation(body, axis) => s * bodies[body].omega[axis],
+                // With no acceleration the origin's velocity `v + ω × d`
+                // turns with `d`: its rate is `ω × (ω × d)`.
+                Input::Velocity(body, axis) => {
+                    let motion = &bodies[body];
+                    let turn = motion.omega.cross(&motion.omega.cross(&motion.to_origin));
+                    PathDual::from(value_of(input)) + s * turn[axis]
+                }
                 _ => PathDual::from(value_of(input)),
             })
             .collect();
@@ -385,7 +412,8 @@ impl Compiled {
         let mut coefficients: Vec<(usize, [f64; 6])> = Vec::new();
         for (direction, &k) in directions.iter().enumerate() {
             let (body, entries) = match self.inputs[k] {
-                Input::Position(body, axis) => {
+                // `δ(v + ω × d) = δv + δω × d`, as a place's `δc + δθ × d`.
+                Input::Position(body, axis) | Input::Velocity(body, axis) => {
                     let mut entries = [0.0; 6];
                     entries[axis] = slopes[direction];
                     let mut unit = Vector3::zeros();
@@ -394,7 +422,7 @@ impl Compiled {
                     entries[3..].copy_from_slice(turn.as_slice());
                     (body, entries)
                 }
-                Input::Rotation(body, axis) => {
+                Input::Rotation(body, axis) | Input::AngularVelocity(body, axis) => {
                     let mut entries = [0.0; 6];
                     entries[3 + axis] = slopes[direction];
                     (body, entries)
@@ -406,11 +434,20 @@ impl Compiled {
                 None => coefficients.push((body, entries)),
             }
         }
-        let row = Row {
-            value: path.re,
-            rate: path.gradient(1)[0],
-            bias: path.hessian(1).map_or(0.0, |hessian| hessian[(0, 0)]),
-            coefficients,
+        let row = if self.on_velocities {
+            Row {
+                value: 0.0,
+                rate: path.re,
+                bias: path.gradient(1)[0],
+                coefficients,
+            }
+        } else {
+            Row {
+                value: path.re,
+                rate: path.gradient(1)[0],
+                bias: path.hessian(1).map_or(0.0, |hessian| hessian[(0, 0)]),
+                coefficients,
+            }
         };
         [row.value, row.rate, row.bias]
             .iter()
