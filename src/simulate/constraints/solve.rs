@@ -185,49 +185,20 @@ fn sparse_solved(m: usize, entries: &[(usize, usize, f64)], rhs: &[f64]) -> Opti
         .then_some(solution)
 }
 
-/// The solution of `matrix x = rhs`, when it is regular.
-///
-/// Over dual numbers the derivatives come by implicit differentiation:
-/// the real part `A₀` is factorised once and `x ← x + A₀⁻¹ (rhs − A x)`
-/// taken from `x = A₀⁻¹ rhs` twice (each pass makes one more order of
-/// derivatives exact, and the duals carry at most two), so no
-/// factorisation runs over the duals, whose every operation costs the
-/// number of directions.
+/// The solution of `matrix x = rhs`, when it is regular. (Over dual
+/// numbers the LU carries the derivatives; no run takes that path: the
+/// run's Jacobian keeps the multipliers as unknowns, `multiplier_loads`.)
 fn solved<T: Number>(matrix: DMatrix<T>, rhs: DVector<T>) -> Result<DVector<T>, Singular> {
-    let finite = |solution: DVector<T>| {
-        if solution.iter().all(|value| value.value().is_finite()) {
-            Ok(solution)
-        } else {
-            Err(Singular)
-        }
-    };
     if matrix.is_empty() {
         // No equation held (every one left out as redundant).
         return Ok(rhs);
     }
-    if matrix.iter().chain(rhs.iter()).all(Number::is_constant) {
-        return finite(matrix.lu().solve(&rhs).ok_or(Singular)?);
+    let solution = matrix.lu().solve(&rhs).ok_or(Singular)?;
+    if solution.iter().all(|value| value.value().is_finite()) {
+        Ok(solution)
+    } else {
+        Err(Singular)
     }
-    let inverse = matrix
-        .map(|entry| entry.value())
-        .try_inverse()
-        .ok_or(Singular)?;
-    let apply = |vector: &DVector<T>| {
-        DVector::from_iterator(
-            vector.len(),
-            inverse.row_iter().map(|row| {
-                row.iter()
-                    .zip(vector.iter())
-                    .fold(T::zero(), |sum, (a, v)| sum + v.clone() * *a)
-            }),
-        )
-    };
-    let mut solution = apply(&rhs);
-    for _ in 0..2 {
-        let residual = &rhs - &matrix * &solution;
-        solution += apply(&residual);
-    }
-    finite(solution)
 }
 
 /// The multipliers `λ` of `W λ = rhs`, `W = G M⁻¹ Gᵀ`.

@@ -890,9 +890,9 @@ impl<'m> Mechanics<'m> {
     /// `d(dy/dt)/dy` at `(t, y)` with the sites on `held`: the values of
     /// the [`pattern`](Mechanics::pattern)'s entries, in its order, into
     /// `values`, from one evaluation over dual numbers. In the bordered
-    /// form the pattern has the joints' multipliers after the states, and
-    /// the values are the index-1 form's Jacobian in `(y, λ)` at the
-    /// multipliers of `(t, y)`.
+    /// form the pattern has the joints' multipliers and the massless
+    /// parts' accelerations after the states, and the values are the
+    /// index-1 form's Jacobian in them and `y`, at their values at `(t, y)`.
     pub(crate) fn sparse_jacobian(
         &mut self,
         t: f64,

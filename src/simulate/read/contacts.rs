@@ -11,7 +11,6 @@ use std::collections::HashMap;
 
 use nalgebra::Vector3;
 
-use crate::check::Reference;
 use crate::model::initial::{number, number_list};
 use crate::model::{Dataset, Statement, Value, is_kind};
 use crate::scene::Scene;
@@ -312,9 +311,7 @@ fn solid(graphic: &Statement, scene: &Scene) -> Result<Solid, String> {
             .filter(|value| value.is_finite())
     };
     let marker = |keyword: &str| {
-        value(keyword)
-            .filter(|id| id.fract() == 0.0 && *id > 0.0)
-            .and_then(|id| scene.find_marker(&Reference::Id(id as u64)).ok())
+        super::named_marker(graphic, keyword, scene)
             .ok_or_else(|| format!("a GRAPHICS whose {keyword} names no MARKER"))
     };
     let bad = |what: &str| what.to_string();

@@ -6,8 +6,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use crate::check::Reference;
-use crate::model::initial::{number, number_list};
+use crate::model::initial::number_list;
 use crate::model::{Argument, Dataset, Statement, Value, is_kind};
 use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
@@ -223,10 +222,7 @@ fn gear(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Couple
         "CV",
         "the common-velocity marker, at the teeth's contact, its z axis along their motion",
     )?;
-    let cv = number(statement, "CV", f64::NAN)
-        .ok()
-        .filter(|id| id.fract() == 0.0 && *id > 0.0)
-        .and_then(|id| scene.find_marker(&Reference::Id(id as u64)).ok())
+    let cv = super::named_marker(statement, "CV", scene)
         .filter(|target| matches!(target, Target::Marker(_)))
         .ok_or_else(|| {
             (

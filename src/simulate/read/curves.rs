@@ -48,14 +48,7 @@ fn point_curve(
         });
     }
     let mut marker = |keyword: &str| -> Option<Target> {
-        let found = number(statement, keyword, f64::NAN)
-            .ok()
-            .filter(|id| id.fract() == 0.0 && *id > 0.0)
-            .and_then(|id| {
-                scene
-                    .find_marker(&crate::check::Reference::Id(id as u64))
-                    .ok()
-            });
+        let found = super::named_marker(statement, keyword, scene);
         if found.is_none() {
             errors.push(model_error(
                 format!("{label}: {keyword} must name a fixed MARKER of the model"),
@@ -138,28 +131,18 @@ fn start_parameter(
     };
     let within = match statement.argument("ICM", 3) {
         None => rm,
-        Some(icm) => {
-            let found = number(statement, "ICM", f64::NAN)
-                .ok()
-                .filter(|id| id.fract() == 0.0 && *id > 0.0)
-                .and_then(|id| {
-                    scene
-                        .find_marker(&crate::check::Reference::Id(id as u64))
-                        .ok()
-                });
-            match found {
-                Some(target) if scene.body_of(&target) == scene.body_of(&rm) => target,
-                _ => {
-                    errors.push(SimulateError::Model {
+        Some(icm) => match super::named_marker(statement, "ICM", scene) {
+            Some(target) if scene.body_of(&target) == scene.body_of(&rm) => target,
+            _ => {
+                errors.push(SimulateError::Model {
                         message: format!(
                             "{label}: ICM must name a fixed MARKER on the part of RM (DISP is given in its axes)"
                         ),
                         span: icm.span,
                     });
-                    return None;
-                }
+                return None;
             }
-        }
+        },
     };
     let (origin, axes) = place(within);
     let (rm_origin, rm_axes) = place(rm);

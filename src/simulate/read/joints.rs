@@ -1,6 +1,5 @@
 //! `JOINT` and `JPRIM` statements of a dataset.
 
-use crate::check::Reference;
 use crate::model::initial::{number, number_list};
 use crate::model::{Dataset, Statement, is_kind};
 use crate::scene::{Scene, Target};
@@ -165,10 +164,7 @@ fn marker(
     scene: &Scene,
     errors: &mut Vec<SimulateError>,
 ) -> Option<Target> {
-    let found = number(statement, keyword, f64::NAN)
-        .ok()
-        .filter(|id| id.fract() == 0.0 && *id > 0.0)
-        .and_then(|id| scene.find_marker(&Reference::Id(id as u64)).ok());
+    let found = super::named_marker(statement, keyword, scene);
     if found.is_none() {
         errors.push(SimulateError::Model {
             message: format!(

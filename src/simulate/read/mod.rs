@@ -97,6 +97,23 @@ pub enum CommandFileError {
     },
 }
 
+/// The marker `keyword = id` names in `statement` (a whole positive id of
+/// a MARKER of `scene`), the one lookup the dataset's readers share.
+fn named_marker(
+    statement: &model::Statement,
+    keyword: &str,
+    scene: &crate::scene::Scene,
+) -> Option<crate::scene::Target> {
+    model::initial::number(statement, keyword, f64::NAN)
+        .ok()
+        .filter(|id| id.fract() == 0.0 && *id > 0.0)
+        .and_then(|id| {
+            scene
+                .find_marker(&crate::check::Reference::Id(id as u64))
+                .ok()
+        })
+}
+
 /// `path:line:column: message`, a line each.
 fn located(path: &str, text: &str, problems: &[(Span, String)]) -> String {
     problems

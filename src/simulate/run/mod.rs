@@ -401,8 +401,7 @@ impl Rows<'_> {
         }
         let start = self.values.len();
         let columns = start + model.outputs.len();
-        let evaluated = model.sensors.iter().filter(|s| s.evaluate.is_some());
-        let end = columns + model.sensors.len() + evaluated.count();
+        let end = columns + model.sensors.len() + self.evaluated();
         self.values.resize(end, 0.0);
         if end > start {
             let solved: Vec<f64> = match &mut self.reactions {
@@ -418,8 +417,14 @@ impl Rows<'_> {
 
     /// The sensors' functions at the state [`Rows::at`] last looked at.
     fn sensed(&self) -> &[f64] {
-        let first = self.values.len() - self.evaluated() - self.model.sensors.len();
+        let first = self.sensed_from();
         &self.values[first..first + self.model.sensors.len()]
+    }
+
+    /// Where the sensors' functions begin among the values (after the
+    /// output columns, before the EVALUATEs).
+    fn sensed_from(&self) -> usize {
+        self.values.len() - self.evaluated() - self.model.sensors.len()
     }
 
     /// How many sensors have an EVALUATE (its values last among the
@@ -431,17 +436,16 @@ impl Rows<'_> {
 
     /// Sensor `sensor`'s trip at `(t, y)`: the value of its EVALUATE
     /// there, when it has one, becomes its `SENVAL` for the equations of
-    /// motion `dynamics` and the outputs (true: the equations changed, and
-    /// the integrator must start again from there).
+    /// motion `dynamics` and the outputs.
     fn store(
         &mut self,
         sensor: usize,
         (t, y): (f64, &[f64]),
         dynamics: &mut Mechanics<'_>,
-    ) -> Result<bool, Failed> {
+    ) -> Result<(), Failed> {
         let sensors = &self.model.sensors;
         if sensors[sensor].evaluate.is_none() {
-            return Ok(false);
+            return Ok(());
         }
         let slot = sensors[..sensor]
             .iter()
@@ -454,7 +458,7 @@ impl Rows<'_> {
         if let Some((reactions, _)) = &mut self.reactions {
             reactions.store_sensor_value(sensor, value);
         }
-        Ok(true)
+        Ok(())
     }
 
     /// The first sensor that is active at `(t, y)` and was not at the last
@@ -464,7 +468,7 @@ impl Rows<'_> {
             return Ok(None);
         }
         self.at(t, y)?;
-        let from = self.values.len() - self.evaluated() - self.model.sensors.len();
+        let from = self.sensed_from();
         let mut first = None;
         for (k, ((sensor, &value), before)) in self
             .model
