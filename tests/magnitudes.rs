@@ -91,6 +91,39 @@ fn disagreement(got: f64, want: Logarithmic, what: &str) -> Option<String> {
         .then(|| format!("{what} is {got}, exactly {exact} (relative error {relative:e})"))
 }
 
+/// Whether the spring's and the damper's parts of a contact law at `base`
+/// cancel in some entry (value, gradient or Hessian in `x` and `v`) to less
+/// than a fiftieth of their sizes. At the extreme scales each part is exact
+/// only to about 2e-13 (the power `p^e` formed through logarithms of up to
+/// 745), and their sum to that times how much they cancel, which passes the
+/// 1e-11 a scaling is held to: a draw with the spring's second derivative
+/// at -829 and the damper's at 840 summed to 11 to 1e-11.
+fn spring_and_damper_cancel(text: &str, names: &[&str], base: &[f64], two_sided: bool) -> bool {
+    let (stiffness, damping) = if two_sided { (4, 6) } else { (3, 5) };
+    let part = |zeroed: usize| {
+        let mut values = base.to_vec();
+        values[zeroed] = 0.0;
+        evaluate(text, names, &values, &[0, 1]).ok()
+    };
+    let entries = |evaluation: &Evaluation| -> Vec<f64> {
+        let mut entries = vec![evaluation.value];
+        entries.extend(evaluation.gradient.as_ref().unwrap().iter());
+        entries.extend(evaluation.hessian.as_ref().unwrap().iter());
+        entries
+    };
+    let (Some(whole), Some(spring), Some(damper)) = (
+        evaluate(text, names, base, &[0, 1]).ok(),
+        part(damping),
+        part(stiffness),
+    ) else {
+        return false;
+    };
+    let (whole, spring, damper) = (entries(&whole), entries(&spring), entries(&damper));
+    // A sum clamped to zero is exact.
+    (0..whole.len())
+        .any(|i| whole[i] != 0.0 && 50.0 * whole[i].abs() < spring[i].abs() + damper[i].abs())
+}
+
 /// Checks an evaluation against exact entries (value, gradient, Hessian in
 /// the order of the evaluation's directions): an error only where one of
 /// them is beyond the range of a double, else every entry within rounding.
@@ -443,6 +476,7 @@ proptest! {
         } else {
             (vec![x, v, -0.5, k, e, cmax, d], vec![s * x, h * v, -0.5 * s, stiffness, e, cmax, s * d])
         };
+        prop_assume!(!spring_and_damper_cancel(text, names, &base, two_sided));
         // F(s x, h v) = h F(x, v) with k h s^-e: d/dx scales by h/s, d/dv by 1.
         let result = scales_exactly(text, names, &base, &scaled, &[0, 1], h, &[s, h]);
         prop_assert!(result.is_ok(), "{}", result.unwrap_err());
