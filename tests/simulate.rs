@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 37] = [
+    let cases: [(&str, &str, Settings); 39] = [
         (
             "a torque near the largest double: the steps shrink to nothing, and the part it spins is named",
             "huge torque
@@ -258,6 +258,25 @@ DIFF/1, IC = 0, FUNCTION = SQRT(1 - TIME)
             "a blow-up in finite time",
             "blowup: y' = y**2, y(0) = 1 passes every bound at t = 1
 DIFF/1, IC = 1, FUNCTION = DIF(1)**2
+",
+            settings(2.0, 4, 1e-6),
+        ),
+        (
+            "a DIFF whose rate oscillates ever faster near a pole: the run stalls",
+            "pole: y' = COS(1/(1.5 - t))/(1.5 - t)**2, steps shrinking as (1.5 - t)**2
+DIFF/1, IC = 0, FUNCTION = COS(1/(1.5-TIME))/(1.5-TIME)**2
+",
+            settings(2.0, 4, 1e-6),
+        ),
+        (
+            "a MOTION with a pole: the run stalls, and the part it turns is named",
+            "pole: the angle 1/(1.5 - t)
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+JOINT/1, REVOLUTE, I = 3, J = 1
+MOTION/1, JOINT = 1, ROTATION, FUNCTION = 1 / (1.5 - TIME)
 ",
             settings(2.0, 4, 1e-6),
         ),

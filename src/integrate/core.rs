@@ -23,6 +23,14 @@ pub fn smallest_step(t: f64) -> f64 {
     SMALLEST_RELATIVE_STEP * t.abs().max(1.0)
 }
 
+/// The accepted steps over which a run must advance by [`STALL_ADVANCE`].
+const STALL_WINDOW: usize = 10_000;
+
+/// The least advance over [`STALL_WINDOW`] accepted steps, relative to the
+/// time's scale `max(|t|, t - t0)`: steps averaging below `1e-9` of it, a
+/// billion steps for each unit of time at `t = 1`.
+const STALL_ADVANCE: f64 = 1e-5;
+
 /// Greater than zero (NaN is not).
 fn positive(value: f64) -> bool {
     value > 0.0
@@ -46,6 +54,13 @@ pub(super) struct Core {
     /// The solution is smooth to the method's order ([`Options::smooth`]).
     pub smooth: bool,
     pub stats: Stats,
+    /// The time at the start.
+    t0: f64,
+    /// The accepted steps and the time at the start of the window over
+    /// which the run must advance ([`STALL_WINDOW`]).
+    window: (usize, f64),
+    /// The advance over the last window, where it was too small.
+    stalled: Option<f64>,
 }
 
 impl Core {
@@ -114,6 +129,9 @@ impl Core {
             max_steps: options.max_steps,
             smooth: options.smooth,
             stats: Stats::default(),
+            t0,
+            window: (0, t0),
+            stalled: None,
         })
     }
 
@@ -135,12 +153,17 @@ impl Core {
         self.t_previous = t;
         self.y.copy_from_slice(y);
         self.fresh = true;
+        // A restart back in time (a switch being located) measures the
+        // advance from there.
+        if t < self.window.1 {
+            self.window = (self.stats.steps, t);
+        }
     }
 
     /// The next trial step `(h, lands)`: the proposal within the maximum
     /// step, stretched or shortened to land exactly on `t_end` when that is
-    /// within reach. Errors when the budget of steps is spent or the step
-    /// is too small (with `cause`, the last rejection).
+    /// within reach. Errors when the budget of steps is spent, the run
+    /// stalls, or the step is too small (with `cause`, the last rejection).
     pub fn trial<E>(
         &self,
         t_end: f64,
@@ -150,6 +173,13 @@ impl Core {
             return Err(IntegrateError::TooManySteps {
                 t: self.t,
                 max_steps: self.max_steps,
+            });
+        }
+        if let Some(advance) = self.stalled {
+            return Err(IntegrateError::Stalled {
+                t: self.t,
+                steps: STALL_WINDOW,
+                advance,
             });
         }
         if !positive(self.h_max) {
@@ -181,6 +211,15 @@ impl Core {
         self.t_previous = self.t;
         self.t = if lands { t_end } else { self.t + h };
         self.stats.steps += 1;
+        let (start, t_start) = self.window;
+        if self.stats.steps >= start + STALL_WINDOW {
+            let advance = self.t - t_start;
+            let scale = self.t.abs().max(self.t - self.t0);
+            if advance < STALL_ADVANCE * scale {
+                self.stalled = Some(advance);
+            }
+            self.window = (self.stats.steps, self.t);
+        }
     }
 
     /// Counts a rejected trial step and sets the step size to try next.

@@ -28,6 +28,23 @@ pub enum IntegrateError<E> {
         /// Why the last trial step was rejected.
         cause: Rejection<E>,
     },
+    /// The last `steps` accepted steps advanced the time by less than a
+    /// hundred-thousandth of its scale `max(|t|, t - t0)`: the solution is nearly
+    /// singular there (it approaches a pole), or far stiffer than an
+    /// explicit method can follow.
+    #[error(
+        "the run stalls at t = {}: its last {steps} accepted steps advanced it by {}",
+        Shown(*t),
+        Shown(*advance)
+    )]
+    Stalled {
+        /// The time of the last accepted state.
+        t: f64,
+        /// The accepted steps counted.
+        steps: usize,
+        /// The time they advanced the run by.
+        advance: f64,
+    },
     /// [`Options::max_steps`](super::Options::max_steps) steps have been
     /// tried.
     #[error("too many steps: {max_steps} tried by t = {}", Shown(*t))]

@@ -851,7 +851,7 @@ impl Simulation<'_> {
                     IntegrateError::StepSizeTooSmall {
                         cause: Rejection::Tolerance | Rejection::NonFinite,
                         ..
-                    }
+                    } | IntegrateError::Stalled { .. }
                 );
                 let fastest = stalled
                     .then(|| Self::fastest_state(&mut system, (stepper.t(), stepper.y()), settings))
@@ -1305,38 +1305,50 @@ impl Simulation<'_> {
         stiff_from: Option<f64>,
         fastest: Option<(usize, f64)>,
     ) -> SimulateError {
-        if let Some((state, rate)) = fastest {
-            return match self.integration_error(error) {
-                SimulateError::Integration { time, message, .. } => {
-                    let (owner, place) = self.state_owner(state);
-                    SimulateError::Integration {
-                        time,
-                        message: format!(
-                            "{message}; the state that changes fastest for its tolerance is {owner} (its rate of change {}): check the initial conditions and forces that drive it",
-                            Shown(rate)
-                        ),
-                        place,
-                    }
-                }
-                other => other,
-            };
-        }
-        let IntegrateError::TooManySteps { t, .. } = error else {
-            return self.integration_error(error);
-        };
         let stiff = stiff_from.map_or(String::new(), |from| {
             format!(
                 "; the run is stiff from t = {} (DOP853's steps are held by stability there): Radau5 takes far fewer",
                 Shown(from)
             )
         });
-        SimulateError::Integration {
-            time: t,
-            message: format!(
-                "more than {} steps, accepted and rejected, the most the settings allow{stiff}",
-                settings.max_steps
+        let (time, mut message, mut place) = match error {
+            IntegrateError::TooManySteps { t, .. } => (
+                t,
+                format!(
+                    "more than {} steps, accepted and rejected, the most the settings allow{stiff}",
+                    settings.max_steps
+                ),
+                Place::None,
             ),
-            place: Place::None,
+            IntegrateError::Stalled { t, steps, advance } => (
+                t,
+                format!(
+                    "it stalls: its last {steps} accepted steps advanced the time by only {}, so the solution is nearly singular here (a FUNCTION, a MOTION or a force that grows without bound as the time nears a pole){stiff}",
+                    Shown(advance)
+                ),
+                Place::None,
+            ),
+            other => match self.integration_error(other) {
+                SimulateError::Integration {
+                    time,
+                    message,
+                    place,
+                } => (time, message, place),
+                other => return other,
+            },
+        };
+        if let Some((state, rate)) = fastest {
+            let owner;
+            (owner, place) = self.state_owner(state);
+            message = format!(
+                "{message}; the state that changes fastest for its tolerance is {owner} (its rate of change {}): check the initial conditions and forces that drive it",
+                Shown(rate)
+            );
+        }
+        SimulateError::Integration {
+            time,
+            message,
+            place,
         }
     }
 
@@ -1503,6 +1515,7 @@ impl Simulation<'_> {
             IntegrateError::Start { t, cause }
             | IntegrateError::StepSizeTooSmall { t, cause, .. } => (*t, Some(cause)),
             IntegrateError::TooManySteps { t, .. }
+            | IntegrateError::Stalled { t, .. }
             | IntegrateError::JacobianNotFinite { t }
             | IntegrateError::EndNotAhead { t, .. } => (*t, None),
             IntegrateError::Jacobian { t, error } if error.output == JOINTS => {
