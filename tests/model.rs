@@ -118,6 +118,9 @@ ARRAY/1, NUMBERS = 1, 2, 3
 DIFF/1, IC = 0, FUNCTION = DIF(1) + DIF1(2)
 SFORCE/1, I = 1, J = 2, FUNCTION = SFORCE(1, 0, 2, 0) + JOINT(3, 0, 2, 0) + FX(1, 2)
 SFORCE/2, I = 1, J = 2, FUNCTION = STPE(TIME, 0, 0, 1, 1) + AKISPL(TIME, 0, 5)
+PINPUT/1, VARIABLES = 1, 2
+POUTPUT/1, VARIABLES = 3
+VARIABLE/6, FUNCTION = PINVAL(1, 2) + PINVAL(1, 3) + POUVAL(1, 2) + POUVAL(2, 1)
 ";
     insta::assert_snapshot!(check(adm, FileKind::Adm));
 }

@@ -1723,3 +1723,33 @@ fn command_files_give_one_run_of_equally_spaced_outputs() {
         assert_eq!(check_commands(commands), expected, "{commands}");
     }
 }
+
+/// A plant written for co-simulation (Adams Controls): its input is a
+/// VARIABLE that PINPUT lists and a force reads by `PINVAL`, its output a
+/// VARIABLE that POUTPUT lists and a REQUEST reads by `POUVAL`; run alone,
+/// each VARIABLE has its own FUNCTION. The input is the spring `-8 z` on a
+/// slider of mass 2 started at 1 m/s: `z = sin(2t)/2`, in the rows and in
+/// the request. LSOLVER is a solver setting, noted and passed over.
+#[test]
+fn a_plant_reads_its_inputs_and_outputs_by_pinval_and_pouval() {
+    let text = "plant
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 2, CM = 3, IP = 1, 1, 1, VZ = 1
+MARKER/3, PART = 2
+JOINT/1, TRANSLATIONAL, I = 3, J = 1
+VARIABLE/1, FUNCTION = -8 * DZ(3, 1)
+VARIABLE/2, FUNCTION = DZ(3, 1)
+PINPUT/1, VARIABLES = 1
+POUTPUT/4, VARIABLES = 1, 2
+SFORCE/1, TRANSLATIONAL, I = 3, J = 1, ACTIONONLY, FUNCTION = PINVAL(1, 1)
+REQUEST/1, F2 = POUVAL(4, 2)
+LSOLVER/CALAHAN
+";
+    let run = run(text, &settings(3.0, 30, 1e-10)).unwrap_or_else(|error| panic!("{error}"));
+    for row in &run.rows {
+        let exact = (2.0 * row[0]).sin() / 2.0;
+        assert!((row[3] - exact).abs() < 1e-8, "z {} at {}", row[3], row[0]);
+        assert!((row[14] - exact).abs() < 1e-8, "POUVAL {} at {}", row[14], row[0]);
+    }
+}

@@ -133,9 +133,13 @@ pub enum CompileError {
         /// The VARVAL that closes the loop.
         span: Span,
     },
-    /// `ARYVAL(id, i)` beyond the array.
-    #[error("ARYVAL({id}, {entry}): ARRAY/{id} has {}", crate::Counted(*count, "entry"))]
+    /// `ARYVAL(id, i)` (or `PINVAL`, `POUVAL`) beyond the array.
+    #[error("{function}({id}, {entry}): {statement}/{id} has {}", crate::Counted(*count, "entry"))]
     ArrayEntry {
+        /// The function: ARYVAL, PINVAL or POUVAL.
+        function: &'static str,
+        /// The statement it reads: ARRAY, PINPUT or POUTPUT.
+        statement: &'static str,
         /// The array.
         id: u64,
         /// The entry asked for.

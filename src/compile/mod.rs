@@ -616,20 +616,25 @@ impl Compiler<'_> {
                 self.model_variable(scene, id, span)
             }
             (Function::Aryval, Some(id)) if scene.statements.input_arrays.contains_key(&id) => {
-                match *array_entry(id, &scene.statements.input_arrays[&id], args, span)? {
-                    variable if scene.statements.variables.contains_key(&variable) => {
-                        self.model_variable(scene, variable, span)
-                    }
-                    variable => Err(CompileError::MissingStatement {
-                        function: "VARVAL",
-                        id: variable.to_string(),
-                        statement: format!("VARIABLE/{variable}"),
-                        span,
-                    }),
-                }
+                let list = &scene.statements.input_arrays[&id];
+                self.listed_variable(scene, ("ARYVAL", "ARRAY"), (id, list), args, span)
+            }
+            (Function::Pinval, Some(id)) if scene.statements.plant_inputs.contains_key(&id) => {
+                let list = &scene.statements.plant_inputs[&id];
+                self.listed_variable(scene, ("PINVAL", "PINPUT"), (id, list), args, span)
+            }
+            (Function::Pouval, Some(id)) if scene.statements.plant_outputs.contains_key(&id) => {
+                let list = &scene.statements.plant_outputs[&id];
+                self.listed_variable(scene, ("POUVAL", "POUTPUT"), (id, list), args, span)
             }
             (Function::Aryval, Some(id)) if scene.statements.arrays.contains_key(&id) => {
-                let value = *array_entry(id, &scene.statements.arrays[&id], args, span)?;
+                let value = *array_entry(
+                    ("ARYVAL", "ARRAY"),
+                    id,
+                    &scene.statements.arrays[&id],
+                    args,
+                    span,
+                )?;
                 Ok(self.constant(value))
             }
             (Function::Dif, Some(id)) if scene.statements.diffs.contains_key(&id) => {
@@ -644,6 +649,30 @@ impl Compiler<'_> {
                 self.spline(scene, function, id, args, span)
             }
             _ => Err(model_data_error(function, args, span, Some(scene))),
+        }
+    }
+
+    /// Entry `i` of a list of VARIABLEs (a U ARRAY's, a PINPUT's or a
+    /// POUTPUT's: `ARYVAL(id, i)`, `PINVAL(id, i)`, `POUVAL(id, i)`), as
+    /// [`Self::model_variable`] compiles it.
+    fn listed_variable(
+        &mut self,
+        scene: &Scene,
+        names: (&'static str, &'static str),
+        (id, list): (u64, &[u64]),
+        args: &[Argument],
+        span: Span,
+    ) -> Result<Slot, CompileError> {
+        match *array_entry(names, id, list, args, span)? {
+            variable if scene.statements.variables.contains_key(&variable) => {
+                self.model_variable(scene, variable, span)
+            }
+            variable => Err(CompileError::MissingStatement {
+                function: "VARVAL",
+                id: variable.to_string(),
+                statement: format!("VARIABLE/{variable}"),
+                span,
+            }),
         }
     }
 
@@ -1014,6 +1043,7 @@ fn constant_stops(arguments: &[Option<f64>]) -> Option<Stops> {
 /// Entry `i` (from 1) of ARRAY `id`'s `entries` that `ARYVAL(id, i)` asks
 /// for with `args`, or the error of an entry it does not have.
 fn array_entry<'e, V>(
+    (function, statement): (&'static str, &'static str),
     id: u64,
     entries: &'e [V],
     args: &[Argument],
@@ -1027,6 +1057,8 @@ fn array_entry<'e, V>(
         .ok()
         .and_then(|entry| entries.get(entry.checked_sub(1)?))
         .ok_or(CompileError::ArrayEntry {
+            function,
+            statement,
             id,
             entry,
             count: entries.len(),

@@ -199,6 +199,23 @@ pub(crate) fn number(
 /// `QG`/`QP`, in the same axes). With a z point alone, x is the part's x
 /// axis made square to z (its y axis where z lies along x); with an x point
 /// alone, z is the part's.
+/// The VARIABLE ids a statement's `VARIABLES = ...` lists (an ARRAY of
+/// type U, a PINPUT, a POUTPUT), whole positive numbers only.
+fn listed_variables(statement: &Statement) -> Option<Vec<u64>> {
+    let argument = statement.argument("VARIABLES", 3)?;
+    let Value::List(items) = &argument.value else {
+        return None;
+    };
+    Some(
+        items
+            .iter()
+            .filter_map(|item| item.number())
+            .filter(|id| id.fract() == 0.0 && *id > 0.0)
+            .map(|id| id as u64)
+            .collect(),
+    )
+}
+
 fn orientation(statement: &Statement) -> Result<UnitQuaternion<f64>, ConfigurationError> {
     let (origin, z_point, x_point) = if is_statement(statement, "PART") {
         ("QG", "ZG", "XG")
@@ -386,17 +403,22 @@ pub fn initial_scene(
             let values: Vec<f64> = items.iter().filter_map(|item| item.number()).collect();
             scene.statements.arrays.insert(id, values);
         }
-        if let (Some(id), Some(argument)) = (statement.id, statement.argument("VARIABLES", 3))
+        if let (Some(id), Some(variables)) = (statement.id, listed_variables(statement))
             && statement.argument("U", 1).is_some()
-            && let Value::List(items) = &argument.value
         {
-            let variables: Vec<u64> = items
-                .iter()
-                .filter_map(|item| item.number())
-                .filter(|id| id.fract() == 0.0 && *id > 0.0)
-                .map(|id| id as u64)
-                .collect();
             scene.statements.input_arrays.insert(id, variables);
+        }
+    }
+    for statement in &dataset.statements {
+        let lists = if is_statement(statement, "PINPUT") {
+            &mut scene.statements.plant_inputs
+        } else if is_statement(statement, "POUTPUT") {
+            &mut scene.statements.plant_outputs
+        } else {
+            continue;
+        };
+        if let (Some(id), Some(variables)) = (statement.id, listed_variables(statement)) {
+            lists.insert(id, variables);
         }
     }
     for (index, statement) in dataset

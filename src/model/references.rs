@@ -57,9 +57,13 @@ pub enum ModelError {
         /// The reference in the file.
         span: Span,
     },
-    /// `ARYVAL(id, i)` beyond the end of the array.
-    #[error("ARYVAL({id}, {index}) asks for entry {index}, but ARRAY/{id} has {count}")]
+    /// `ARYVAL(id, i)` (or `PINVAL`, `POUVAL`) beyond the end of the list.
+    #[error("{function}({id}, {index}) asks for entry {index}, but {kind}/{id} has {count}")]
     ArrayTooShort {
+        /// The function: ARYVAL, PINVAL or POUVAL.
+        function: &'static str,
+        /// The statement kind it reads: ARRAY, PINPUT or POUTPUT.
+        kind: &'static str,
         /// The array id.
         id: u64,
         /// The entry asked for.
@@ -544,7 +548,8 @@ struct References {
     /// `(kind, id)` of every statement with an id, the kind as the
     /// vocabulary spells it (`VARI/3` is `VARIABLE`).
     ids: HashSet<(String, u64)>,
-    array_sizes: HashMap<u64, usize>,
+    /// The entries of each ARRAY, PINPUT and POUTPUT, by kind and id.
+    list_sizes: HashMap<(&'static str, u64), usize>,
 }
 
 /// The statement kind a model-data or element function refers to.
@@ -582,14 +587,16 @@ impl References {
     /// is reported at both places.
     fn of(dataset: &Dataset, findings: &mut Findings<'_>) -> References {
         let mut first: HashMap<(String, u64), usize> = HashMap::new();
-        let mut array_sizes = HashMap::new();
+        let mut list_sizes = HashMap::new();
         for (index, statement) in dataset.statements.iter().enumerate() {
             let Some(id) = statement.id else { continue };
             let kind = canonical(&statement.name);
-            if is_kind(&kind, "ARRAY")
-                && let Some(count) = array_size(statement)
+            if let Some(list) = ["ARRAY", "PINPUT", "POUTPUT"]
+                .into_iter()
+                .find(|list| is_kind(&kind, list))
+                && let Some(count) = list_size(statement)
             {
-                array_sizes.insert(id, count);
+                list_sizes.insert((list, id), count);
             }
             let Some(&other) = first.get(&(kind.clone(), id)) else {
                 first.insert((kind, id), index);
@@ -629,7 +636,7 @@ impl References {
         }
         References {
             ids: first.into_keys().collect(),
-            array_sizes,
+            list_sizes,
         }
     }
 
@@ -702,12 +709,16 @@ impl References {
                                 });
                                 continue;
                             }
-                            if *function == Function::Aryval
-                                && let (Some(Argument::Flag(entry, _)), Some(&count)) =
-                                    (args.get(1), self.array_sizes.get(id))
+                            if matches!(
+                                function,
+                                Function::Aryval | Function::Pinval | Function::Pouval
+                            ) && let (Some(Argument::Flag(entry, _)), Some(&count)) =
+                                (args.get(1), self.list_sizes.get(&(kind, *id)))
                                 && (*entry < 1 || *entry as usize > count)
                             {
                                 report(ModelError::ArrayTooShort {
+                                    function: function.name(),
+                                    kind,
                                     id: *id,
                                     index: *entry,
                                     count,
@@ -741,15 +752,15 @@ impl References {
     }
 }
 
-/// The number of entries of an ARRAY statement: its `NUMBERS` (a U
-/// array's `VARIABLES`), else its `SIZE`.
-fn array_size(statement: &Statement) -> Option<usize> {
+/// The number of entries of an ARRAY, PINPUT or POUTPUT statement: its
+/// `NUMBERS` (the `VARIABLES` of a U array, a PINPUT or a POUTPUT), else
+/// its `SIZE`.
+fn list_size(statement: &Statement) -> Option<usize> {
     statement
         .argument("NUMBERS", 2)
         .or_else(|| {
-            statement
-                .argument("U", 1)
-                .and(statement.argument("VARIABLES", 3))
+            let listed = statement.argument("U", 1).is_some() || !is_kind(&statement.name, "ARRAY");
+            listed.then(|| statement.argument("VARIABLES", 3)).flatten()
         })
         .and_then(|argument| match &argument.value {
             Value::List(items) => Some(items.len()),

@@ -254,6 +254,13 @@ pub struct StatementData {
     /// ARRAY id (of type U, a system's inputs) to its VARIABLES:
     /// `ARYVAL(id, i)` is `VARVAL` of the `i`-th.
     pub input_arrays: HashMap<u64, Vec<u64>>,
+    /// PINPUT id to its VARIABLES: `PINVAL(id, i)` is `VARVAL` of the
+    /// `i`-th (a plant's inputs, which a controller outside sets in a
+    /// co-simulation and their own FUNCTIONs give here).
+    pub plant_inputs: HashMap<u64, Vec<u64>>,
+    /// POUTPUT id to its VARIABLES: `POUVAL(id, i)` is `VARVAL` of the
+    /// `i`-th.
+    pub plant_outputs: HashMap<u64, Vec<u64>>,
     /// SPLINE id to its points: `AKISPL(x, z, id)` and `CUBSPL(x, z, id)`
     /// interpolate them.
     pub splines: HashMap<u64, SplineData>,

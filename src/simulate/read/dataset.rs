@@ -54,7 +54,13 @@ const LEFT_ASIDE: [&str; 20] = [
 ];
 
 /// Solver settings that the simulator's own settings replace.
-const SOLVER_SETTINGS: [&str; 3] = ["INTEGRATOR", "DYNAMICS", "SIMULATE"];
+const SOLVER_SETTINGS: [&str; 5] = [
+    "INTEGRATOR",
+    "DYNAMICS",
+    "SIMULATE",
+    "LSOLVER",
+    "ENVIRONMENT",
+];
 
 /// The force elements' statements, as the model names them.
 const FORCE_ELEMENTS: [&str; 8] = [
@@ -68,10 +74,11 @@ const FORCE_ELEMENTS: [&str; 8] = [
     "FIELD",
 ];
 
-/// The statements the simulator reads besides [`FORCE_ELEMENTS`].
-const SIMULATED: [&str; 17] = [
+/// The statements the simulator reads besides [`FORCE_ELEMENTS`] (PINPUT
+/// and POUTPUT list the VARIABLEs that `PINVAL` and `POUVAL` read).
+const SIMULATED: [&str; 19] = [
     "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
-    "JPRIM", "PTCV", "MOTION", "COUPLER", "GEAR", "GCON", "SENSOR", "CONTACT",
+    "JPRIM", "PTCV", "MOTION", "COUPLER", "GEAR", "GCON", "SENSOR", "CONTACT", "PINPUT", "POUTPUT",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
