@@ -9,6 +9,7 @@ mod beams;
 mod checker;
 mod cli;
 mod contacts;
+mod control;
 mod corpus;
 mod couplers;
 mod delays;

@@ -1750,6 +1750,11 @@ LSOLVER/CALAHAN
     for row in &run.rows {
         let exact = (2.0 * row[0]).sin() / 2.0;
         assert!((row[3] - exact).abs() < 1e-8, "z {} at {}", row[3], row[0]);
-        assert!((row[14] - exact).abs() < 1e-8, "POUVAL {} at {}", row[14], row[0]);
+        assert!(
+            (row[14] - exact).abs() < 1e-8,
+            "POUVAL {} at {}",
+            row[14],
+            row[0]
+        );
     }
 }

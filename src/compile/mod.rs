@@ -121,6 +121,7 @@ fn compile_all<S: AsRef<str>>(
         inlining: Vec::new(),
         inlining_set: HashSet::new(),
         inlining_diffs: Vec::new(),
+        inlining_outputs: Vec::new(),
         tables: Tables::default(),
         frame_of: HashMap::new(),
         spline_of: HashMap::new(),
@@ -201,6 +202,10 @@ struct Compiler<'s> {
     inlining_set: HashSet<u64>,
     /// The DIFFs whose FUNCTION is being compiled in place for `DIF1`.
     inlining_diffs: Vec<u64>,
+    /// The Y arrays of the linear systems whose outputs are being compiled
+    /// in place, to refuse a loop (an output that reads itself through
+    /// an input).
+    inlining_outputs: Vec<u64>,
     /// The marker frames and fitted splines used, and where each went.
     tables: Tables,
     frame_of: HashMap<Target, u32>,
@@ -627,6 +632,26 @@ impl Compiler<'_> {
                 let list = &scene.statements.plant_outputs[&id];
                 self.listed_variable(scene, ("POUVAL", "POUTPUT"), (id, list), args, span)
             }
+            (Function::Aryval, Some(id)) if scene.statements.system_with_states(id).is_some() => {
+                let states = scene
+                    .statements
+                    .system_with_states(id)
+                    .map(|system| system.initial.len());
+                let entries: Vec<usize> = (1..=states.unwrap_or(0)).collect();
+                let entry = *array_entry(("ARYVAL", "ARRAY"), id, &entries, args, span)?;
+                Ok(self.named_input(crate::scene::array_state_input(id, entry), span))
+            }
+            (Function::Aryval, Some(id)) if scene.statements.system_with_outputs(id).is_some() => {
+                let system = scene.statements.system_with_outputs(id).expect("found");
+                let (_, tree) = array_entry(
+                    ("ARYVAL", "ARRAY"),
+                    id,
+                    &system.output_expressions,
+                    args,
+                    span,
+                )?;
+                self.inline_output((id, &system.statement), tree, span)
+            }
             (Function::Aryval, Some(id)) if scene.statements.arrays.contains_key(&id) => {
                 let value = *array_entry(
                     ("ARYVAL", "ARRAY"),
@@ -709,14 +734,7 @@ impl Compiler<'_> {
         }
         self.inlining.push(id);
         self.inlining_set.insert(id);
-        let root = &scene.statements.variables[&id].root;
-        // The VARIABLE's text is elsewhere: its instructions take the
-        // span of this VARVAL.
-        let spans_before = self.spans.len();
-        let slot = self.node(root);
-        for instruction_span in &mut self.spans[spans_before..] {
-            *instruction_span = span;
-        }
+        let slot = self.inline_tree(&scene.statements.variables[&id].root, span);
         self.inlining.pop();
         self.inlining_set.remove(&id);
         self.variable_slots
@@ -724,6 +742,18 @@ impl Compiler<'_> {
             .expect("a scope")
             .insert(id, slot);
         Ok(slot)
+    }
+
+    /// A tree whose text is elsewhere (a VARIABLE's FUNCTION for VARVAL, a
+    /// DIFF's for DIF1, a linear system's output for ARYVAL), compiled in
+    /// place: its instructions take the span of the call, `span`.
+    fn inline_tree(&mut self, root: &Node, span: Span) -> Slot {
+        let spans_before = self.spans.len();
+        let slot = self.node(root);
+        for instruction_span in &mut self.spans[spans_before..] {
+            *instruction_span = span;
+        }
+        slot
     }
 
     /// `DIF1(id)`: the FUNCTION of DIFF `id`, compiled in place so that its
@@ -742,14 +772,30 @@ impl Compiler<'_> {
             });
         }
         self.inlining_diffs.push(id);
-        // The DIFF's text is elsewhere: its instructions take the span of
-        // this DIF1.
-        let spans_before = self.spans.len();
-        let slot = self.node(&tree.root);
-        for instruction_span in &mut self.spans[spans_before..] {
-            *instruction_span = span;
-        }
+        let slot = self.inline_tree(&tree.root, span);
         self.inlining_diffs.pop();
+        Ok(slot)
+    }
+
+    /// `ARYVAL(y, i)` of a linear system's Y array `y`: its output `C x +
+    /// D u`, compiled in place so that its derivatives flow.
+    fn inline_output(
+        &mut self,
+        (array, statement): (u64, &str),
+        tree: &Checked,
+        span: Span,
+    ) -> Result<Slot, CompileError> {
+        if self.inlining_outputs.contains(&array) {
+            return Err(CompileError::VariableLoop {
+                cycle: format!(
+                    "{statement}'s output ARRAY/{array} reads itself through its inputs"
+                ),
+                span,
+            });
+        }
+        self.inlining_outputs.push(array);
+        let slot = self.inline_tree(&tree.root, span);
+        self.inlining_outputs.pop();
         Ok(slot)
     }
 

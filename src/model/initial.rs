@@ -64,6 +64,17 @@ pub enum ConfigurationError {
         /// The statement.
         span: Span,
     },
+    /// A control element (TFSISO, LSE, their ARRAYs and MATRIXes) that
+    /// does not give a linear system.
+    #[error("{statement}: {reason}")]
+    Control {
+        /// `LSE/2`.
+        statement: String,
+        /// What is wrong.
+        reason: String,
+        /// The statement.
+        span: Span,
+    },
     /// SPLINE points that cannot be interpolated.
     #[error("{statement}: {error}")]
     Spline {
@@ -84,6 +95,7 @@ impl ConfigurationError {
             | ConfigurationError::NotFinite { span, .. }
             | ConfigurationError::Axes { span, .. }
             | ConfigurationError::UnknownPart { span, .. }
+            | ConfigurationError::Control { span, .. }
             | ConfigurationError::Spline { span, .. } => *span,
         }
     }
@@ -462,6 +474,9 @@ pub fn initial_scene(
             scene.statements.evaluated_sensors.insert(id);
         }
     }
+    let (systems, problems) = super::linear_systems::linear_systems(dataset);
+    scene.statements.linear_systems = systems;
+    errors.extend(problems);
     for statement in dataset
         .statements
         .iter()

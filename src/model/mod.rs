@@ -7,6 +7,7 @@ mod adm;
 mod cmd;
 mod encoding;
 pub(crate) mod initial;
+pub(crate) mod linear_systems;
 mod references;
 mod text;
 mod variables;

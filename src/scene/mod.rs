@@ -273,6 +273,49 @@ pub struct StatementData {
     /// had at the sensor's last trip (0 before the first, and outside a
     /// simulation).
     pub evaluated_sensors: std::collections::HashSet<u64>,
+    /// The linear systems of the TFSISO and LSE statements.
+    pub linear_systems: Vec<LinearSystem>,
+}
+
+impl StatementData {
+    /// The linear system whose X array is `array`.
+    pub fn system_with_states(&self, array: u64) -> Option<&LinearSystem> {
+        self.linear_systems
+            .iter()
+            .find(|system| system.states == array)
+    }
+
+    /// The linear system whose Y array is `array`.
+    pub fn system_with_outputs(&self, array: u64) -> Option<&LinearSystem> {
+        self.linear_systems
+            .iter()
+            .find(|system| system.outputs == Some(array))
+    }
+}
+
+/// A control element's linear system (TFSISO, LSE): `x' = A x + B u`,
+/// `y = C x + D u`, its states `ARYVAL(states, k)` (inputs named
+/// [`array_state_input`]), its inputs the VARIABLEs of its U array, its
+/// outputs `ARYVAL(outputs, k)`, each an expression compiled in place.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinearSystem {
+    /// `TFSISO/3`.
+    pub statement: String,
+    /// The statement in the file.
+    pub span: crate::Span,
+    /// The X array of its states.
+    pub states: u64,
+    /// The U array of its inputs.
+    pub inputs: Option<u64>,
+    /// The Y array of its outputs.
+    pub outputs: Option<u64>,
+    /// The states' initial values.
+    pub initial: Vec<f64>,
+    /// Each state's rate, `A x + B u` in `ARYVAL`s of its arrays, as text
+    /// and checked.
+    pub rates: Vec<(String, Checked)>,
+    /// Each output, `C x + D u`, as text and checked.
+    pub output_expressions: Vec<(String, Checked)>,
 }
 
 /// A differential state `DIFF/id` (explicit form: `d DIF(id)/dt = FUNCTION`).
@@ -288,6 +331,19 @@ pub struct DiffData {
 /// The name of the input that holds `DIF(id)`: `DIF(3)`.
 pub fn diff_input(id: u64) -> String {
     format!("DIF({id})")
+}
+
+/// The name of the input that holds state `entry` (from 1) of the linear
+/// system whose X array is `array`: `ARYVAL(4, 2)`.
+pub fn array_state_input(array: u64, entry: usize) -> String {
+    format!("ARYVAL({array}, {entry})")
+}
+
+/// The X array and entry of an [`array_state_input`] name.
+pub fn parse_array_state_input(name: &str) -> Option<(u64, usize)> {
+    let inner = name.strip_prefix("ARYVAL(")?.strip_suffix(')')?;
+    let (array, entry) = inner.split_once(", ")?;
+    Some((array.parse().ok()?, entry.parse().ok()?))
 }
 
 /// The name of the input that holds `SENVAL(id)`: `SENVAL(3)`.
@@ -456,6 +512,12 @@ impl Scene {
         }
         if let Some(diff) = parse_diff_input(name).and_then(|id| self.statements.diffs.get(&id)) {
             return Ok(diff.initial);
+        }
+        if let Some(initial) = parse_array_state_input(name).and_then(|(array, entry)| {
+            let system = self.statements.system_with_states(array)?;
+            system.initial.get(entry.checked_sub(1)?).copied()
+        }) {
+            return Ok(initial);
         }
         if parse_sensor_input(name)
             .is_some_and(|id| self.statements.evaluated_sensors.contains(&id))

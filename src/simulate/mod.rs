@@ -60,8 +60,8 @@ pub use curve::{Curve, CurvePoint};
 pub use error::{Place, SimulateError};
 pub use model::{
     Along, Contact, Diff, ExactPart, Expression, Force, Friction, GeneralConstraint, Given, Joint,
-    JointInitial, JointKind, MarkerMotion, MassProperties, Model, Motion, OnCurve, Output, Shape,
-    Solid,
+    JointInitial, JointKind, LinearState, MarkerMotion, MassProperties, Model, Motion, OnCurve,
+    Output, Shape, Solid,
 };
 pub use read::{
     CommandFileError, ModelFormat, RunCommands, Unread, format_of_path, from_scene, is_scene_path,
@@ -73,7 +73,6 @@ pub use run::{
 };
 
 use crate::compile::{Program, compile_run_outputs};
-use crate::scene::diff_input;
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
 /// (`report`). Every statement that cannot be simulated is reported. The
@@ -279,7 +278,7 @@ fn compile(
 /// model's outputs.
 pub fn columns(model: &Model) -> Vec<String> {
     let mut names = vec!["time".to_string()];
-    names.extend(model.diffs.iter().map(|diff| diff_input(diff.id)));
+    names.extend(model.diffs.iter().map(Diff::input));
     for body in &model.scene.bodies {
         for suffix in [
             "x", "y", "z", "q0", "q1", "q2", "q3", "vx", "vy", "vz", "wx", "wy", "wz",

@@ -150,12 +150,45 @@ impl MassProperties {
 /// A differential state `DIFF/id`: `d DIF(id)/dt = FUNCTION`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Diff {
-    /// The statement id.
+    /// The statement id (0 for a linear system's state).
     pub id: u64,
     /// The initial value.
     pub initial: f64,
     /// Its FUNCTION, an index into [`Model::expressions`].
     pub function: usize,
+    /// The linear system (TFSISO, LSE) whose state it is, `None` for a
+    /// DIFF.
+    pub linear: Option<LinearState>,
+}
+
+/// A state of a control element's linear system: entry `entry` (from 1)
+/// of its X array.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinearState {
+    /// `TFSISO/3`.
+    pub statement: String,
+    /// The X array.
+    pub array: u64,
+    /// The entry, from 1.
+    pub entry: usize,
+}
+
+impl Diff {
+    /// The name of the input that holds it: `DIF(3)`, `ARYVAL(4, 2)`.
+    pub fn input(&self) -> String {
+        match &self.linear {
+            None => crate::scene::diff_input(self.id),
+            Some(state) => crate::scene::array_state_input(state.array, state.entry),
+        }
+    }
+
+    /// What it is in messages: `DIFF/3`, `TFSISO/2's state 1`.
+    pub fn label(&self) -> String {
+        match &self.linear {
+            None => format!("DIFF/{}", self.id),
+            Some(state) => format!("{}'s state {}", state.statement, state.entry),
+        }
+    }
 }
 
 /// A force element: its geometry, and the expressions of its components.

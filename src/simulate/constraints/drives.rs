@@ -163,6 +163,7 @@ impl Drives {
                 .filter(|name| {
                     model.scene.parse_state_name(name).is_some()
                         || crate::scene::parse_diff_input(name).is_some()
+                        || crate::scene::parse_array_state_input(name).is_some()
                         || crate::scene::parse_sensor_input(name).is_some()
                 })
                 .cloned()

@@ -227,6 +227,7 @@ fn inputs_of(model: &Model, program: &Program) -> Result<Vec<Input>, String> {
                     Ok(Input::AngularVelocity(body, axis))
                 }
                 None if crate::scene::parse_diff_input(name).is_some()
+                    || crate::scene::parse_array_state_input(name).is_some()
                     || crate::scene::parse_sensor_input(name).is_some() =>
                 {
                     Err(format!(

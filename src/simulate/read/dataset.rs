@@ -20,8 +20,8 @@ use crate::model::{
 use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{
-    Along, Diff, Expression, Force, GeneralConstraint, Given, Joint, JointKind, MarkerMotion,
-    MassProperties, Model, Motion, Output, Sensor,
+    Along, Diff, Expression, Force, GeneralConstraint, Given, Joint, JointKind, LinearState,
+    MarkerMotion, MassProperties, Model, Motion, Output, Sensor,
 };
 use crate::span::Span;
 
@@ -76,9 +76,10 @@ const FORCE_ELEMENTS: [&str; 8] = [
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`] (PINPUT
 /// and POUTPUT list the VARIABLEs that `PINVAL` and `POUVAL` read).
-const SIMULATED: [&str; 19] = [
+const SIMULATED: [&str; 21] = [
     "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
     "JPRIM", "PTCV", "MOTION", "COUPLER", "GEAR", "GCON", "SENSOR", "CONTACT", "PINPUT", "POUTPUT",
+    "TFSISO", "LSE",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -743,9 +744,37 @@ impl Reader<'_> {
                 id,
                 initial,
                 function,
+                linear: None,
             });
         }
+        diffs.extend(self.linear_states());
         diffs
+    }
+
+    /// The states of the control elements' linear systems (TFSISO, LSE),
+    /// each with its rate `A x + B u` as an expression of the statement.
+    fn linear_states(&mut self) -> Vec<Diff> {
+        let mut states = Vec::new();
+        for system in self.scene.statements.linear_systems.clone() {
+            for (index, (text, checked)) in system.rates.iter().enumerate() {
+                self.expressions.push(Expression {
+                    label: format!("{}'s state {} rate", system.statement, index + 1),
+                    checked: checked.clone(),
+                    text: Embedded::pinned(text, system.span.start),
+                });
+                states.push(Diff {
+                    id: 0,
+                    initial: system.initial[index],
+                    function: self.expressions.len() - 1,
+                    linear: Some(LinearState {
+                        statement: system.statement.clone(),
+                        array: system.states,
+                        entry: index + 1,
+                    }),
+                });
+            }
+        }
+        states
     }
 
     /// The force elements, with the statement (its kind as

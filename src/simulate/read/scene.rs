@@ -316,6 +316,7 @@ impl Reader<'_> {
                 id: diff.id,
                 initial: diff.ic,
                 function,
+                linear: None,
             });
         }
         read

@@ -1409,7 +1409,7 @@ impl Simulation<'_> {
         if let Some(diff) = model.diffs.get(state) {
             let expression = &model.expressions[diff.function];
             return (
-                format!("DIFF/{}{}", diff.id, if rate { "'s rate" } else { "" }),
+                format!("{}{}", diff.label(), if rate { "'s rate" } else { "" }),
                 Place::Expression {
                     expression: diff.function,
                     span: crate::span::Span::new(0, expression.text.text.len()),
