@@ -1758,3 +1758,68 @@ LSOLVER/CALAHAN
         );
     }
 }
+
+/// A POINT_MASS translates only: on a spring `k = 8` to ground (mass 2,
+/// started at 1 m/s along x from z = 1), `x = sin(2t)/2`, `z = cos 2t`,
+/// while a torque on it turns nothing (its orientation stays the identity
+/// and a marker one unit off its origin stays one unit off along x).
+#[test]
+fn a_point_mass_translates_and_never_turns() {
+    let text = "point mass
+PART/1, GROUND
+MARKER/1, PART = 1
+POINT_MASS/2, MASS = 2, CM = 3, QG = 0, 0, 1, VX = 1
+MARKER/3, POINT_MASS = 2
+MARKER/4, POINT_MASS = 2, QP = 1, 0, 0
+SPRINGDAMPER/1, TRANSLATION, I = 3, J = 1, K = 8, C = 0, LENGTH = 0
+VTORQUE/1, I = 3, JFLOAT = 5, RM = 1, TX = 1, TY = 2, TZ = 3
+MARKER/5, PART = 1, FLOATING
+REQUEST/1, F2 = DX(4, 1)
+";
+    let run = run(text, &settings(3.0, 30, 1e-10)).unwrap_or_else(|error| panic!("{error}"));
+    for row in &run.rows {
+        let t = row[0];
+        let (x, z) = ((2.0 * t).sin() / 2.0, (2.0 * t).cos());
+        assert!(
+            (row[1] - x).abs() < 1e-8 && (row[3] - z).abs() < 1e-8,
+            "{row:?}"
+        );
+        assert_eq!(&row[4..8], &[1.0, 0.0, 0.0, 0.0], "turned: {row:?}");
+        assert!((row[14] - (x + 1.0)).abs() < 1e-8, "{row:?}");
+    }
+}
+
+/// A POINT_MASS held on a line (JPRIM INLINE, the line at 45 degrees) by a
+/// spring `k = 100` of free length 0.5 rests where the spring carries the
+/// weight along the line: `s = 0.5 - m g cos 45 / k` (`--statics`); a joint
+/// that would hold its turning is refused at the joint.
+#[test]
+fn a_point_mass_rests_on_a_line_and_refuses_a_joint_on_its_turning() {
+    let text = "point mass on a line
+PART/1, GROUND
+MARKER/1, PART = 1, REULER = 0, 45D, 0
+POINT_MASS/2, MASS = 2, QG = 0, 0, 0.1
+MARKER/3, POINT_MASS = 2
+JPRIM/1, INLINE, I = 3, J = 1
+ACCGRAV/KGRAV = -9.81
+SPRINGDAMPER/1, TRANSLATION, I = 3, J = 1, K = 100, C = 1, LENGTH = 0.5
+REQUEST/1, F2 = DM(3, 1)
+";
+    let statics = Settings {
+        statics: true,
+        ..settings(1.0, 2, 1e-10)
+    };
+    let run = run(text, &statics).unwrap_or_else(|error| panic!("{error}"));
+    let rest = 0.5 - 2.0 * 9.81 * std::f64::consts::FRAC_1_SQRT_2 / 100.0;
+    for row in &run.rows {
+        assert!((row[14] - rest).abs() < 1e-9, "{row:?} against {rest}");
+    }
+    let joined = text.replace("JPRIM/1, INLINE", "JOINT/1, CYLINDRICAL");
+    let error = super::simulate::run(&joined, &statics)
+        .err()
+        .expect("refused");
+    assert!(
+        error.contains("JOINT/1 holds the turning of POINT_MASS/2"),
+        "{error}"
+    );
+}

@@ -54,11 +54,13 @@ pub enum ConfigurationError {
         /// The statement.
         span: Span,
     },
-    /// A marker on a part that is not defined.
-    #[error("{statement}: there is no PART/{part}")]
+    /// A marker on a part (or point mass) that is not defined.
+    #[error("{statement}: there is no {kind}/{part}")]
     UnknownPart {
         /// `MARKER/12`.
         statement: String,
+        /// `PART` or `POINT_MASS`.
+        kind: &'static str,
         /// The part id.
         part: u64,
         /// The statement.
@@ -336,6 +338,32 @@ pub fn initial_scene(
         parts.insert(id, (scene.bodies.len(), cm as u64, vm as u64, wm as u64));
         scene.bodies.push(body);
     }
+    // Point masses follow the parts (the simulator's masses keep that
+    // order): bodies that translate only, their axes fixed as placed.
+    let mut point_masses = std::collections::HashMap::new();
+    for statement in dataset
+        .statements
+        .iter()
+        .filter(|s| is_statement(s, "POINT_MASS"))
+    {
+        let Some(id) = statement.id else { continue };
+        let mut body = Body::new(statement.label());
+        let read = (|| {
+            body.position = Vector3::from(numbers(statement, "QG", [0.0; 3])?);
+            body.orientation = orientation(statement)?;
+            body.velocity = Vector3::new(
+                number(statement, "VX", 0.0)?,
+                number(statement, "VY", 0.0)?,
+                number(statement, "VZ", 0.0)?,
+            );
+            Ok(())
+        })();
+        if let Err(error) = read {
+            errors.push(error);
+        }
+        point_masses.insert(id, scene.bodies.len());
+        scene.bodies.push(body);
+    }
     for statement in dataset
         .statements
         .iter()
@@ -345,24 +373,34 @@ pub fn initial_scene(
         if statement.argument("FLOATING", 3).is_some() {
             continue;
         }
-        let part = match number(statement, "PART", 0.0) {
+        let on_point_mass = statement.argument("POINT_MASS", 10).is_some();
+        let keyword = if on_point_mass { "POINT_MASS" } else { "PART" };
+        let part = match number(statement, keyword, 0.0) {
             Ok(part) => part as u64,
             Err(error) => {
                 errors.push(error);
                 continue;
             }
         };
-        let body = if ground_parts.contains(&part) {
+        let body = if on_point_mass {
+            point_masses.get(&part).copied()
+        } else if ground_parts.contains(&part) {
             None
-        } else if let Some(&(index, ..)) = parts.get(&part) {
-            Some(index)
         } else {
-            errors.push(ConfigurationError::UnknownPart {
-                statement: statement.label(),
-                part,
-                span: statement.span,
-            });
-            continue;
+            parts.get(&part).map(|&(index, ..)| index)
+        };
+        let body = match body {
+            Some(index) => Some(index),
+            None if !on_point_mass && ground_parts.contains(&part) => None,
+            None => {
+                errors.push(ConfigurationError::UnknownPart {
+                    statement: statement.label(),
+                    kind: keyword,
+                    part,
+                    span: statement.span,
+                });
+                continue;
+            }
         };
         let mut marker = Marker::new(body);
         marker.id = Some(id);

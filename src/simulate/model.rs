@@ -141,6 +141,14 @@ pub struct MassProperties {
 }
 
 impl MassProperties {
+    /// Whether it is a POINT_MASS's: a mass without inertia, which no
+    /// torque turns.
+    pub fn is_point_mass(&self) -> bool {
+        self.mass > 0.0 && self.inertia == Matrix3::zeros()
+    }
+}
+
+impl MassProperties {
     /// A massless part: no mass, no inertia.
     pub fn is_massless(&self) -> bool {
         self.mass == 0.0

@@ -76,10 +76,29 @@ const FORCE_ELEMENTS: [&str; 8] = [
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`] (PINPUT
 /// and POUTPUT list the VARIABLEs that `PINVAL` and `POUVAL` read).
-const SIMULATED: [&str; 21] = [
-    "PART", "MARKER", "DIFF", "ACCGRAV", "VARIABLE", "ARRAY", "SPLINE", "REQUEST", "JOINT",
-    "JPRIM", "PTCV", "MOTION", "COUPLER", "GEAR", "GCON", "SENSOR", "CONTACT", "PINPUT", "POUTPUT",
-    "TFSISO", "LSE",
+const SIMULATED: [&str; 22] = [
+    "PART",
+    "MARKER",
+    "DIFF",
+    "ACCGRAV",
+    "VARIABLE",
+    "ARRAY",
+    "SPLINE",
+    "REQUEST",
+    "JOINT",
+    "JPRIM",
+    "PTCV",
+    "MOTION",
+    "COUPLER",
+    "GEAR",
+    "GCON",
+    "SENSOR",
+    "CONTACT",
+    "PINPUT",
+    "POUTPUT",
+    "TFSISO",
+    "LSE",
+    "POINT_MASS",
 ];
 
 /// The model of a dataset that [`crate::model::check_model`] has checked
@@ -297,6 +316,7 @@ impl Reader<'_> {
             &floating,
             &mut self.errors,
         ));
+        self.point_masses_turn_freely(&joints, &masses);
         let (motions, marker_motions) = self.motions(&joints);
         let mut couplers = super::couplers::couplers(self.dataset, &joints, &mut self.errors);
         couplers.extend(super::couplers::gears(
@@ -590,7 +610,80 @@ impl Reader<'_> {
         for index in parts {
             masses.push(self.mass(&dataset.statements[index]));
         }
+        // The point masses follow the parts, as their bodies do.
+        let point_masses: Vec<usize> = self
+            .statements("POINT_MASS")
+            .map(|(index, _)| index)
+            .collect();
+        for index in point_masses {
+            masses.push(self.point_mass(&dataset.statements[index]));
+        }
         masses
+    }
+
+    /// Refuses a joint that holds the turning of a POINT_MASS, which has
+    /// no rotation: only SPHERICAL, ATPOINT, INLINE, INPLANE and PTCV hold
+    /// a point mass (they hold its place alone).
+    fn point_masses_turn_freely(&mut self, joints: &[Joint], masses: &[MassProperties]) {
+        for joint in joints {
+            let places_only = matches!(
+                joint.kind,
+                JointKind::Spherical
+                    | JointKind::AtPoint
+                    | JointKind::InLine
+                    | JointKind::InPlane
+                    | JointKind::PointCurve
+            );
+            let held = [joint.i, joint.j]
+                .iter()
+                .filter_map(|target| self.scene.body_of(target))
+                .find(|&body| masses.get(body).is_some_and(MassProperties::is_point_mass));
+            if let (false, Some(body)) = (places_only, held) {
+                self.errors.push(SimulateError::Model {
+                    message: format!(
+                        "{}/{} holds the turning of {}, a point mass, which has no rotation: hold a point mass by its place only (SPHERICAL, or a JPRIM ATPOINT, INLINE or INPLANE), or make it a PART",
+                        joint.kind.statement(),
+                        joint.id,
+                        self.scene.bodies[body].name
+                    ),
+                    span: joint.span,
+                });
+            }
+        }
+    }
+
+    /// A POINT_MASS: a positive MASS at its CM marker (its origin when
+    /// left out), no inertia. Its inverse inertia is zero, so no torque
+    /// turns it: its axes stay as placed, as Adams keeps them.
+    fn point_mass(&mut self, statement: &Statement) -> MassProperties {
+        let mass = number(statement, "MASS", f64::NAN).unwrap_or(f64::NAN);
+        if !(mass > 0.0 && mass.is_finite()) {
+            self.errors.push(SimulateError::Model {
+                message: format!(
+                    "{}: MASS must be a positive number, not {}",
+                    statement.label(),
+                    Shown(mass)
+                ),
+                span: statement.span,
+            });
+        }
+        self.markers_on_the_part(statement);
+        let centre = number(statement, "CM", f64::NAN)
+            .ok()
+            .filter(|id| id.is_finite())
+            .and_then(|id| {
+                self.scene
+                    .markers
+                    .iter()
+                    .find(|marker| marker.id == Some(id as u64))
+            })
+            .map_or_else(Vector3::zeros, |marker| marker.position);
+        MassProperties {
+            mass,
+            centre,
+            inertia: Matrix3::zeros(),
+            span: statement.span,
+        }
     }
 
     /// Refuses a PART's CM, IM, VM or WM (its centre of mass, the axes of
