@@ -213,6 +213,19 @@ pub(crate) fn number(
 /// `QG`/`QP`, in the same axes). With a z point alone, x is the part's x
 /// axis made square to z (its y axis where z lies along x); with an x point
 /// alone, z is the part's.
+/// A PART's or POINT_MASS's place (QG), axes (REULER, or ZG and XG) and
+/// velocity (VX, VY, VZ) into `body`.
+fn place(body: &mut Body, statement: &Statement) -> Result<(), ConfigurationError> {
+    body.position = Vector3::from(numbers(statement, "QG", [0.0; 3])?);
+    body.orientation = orientation(statement)?;
+    body.velocity = Vector3::new(
+        number(statement, "VX", 0.0)?,
+        number(statement, "VY", 0.0)?,
+        number(statement, "VZ", 0.0)?,
+    );
+    Ok(())
+}
+
 /// The VARIABLE ids a statement's `VARIABLES = ...` lists (an ARRAY of
 /// type U, a PINPUT, a POUTPUT), whole positive numbers only.
 fn listed_variables(statement: &Statement) -> Option<Vec<u64>> {
@@ -310,13 +323,7 @@ pub fn initial_scene(
         }
         let mut body = Body::new(statement.label());
         let read = (|| {
-            body.position = Vector3::from(numbers(statement, "QG", [0.0; 3])?);
-            body.orientation = orientation(statement)?;
-            body.velocity = Vector3::new(
-                number(statement, "VX", 0.0)?,
-                number(statement, "VY", 0.0)?,
-                number(statement, "VZ", 0.0)?,
-            );
+            place(&mut body, statement)?;
             body.angular_velocity = Vector3::new(
                 number(statement, "WX", 0.0)?,
                 number(statement, "WY", 0.0)?,
@@ -348,17 +355,7 @@ pub fn initial_scene(
     {
         let Some(id) = statement.id else { continue };
         let mut body = Body::new(statement.label());
-        let read = (|| {
-            body.position = Vector3::from(numbers(statement, "QG", [0.0; 3])?);
-            body.orientation = orientation(statement)?;
-            body.velocity = Vector3::new(
-                number(statement, "VX", 0.0)?,
-                number(statement, "VY", 0.0)?,
-                number(statement, "VZ", 0.0)?,
-            );
-            Ok(())
-        })();
-        if let Err(error) = read {
+        if let Err(error) = place(&mut body, statement) {
             errors.push(error);
         }
         point_masses.insert(id, scene.bodies.len());

@@ -668,15 +668,7 @@ impl Reader<'_> {
             });
         }
         self.markers_on_the_part(statement);
-        let centre = number(statement, "CM", f64::NAN)
-            .ok()
-            .filter(|id| id.is_finite())
-            .and_then(|id| {
-                self.scene
-                    .markers
-                    .iter()
-                    .find(|marker| marker.id == Some(id as u64))
-            })
+        let centre = marker_named(statement, "CM", &self.scene)
             .map_or_else(Vector3::zeros, |marker| marker.position);
         MassProperties {
             mass,
@@ -743,17 +735,7 @@ impl Reader<'_> {
             );
         }
         self.markers_on_the_part(statement);
-        let marker_of = |keyword: &str| {
-            number(statement, keyword, f64::NAN)
-                .ok()
-                .filter(|id| id.is_finite())
-                .and_then(|id| {
-                    self.scene
-                        .markers
-                        .iter()
-                        .find(|marker| marker.id == Some(id as u64))
-                })
-        };
+        let marker_of = |keyword: &str| marker_named(statement, keyword, &self.scene);
         let centre = marker_of("CM").map_or_else(Vector3::zeros, |marker| marker.position);
         let inertia_marker = marker_of("IM").or_else(|| marker_of("CM"));
         let [xx, yy, zz, xy, xz, yz] = match numbers(statement, "IP", [0.0; 6]) {
@@ -1395,4 +1377,17 @@ fn one_marker_line(statement: &Statement) -> Option<Span> {
     (translational && i == j)
         .then(|| statement.argument("J", 1).map(|argument| argument.span))
         .flatten()
+}
+
+/// The marker a statement's `keyword = id` names, `None` for ground or a
+/// marker not in the scene.
+fn marker_named<'s>(
+    statement: &Statement,
+    keyword: &str,
+    scene: &'s Scene,
+) -> Option<&'s crate::scene::Marker> {
+    match super::named_marker(statement, keyword, scene)? {
+        Target::Marker(index) => Some(&scene.markers[index]),
+        Target::Ground => None,
+    }
 }
