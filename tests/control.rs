@@ -164,3 +164,22 @@ fn what_control_elements_refuse() {
         .collect();
     insta::assert_snapshot!(table);
 }
+
+/// `examples/simulate/l_controlled_lift.adm`: a PI controller (a TFSISO
+/// with a pure integrator) holds a 50 kg cage at its set point through a
+/// sensor lag (another TFSISO); at rest the error is gone and the
+/// integrator's state times its gain carries the weight, `m g`, which a
+/// proportional controller alone could not.
+#[test]
+fn the_lift_example_settles_at_its_set_point() {
+    let text = include_str!("../examples/simulate/l_controlled_lift.adm");
+    let model = model_of(text).unwrap_or_else(|error| panic!("{error}"));
+    let columns = mbexpr::simulate::columns(&model);
+    let at = |name: &str| columns.iter().position(|column| column == name).unwrap();
+    let run = run(text, &settings(10.0, 200, 1e-8)).unwrap_or_else(|error| panic!("{error}"));
+    let last = run.rows.last().unwrap();
+    assert!((last[at("PART/2.z")] - 1.0).abs() < 1e-6, "{last:?}");
+    let carried = 4000.0 * last[at("TFSISO/1.x1")];
+    assert!((carried - 50.0 * 9.80665).abs() < 1e-3, "{carried}");
+    assert!((last[at("REQUEST/1.F4")] - 1.0).abs() < 1e-6, "{last:?}");
+}

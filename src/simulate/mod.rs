@@ -270,7 +270,8 @@ fn compile(
     }
 }
 
-/// The names of a run's columns: `time`, `DIF(id)` for each DIFF, then
+/// The names of a run's columns: `time`, `DIF(id)` for each DIFF and
+/// `TFSISO/id.x1 ...` for each state of a control element, then
 /// for each body `BODY.x BODY.y BODY.z` (the origin of its frame in
 /// ground), `BODY.q0 ... BODY.q3` (its orientation as a unit quaternion,
 /// `w x y z`), `BODY.vx BODY.vy BODY.vz` (the origin's velocity) and
@@ -278,7 +279,7 @@ fn compile(
 /// model's outputs.
 pub fn columns(model: &Model) -> Vec<String> {
     let mut names = vec!["time".to_string()];
-    names.extend(model.diffs.iter().map(Diff::input));
+    names.extend(model.diffs.iter().map(Diff::column));
     for body in &model.scene.bodies {
         for suffix in [
             "x", "y", "z", "q0", "q1", "q2", "q3", "vx", "vy", "vz", "wx", "wy", "wz",

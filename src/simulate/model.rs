@@ -190,6 +190,15 @@ impl Diff {
         }
     }
 
+    /// Its column in a run's rows: `DIF(3)`, `TFSISO/2.x1` (no comma, so
+    /// that a CSV header needs no quoting).
+    pub fn column(&self) -> String {
+        match &self.linear {
+            None => crate::scene::diff_input(self.id),
+            Some(state) => format!("{}.x{}", state.statement, state.entry),
+        }
+    }
+
     /// What it is in messages: `DIFF/3`, `TFSISO/2's state 1`.
     pub fn label(&self) -> String {
         match &self.linear {
