@@ -11,6 +11,10 @@ use super::{Dataset, Statement, Value, is_statement};
 use crate::Checked;
 use crate::scene::{LinearSystem, array_state_input};
 
+/// The most entries a MATRIX may have (each nonzero one is a term of an
+/// equation; a hundred million zeros would fill the memory).
+const MOST_ENTRIES: usize = 1_000_000;
+
 /// The linear systems of `dataset`'s TFSISO and LSE statements, and what
 /// is wrong with those that cannot be read.
 pub(crate) fn linear_systems(dataset: &Dataset) -> (Vec<LinearSystem>, Vec<ConfigurationError>) {
@@ -258,6 +262,14 @@ fn read_matrix(statement: &Statement) -> Result<DMatrix<f64>, ConfigurationError
         }
     };
     let (rows, columns) = (size("ROWS")?, size("COLUMNS")?);
+    if rows * columns > MOST_ENTRIES {
+        return Err(refused(
+            statement,
+            format!(
+                "{rows} by {columns} is more than the {MOST_ENTRIES} entries a MATRIX may have"
+            ),
+        ));
+    }
     let values = numbers(statement, "VALUES")?;
     if statement.argument("SPARSE", 2).is_some() {
         let (row_ids, column_ids) = (numbers(statement, "I")?, numbers(statement, "J")?);
