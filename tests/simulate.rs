@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 39] = [
+    let cases: [(&str, &str, Settings); 40] = [
         (
             "a torque near the largest double: the steps shrink to nothing, and the part it spins is named",
             "huge torque
@@ -260,6 +260,21 @@ DIFF/1, IC = 0, FUNCTION = SQRT(1 - TIME)
 DIFF/1, IC = 1, FUNCTION = DIF(1)**2
 ",
             settings(2.0, 4, 1e-6),
+        ),
+        (
+            "joint friction, a GSE and an NFORCE, each saying what to write instead",
+            "elements not simulated
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+JOINT/1, REVOLUTE, I = 3, J = 1
+FRICTION/1, JOINT = 1, MU_STATIC = 0.2, MU_DYNAMIC = 0.1
+FRICTION/2, JOINT = 1, MU_STATIC = 0.3, MU_DYNAMIC = 0.1
+GSE/1, NS = 1, NO = 0, X = 1
+NFORCE/1, I = 3, J = 1
+",
+            short.clone(),
         ),
         (
             "a DIFF whose rate oscillates ever faster near a pole: the run stalls",

@@ -124,8 +124,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
         } else if !kind(&SIMULATED) && !kind(&FORCE_ELEMENTS) && !kind(&LEFT_ASIDE) {
             errors.push(SimulateError::Unsupported {
                 statement: statement.label(),
-                reason: "is not among the elements mbexpr integrates (PART, JOINT, JPRIM, PTCV, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, CONTACT, ACCGRAV)"
-                    .to_string(),
+                reason: why_not_simulated(&statement.name),
                 span: statement.span,
             });
         }
@@ -1389,5 +1388,22 @@ fn marker_named<'s>(
     match super::named_marker(statement, keyword, scene)? {
         Target::Marker(index) => Some(&scene.markers[index]),
         Target::Ground => None,
+    }
+}
+
+/// Why a statement of kind `name` is not simulated, and what to write
+/// instead where there is something.
+fn why_not_simulated(name: &str) -> String {
+    let is = |kind: &str| is_kind(name, kind);
+    if is("FRICTION") {
+        "is joint friction (Adams' stiction and sliding on a joint's reactions), which mbexpr does not simulate: write the friction as an SFORCE whose FUNCTION reads the joint's reaction, JOINT(id, 0, comp, rm), and its velocity".to_string()
+    } else if is("GSE") {
+        "is defined by user subroutines (GSE_DERIV, GSE_OUTPUT ...), which mbexpr does not call: write its states as DIFFs, or as an LSE or a TFSISO where it is linear".to_string()
+    } else if is("NFORCE") {
+        "is a force among several markers (stiffness and damping matrices), which mbexpr does not simulate: write its components as VFORCEs and VTORQUEs".to_string()
+    } else if is("MFORCE") {
+        "is a load on a flexible body, which mbexpr does not simulate".to_string()
+    } else {
+        "is not among the elements mbexpr integrates (PART, POINT_MASS, JOINT, JPRIM, PTCV, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, TFSISO, LSE, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, CONTACT, ACCGRAV)".to_string()
     }
 }
