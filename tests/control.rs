@@ -183,3 +183,40 @@ fn the_lift_example_settles_at_its_set_point() {
     assert!((carried - 50.0 * 9.80665).abs() < 1e-3, "{carried}");
     assert!((last[at("REQUEST/1.F4")] - 1.0).abs() < 1e-6, "{last:?}");
 }
+
+/// `--statics` with the lift of the example before its set point moves:
+/// without STATIC_HOLD the controller's integrator is a state of the
+/// equilibrium too, and comes to carry the weight with the cage at 0
+/// (`4000 x = m g`); with STATIC_HOLD on the PI controller its state stays
+/// at 0, and the proportional part alone carries the cage, which sags to
+/// `z = -m g / 3000` (the lag, not held, settles on it: `x = 0.02 z`).
+#[test]
+fn static_hold_keeps_a_state_out_of_the_equilibrium() {
+    let free = include_str!("../examples/simulate/l_controlled_lift.adm");
+    let held = free.replace("DENOMINATOR = 0, 1\n", "DENOMINATOR = 0, 1, STATIC_HOLD\n");
+    assert_ne!(free, held);
+    let weight = 50.0 * 9.80665;
+    let statics = mbexpr::simulate::Settings {
+        statics: true,
+        ..settings(0.2, 1, 1e-10)
+    };
+    for (text, sag, integral) in [
+        (free, 0.0, weight / 4000.0),
+        (held.as_str(), -weight / 3000.0, 0.0),
+    ] {
+        let model = model_of(text).unwrap_or_else(|error| panic!("{error}"));
+        let columns = mbexpr::simulate::columns(&model);
+        let at = |name: &str| columns.iter().position(|column| column == name).unwrap();
+        let run = run(text, &statics).unwrap_or_else(|error| panic!("{error}"));
+        let start = &run.rows[0];
+        assert!((start[at("PART/2.z")] - sag).abs() < 1e-9, "{start:?}");
+        assert!(
+            (start[at("TFSISO/1.x1")] - integral).abs() < 1e-9,
+            "{start:?}"
+        );
+        assert!(
+            (start[at("TFSISO/2.x1")] - 0.02 * sag).abs() < 1e-9,
+            "{start:?}"
+        );
+    }
+}

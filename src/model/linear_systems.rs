@@ -385,6 +385,7 @@ fn system(
         },
         rates,
         output_expressions,
+        static_hold: statement.argument("STATIC_HOLD", 8).is_some(),
     })
 }
 

@@ -316,6 +316,8 @@ pub struct LinearSystem {
     pub rates: Vec<(String, Checked)>,
     /// Each output, `C x + D u`, as text and checked.
     pub output_expressions: Vec<(String, Checked)>,
+    /// `STATIC_HOLD`: a static equilibrium keeps its states as they are.
+    pub static_hold: bool,
 }
 
 /// A differential state `DIFF/id` (explicit form: `d DIF(id)/dt = FUNCTION`).

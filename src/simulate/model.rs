@@ -167,6 +167,9 @@ pub struct Diff {
     /// The linear system (TFSISO, LSE) whose state it is, `None` for a
     /// DIFF.
     pub linear: Option<LinearState>,
+    /// `STATIC_HOLD`: a static equilibrium (`--statics`) keeps it at its
+    /// value instead of making its rate zero.
+    pub static_hold: bool,
 }
 
 /// A state of a control element's linear system: entry `entry` (from 1)

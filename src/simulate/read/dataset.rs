@@ -819,6 +819,7 @@ impl Reader<'_> {
                 initial,
                 function,
                 linear: None,
+                static_hold: statement.argument("STATIC_HOLD", 8).is_some(),
             });
         }
         diffs.extend(self.linear_states());
@@ -845,6 +846,7 @@ impl Reader<'_> {
                         array: system.states,
                         entry: index + 1,
                     }),
+                    static_hold: system.static_hold,
                 });
             }
         }

@@ -317,6 +317,7 @@ impl Reader<'_> {
                 initial: diff.ic,
                 function,
                 linear: None,
+                static_hold: false,
             });
         }
         read

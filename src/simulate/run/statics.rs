@@ -69,6 +69,9 @@ pub(super) enum Unsettled {
 /// The unknowns of the equilibrium and their equations.
 struct Layout {
     diffs: usize,
+    /// The DIFFs held at their values (`STATIC_HOLD`): their rates are no
+    /// equations and their states no unknowns.
+    held: Vec<bool>,
     offsets: Vec<usize>,
 }
 
@@ -84,10 +87,11 @@ impl Layout {
             .offsets
             .iter()
             .flat_map(|&offset| rates[offset + 7..offset + BODY_STATES].iter().copied());
-        DVector::from_iterator(
-            self.unknowns(),
-            rates[..self.diffs].iter().copied().chain(parts),
-        )
+        let diffs = rates[..self.diffs]
+            .iter()
+            .zip(&self.held)
+            .map(|(rate, held)| if *held { 0.0 } else { *rate });
+        DVector::from_iterator(self.unknowns(), diffs.chain(parts))
     }
 
     /// The state row of residual entry `entry`.
@@ -104,7 +108,7 @@ impl Layout {
     /// ground moves the quaternion by `½ (0, δθ) ⊗ q`).
     fn tangent(&self, y: &[f64]) -> DMatrix<f64> {
         let mut tangent = DMatrix::zeros(y.len(), self.unknowns());
-        for diff in 0..self.diffs {
+        for diff in (0..self.diffs).filter(|diff| !self.held[*diff]) {
             tangent[(diff, diff)] = 1.0;
         }
         for (part, &offset) in self.offsets.iter().enumerate() {
@@ -204,6 +208,7 @@ pub(super) fn settle(
 ) -> Result<Equilibrium, Unsettled> {
     let layout = Layout {
         diffs: model.diffs.len(),
+        held: model.diffs.iter().map(|diff| diff.static_hold).collect(),
         offsets: offsets.to_vec(),
     };
     let n = y.len();
@@ -239,7 +244,11 @@ pub(super) fn settle(
         let rows: Vec<usize> = (0..layout.unknowns())
             .map(|entry| layout.state_of(entry))
             .collect();
-        let accelerations = jacobian.select_rows(&rows) * &tangent;
+        let mut accelerations = jacobian.select_rows(&rows) * &tangent;
+        // A held DIFF's rate is no equation.
+        for diff in (0..layout.diffs).filter(|diff| layout.held[*diff]) {
+            accelerations.row_mut(diff).fill(0.0);
+        }
         let (held, g) = held_equations(model, y, offsets, imposed);
         // The joints' rows, weighed as the accelerations' so that the
         // least squares keep them.
