@@ -633,13 +633,9 @@ impl Compiler<'_> {
                 self.listed_variable(scene, ("POUVAL", "POUTPUT"), (id, list), args, span)
             }
             (Function::Aryval, Some(id)) if scene.statements.system_with_states(id).is_some() => {
-                let states = scene
-                    .statements
-                    .system_with_states(id)
-                    .map(|system| system.initial.len());
-                let entries: Vec<usize> = (1..=states.unwrap_or(0)).collect();
-                let entry = *array_entry(("ARYVAL", "ARRAY"), id, &entries, args, span)?;
-                Ok(self.named_input(crate::scene::array_state_input(id, entry), span))
+                let system = scene.statements.system_with_states(id).expect("found");
+                let index = entry_index(("ARYVAL", "ARRAY"), id, system.initial.len(), args, span)?;
+                Ok(self.named_input(crate::scene::array_state_input(id, index + 1), span))
             }
             (Function::Aryval, Some(id)) if scene.statements.system_with_outputs(id).is_some() => {
                 let system = scene.statements.system_with_outputs(id).expect("found");
@@ -1086,28 +1082,42 @@ fn constant_stops(arguments: &[Option<f64>]) -> Option<Stops> {
     Some(Stops::new(lower, upper, parameters))
 }
 
-/// Entry `i` (from 1) of ARRAY `id`'s `entries` that `ARYVAL(id, i)` asks
+/// Entry `i` (from 1) of ARRAY `id`'s `entries` that `ARYVAL(id, i)` (or
+/// `PINVAL`, `POUVAL`: `names` are the function and its statement) asks
 /// for with `args`, or the error of an entry it does not have.
 fn array_entry<'e, V>(
-    (function, statement): (&'static str, &'static str),
+    names: (&'static str, &'static str),
     id: u64,
     entries: &'e [V],
     args: &[Argument],
     span: Span,
 ) -> Result<&'e V, CompileError> {
+    Ok(&entries[entry_index(names, id, entries.len(), args, span)?])
+}
+
+/// The index (from 0) of the entry `i` that `ARYVAL(id, i)` asks for with
+/// `args` of a list of `count`, or the error of an entry it does not have.
+fn entry_index(
+    (function, statement): (&'static str, &'static str),
+    id: u64,
+    count: usize,
+    args: &[Argument],
+    span: Span,
+) -> Result<usize, CompileError> {
     let entry = match args.get(1) {
         Some(Argument::Flag(entry, _)) => *entry,
         _ => 0,
     };
     usize::try_from(entry)
         .ok()
-        .and_then(|entry| entries.get(entry.checked_sub(1)?))
+        .and_then(|entry| entry.checked_sub(1))
+        .filter(|index| *index < count)
         .ok_or(CompileError::ArrayEntry {
             function,
             statement,
             id,
             entry,
-            count: entries.len(),
+            count,
             span,
         })
 }

@@ -379,25 +379,22 @@ pub fn initial_scene(
                 continue;
             }
         };
-        let body = if on_point_mass {
-            point_masses.get(&part).copied()
+        // `Some(None)`: on ground; `None`: on nothing defined.
+        let found = if on_point_mass {
+            point_masses.get(&part).map(|&index| Some(index))
         } else if ground_parts.contains(&part) {
-            None
+            Some(None)
         } else {
-            parts.get(&part).map(|&(index, ..)| index)
+            parts.get(&part).map(|&(index, ..)| Some(index))
         };
-        let body = match body {
-            Some(index) => Some(index),
-            None if !on_point_mass && ground_parts.contains(&part) => None,
-            None => {
-                errors.push(ConfigurationError::UnknownPart {
-                    statement: statement.label(),
-                    kind: keyword,
-                    part,
-                    span: statement.span,
-                });
-                continue;
-            }
+        let Some(body) = found else {
+            errors.push(ConfigurationError::UnknownPart {
+                statement: statement.label(),
+                kind: keyword,
+                part,
+                span: statement.span,
+            });
+            continue;
         };
         let mut marker = Marker::new(body);
         marker.id = Some(id);

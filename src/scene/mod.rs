@@ -348,6 +348,12 @@ pub fn parse_array_state_input(name: &str) -> Option<(u64, usize)> {
     Some((array.parse().ok()?, entry.parse().ok()?))
 }
 
+/// Whether `name` is the input of a state of the run that is no part's:
+/// a DIFF's (`DIF(3)`) or a linear system's (`ARYVAL(4, 2)`).
+pub fn is_run_state_input(name: &str) -> bool {
+    parse_diff_input(name).is_some() || parse_array_state_input(name).is_some()
+}
+
 /// The name of the input that holds `SENVAL(id)`: `SENVAL(3)`.
 pub fn sensor_input(id: u64) -> String {
     format!("SENVAL({id})")

@@ -146,9 +146,7 @@ impl MassProperties {
     pub fn is_point_mass(&self) -> bool {
         self.mass > 0.0 && self.inertia == Matrix3::zeros()
     }
-}
 
-impl MassProperties {
     /// A massless part: no mass, no inertia.
     pub fn is_massless(&self) -> bool {
         self.mass == 0.0

@@ -162,8 +162,7 @@ impl Drives {
                 .iter()
                 .filter(|name| {
                     model.scene.parse_state_name(name).is_some()
-                        || crate::scene::parse_diff_input(name).is_some()
-                        || crate::scene::parse_array_state_input(name).is_some()
+                        || crate::scene::is_run_state_input(name)
                         || crate::scene::parse_sensor_input(name).is_some()
                 })
                 .cloned()

@@ -226,8 +226,7 @@ fn inputs_of(model: &Model, program: &Program) -> Result<Vec<Input>, String> {
                 Some((body, StateComponent::AngularVelocity(axis))) => {
                     Ok(Input::AngularVelocity(body, axis))
                 }
-                None if crate::scene::parse_diff_input(name).is_some()
-                    || crate::scene::parse_array_state_input(name).is_some()
+                None if crate::scene::is_run_state_input(name)
                     || crate::scene::parse_sensor_input(name).is_some() =>
                 {
                     Err(format!(

@@ -40,7 +40,7 @@ use crate::integrate::linalg::Pattern;
 use crate::laws::branch::Code;
 use crate::laws::contact::ContactBranch;
 use crate::number::{Directional, Number};
-use crate::scene::{StateComponent, parse_array_state_input, parse_diff_input, parse_sensor_input};
+use crate::scene::{StateComponent, is_run_state_input, parse_sensor_input};
 use crate::simulate::constraints::{
     BodyMotion, Component, Drives, Holder, Reactions, acceleration_residual, constraint_loads,
     contact_parameter, curve_joints, holders, joints_failed_in, joints_singular_in,
@@ -198,9 +198,7 @@ impl<'m> Mechanics<'m> {
                         .iter()
                         .position(|sensor| sensor.id == id && sensor.evaluate.is_some())
                         .map_or(Source::Constant(0.0), Source::Sensor)
-                } else if parse_diff_input(name).is_some()
-                    || parse_array_state_input(name).is_some()
-                {
+                } else if is_run_state_input(name) {
                     let index = model.diffs.iter().position(|diff| diff.input() == *name);
                     Source::State(index.expect("the compiler binds only states of the model"))
                 } else if let Some((body, component)) = model.scene.parse_state_name(name) {
