@@ -142,6 +142,7 @@ fn what_control_elements_refuse() {
         "TFSISO/1, U = 1, Y = 3, NUMERATOR = 1, DENOMINATOR = 1, 1, 1",
         "TFSISO/1, U = 1, X = 3, Y = 2, NUMERATOR = 1, DENOMINATOR = 1, 1, 1",
         "TFSISO/1, U = 1, X = 9, Y = 3, NUMERATOR = 1, DENOMINATOR = 1, 1, 1",
+        "TFSISO/1, U = 1, X = 2, Y = 3, NUMERATOR = 1, DENOMINATOR = 1, 1, 1, IC = 4",
         "LSE/1, X = 2, A = 1",
         "LSE/1, X = 2, A = 2",
         "LSE/1, X = 2, A = 7",

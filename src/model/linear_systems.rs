@@ -132,6 +132,12 @@ fn transfer_function(
     dataset: &Dataset,
     statement: &Statement,
 ) -> Result<LinearSystem, ConfigurationError> {
+    if statement.argument("IC", 2).is_some() {
+        return Err(refused(
+            statement,
+            "IC is not read: the states of mbexpr's realisation of a transfer function (controllable canonical form) need not be those Adams chooses; start it at rest, or write the system as an LSE with its IC".to_string(),
+        ));
+    }
     let numerator = numbers(statement, "NUMERATOR")?;
     let denominator = numbers(statement, "DENOMINATOR")?;
     let order = denominator.len() - 1;
