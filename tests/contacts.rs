@@ -17,9 +17,13 @@
 //!   form says.
 //! - A wheel (a CYLINDER) rolls down a slope as the closed form says, on
 //!   a PLANE and on a BOX alike.
+//! - A FRUSTUM rests on its ends and a cone on its side at the height the
+//!   depth `(m g / k)^(1/e)` gives (lying along its side line, its axis
+//!   tilted by its half-angle), and a ball slides down a frustum's side as
+//!   down a 45° slope, `g t² / 4` along each axis.
 //! - The Jacobian of contacts with friction (sphere on a block's edge, two
-//!   blocks, cylinders tilted on a plane and a block) agrees with finite
-//!   differences.
+//!   blocks, cylinders and frustums tilted on a plane and a block, a
+//!   frustum against a ball) agrees with finite differences.
 //! - Every contact the simulator cannot hold is refused at its place.
 //! - Every pair of solids, anywhere (deep in each other, centres on faces
 //!   and axes, still), gives finite rates and Jacobians.
@@ -376,7 +380,10 @@ fn contacts_mbexpr_cannot_hold_are_refused_at_their_place() {
     let cases = [
         format!("GRAPHICS/1, PLANE, RM = 10 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, EXTERNAL, RM = 10, FILE = a.xmt_txt | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
-        format!("GRAPHICS/1, FRUSTUM, CM = 10, LENGTH = 1, TOP = 1, BOTTOM = 2 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, FRUSTUM, CM = 10, LENGTH = 1, TOP = 1, BOTTOM = 2, RANGLE = 90 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, FRUSTUM, CM = 10, LENGTH = 1, TOP = 0, BOTTOM = 0 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, FRUSTUM, CM = 10, LENGTH = 1, TOP = 1 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, FRUSTUM, CM = 10, LENGTH = 1, TOP = 0, BOTTOM = 2 | CONTACT/1, IGEOM = 5, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, ELLIPSOID, CM = 10, XSCALE = 1, YSCALE = 2, ZSCALE = 1 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, CYLINDER, CM = 10, LENGTH = 1, RADIUS = 0.5 | CONTACT/1, IGEOM = 3, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, CYLINDER, CM = 10, LENGTH = 1, RADIUS = 0.5 | CONTACT/1, IGEOM = 5, JGEOM = 1, {impact}"),
@@ -481,6 +488,98 @@ fn a_wheel_rolls_down_a_slope_as_the_closed_form_on_a_plane_and_on_a_box() {
     }
 }
 
+/// A round solid (part 2, mass 1, its marker 21 at the bottom of
+/// `shape`, placed by `place`) on a plane, with friction, left to settle:
+/// the last row.
+fn settled_on_a_plane(shape: &str, place: &str) -> Vec<f64> {
+    let text = format!(
+        "frustum at rest
+PART/1, GROUND
+MARKER/11, PART = 1
+GRAPHICS/1, PLANE, RM = 11
+PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.006, {place}
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = 0, 0, -0.2
+GRAPHICS/2, FRUSTUM, CM = 21, {shape}
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E6, DAMPING = 1E3, DMAX = 1E-3, EXPONENT = 1.5, {FRICTION}
+ACCGRAV/KGRAV = -9.81
+END
+"
+    );
+    let run = run(&text, &settings(3.0, 3, 1e-8)).unwrap_or_else(|e| panic!("{e}"));
+    run.rows.last().expect("rows").clone()
+}
+
+/// A frustum (radius 0.2 at its bottom, 0.1 at its top, 0.5 long, its
+/// centre of mass 0.2 up its axis) rests on its wide end and on its narrow
+/// end with its centre of mass at that height less the depth `(m g /
+/// k)^(1/e)` that holds it; laid near its side, it settles along its side
+/// line, its axis tilted by the half-angle `atan(0.1 / 0.5)` and its
+/// centre of mass at the distance `R cos α` from the line (R = 0.16, the
+/// radius at the centre of mass) less that depth. A cone (TOP = 0) stands
+/// on its base alike.
+#[test]
+fn a_frustum_rests_on_its_ends_and_a_cone_on_its_side_at_the_closed_form_height() {
+    let depth = (G / 1e6_f64).powf(1.0 / 1.5);
+    let frustum = "LENGTH = 0.5, BOTTOM = 0.2, TOP = 0.1";
+    let upright = settled_on_a_plane(frustum, "QG = 0, 0, 0.21");
+    assert!((upright[3] - (0.2 - depth)).abs() < 1e-9, "{upright:?}");
+    let upside_down = settled_on_a_plane(frustum, "QG = 0, 0, 0.31, REULER = 0, 180D, 0");
+    assert!(
+        (upside_down[3] - (0.3 - depth)).abs() < 1e-9,
+        "{upside_down:?}"
+    );
+    let cone = settled_on_a_plane("LENGTH = 0.5, BOTTOM = 0.2, TOP = 0", "QG = 0, 0, 0.21");
+    assert!((cone[3] - (0.2 - depth)).abs() < 1e-9, "{cone:?}");
+    let half_angle = (0.1_f64 / 0.5).atan();
+    let side = settled_on_a_plane(frustum, "QG = 0, 0, 0.3, REULER = 90D, 85D, 0");
+    // It still rocks a little on its side line (a cone rolls round its
+    // tip), so the height holds to 1e-6.
+    let height = 0.16 * half_angle.cos() - depth;
+    assert!((side[3] - height).abs() < 1e-6, "{side:?}");
+    // The axis (the part's z) points down by the half-angle: its z
+    // component from the Euler parameters.
+    let [e1, e2] = [side[5], side[6]];
+    let axis_z = 1.0 - 2.0 * (e1 * e1 + e2 * e2);
+    assert!((axis_z.asin() + half_angle).abs() < 2e-4, "{side:?}");
+}
+
+/// A ball (radius 0.05, mass 1) on the side of a frustum standing on
+/// ground (radius 0.3 at z = 0, 0.1 at z = 0.2: a 45° slope), started at
+/// rest at the depth that holds it across the slope, slides down it
+/// without friction as down an inclined plane: its centre moves along the
+/// side line by `g sin 45° t² / 2`, `g t² / 4` along x and down z, while
+/// the point of contact stays on the line (the side curves only round the
+/// axis).
+#[test]
+fn a_ball_slides_down_a_frustums_side_as_down_a_slope() {
+    let depth = (G * std::f64::consts::FRAC_1_SQRT_2 / 1e6).powf(1.0 / 1.5);
+    let out = (0.05 - depth) * std::f64::consts::FRAC_1_SQRT_2;
+    let (x, z) = (0.2 + out, 0.1 + out);
+    let text = format!(
+        "ball on a frustum
+PART/1, GROUND
+MARKER/10, PART = 1
+GRAPHICS/1, FRUSTUM, CM = 10, LENGTH = 0.2, BOTTOM = 0.3, TOP = 0.1
+PART/2, MASS = 1, CM = 20, IP = 0.001, 0.001, 0.001, QG = {x}, 0, {z}
+MARKER/20, PART = 2
+GRAPHICS/2, ELLIPSOID, CM = 20, XSCALE = 0.1, YSCALE = 0.1, ZSCALE = 0.1
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E6, DAMPING = 100, DMAX = 1E-4, EXPONENT = 1.5
+ACCGRAV/KGRAV = -9.81
+END
+"
+    );
+    for name in ["dop853", "radau"] {
+        let run = run(&text, &with_method(name, 0.15, 3, 1e-10)).unwrap_or_else(|e| panic!("{e}"));
+        for row in &run.rows {
+            let travel = G * row[0] * row[0] / 4.0;
+            assert!((row[1] - (x + travel)).abs() < 1e-8, "{name}: {row:?}");
+            assert!((row[3] - (z - travel)).abs() < 1e-8, "{name}: {row:?}");
+            assert!(row[2].abs() < 1e-12, "{name}: {row:?}");
+        }
+    }
+}
+
 /// A tilted cylinder on a plane (the overlap integrated slice by slice)
 /// and on a block's face.
 const CYLINDERS: &str = "cylinders for the Jacobian
@@ -503,17 +602,45 @@ ACCGRAV/KGRAV = -9.81
 END
 ";
 
+/// A frustum tilted on a plane and against a ball, and a cone lying on a
+/// block's face.
+const FRUSTUMS: &str = "frustums
+PART/1, GROUND
+MARKER/10, PART = 1, QP = -1, -1, -0.2
+MARKER/11, PART = 1
+MARKER/12, PART = 1, QP = 0.25, 0.0, 0.3
+GRAPHICS/1, PLANE, RM = 11
+GRAPHICS/3, BOX, CORNER = 10, X = 2, Y = 2, Z = 0.2
+GRAPHICS/5, ELLIPSOID, CM = 12, XSCALE = 0.2, YSCALE = 0.2, ZSCALE = 0.2
+PART/2, MASS = 1, CM = 20, IP = 0.02, 0.02, 0.04, QG = 0, 0, 0.2, REULER = 30D, 60D, 0, VX = 0.3, VZ = -0.2, WY = 1
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = 0, 0, -0.1
+GRAPHICS/2, FRUSTUM, CM = 21, LENGTH = 0.2, BOTTOM = 0.3, TOP = 0.15
+PART/3, MASS = 1, CM = 30, IP = 0.02, 0.02, 0.04, QG = 0.5, 0.3, 0.07, REULER = 0, 80D, 0, VY = 0.3
+MARKER/30, PART = 3
+MARKER/31, PART = 3, QP = 0, 0, 0.15
+GRAPHICS/4, FRUSTUM, CM = 31, LENGTH = -0.3, TOP = 0, BOTTOM = 0.12
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 5E-2, EXPONENT = 2.2, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
+CONTACT/2, IGEOM = 4, JGEOM = 3, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 5E-2, EXPONENT = 2.2
+CONTACT/3, IGEOM = 2, JGEOM = 5, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 5E-2, EXPONENT = 2.2
+ACCGRAV/KGRAV = -9.81
+END
+";
+
 proptest::proptest! {
     #![proptest_config(proptest::prelude::ProptestConfig::with_cases(16))]
 
-    /// The Jacobian of cylinders' contacts (the slices integrated in the
-    /// angle) agrees with central differences of the rates.
+    /// The Jacobian of round solids' contacts (the slices integrated in
+    /// the angle of the cut, through a ratio of linear functions of the
+    /// axis for a frustum) agrees with central differences of the rates.
     #[test]
-    fn the_jacobian_of_cylinders_contacts_agrees_with_finite_differences(
+    fn the_jacobian_of_round_solids_contacts_agrees_with_finite_differences(
         shifts in proptest::collection::vec(-0.01f64..0.01, 26),
         time in 0.0f64..1.0,
     ) {
-        super::simulate::the_jacobian_agrees_with_finite_differences(CYLINDERS, &shifts, time)?;
+        for model in [CYLINDERS, FRUSTUMS] {
+            super::simulate::the_jacobian_agrees_with_finite_differences(model, &shifts, time)?;
+        }
     }
 }
 
@@ -534,6 +661,10 @@ MARKER/30, PART = 3
 MARKER/31, PART = 3, QP = 0, 0, -0.1
 GRAPHICS/5, CYLINDER, CM = 31, LENGTH = 0.2, RADIUS = 0.1
 GRAPHICS/6, ELLIPSOID, CM = 30, XSCALE = 0.1, YSCALE = 0.1, ZSCALE = 0.1
+GRAPHICS/7, FRUSTUM, CM = 31, LENGTH = 0.25, BOTTOM = 0.12, TOP = 0
+GRAPHICS/8, FRUSTUM, CM = 21, LENGTH = -0.2, BOTTOM = 0.05, TOP = 0.15
+CONTACT/4, IGEOM = 8, JGEOM = 6, 1, 2, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5
+CONTACT/5, IGEOM = 7, JGEOM = 3, 4, 1, 2, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
 CONTACT/1, IGEOM = 3, 4, JGEOM = 1, 2, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
 CONTACT/2, IGEOM = 5, 6, JGEOM = 1, 2, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
 CONTACT/3, IGEOM = 3, 4, JGEOM = 5, 6, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1

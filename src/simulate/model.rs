@@ -342,11 +342,13 @@ pub enum Shape {
         /// The greatest corner, in the marker's axes.
         upper: Vector3<f64>,
     },
-    /// `CYLINDER`: a round solid about the marker's z axis, from its origin
-    /// to `length` along z (either sign).
-    Cylinder {
-        /// The radius.
-        radius: f64,
+    /// `CYLINDER` or `FRUSTUM`: a round solid about the marker's z axis,
+    /// from its origin to `LENGTH` along z (either sign), its radius
+    /// changing linearly along the axis (a cylinder's is constant; a
+    /// cone's is 0 at its tip).
+    Frustum {
+        /// The radii at `bottom` and at `top`.
+        radii: [f64; 2],
         /// The least z.
         bottom: f64,
         /// The greatest z.

@@ -7,12 +7,13 @@
 //! overlap's centroid, the closest point of each solid's surface to it,
 //! the depth the distance between those two points and the normal the
 //! direction between them. A sphere's overlap with a sphere, a plane, a
-//! block or a cylinder has its depth in closed form (the depth along the
+//! block or a round solid has its depth in closed form (the depth along the
 //! line of the centroid is the distance from the sphere's deepest point to
 //! the other surface); two blocks, or a block and a plane, overlap in a
 //! convex polyhedron whose centroid is computed exactly by clipping; a
-//! cylinder's overlap with a plane (or a block's face) is integrated
-//! across its axis, each slice a disk cut in a circular segment.
+//! round solid's (a cylinder's, a frustum's or a cone's) overlap with a
+//! plane (or a block's face) is integrated across its axis, each slice a
+//! disk cut in a circular segment.
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -44,12 +45,12 @@ impl<T: Number> Placed<'_, T> {
     }
 
     /// The centre of a bounded solid in ground (`None` for a half-space):
-    /// a sphere's, a block's, the middle of a cylinder's axis.
+    /// a sphere's, a block's, the middle of a round solid's axis.
     fn centre(&self) -> Option<Vector3<T>> {
         let local = match *self.shape {
             Shape::Sphere { .. } => return Some(self.origin.clone()),
             Shape::Block { lower, upper } => (lower + upper) / 2.0,
-            Shape::Cylinder { bottom, top, .. } => Vector3::new(0.0, 0.0, (bottom + top) / 2.0),
+            Shape::Frustum { bottom, top, .. } => Vector3::new(0.0, 0.0, (bottom + top) / 2.0),
             Shape::HalfSpace => return None,
         };
         Some(self.ground(&local.map(T::from)))
@@ -251,7 +252,7 @@ fn sphere_touch<T: Number>(
 /// The point of `solid`'s surface closest to `point` and the surface's
 /// outward unit normal there (towards `point` when it is outside, the
 /// nearest face's when inside); `None` where they are not defined (a
-/// point at a sphere's centre or on a cylinder's axis inside it).
+/// point at a sphere's centre or on a round solid's axis inside it).
 fn closest_surface<T: Number>(
     solid: &Placed<T>,
     point: &Vector3<T>,
@@ -272,11 +273,7 @@ fn closest_surface<T: Number>(
             (surface, Vector3::z().map(T::from))
         }
         Shape::Block { lower, upper } => block_surface(&local, &lower, &upper),
-        Shape::Cylinder {
-            radius,
-            bottom,
-            top,
-        } => cylinder_surface(&local, radius, bottom, top)?,
+        Shape::Frustum { radii, bottom, top } => frustum_surface(&local, radii, bottom, top)?,
     };
     Some((solid.ground(&surface), &solid.axes * outward))
 }
@@ -321,80 +318,110 @@ fn block_surface<T: Number>(
     (surface, outward)
 }
 
-/// The closest point of a cylinder's surface (about z, between `bottom`
-/// and `top`) to `local` and the outward normal there.
-fn cylinder_surface<T: Number>(
+/// The closest point of a round solid's surface (about z, between
+/// `bottom` and `top`, of radius `radii[0]` at the bottom and `radii[1]`
+/// at the top) to `local` and the outward normal there. In the half-plane
+/// of the axis and `local` the solid is a trapezoid; its surface is the
+/// two ends and the side, each a segment of that plane.
+fn frustum_surface<T: Number>(
     local: &Vector3<T>,
-    radius: f64,
+    radii: [f64; 2],
     bottom: f64,
     top: f64,
 ) -> Option<(Vector3<T>, Vector3<T>)> {
-    let zero = || T::from(0.0);
+    let c = T::from;
     let across = (local.x.clone() * local.x.clone() + local.y.clone() * local.y.clone()).sqrt();
     let (rho, z) = (across.value(), local.z.value());
-    let radial = |length: T| {
-        if rho == 0.0 {
-            None
-        } else {
-            Some((
+    // The unit vector away from the axis towards `local`.
+    let radial = || {
+        (rho > 0.0).then(|| {
+            (
                 local.x.clone() / across.clone(),
                 local.y.clone() / across.clone(),
-                length,
-            ))
+            )
+        })
+    };
+    let (height, flare) = (top - bottom, radii[1] - radii[0]);
+    let radius_at = |z: f64| radii[0] + flare * (z - bottom) / height;
+    let inside = (bottom..=top).contains(&z) && rho <= radius_at(z);
+    // The side's closest point, by its parameter along the side (0 at the
+    // bottom edge, 1 at the top), and its distance in the half-plane.
+    let side_length = flare.hypot(height);
+    let along_side = ((across.clone() - c(radii[0])) * c(flare)
+        + (local.z.clone() - c(bottom)) * c(height))
+        / c(side_length * side_length);
+    let along_side = if along_side.value() < 0.0 {
+        c(0.0)
+    } else if along_side.value() > 1.0 {
+        c(1.0)
+    } else {
+        along_side
+    };
+    let side_rho = c(radii[0]) + along_side.clone() * c(flare);
+    let side_z = c(bottom) + along_side * c(height);
+    let side_gap = (across.clone() - side_rho.clone())
+        .value()
+        .hypot((local.z.clone() - side_z.clone()).value());
+    // An end's closest point: below `local`, or at its rim.
+    let end_gap = |end: f64, radius: f64| {
+        let beyond = (rho - radius).max(0.0);
+        beyond.hypot(z - end)
+    };
+    let gaps = [end_gap(bottom, radii[0]), side_gap, end_gap(top, radii[1])];
+    // A cone's tip is an end of no size: its side is nearer.
+    let nearest = (0..3)
+        .filter(|&k| k == 1 || radii[k / 2] > 0.0)
+        .min_by(|&a, &b| gaps[a].total_cmp(&gaps[b]))?;
+    let lift = |r: T, z: T| -> Option<Vector3<T>> {
+        if r.value() == 0.0 {
+            return Some(Vector3::new(c(0.0), c(0.0), z));
+        }
+        let (x, y) = radial()?;
+        Some(Vector3::new(x * r.clone(), y * r, z))
+    };
+    let surface = match nearest {
+        1 => lift(side_rho, side_z)?,
+        _ => {
+            let (end, radius) = if nearest == 0 {
+                (bottom, radii[0])
+            } else {
+                (top, radii[1])
+            };
+            if rho <= radius {
+                Vector3::new(local.x.clone(), local.y.clone(), c(end))
+            } else {
+                lift(c(radius), c(end))?
+            }
         }
     };
-    let outside_side = rho > radius;
-    let outside_ends = z < bottom || z > top;
-    if outside_side || outside_ends {
-        // Clamp to the solid; the gap's direction is the normal.
-        let end = if z < bottom {
-            T::from(bottom)
-        } else if z > top {
-            T::from(top)
-        } else {
-            local.z.clone()
-        };
-        let surface = if outside_side {
-            let (x, y, _) = radial(T::from(radius))?;
-            Vector3::new(x * T::from(radius), y * T::from(radius), end)
-        } else {
-            Vector3::new(local.x.clone(), local.y.clone(), end)
-        };
+    if !inside {
         let gap = local - &surface;
         let length = gap.norm();
         return (length.value() > 0.0).then(|| (surface, gap / length));
     }
-    // Inside: out through the nearest of the side and the two ends.
-    let side = radius - rho;
-    let (down, up) = (z - bottom, top - z);
-    if side <= down && side <= up {
-        let (x, y, _) = radial(zero())?;
-        let surface = Vector3::new(
-            x.clone() * T::from(radius),
-            y.clone() * T::from(radius),
-            local.z.clone(),
-        );
-        return Some((surface, Vector3::new(x, y, zero())));
-    }
-    let (end, sign) = if down < up {
-        (bottom, -1.0)
-    } else {
-        (top, 1.0)
+    // Inside: out through the nearest of the ends and the side.
+    let outward = match nearest {
+        0 => Vector3::new(c(0.0), c(0.0), c(-1.0)),
+        2 => Vector3::new(c(0.0), c(0.0), c(1.0)),
+        _ => {
+            let (x, y) = radial()?;
+            let (out, up) = (height / side_length, -flare / side_length);
+            Vector3::new(x * c(out), y * c(out), c(up))
+        }
     };
-    let surface = Vector3::new(local.x.clone(), local.y.clone(), T::from(end));
-    Some((surface, Vector3::new(zero(), zero(), T::from(sign))))
+    Some((surface, outward))
 }
 
 /// Two solids of flat faces (blocks, planes): their overlap, a convex
-/// polyhedron, clipped exactly; or a cylinder and a plane or a block: the
-/// overlap with the plane (or the block's face the cylinder stands
+/// polyhedron, clipped exactly; or a round solid and a plane or a block:
+/// the overlap with the plane (or the block's face the solid stands
 /// beyond), integrated slice by slice. The force acts at the overlap's
 /// centroid, the depth the distance between the two surfaces' points
 /// closest to it.
 fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
     let centroid = match (i.shape, j.shape) {
-        (Shape::Cylinder { .. }, _) => cylinder_overlap(i, j)?,
-        (_, Shape::Cylinder { .. }) => cylinder_overlap(j, i)?,
+        (Shape::Frustum { .. }, _) => frustum_overlap(i, j)?,
+        (_, Shape::Frustum { .. }) => frustum_overlap(j, i)?,
         _ => {
             // Clip the bounded one by the other's faces (two planes have
             // no bounded overlap, and the reader refuses that pair).
@@ -432,169 +459,248 @@ fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
     })
 }
 
-/// A cylinder's radius and its ends along its axis, and the middle of its
-/// axis in ground (`None` for another shape).
-fn cylinder_parts<T: Number>(cylinder: &Placed<T>) -> Option<([f64; 3], Vector3<T>)> {
-    let Shape::Cylinder {
-        radius,
-        bottom,
-        top,
-    } = *cylinder.shape
-    else {
+/// A round solid's radii (at its bottom and top) and its ends along its
+/// axis, and the middle of its axis in ground (`None` for another shape).
+fn frustum_parts<T: Number>(round: &Placed<T>) -> Option<([f64; 4], Vector3<T>)> {
+    let Shape::Frustum { radii, bottom, top } = *round.shape else {
         return None;
     };
-    Some(([radius, bottom, top], cylinder.centre()?))
+    Some(([radii[0], radii[1], bottom, top], round.centre()?))
 }
 
-/// The centroid of a cylinder's overlap with `other`, a plane or a block:
-/// with a block, the overlap with the face the cylinder's centre stands
-/// farthest beyond, kept while its centroid lies within the block's other
-/// faces.
-fn cylinder_overlap<T: Number>(cylinder: &Placed<T>, other: &Placed<T>) -> Option<Vector3<T>> {
-    let ([radius, bottom, top], middle) = cylinder_parts(cylinder)?;
+/// The centroid of a round solid's overlap with `other`, a plane or a
+/// block: with a block, the overlap with the face the solid's centre
+/// stands farthest beyond, kept while its centroid lies within the block's
+/// other faces.
+fn frustum_overlap<T: Number>(round: &Placed<T>, other: &Placed<T>) -> Option<Vector3<T>> {
+    let (size, middle) = frustum_parts(round)?;
     let planes = half_spaces(other);
     let (face, (normal, offset)) = planes.iter().enumerate().max_by(|(_, a), (_, b)| {
         let beyond =
             |(normal, offset): &(Vector3<T>, T)| (normal.dot(&middle) - offset.clone()).value();
         beyond(a).total_cmp(&beyond(b))
     })?;
-    let centroid = cylinder_under(cylinder, [radius, bottom, top], normal, offset)?;
+    let centroid = frustum_under(round, size, normal, offset)?;
     // Within the other faces, a rounding error beyond them counted in.
-    let tolerance = 1e-12 * (radius + top - bottom);
+    let [r0, r1, bottom, top] = size;
+    let tolerance = 1e-12 * (r0.max(r1) + top - bottom);
     let inside = planes.iter().enumerate().all(|(index, (normal, offset))| {
         index == face || (normal.dot(&centroid) - offset.clone()).value() <= tolerance
     });
     inside.then_some(centroid)
 }
 
-/// The centroid of the part of a cylinder (`radius`, from `bottom` to `top`
-/// along its marker's z) in the half-space `normal · x <= offset`, `None`
-/// when that part has no volume. Each slice across the axis is a disk the
-/// plane cuts in a circular segment, whose area and centroid are known;
-/// the disk's distance `ρ` from the cut is linear along the axis, so the
-/// axis splits into slices that are whole, cut and untouched. The cut ones
-/// are integrated in the angle `θ` with `ρ = −R cos θ` (the segment's area
-/// `R² (π − θ + sin θ cos θ)`, its first moment `2/3 R³ sin³ θ`), which
-/// makes the integrands smooth for the 15-point Kronrod rule.
-fn cylinder_under<T: Number>(
-    cylinder: &Placed<T>,
-    [radius, bottom, top]: [f64; 3],
-    normal: &Vector3<T>,
-    offset: &T,
-) -> Option<Vector3<T>> {
-    use std::f64::consts::PI;
-    let c = T::from;
-    let axis = cylinder.axes.column(2).into_owned();
-    let origin = &cylinder.origin;
-    let height = normal.dot(origin) - offset.clone();
-    let along = normal.dot(&axis);
-    let across = normal - &axis * along.clone();
-    let tilt = across.norm();
-    let disk = PI * radius * radius;
-    let mut volume = c(0.0);
-    let mut moment = Vector3::zeros();
-    let point_on_axis = |s: &T| origin + &axis * s.clone();
-    // Whole disks from s0 to s1.
-    let whole = |s0: T, s1: T, volume: &mut T, moment: &mut Vector3<T>| {
-        if s1.value() > s0.value() {
-            let size = (s1.clone() - s0.clone()) * c(disk);
-            *moment += point_on_axis(&((s0 + s1) * c(0.5))) * size.clone();
-            *volume += size;
+/// The volume and first moment (about ground's origin) of the round
+/// solid's slices from `s0` to `s1` along its axis, each a `fraction` of
+/// its disk whose centroid is `shift` times the radius from the axis along
+/// `away`: Simpson's rule, exact since the integrands are cubic in `s`
+/// when the fraction and shift do not change along the axis.
+struct Slices<'a, T: Number> {
+    origin: &'a Vector3<T>,
+    axis: &'a Vector3<T>,
+    /// `R(s) = radius.0 + radius.1 s`.
+    radius: (f64, f64),
+}
+
+impl<T: Number> Slices<'_, T> {
+    fn radius(&self, s: &T) -> T {
+        T::from(self.radius.0) + s.clone() * T::from(self.radius.1)
+    }
+
+    fn point(&self, s: &T) -> Vector3<T> {
+        self.origin + self.axis * s.clone()
+    }
+
+    /// Whole disks from `s0` to `s1` (nothing when `s1 <= s0`).
+    fn whole(&self, s0: T, s1: T, volume: &mut T, moment: &mut Vector3<T>) {
+        if s1.value() <= s0.value() {
+            return;
         }
-    };
+        let c = T::from;
+        let middle = (s0.clone() + s1.clone()) * c(0.5);
+        let weight = (s1.clone() - s0.clone()) * c(std::f64::consts::PI / 6.0);
+        for (s, factor) in [(s0, 1.0), (middle, 4.0), (s1, 1.0)] {
+            let area = self.radius(&s).powi(2) * weight.clone() * c(factor);
+            *moment += self.point(&s) * area.clone();
+            *volume += area;
+        }
+    }
+}
+
+/// The area of the part of a unit disk beyond a chord at angle `θ`
+/// (`cos θ = −ρ`, `ρ` the chord's distance from the centre, signed away
+/// from the part), and that part's first moment along the direction away
+/// from it.
+fn segment<T: Number>(theta: &T) -> (T, T) {
+    let c = T::from;
+    let (sin, cos) = (theta.clone().sin(), theta.clone().cos());
+    let area = c(std::f64::consts::PI) - theta.clone() + sin.clone() * cos;
+    (area, sin.powi(3) * c(2.0 / 3.0))
+}
+
+/// The part of `[lo, hi]` where `a + b s <= 0`, as `(start, end)` (empty
+/// when `end <= start`).
+fn where_not_positive<T: Number>(a: &T, b: &T, lo: f64, hi: f64) -> (T, T) {
+    let c = T::from;
+    let (a_value, b_value) = (a.value(), b.value());
+    if b_value == 0.0 {
+        return if a_value <= 0.0 {
+            (c(lo), c(hi))
+        } else {
+            (c(lo), c(lo))
+        };
+    }
+    let root = -a.clone() / b.clone();
     let clamp = |s: T| {
-        if s.value() < bottom {
-            c(bottom)
-        } else if s.value() > top {
-            c(top)
+        if s.value() < lo {
+            c(lo)
+        } else if s.value() > hi {
+            c(hi)
         } else {
             s
         }
     };
+    if b_value > 0.0 {
+        (c(lo), clamp(root))
+    } else {
+        (clamp(root), c(hi))
+    }
+}
+
+/// The centroid of the part of a round solid (radii `r0` at `bottom` and
+/// `r1` at `top` along its marker's z) in the half-space
+/// `normal · x <= offset`, `None` when that part has no volume. Each slice
+/// across the axis is a disk the plane cuts in a circular segment, whose
+/// area and centroid are known. The disk's radius `R(s)` and its centre's
+/// distance `ρ(s)` from the cut are linear along the axis, so the axis
+/// splits into slices that are whole (`ρ <= −R`), cut and untouched
+/// (`ρ >= R`). The cut ones are integrated in the angle `θ` with
+/// `cos θ = −ρ/R` (the segment's area `R² (π − θ + sin θ cos θ)`, its first
+/// moment `2/3 R³ sin³ θ`): `ρ/R` is a ratio of linear functions, so `s` is
+/// one of `cos θ`, and the integrands are smooth in `θ` for the 15-point
+/// Kronrod rule where they have square-root ends in `s`.
+fn frustum_under<T: Number>(
+    round: &Placed<T>,
+    [r0, r1, bottom, top]: [f64; 4],
+    normal: &Vector3<T>,
+    offset: &T,
+) -> Option<Vector3<T>> {
+    let c = T::from;
+    let axis = round.axes.column(2).into_owned();
+    let flare = (r1 - r0) / (top - bottom);
+    let slices = Slices {
+        origin: &round.origin,
+        axis: &axis,
+        radius: (r0 - flare * bottom, flare),
+    };
+    let (radius_at_0, radius_slope) = (c(slices.radius.0), c(slices.radius.1));
+    let height = normal.dot(&round.origin) - offset.clone();
+    let along = normal.dot(&axis);
+    let across = normal - &axis * along.clone();
+    let tilt = across.norm();
+    let mut volume = c(0.0);
+    let mut moment = Vector3::zeros();
     if tilt.value() <= 1e-12 * along.value().abs() {
         // Standing on an end: whole disks below the plane.
-        let level = -height.clone() / along.clone();
-        let (s0, s1) = if along.value() > 0.0 {
-            (c(bottom), clamp(level))
-        } else {
-            (clamp(level), c(top))
-        };
-        whole(s0, s1, &mut volume, &mut moment);
+        let (s0, s1) = where_not_positive(&height, &along, bottom, top);
+        slices.whole(s0, s1, &mut volume, &mut moment);
     } else {
         let outward = &across / tilt.clone();
-        let segment = |theta: &T| {
-            let (sin, cos) = (theta.clone().sin(), theta.clone().cos());
-            let area = (c(PI) - theta.clone() + sin.clone() * cos) * c(radius * radius);
-            let first_moment = sin.powi(3) * c(2.0 / 3.0 * radius.powi(3));
-            (area, first_moment)
-        };
-        if along.value().abs() <= 1e-12 * tilt.value() {
-            // Lying along the plane: every slice is cut alike.
-            let rho = height.clone() / tilt.clone();
-            if rho.value() <= -radius {
-                whole(c(bottom), c(top), &mut volume, &mut moment);
-            } else if rho.value() < radius {
-                let theta = (-rho / c(radius)).acos();
-                let (area, first_moment) = segment(&theta);
-                let length = c(top - bottom);
-                let middle = point_on_axis(&c((bottom + top) / 2.0));
-                moment += (middle * area.clone() - &outward * first_moment) * length.clone();
-                volume += area * length;
-            }
+        // ρ(s) = p0 + p1 s.
+        let (p0, p1) = (height / tilt.clone(), along / tilt);
+        // Whole where ρ + R <= 0.
+        let (s0, s1) = where_not_positive(
+            &(p0.clone() + radius_at_0.clone()),
+            &(p1.clone() + radius_slope.clone()),
+            bottom,
+            top,
+        );
+        slices.whole(s0, s1, &mut volume, &mut moment);
+        // Cut where ρ + R > 0 and ρ − R < 0.
+        let (not_whole_lo, not_whole_hi) = where_not_positive(
+            &-(p0.clone() + radius_at_0.clone()),
+            &-(p1.clone() + radius_slope.clone()),
+            bottom,
+            top,
+        );
+        let (cut_lo, cut_hi) = where_not_positive(
+            &(p0.clone() - radius_at_0.clone()),
+            &(p1.clone() - radius_slope.clone()),
+            not_whole_lo.value(),
+            not_whole_hi.value(),
+        );
+        // The ends of the cut carry their derivatives from the bounds
+        // they came from.
+        let low = if cut_lo.value() == not_whole_lo.value() {
+            not_whole_lo
         } else {
-            // The axis position where the disk stands at distance ρ.
-            let at = |rho: f64| (tilt.clone() * c(rho) - height.clone()) / along.clone();
-            let (touching, covered) = (at(radius), at(-radius));
-            // Whole disks beyond `covered`, away from `touching`.
-            if along.value() > 0.0 {
-                whole(c(bottom), clamp(covered.clone()), &mut volume, &mut moment);
-            } else {
-                whole(clamp(covered.clone()), c(top), &mut volume, &mut moment);
-            }
-            let (low, high) = if touching.value() < covered.value() {
-                (clamp(touching), clamp(covered))
-            } else {
-                (clamp(covered), clamp(touching))
+            cut_lo
+        };
+        let high = if cut_hi.value() == not_whole_hi.value() {
+            not_whole_hi
+        } else {
+            cut_hi
+        };
+        if high.value() > low.value() {
+            let cosine_at = |s: &T| {
+                let cosine = -(p0.clone() + p1.clone() * s.clone()) / slices.radius(s);
+                // At an end of the cut slices θ is 0 or π whatever the
+                // state (and acos has no slope there).
+                if cosine.value() >= 1.0 {
+                    c(1.0)
+                } else if cosine.value() <= -1.0 {
+                    c(-1.0)
+                } else {
+                    cosine
+                }
             };
-            if high.value() > low.value() {
-                let angle = |s: &T| {
-                    let rho = (height.clone() + along.clone() * s.clone()) / tilt.clone();
-                    let cosine = -rho / c(radius);
-                    // At an end of the cut slices θ is 0 or π whatever the
-                    // state (and acos has no slope there).
-                    let cosine = if cosine.value() >= 1.0 {
-                        c(1.0)
-                    } else if cosine.value() <= -1.0 {
-                        c(-1.0)
-                    } else {
-                        cosine
-                    };
-                    cosine.acos()
-                };
-                let (theta0, theta1) = (angle(&low), angle(&high));
+            let (theta0, theta1) = (cosine_at(&low).acos(), cosine_at(&high).acos());
+            let mut add = |s: T, theta: &T, weight: T| {
+                let radius = slices.radius(&s);
+                let (area, first_moment) = segment(theta);
+                let area = area * radius.clone().powi(2) * weight.clone();
+                let first_moment = first_moment * radius.powi(3) * weight;
+                moment += slices.point(&s) * area.clone() - &outward * first_moment;
+                volume += area;
+            };
+            // s(θ) = −(p0 + r cos θ)/(p1 + k cos θ) with R = r + k s, and
+            // ds/dθ = (r p1 − p0 k) sin θ / (p1 + k cos θ)².
+            let turn = radius_at_0.clone() * p1.clone() - p0.clone() * radius_slope.clone();
+            let scale = radius_at_0.value().abs() * p1.value().abs()
+                + p0.value().abs() * radius_slope.value().abs();
+            if turn.value().abs() <= 1e-12 * scale || (theta1.value() - theta0.value()).abs() < 1e-9
+            {
+                // The ratio ρ/R (so θ) barely changes along the axis: the
+                // integrands are smooth in s.
+                let (centre, half) = ((low.clone() + high.clone()) * c(0.5), (high - low) * c(0.5));
+                for (&node, &weight) in NODES.iter().zip(&KRONROD) {
+                    let sides: &[f64] = if node == 0.0 { &[0.0] } else { &[-node, node] };
+                    for &side in sides {
+                        let s = centre.clone() + half.clone() * c(side);
+                        let theta = cosine_at(&s).acos();
+                        add(s, &theta, half.clone() * c(weight));
+                    }
+                }
+            } else {
                 let (centre, half) = (
                     (theta0.clone() + theta1.clone()) * c(0.5),
                     (theta1 - theta0) * c(0.5),
                 );
-                // ds/dθ = (tilt / along) R sin θ.
-                let rate = tilt.clone() / along.clone() * c(radius);
                 for (&node, &weight) in NODES.iter().zip(&KRONROD) {
                     let sides: &[f64] = if node == 0.0 { &[0.0] } else { &[-node, node] };
                     for &side in sides {
                         let theta = centre.clone() + half.clone() * c(side);
-                        let rho = -theta.clone().cos() * c(radius);
-                        let s = (tilt.clone() * rho - height.clone()) / along.clone();
-                        let (area, first_moment) = segment(&theta);
-                        let step = half.clone() * rate.clone() * theta.sin() * c(weight);
-                        moment += (point_on_axis(&s) * area.clone() - &outward * first_moment)
-                            * step.clone();
-                        volume += area * step;
+                        let cos = theta.clone().cos();
+                        let denominator = p1.clone() + radius_slope.clone() * cos.clone();
+                        let s = -(p0.clone() + radius_at_0.clone() * cos) / denominator.clone();
+                        let rate = turn.clone() * theta.clone().sin() / denominator.powi(2);
+                        add(s, &theta, half.clone() * rate * c(weight));
                     }
                 }
             }
         }
     }
-    let scale = radius * radius * (top - bottom);
+    let scale = r0.max(r1).powi(2) * (top - bottom);
     (volume.value().abs() > 1e-15 * scale).then(|| moment / volume)
 }
 
@@ -648,7 +754,7 @@ fn half_spaces<T: Number>(solid: &Placed<T>) -> Vec<(Vector3<T>, T)> {
             }
         }
         Shape::HalfSpace => add(2, 1.0, 0.0),
-        Shape::Sphere { .. } | Shape::Cylinder { .. } => {}
+        Shape::Sphere { .. } | Shape::Frustum { .. } => {}
     }
     planes
 }
@@ -863,11 +969,7 @@ fn bounding_sphere_of(solid: &Placed<f64>) -> Option<(Vector3<f64>, f64)> {
     let radius = match *solid.shape {
         Shape::Sphere { radius } => radius,
         Shape::Block { lower, upper } => (upper - lower).norm() / 2.0,
-        Shape::Cylinder {
-            radius,
-            bottom,
-            top,
-        } => radius.hypot((top - bottom) / 2.0),
+        Shape::Frustum { radii, bottom, top } => radii[0].max(radii[1]).hypot((top - bottom) / 2.0),
         Shape::HalfSpace => return None,
     };
     Some((solid.centre()?, radius))
@@ -878,11 +980,7 @@ fn least_size(solid: &Placed<f64>) -> f64 {
     match *solid.shape {
         Shape::Sphere { radius } => radius,
         Shape::Block { lower, upper } => (upper - lower).min(),
-        Shape::Cylinder {
-            radius,
-            bottom,
-            top,
-        } => radius.min(top - bottom),
+        Shape::Frustum { radii, bottom, top } => radii[0].max(radii[1]).min(top - bottom),
         Shape::HalfSpace => f64::INFINITY,
     }
 }
@@ -891,28 +989,29 @@ fn least_size(solid: &Placed<f64>) -> f64 {
 /// when they may overlap): exact for a sphere against anything and for a
 /// block or a cylinder against a plane; for two blocks, the widest gap
 /// between their shadows on the fifteen axes that separate boxes; for a
-/// cylinder and a block, the farthest it stands beyond one of the block's
+/// round solid and a block, the farthest it stands beyond one of the block's
 /// faces.
 fn distance_bound(i: &Placed<f64>, j: &Placed<f64>) -> Option<f64> {
     match (i.shape, j.shape) {
         (Shape::Sphere { radius }, _) => sphere_distance(&i.origin, *radius, j),
         (_, Shape::Sphere { radius }) => sphere_distance(&j.origin, *radius, i),
-        (Shape::Cylinder { .. }, _) => Some(cylinder_gap(i, j)),
-        (_, Shape::Cylinder { .. }) => Some(cylinder_gap(j, i)),
+        (Shape::Frustum { .. }, _) => Some(frustum_gap(i, j)),
+        (_, Shape::Frustum { .. }) => Some(frustum_gap(j, i)),
         (Shape::HalfSpace, _) => Some(lowest_height(j, i)),
         (_, Shape::HalfSpace) => Some(lowest_height(i, j)),
         _ => Some(shadow_gap(i, j)),
     }
 }
 
-/// How far a cylinder stands beyond the farthest of `other`'s faces (a
-/// plane's one, a block's six): a lower bound on their distance, exact
-/// for a plane.
-fn cylinder_gap(cylinder: &Placed<f64>, other: &Placed<f64>) -> f64 {
-    let Some(([radius, bottom, top], middle)) = cylinder_parts(cylinder) else {
+/// How far a round solid stands beyond the farthest of `other`'s faces (a
+/// plane's one, a block's six): a lower bound on their distance (the
+/// cylinder of its greater radius), exact for a cylinder and a plane.
+fn frustum_gap(round: &Placed<f64>, other: &Placed<f64>) -> f64 {
+    let Some(([r0, r1, bottom, top], middle)) = frustum_parts(round) else {
         return 0.0;
     };
-    let axis = cylinder.axes.column(2).into_owned();
+    let radius = r0.max(r1);
+    let axis = round.axes.column(2).into_owned();
     half_spaces(other)
         .iter()
         .map(|(normal, offset)| {
@@ -987,4 +1086,157 @@ fn shadow_gap(i: &Placed<f64>, j: &Placed<f64>) -> f64 {
             (a_low - b_high).max(b_low - a_high)
         })
         .fold(f64::NEG_INFINITY, f64::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Rotation3;
+
+    /// A round solid placed at `origin` with its axis turned by `turn`.
+    fn round(shape: &Shape, origin: Vector3<f64>, turn: Rotation3<f64>) -> Placed<'_, f64> {
+        Placed {
+            origin,
+            axes: turn.into_inner(),
+            shape,
+            body: None,
+        }
+    }
+
+    /// The volume and centroid of a round solid's part below the plane
+    /// `normal · x = offset`, summed over `slices` thin disks, each cut
+    /// area integrated across the chord in `strips` strips: a reference
+    /// that shares no formula with the code.
+    fn brute_force(
+        solid: &Placed<f64>,
+        [r0, r1, bottom, top]: [f64; 4],
+        normal: &Vector3<f64>,
+        offset: f64,
+    ) -> (f64, Vector3<f64>) {
+        let (slices, strips) = (1500, 1500);
+        let (mut volume, mut moment) = (0.0, Vector3::zeros());
+        let ds = (top - bottom) / slices as f64;
+        for k in 0..slices {
+            let s = bottom + (k as f64 + 0.5) * ds;
+            let radius = r0 + (r1 - r0) * (s - bottom) / (top - bottom);
+            let dx = 2.0 * radius / strips as f64;
+            for m in 0..strips {
+                let x = -radius + (m as f64 + 0.5) * dx;
+                let half = (radius * radius - x * x).sqrt();
+                // The strip from y = -half to half at x: the part below.
+                let at = |y: f64| solid.ground(&Vector3::new(x, y, s));
+                let height = |y: f64| normal.dot(&at(y)) - offset;
+                let (h0, h1) = (height(-half), height(half));
+                let (y0, y1) = if h0 <= 0.0 && h1 <= 0.0 {
+                    (-half, half)
+                } else if h0 > 0.0 && h1 > 0.0 {
+                    continue;
+                } else {
+                    let cross = -half + 2.0 * half * h0 / (h0 - h1);
+                    if h0 <= 0.0 {
+                        (-half, cross)
+                    } else {
+                        (cross, half)
+                    }
+                };
+                let size = (y1 - y0) * dx * ds;
+                volume += size;
+                moment += at((y0 + y1) / 2.0) * size;
+            }
+        }
+        (volume, moment / volume)
+    }
+
+    #[test]
+    fn a_frustum_cut_by_a_plane_has_the_centroid_slices_give() {
+        let cases = [
+            // radii, ends, the axis's turn (roll, pitch), the plane's height.
+            ([0.3, 0.1], [0.0, 0.5], (0.4, 0.9), 0.05),
+            ([0.2, 0.0], [-0.4, 0.0], (1.3, -0.2), -0.1),
+            ([0.0, 0.25], [0.0, 0.3], (0.0, 1.2), 0.12),
+            ([0.15, 0.15], [0.0, 0.4], (0.7, 0.5), 0.08),
+            ([0.3, 0.2], [0.0, 0.2], (0.0, 0.0), 0.07),
+            (
+                [0.3, 0.1],
+                [0.0, 0.5],
+                (std::f64::consts::FRAC_PI_2, 0.0),
+                0.0,
+            ),
+        ];
+        for (radii, [bottom, top], (roll, pitch), offset) in cases {
+            let shape = Shape::Frustum { radii, bottom, top };
+            let solid = round(
+                &shape,
+                Vector3::new(0.1, -0.2, 0.0),
+                Rotation3::from_euler_angles(roll, pitch, 0.3),
+            );
+            let normal = Vector3::z();
+            let size = [radii[0], radii[1], bottom, top];
+            let centroid = frustum_under(&solid, size, &normal, &offset).expect("a part below");
+            let (_, reference) = brute_force(&solid, size, &normal, offset);
+            let error = (centroid - reference).norm();
+            assert!(
+                error < 2e-5 * (top - bottom),
+                "{radii:?} {roll} {pitch}: {centroid} against {reference}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_closest_point_of_a_frustum_is_nearer_than_any_point_of_its_surface() {
+        let (radii, bottom, top) = ([0.3, 0.1], -0.1, 0.4);
+        let radius_at = |z: f64| radii[0] + (radii[1] - radii[0]) * (z - bottom) / (top - bottom);
+        // The surface sampled: the ends' disks and the side.
+        let mut samples = Vec::new();
+        for k in 0..=200 {
+            let f = k as f64 / 200.0;
+            for m in 0..72 {
+                let angle = m as f64 * std::f64::consts::TAU / 72.0;
+                let (c, s) = (angle.cos(), angle.sin());
+                let z = bottom + f * (top - bottom);
+                samples.push(Vector3::new(radius_at(z) * c, radius_at(z) * s, z));
+                samples.push(Vector3::new(radii[0] * f * c, radii[0] * f * s, bottom));
+                samples.push(Vector3::new(radii[1] * f * c, radii[1] * f * s, top));
+            }
+        }
+        let points = [
+            [0.5, 0.2, 0.1],
+            [0.0, 0.05, 0.6],
+            [0.05, 0.0, -0.5],
+            [0.4, 0.4, 0.5],
+            [0.1, 0.05, 0.0],
+            [0.2, 0.0, 0.35],
+            [0.01, 0.02, -0.09],
+            [0.15, -0.1, 0.15],
+            [0.35, 0.0, -0.15],
+        ];
+        for point in points {
+            let local = Vector3::from(point);
+            let (surface, outward) = frustum_surface(&local, radii, bottom, top).expect("defined");
+            let found = (local - surface).norm();
+            let nearest = samples
+                .iter()
+                .map(|sample| (local - sample).norm())
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                found <= nearest + 1e-12,
+                "{point:?}: {found} against {nearest}"
+            );
+            assert!(
+                nearest - found < 1e-2,
+                "{point:?}: {found} against {nearest}"
+            );
+            assert!((outward.norm() - 1.0).abs() < 1e-12);
+            // On the surface: on an end within its rim, or on the side.
+            let rho = surface.xy().norm();
+            let on_end = ((surface.z - bottom).abs() < 1e-12 && rho <= radii[0] + 1e-12)
+                || ((surface.z - top).abs() < 1e-12 && rho <= radii[1] + 1e-12);
+            let on_side = (rho - radius_at(surface.z)).abs() < 1e-12;
+            assert!(on_end || on_side, "{point:?}: {surface}");
+            // The normal points out: a step along it leaves the solid.
+            let out = surface + outward * 1e-6;
+            let inside = (bottom..=top).contains(&out.z) && out.xy().norm() <= radius_at(out.z);
+            assert!(!inside, "{point:?}: {surface} {outward}");
+        }
+    }
 }

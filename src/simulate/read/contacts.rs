@@ -2,8 +2,9 @@
 //! `SPHERE_TO_PLANE` and `SPHERE_TO_SPHERE` with those shapes) with
 //! the IMPACT normal force and optional Coulomb friction, and the GRAPHICS
 //! statements that give their solids: a sphere (`ELLIPSOID` of equal
-//! scales, which are diameters), a `BOX`, a `CYLINDER` and a `PLANE` (two
-//! planes and two cylinders are refused). A
+//! scales, which are diameters), a `BOX`, a `CYLINDER`, a `FRUSTUM` (a
+//! cone when a radius is 0) and a `PLANE` (two planes and two round solids
+//! are refused). A
 //! contact that lists several solids on a side is one contact for each
 //! pair.
 
@@ -20,7 +21,7 @@ use crate::simulate::model::{Contact, Friction, Shape, Solid};
 /// What a refused contact meets, said once for all the contacts it stops
 /// (the grouped summary counts them).
 const SHAPES: &str =
-    "mbexpr meets spheres (ELLIPSOID of equal scales), BOXes, CYLINDERs and PLANEs";
+    "mbexpr meets spheres (ELLIPSOID of equal scales), BOXes, CYLINDERs, FRUSTUMs and PLANEs";
 
 /// The contact types mbexpr simulates: between solids, and the sphere's
 /// two Adams View types, which are solid contacts of particular shapes.
@@ -360,11 +361,26 @@ fn solid(graphic: &Statement, scene: &Scene) -> Result<Solid, String> {
         }
         return Ok(Solid {
             marker: marker("CM")?,
-            shape: Shape::Cylinder {
-                radius,
-                bottom: length.min(0.0),
-                top: length.max(0.0),
-            },
+            shape: round(length, [radius, radius]),
+        });
+    }
+    if has("FRUSTUM") {
+        let (Some(length), Some(bottom), Some(top)) =
+            (value("LENGTH"), value("BOTTOM"), value("TOP"))
+        else {
+            return Err(bad("a FRUSTUM without its LENGTH, BOTTOM and TOP"));
+        };
+        if has("RANGLE") {
+            return Err(bad("a part of a FRUSTUM (RANGLE)"));
+        }
+        if length == 0.0 || bottom < 0.0 || top < 0.0 || bottom.max(top) == 0.0 {
+            return Err(bad(
+                "a FRUSTUM of no length, a negative radius or two radii of 0",
+            ));
+        }
+        return Ok(Solid {
+            marker: marker("CM")?,
+            shape: round(length, [bottom, top]),
         });
     }
     if has("PLANE") {
@@ -386,8 +402,23 @@ fn solid(graphic: &Statement, scene: &Scene) -> Result<Solid, String> {
     Err(format!("a {kind}"))
 }
 
+/// A round solid `length` along its marker's z from its origin, of radius
+/// `radii[0]` there and `radii[1]` at its other end (a negative length
+/// puts that end below the marker).
+fn round(length: f64, [at_marker, at_end]: [f64; 2]) -> Shape {
+    Shape::Frustum {
+        radii: if length > 0.0 {
+            [at_marker, at_end]
+        } else {
+            [at_end, at_marker]
+        },
+        bottom: length.min(0.0),
+        top: length.max(0.0),
+    }
+}
+
 /// Refuses a pair the contact geometry does not meet: solids on one part,
-/// two planes, two cylinders.
+/// two planes, two round solids.
 fn check_pair(
     statement: &Statement,
     (i, i_span): &(Solid, crate::span::Span),
@@ -404,13 +435,13 @@ fn check_pair(
             span: *i_span,
         });
     }
-    let cylinder = |solid: &Solid| matches!(solid.shape, Shape::Cylinder { .. });
+    let round = |solid: &Solid| matches!(solid.shape, Shape::Frustum { .. });
     let plane = |solid: &Solid| matches!(solid.shape, Shape::HalfSpace);
     let reason = if plane(i) && plane(j) {
         Some(format!("meets two PLANEs; {SHAPES}"))
-    } else if cylinder(i) && cylinder(j) {
+    } else if round(i) && round(j) {
         Some(
-            "meets two CYLINDERs; mbexpr meets a cylinder with a sphere, a BOX or a PLANE"
+            "meets two round solids (CYLINDERs or FRUSTUMs); mbexpr meets a round solid with a sphere, a BOX or a PLANE"
                 .to_string(),
         )
     } else {
