@@ -185,14 +185,12 @@ fn a_bead_on_a_closed_spline_keeps_its_energy_and_its_curve() {
     assert!(apart < 1e-6, "the methods end {apart} apart");
 }
 
-/// A block on a straight two-point curve (ORDER = 2) sloping at `θ`
-/// slides from rest as `s = g sin θ t² / 2`, and the curve holds it with
-/// the normal force `m g cos θ`.
-#[test]
-fn a_block_on_a_straight_curve_slides_as_the_closed_form() {
-    let theta: f64 = 0.4;
+/// A block 8 up a straight two-point curve (ORDER = 2) that slopes at
+/// `theta` (its parameter rising up the ramp), the PTCV with `extra`,
+/// its REQUEST DX, DY, DZ and the PTCV's force along x.
+fn block_on_a_ramp(theta: f64, extra: &str) -> String {
     let (c, s) = (theta.cos(), theta.sin());
-    let text = format!(
+    format!(
         "block on a ramp
 PART/1, GROUND
 MARKER/10, PART = 1
@@ -201,7 +199,7 @@ PART/2, MASS = 3, CM = 20, IP = 0.1, 0.2, 0.3
 MARKER/20, PART = 2, QP = {}, {}, 0
 MATRIX/1, FULL = CORDER, ROWS = 2, COLUMNS = 3, VALUES = {}, {}, {}, {}, 0, 0
 CURVE/1, MATRIX = 1, ORDER = 2
-PTCV/1, I = 20, JFLOAT = 11, RM = 10, CURVE = 1
+PTCV/1, I = 20, JFLOAT = 11, RM = 10, CURVE = 1{extra}
 ACCGRAV/JGRAV = -9.81
 REQUEST/1, F2 = DX(20), F3 = DY(20), F4 = DZ(20), F6 = PTCV(1, 0, 1, 0)
 END
@@ -212,7 +210,17 @@ END
         10.0 * c,
         -10.0 * s,
         10.0 * s,
-    );
+    )
+}
+
+/// A block on a straight two-point curve (ORDER = 2) sloping at `θ`
+/// slides from rest as `s = g sin θ t² / 2`, and the curve holds it with
+/// the normal force `m g cos θ`.
+#[test]
+fn a_block_on_a_straight_curve_slides_as_the_closed_form() {
+    let theta: f64 = 0.4;
+    let (c, s) = (theta.cos(), theta.sin());
+    let text = block_on_a_ramp(theta, "");
     for method in [Method::Dop853, Method::Radau5] {
         let mut settings = settings(1.5, 3, 1e-10);
         settings.method = method;
@@ -234,6 +242,65 @@ END
                 (row[n - 1] - 3.0 * G * c).abs() < 1e-8,
                 "{method:?} at {t}: {row:?}"
             );
+        }
+    }
+}
+
+/// `VEL` starts the point of contact along its curve: a block on a
+/// straight ramp sloping at `θ` (its parameter rising up the ramp) given
+/// `VEL = 2` climbs as `s = 8 + 2 t − g sin θ t² / 2`; on a rail turned
+/// at 1 rad/s about ground's z by a MOTION, `VEL = 0.5` is the speed
+/// relative to the rail, so the bead, 1 from the axis on the rail's x,
+/// starts at `(0.5, 1, 0)` in ground, and `VEL = -0.5` at `(-0.5, 1, 0)`.
+#[test]
+fn vel_starts_the_point_along_its_curve_relative_to_the_curve() {
+    let theta: f64 = 0.4;
+    let (c, s) = (theta.cos(), theta.sin());
+    let ramp = block_on_a_ramp(theta, ", VEL = 2");
+    for method in [Method::Dop853, Method::Radau5] {
+        let mut settings = settings(1.5, 3, 1e-10);
+        settings.method = method;
+        let slid = run(&ramp, &settings).unwrap_or_else(|error| panic!("{error}"));
+        for row in &slid.rows {
+            let t = row[0];
+            let along = 8.0 + 2.0 * t - 0.5 * G * s * t * t;
+            let n = row.len();
+            assert!(
+                (row[n - 4] - along * c).abs() < 1e-8,
+                "{method:?} at {t}: {row:?}"
+            );
+            assert!(
+                (row[n - 3] - along * s).abs() < 1e-8,
+                "{method:?} at {t}: {row:?}"
+            );
+        }
+    }
+    for speed in [0.5, -0.5] {
+        let rail = format!(
+            "bead on a turning rail
+PART/1, GROUND
+MARKER/10, PART = 1
+PART/3, MASS = 1, CM = 30, IP = 0.1, 0.1, 0.1
+MARKER/30, PART = 3
+MARKER/31, PART = 3, FLOATING
+JOINT/1, REVOLUTE, I = 30, J = 10
+MOTION/1, JOINT = 1, ROTATION, FUNCTION = TIME
+PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01
+MARKER/20, PART = 2, QP = 1, 0, 0
+MATRIX/1, FULL = CORDER, ROWS = 2, COLUMNS = 3, VALUES = -3, 3, 0, 0, 0, 0
+CURVE/1, MATRIX = 1, ORDER = 2
+PTCV/1, I = 20, JFLOAT = 31, RM = 30, CURVE = 1, VEL = {speed}
+REQUEST/1, F2 = VX(20), F3 = VY(20), F4 = VZ(20)
+END
+"
+        );
+        let turned = run(&rail, &settings(0.1, 1, 1e-8)).unwrap_or_else(|error| panic!("{error}"));
+        let first = &turned.rows[0];
+        let n = first.len();
+        let velocity = [first[n - 3], first[n - 2], first[n - 1]];
+        let expected = [speed, 1.0, 0.0];
+        for (got, want) in velocity.iter().zip(expected) {
+            assert!((got - want).abs() < 1e-9, "VEL = {speed}: {velocity:?}");
         }
     }
 }
@@ -277,8 +344,8 @@ END
             model("CURVE/1, MATRIX = 1, ORDER = 5", holder, 0.0),
         ),
         (
-            "no such curve, and VEL",
-            model(curve, "PTCV/1, I = 20, JFLOAT = 11, RM = 10, CURVE = 7, VEL = 2", 0.0),
+            "no such curve, and a VEL that is not a number",
+            model(curve, "PTCV/1, I = 20, JFLOAT = 11, RM = 10, CURVE = 7, VEL = fast", 0.0),
         ),
         (
             "DISP beyond the curve's end",

@@ -567,6 +567,10 @@ pub struct OnCurve {
     /// The parameter of the curve's point nearest `DISP`, where the
     /// initial analysis places the I marker's origin, when DISP is given.
     pub start: Option<f64>,
+    /// The speed of I's origin along the curve at time 0 (`VEL`, relative
+    /// to the curve, positive towards its greater parameters), which the
+    /// initial analysis of the velocities gives it, when VEL is given.
+    pub speed: Option<f64>,
 }
 
 impl Joint {

@@ -172,9 +172,9 @@ fn joint_displacement<T: crate::number::Number>(
 
 /// The initial conditions as equations at `bodies`: with `velocities`
 /// false, each joint's displacement and each PART's EXACT coordinate (to
-/// hold in the analysis of the positions); with `velocities` true, each
-/// joint's given velocity, its value zero (to hold in the analysis of the
-/// velocities).
+/// hold in the analysis of the positions) and each PTCV's DISP; with
+/// `velocities` true, each joint's given velocity and each PTCV's VEL,
+/// their values zero (to hold in the analysis of the velocities).
 fn initial_rows(
     model: &super::Model,
     bodies: &[BodyMotion<f64>],
@@ -202,7 +202,13 @@ fn initial_rows(
         }
         rows.push(row);
     }
-    if !velocities {
+    if velocities {
+        for joint in &model.joints {
+            if let Some((on, speed)) = curve_speed(joint) {
+                rows.push(on_curve::speed_row(model, joint, on, speed, bodies));
+            }
+        }
+    } else {
         for part in &model.exact {
             rows.extend(exact_rows(part, &bodies[part.body]));
         }
@@ -360,6 +366,12 @@ fn exact_rows(part: &super::model::ExactPart, body: &BodyMotion<f64>) -> Vec<Row
 fn curve_start(joint: &Joint) -> Option<(&super::OnCurve, f64)> {
     let on = joint.curve.as_ref()?;
     Some((on, on.start?))
+}
+
+/// A PTCV's curve and the speed along it its VEL gives, if it does.
+fn curve_speed(joint: &Joint) -> Option<(&super::OnCurve, f64)> {
+    let on = joint.curve.as_ref()?;
+    Some((on, on.speed?))
 }
 
 /// Whether `part` was drawn with its CM marker's z axis along ground's

@@ -122,30 +122,67 @@ pub(super) fn start_row(
     start: f64,
     bodies: &[BodyMotion<f64>],
 ) -> Row<f64> {
+    let Some((mut row, alpha)) = parameter_row(model, joint, on, bodies) else {
+        return failed();
+    };
+    let mut away = alpha - start;
+    if on.curve.closed {
+        away -= 2.0 * (away / 2.0).round();
+    }
+    row.value = away;
+    row
+}
+
+/// The equation that gives PTCV `joint`'s point of contact the speed
+/// `speed` along its curve (its VEL: I's origin relative to an observer
+/// on the curve at the point of contact, positive towards the curve's
+/// greater parameters), in the initial analysis of the velocities: its
+/// rate `|s'| α' − speed`, its row that of `α(ρ)` times `|s'|`.
+pub(super) fn speed_row(
+    model: &Model,
+    joint: &Joint,
+    on: &OnCurve,
+    speed: f64,
+    bodies: &[BodyMotion<f64>],
+) -> Row<f64> {
+    let Some((row, alpha)) = parameter_row(model, joint, on, bodies) else {
+        return failed();
+    };
+    let length = on.curve.at(&alpha).tangent.norm();
+    let mut row = row.scaled(length);
+    row.value = 0.0;
+    row.rate -= speed;
+    row
+}
+
+/// The row of the parameter `α(ρ)` of the curve's point nearest I's
+/// origin, `∂α/∂ρ = s' / (|s'|² − s'' · e)` (its value 0, its rate `α'`),
+/// and the parameter; `None` where the curve has no point near it.
+fn parameter_row(
+    model: &Model,
+    joint: &Joint,
+    on: &OnCurve,
+    bodies: &[BodyMotion<f64>],
+) -> Option<(Row<f64>, f64)> {
     let i = super::frame(model, &joint.i, bodies);
     let rm = super::frame(model, &on.frame, bodies);
     let apart = i.origin.minus(&rm.origin);
     let local: Vec<Row<f64>> = rm.axes.iter().map(|axis| axis.dot(&apart)).collect();
     let place = Vector3::new(local[0].value, local[1].value, local[2].value);
-    let Some(alpha) = on.curve.nearest(&place) else {
-        return failed();
-    };
+    let alpha = on.curve.nearest(&place)?;
     let at = on.curve.at(&alpha);
     let gradient = at.tangent / (at.tangent.norm_squared() - at.bend.dot(&(place - at.place)));
-    let mut away = alpha - start;
-    if on.curve.closed {
-        away -= 2.0 * (away / 2.0).round();
-    }
     let mut row = Row {
-        value: away,
+        value: 0.0,
         rate: 0.0,
         bias: 0.0,
         coefficients: Vec::new(),
     };
     for (k, component) in local.iter().enumerate() {
+        row.rate += component.rate * gradient[k];
         row = row.plus_coefficients(component, &gradient[k]);
     }
-    row
+    Some((row, alpha))
 }
 
 /// The parameter of the point of contact of PTCV `joint` on `on` at the

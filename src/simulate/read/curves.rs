@@ -40,13 +40,19 @@ fn point_curve(
 ) -> Option<Joint> {
     let label = statement.label();
     let model_error = |message: String, span: Span| SimulateError::Model { message, span };
-    if let Some(argument) = statement.argument("VEL", 3) {
-        errors.push(SimulateError::Unsupported {
-            statement: label.clone(),
-            reason: "sets VEL, the initial speed along the curve, which mbexpr does not take: give the parts' initial velocities (PART VX ... WZ)".to_string(),
-            span: argument.span,
-        });
-    }
+    let speed = match statement.argument("VEL", 3) {
+        None => None,
+        Some(argument) => match number(statement, "VEL", f64::NAN) {
+            Ok(speed) if speed.is_finite() => Some(speed),
+            _ => {
+                errors.push(model_error(
+                    format!("{label}: VEL = the initial speed along the curve: one number"),
+                    argument.span,
+                ));
+                None
+            }
+        },
+    };
     let mut marker = |keyword: &str| -> Option<Target> {
         let found = super::named_marker(statement, keyword, scene);
         if found.is_none() {
@@ -91,6 +97,7 @@ fn point_curve(
             curve,
             frame: rm,
             start,
+            speed,
         }),
         redundant: Vec::new(),
         span: statement.span,
