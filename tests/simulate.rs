@@ -1804,6 +1804,47 @@ REQUEST/1, F2 = DX(4, 1)
     }
 }
 
+/// A POINT_MASS drawn at (1, 0, 0) off a line through the origin along
+/// (1, 1, 0) (JPRIM INLINE) is put on it where its EXACT says: with
+/// `EXACT = X` at (1, 1, 0), without it at the nearest point (0.5, 0.5,
+/// 0); its `VX = 1` is held likewise: it moves along the line at (1, 1, 0)
+/// (without VX's hold, the least change of (1, 0, 0) is (0.5, 0.5, 0)). A
+/// point mass's EXACT names no angle.
+#[test]
+fn a_point_masss_exact_and_given_velocity_hold_in_the_initial_analysis() {
+    let model = |extra: &str| {
+        format!(
+            "point mass put on a line
+PART/1, GROUND
+MARKER/10, PART = 1, REULER = 135D, 90D, 0
+POINT_MASS/2, MASS = 1, CM = 20, QG = 1, 0, 0{extra}
+MARKER/20, POINT_MASS = 2
+JPRIM/1, INLINE, I = 20, J = 10
+REQUEST/1, F2 = DX(20), F3 = DY(20), F4 = VX(20), F6 = VY(20)
+END
+"
+        )
+    };
+    let cases = [
+        (", VX = 1, EXACT = X", [1.0, 1.0, 1.0, 1.0]),
+        (", VX = 1", [0.5, 0.5, 1.0, 1.0]),
+        (", EXACT = X", [1.0, 1.0, 0.0, 0.0]),
+        ("", [0.5, 0.5, 0.0, 0.0]),
+    ];
+    for (extra, expected) in cases {
+        let run = run(&model(extra), &settings(1.0, 1, 1e-10)).unwrap_or_else(|e| panic!("{e}"));
+        let first = &run.rows[0];
+        let n = first.len();
+        for (got, want) in first[n - 4..].iter().zip(expected) {
+            assert!((got - want).abs() < 1e-9, "{extra}: {first:?}");
+        }
+    }
+    let error = super::simulate::run(&model(", EXACT = X:PSI"), &settings(1.0, 1, 1e-10))
+        .err()
+        .expect("refused");
+    assert!(error.contains("a point mass has no angles"), "{error}");
+}
+
 /// A POINT_MASS held on a line (JPRIM INLINE, the line at 45 degrees) by a
 /// spring `k = 100` of free length 0.5 rests where the spring carries the
 /// weight along the line: `s = 0.5 - m g cos 45 / k` (`--statics`); a joint

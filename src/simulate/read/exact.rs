@@ -1,9 +1,10 @@
 //! `PART ..., EXACT = X:Y:Z:PSI:THETA:PHI`: the part coordinates the
 //! initial-conditions analysis must not change; and `PART ..., VX = ...,
 //! WZ = ...`: the part velocities it keeps where the joints leave them
-//! free.
+//! free. A `POINT_MASS` gives them alike, its coordinates X, Y, Z and its
+//! velocities VX, VY, VZ.
 
-use nalgebra::Matrix3;
+use nalgebra::{Matrix3, Vector3};
 
 use crate::model::initial::number;
 use crate::model::{Dataset, Value, is_kind};
@@ -14,7 +15,7 @@ use crate::simulate::model::{ExactPart, GivenVelocity, MassProperties};
 /// The coordinates `EXACT` may name, in Adams' order.
 const COORDINATES: [&str; 6] = ["X", "Y", "Z", "PSI", "THETA", "PHI"];
 
-/// The parts of `dataset` with `EXACT`, their bodies in `scene` (drawn at
+/// The parts and point masses of `dataset` with `EXACT`, their bodies in `scene` (drawn at
 /// time 0) and `masses`; what cannot be read is added to `errors` at its
 /// place.
 pub(super) fn exact_parts(
@@ -25,7 +26,8 @@ pub(super) fn exact_parts(
 ) -> Vec<ExactPart> {
     let mut parts = Vec::new();
     for statement in &dataset.statements {
-        if !is_kind(&statement.name, "PART") {
+        let point_mass = is_kind(&statement.name, "POINT_MASS");
+        if !point_mass && !is_kind(&statement.name, "PART") {
             continue;
         }
         let Some(argument) = statement.argument("EXACT", 5) else {
@@ -45,6 +47,15 @@ pub(super) fn exact_parts(
                     None => unknown.push(name),
                 }
             }
+        }
+        if point_mass && coordinates[3..].contains(&true) {
+            errors.push(SimulateError::Model {
+                message: format!(
+                    "{label}: EXACT lists a POINT_MASS's coordinates among X, Y, Z: a point mass has no angles"
+                ),
+                span: argument.span,
+            });
+            continue;
         }
         if !unknown.is_empty() || !coordinates.contains(&true) {
             errors.push(SimulateError::Model {
@@ -93,12 +104,15 @@ pub(super) fn exact_parts(
 const VELOCITIES: [&str; 6] = ["VX", "VY", "VZ", "WX", "WY", "WZ"];
 
 /// The parts of `dataset` that give any of `VX ... WZ`, with their VM and
-/// WM markers (the CM marker's when left out) in `scene`'s bodies. A value
+/// WM markers (the CM marker's when left out) in `scene`'s bodies, and the
+/// point masses that give any of `VX, VY, VZ`. A value
 /// or a marker that cannot be read is reported where the scene is read.
 pub(super) fn given_velocities(dataset: &Dataset, scene: &Scene) -> Vec<GivenVelocity> {
     let mut given = Vec::new();
     for statement in &dataset.statements {
-        if !is_kind(&statement.name, "PART") || statement.argument("GROUND", 3).is_some() {
+        let point_mass = is_kind(&statement.name, "POINT_MASS");
+        let part = is_kind(&statement.name, "PART") && statement.argument("GROUND", 3).is_none();
+        if !point_mass && !part {
             continue;
         }
         let values = VELOCITIES.map(|keyword| {
@@ -120,6 +134,17 @@ pub(super) fn given_velocities(dataset: &Dataset, scene: &Scene) -> Vec<GivenVel
             scene.marker_on(id as u64, body)
         };
         let cm = marker("CM");
+        if point_mass {
+            // A point mass gives VX, VY, VZ of its CM marker's origin (its
+            // own origin without one), which its axes carry unturned.
+            given.push(GivenVelocity {
+                body,
+                point: cm.map_or_else(Vector3::zeros, |marker| marker.position),
+                axes: Matrix3::identity(),
+                values,
+            });
+            continue;
+        }
         let (Some(at), Some(about)) = (marker("VM").or(cm), marker("WM").or(cm)) else {
             continue;
         };
