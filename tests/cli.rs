@@ -678,11 +678,26 @@ fn model_files_as_an_engineer_meets_them() {
         cp1252.to_str().unwrap(),
         expressions.to_str().unwrap(),
     );
+    // The lift's TFSISO states, ARYVAL(10, 1) and ARYVAL(20, 1).
+    let lift = |args: &[&str]| {
+        let model = ["eval", "--model", "examples/simulate/l_controlled_lift.adm"];
+        check(&[&model[..], args].concat(), "")
+    };
     let report = check(&["eval", "--model", dat, "--set", "TIME=1.5"], "")
         + &check(
             &["eval", "--model", dat, "--wrt", "DIF(3)", "DIF(3)**2"],
             "",
         )
+        + &lift(&[
+            "3*ARYVAL(10, 1)**2 + ARYVAL(20,1)",
+            "--wrt",
+            "aryval(10,1), ARYVAL(20, 1)",
+            "--set",
+            "ARYVAL(10,1)=2",
+            "--order",
+            "2",
+        ])
+        + &lift(&["ARYVAL(10, 1)", "--wrt", "ARYVAL(10,5)"])
         + &check(
             &[
                 "eval",

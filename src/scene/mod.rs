@@ -341,11 +341,17 @@ pub fn array_state_input(array: u64, entry: usize) -> String {
     format!("ARYVAL({array}, {entry})")
 }
 
-/// The X array and entry of an [`array_state_input`] name.
+/// The X array and entry of an [`array_state_input`] name (in any case,
+/// with any blanks: `aryval(4,2)`).
 pub fn parse_array_state_input(name: &str) -> Option<(u64, usize)> {
-    let inner = name.strip_prefix("ARYVAL(")?.strip_suffix(')')?;
-    let (array, entry) = inner.split_once(", ")?;
-    Some((array.parse().ok()?, entry.parse().ok()?))
+    let name = name.trim();
+    let head = name.get(..7)?;
+    if !head.eq_ignore_ascii_case("ARYVAL(") {
+        return None;
+    }
+    let inner = name[7..].strip_suffix(')')?;
+    let (array, entry) = inner.split_once(',')?;
+    Some((array.trim().parse().ok()?, entry.trim().parse().ok()?))
 }
 
 /// Whether `name` is the input of a state of the run that is no part's:

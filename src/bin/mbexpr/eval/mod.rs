@@ -32,7 +32,7 @@ pub enum Format {
     Jsonl,
 }
 
-#[derive(clap::Args)]
+#[derive(clap::Args, Clone)]
 pub struct Args {
     /// The expression, e.g. "BISTOP(x, v, -10, 10, 1e5, 2.2, 100, 0.1)";
     /// with --scene and no expression, every named expression of the scene;
@@ -45,15 +45,18 @@ pub struct Args {
     pub scene: Option<String>,
     /// A solver dataset: evaluate every expression in it (or the expression
     /// given) at its initial configuration, at TIME = 0 unless --set gives
-    /// TIME, DIF(id) or a part's state (PART/3.x) another value; --wrt
-    /// names TIME or part states; --points gives them a value per row.
+    /// TIME, DIF(id), a linear system's state ARYVAL(x, k) or a part's
+    /// state (PART/3.x) another value; --wrt names any of them; --points
+    /// gives them a value per row.
     #[arg(long, value_name = "FILE.adm")]
     model: Option<String>,
     /// A variable's value, NAME=VALUE (repeatable; names are case-insensitive; TIME too).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
-    /// Derivative directions, comma-separated (blanks around a name are dropped).
-    #[arg(long, value_name = "NAME,NAME", value_delimiter = ',', value_parser = direction_name)]
+    /// Derivative directions, comma-separated (blanks around a name are
+    /// dropped; a comma inside parentheses, as in `ARYVAL(10, 1)`, is the
+    /// name's).
+    #[arg(long, value_name = "NAME,NAME")]
     pub wrt: Vec<String>,
     /// 0 (value), 1 (gradient) or 2 (Hessian); default 0, or 1 when --wrt is given.
     #[arg(long, value_parser = clap::value_parser!(u8).range(0..=2))]
@@ -67,12 +70,42 @@ pub struct Args {
     pub points: Option<String>,
 }
 
-/// A name of `--wrt`, without the blanks around it (`--wrt "x, v"`).
-fn direction_name(text: &str) -> Result<String, String> {
-    match text.trim() {
-        "" => Err("a name is empty: write --wrt NAME,NAME".to_string()),
-        name => Ok(name.to_string()),
+/// The names of `--wrt`'s values: split at the commas outside
+/// parentheses, without the blanks around them (`--wrt "x, v"`), a linear
+/// system's state written as its input is named (`ARYVAL(10,1)` as
+/// `ARYVAL(10, 1)`).
+fn direction_names(values: &[String]) -> Result<Vec<String>, Fatal> {
+    let mut names = Vec::new();
+    for value in values {
+        let mut depth = 0_usize;
+        let mut start = 0;
+        let mut pieces = Vec::new();
+        for (at, character) in value.char_indices() {
+            match character {
+                '(' => depth += 1,
+                ')' => depth = depth.saturating_sub(1),
+                ',' if depth == 0 => {
+                    pieces.push(&value[start..at]);
+                    start = at + 1;
+                }
+                _ => {}
+            }
+        }
+        pieces.push(&value[start..]);
+        for piece in pieces {
+            let name = piece.trim();
+            if name.is_empty() {
+                return Err(Fatal::usage(
+                    "error: --wrt: a name is empty: write --wrt NAME,NAME".to_string(),
+                ));
+            }
+            names.push(match mbexpr::scene::parse_array_state_input(name) {
+                Some((array, entry)) => mbexpr::scene::array_state_input(array, entry),
+                None => name.to_string(),
+            });
+        }
     }
+    Ok(names)
 }
 
 fn to_text(evaluation: &Evaluation, wrt: &[String]) -> String {
@@ -161,6 +194,10 @@ struct Context<'a> {
 }
 
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
+    let args = &Args {
+        wrt: direction_names(&args.wrt)?,
+        ..args.clone()
+    };
     let result = match &args.model {
         Some(path) => model::run(args, path, out),
         None => run_expressions(args, out),

@@ -31,7 +31,8 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
     for name in &args.wrt {
         let state = scene.parse_state_name(name).is_some();
         let diff_id = mbexpr::scene::parse_diff_input(name);
-        let diff = diff_id.is_some_and(|id| scene.statements.diffs.contains_key(&id));
+        let run_state = diff_id.is_some_and(|id| scene.statements.diffs.contains_key(&id))
+            || scene.value_of(name).is_ok() && mbexpr::scene::is_run_state_input(name);
         let direction = diff_id.map_or_else(
             || name.trim().to_ascii_uppercase(),
             |id| format!("DIF({id})"),
@@ -39,7 +40,7 @@ pub fn run(args: &Args, path: &str, out: &mut impl Write) -> Result<Outcome, Fat
         if !directions.insert(direction) {
             return Err(Fatal::usage(format!("error: --wrt names {name} twice")));
         }
-        if !state && !diff && !name.eq_ignore_ascii_case("TIME") {
+        if !state && !run_state && !name.eq_ignore_ascii_case("TIME") {
             return Err(Fatal::usage(format!(
                 "error: --wrt {name}: {}",
                 not_a_state(&scene, name)

@@ -277,6 +277,19 @@ pub fn set_input(scene: &mut Scene, name: &str, value: f64) -> Result<(), String
                 diff.initial = value;
                 return Ok(());
             }
+            let linear_state =
+                mbexpr::scene::parse_array_state_input(name).and_then(|(array, entry)| {
+                    let system = scene
+                        .statements
+                        .linear_systems
+                        .iter_mut()
+                        .find(|system| system.states == array)?;
+                    system.initial.get_mut(entry.checked_sub(1)?)
+                });
+            if let Some(initial) = linear_state {
+                *initial = value;
+                return Ok(());
+            }
             let (index, component) = scene
                 .parse_state_name(name)
                 .ok_or_else(|| not_a_state(scene, name))?;
@@ -335,7 +348,7 @@ pub fn not_a_state(scene: &Scene, name: &str) -> String {
     const COMPONENTS: &str = "x y z rx ry rz vx vy vz wx wy wz";
     let Some((part, component)) = name.rsplit_once('.') else {
         return format!(
-            "name TIME, a DIFF's state DIF(id) or a part's state component, such as PART/3.x ({COMPONENTS})"
+            "name TIME, a DIFF's state DIF(id), a TFSISO's or LSE's state ARYVAL(x, k) (k-th of its X array x) or a part's state component, such as PART/3.x ({COMPONENTS})"
         );
     };
     if scene.find_body(part).is_none() {
