@@ -23,7 +23,10 @@
 //!   down a 45° slope, `g t² / 4` along each axis.
 //! - The Jacobian of contacts with friction (sphere on a block's edge, two
 //!   blocks, cylinders and frustums tilted on a plane and a block, a
-//!   frustum against a ball) agrees with finite differences.
+//!   frustum against a ball, two rollers) agrees with finite differences.
+//! - Two rollers (CYLINDERs with parallel axes) meet as the SFORCE along
+//!   the line of their axes; one that turns out of parallel stops the run
+//!   at the contact.
 //! - Every contact the simulator cannot hold is refused at its place.
 //! - Every pair of solids, anywhere (deep in each other, centres on faces
 //!   and axes, still), gives finite rates and Jacobians.
@@ -171,6 +174,58 @@ END
             assert!(last[21] > 0.5, "{last:?}");
         }
     }
+}
+
+/// Two rollers (CYLINDERs 0.2 long along z, radii 0.1 and 0.15, masses 1
+/// and 2) meet side by side without gravity, `offset` off the line of
+/// their axes: the overlap is a lens across the axes, its depth the radii
+/// less the axes' distance, so the contact is the SFORCE along the line of
+/// their centres that two balls of those radii give. A roller that turns
+/// out of parallel on its way stops the run at the contact, once near.
+#[test]
+fn two_rollers_meet_as_an_sforce_between_their_axes() {
+    let rollers = |offset: f64, spin: f64, element: &str| {
+        format!(
+            "two rollers
+PART/1, GROUND
+PART/2, MASS = 1, CM = 20, IP = 0.004, 0.004, 0.004, QG = -1, {offset}, 0, VX = 3, WX = {spin}
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = 0, 0, -0.1
+GRAPHICS/2, CYLINDER, CM = 21, LENGTH = 0.2, RADIUS = 0.1
+PART/3, MASS = 2, CM = 30, IP = 0.018, 0.018, 0.018, QG = 0, 0, 0
+MARKER/30, PART = 3
+MARKER/31, PART = 3, QP = 0, 0, 0.1, REULER = 0, 180D, 0
+GRAPHICS/3, CYLINDER, CM = 31, LENGTH = 0.2, RADIUS = 0.15
+{element}
+END
+"
+        )
+    };
+    let contact = format!("CONTACT/1, IGEOM = 2, JGEOM = 3, IMPACT, {IMPACT_NUMBERS}");
+    for offset in [0.0, 0.12] {
+        let sforce = rollers(
+            offset,
+            0.0,
+            "SFORCE/1, TRANSLATIONAL, I = 20, J = 30, FUNCTION = IMPACT(DM(20,30), VR(20,30), 0.25, 1E5, 1.5, 10, 1E-4)",
+        );
+        for name in ["dop853", "radau"] {
+            let settings = with_method(name, 0.8, 16, 1e-10);
+            let contact_run =
+                run(&rollers(offset, 0.0, &contact), &settings).unwrap_or_else(|e| panic!("{e}"));
+            let reference = run(&sforce, &settings).unwrap_or_else(|e| panic!("{e}"));
+            let difference = largest_difference(&contact_run.rows, &reference.rows);
+            assert!(difference < 1e-8, "{offset} {name}: {difference}");
+            let last = contact_run.rows.last().expect("rows");
+            assert!(last[21] > 0.5, "{last:?}");
+        }
+    }
+    let error = run(&rollers(0.0, 2.0, &contact), &settings(0.8, 16, 1e-8))
+        .err()
+        .expect("stopped");
+    assert!(
+        error.contains("11:1") && error.contains("their axes have turned 0.45"),
+        "{error}"
+    );
 }
 
 /// The friction numbers of the sliding tests: `μs 0.5, μd 0.3`, full
@@ -358,6 +413,7 @@ fn check(case: &str) -> String {
 PART/1, GROUND
 MARKER/10, PART = 1
 MARKER/11, PART = 1
+MARKER/12, PART = 1, REULER = 0, 90D, 0
 {graphics}
 PART/2, MASS = 1, CM = 20, IP = 0.004, 0.004, 0.004
 MARKER/20, PART = 2
@@ -384,6 +440,7 @@ fn contacts_mbexpr_cannot_hold_are_refused_at_their_place() {
         format!("GRAPHICS/1, FRUSTUM, CM = 10, LENGTH = 1, TOP = 0, BOTTOM = 0 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, FRUSTUM, CM = 10, LENGTH = 1, TOP = 1 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, FRUSTUM, CM = 10, LENGTH = 1, TOP = 0, BOTTOM = 2 | CONTACT/1, IGEOM = 5, JGEOM = 1, {impact}"),
+        format!("GRAPHICS/1, CYLINDER, CM = 12, LENGTH = 1, RADIUS = 0.5 | CONTACT/1, IGEOM = 5, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, ELLIPSOID, CM = 10, XSCALE = 1, YSCALE = 2, ZSCALE = 1 | CONTACT/1, IGEOM = 2, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, CYLINDER, CM = 10, LENGTH = 1, RADIUS = 0.5 | CONTACT/1, IGEOM = 3, JGEOM = 1, {impact}"),
         format!("GRAPHICS/1, CYLINDER, CM = 10, LENGTH = 1, RADIUS = 0.5 | CONTACT/1, IGEOM = 5, JGEOM = 1, {impact}"),
@@ -602,6 +659,22 @@ ACCGRAV/KGRAV = -9.81
 END
 ";
 
+/// Two rollers side by side, overlapping off the line of their axes, with
+/// friction, spinning.
+const ROLLERS: &str = "rollers for the Jacobian
+PART/1, GROUND
+PART/2, MASS = 1, CM = 20, IP = 0.004, 0.004, 0.004, QG = -0.24, 0.03, 0.05, VX = 0.5, VY = -0.2, WZ = 3
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = 0, 0, -0.1
+GRAPHICS/2, CYLINDER, CM = 21, LENGTH = 0.2, RADIUS = 0.1
+PART/3, MASS = 2, CM = 30, IP = 0.018, 0.018, 0.018, QG = 0, 0, 0, WZ = -1
+MARKER/30, PART = 3
+MARKER/31, PART = 3, QP = 0, 0, 0.1, REULER = 0, 180D, 0
+GRAPHICS/3, CYLINDER, CM = 31, LENGTH = 0.2, RADIUS = 0.15
+CONTACT/1, IGEOM = 2, JGEOM = 3, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 5E-2, EXPONENT = 2.2, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
+END
+";
+
 /// A frustum tilted on a plane and against a ball, and a cone lying on a
 /// block's face.
 const FRUSTUMS: &str = "frustums
@@ -638,7 +711,7 @@ proptest::proptest! {
         shifts in proptest::collection::vec(-0.01f64..0.01, 26),
         time in 0.0f64..1.0,
     ) {
-        for model in [CYLINDERS, FRUSTUMS] {
+        for model in [CYLINDERS, FRUSTUMS, ROLLERS] {
             super::simulate::the_jacobian_agrees_with_finite_differences(model, &shifts, time)?;
         }
     }
@@ -663,6 +736,8 @@ GRAPHICS/5, CYLINDER, CM = 31, LENGTH = 0.2, RADIUS = 0.1
 GRAPHICS/6, ELLIPSOID, CM = 30, XSCALE = 0.1, YSCALE = 0.1, ZSCALE = 0.1
 GRAPHICS/7, FRUSTUM, CM = 31, LENGTH = 0.25, BOTTOM = 0.12, TOP = 0
 GRAPHICS/8, FRUSTUM, CM = 21, LENGTH = -0.2, BOTTOM = 0.05, TOP = 0.15
+GRAPHICS/9, CYLINDER, CM = 20, LENGTH = 0.1, RADIUS = 0.08
+CONTACT/6, IGEOM = 9, JGEOM = 5, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
 CONTACT/4, IGEOM = 8, JGEOM = 6, 1, 2, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5
 CONTACT/5, IGEOM = 7, JGEOM = 3, 4, 1, 2, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1
 CONTACT/1, IGEOM = 3, 4, JGEOM = 1, 2, IMPACT, STIFFNESS = 1E5, DAMPING = 10, DMAX = 1E-3, EXPONENT = 1.5, COULOMB_FRICTION = ON, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, STICTION_TRANSITION_VELOCITY = 0.1, FRICTION_TRANSITION_VELOCITY = 1

@@ -326,6 +326,13 @@ pub struct Solid {
     pub shape: Shape,
 }
 
+/// The sine of the largest angle between two cylinders' axes that a
+/// contact takes for parallel where the model is drawn; in a run, the
+/// joints that keep them so hold them to the integration's accuracy, and
+/// a run whose cylinders turn further apart (beyond a thousandth of a
+/// radian) stops at the contact.
+pub(crate) const PARALLEL_AXES: f64 = 1e-6;
+
 /// The shapes a contact meets (GRAPHICS statements).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shape {

@@ -134,6 +134,41 @@ fn relative_velocity<T: Number>(
     velocity(i.body) - velocity(j.body)
 }
 
+/// The sine of the angle between the axes of a contact's two cylinders,
+/// when it has two, they have turned further apart than its geometry
+/// takes for parallel (a thousandth of a radian, [`TILT`]) and they are
+/// near enough to touch (their bounding spheres meet).
+pub(super) fn cylinders_tilted(
+    model: &Model,
+    contact: &Contact,
+    kinematics: &[Kinematics<f64>],
+) -> Option<f64> {
+    let both_round = matches!(
+        (&contact.i.shape, &contact.j.shape),
+        (Shape::Frustum { .. }, Shape::Frustum { .. })
+    );
+    if !both_round {
+        return None;
+    }
+    let (i, j) = (
+        placed(model, &contact.i, kinematics),
+        placed(model, &contact.j, kinematics),
+    );
+    let sine = i.axes.column(2).cross(&j.axes.column(2)).norm();
+    (sine > TILT && bounding_gap(&i, &j) <= 0.0).then_some(sine)
+}
+
+/// The distance between two bounded solids' bounding spheres (a lower
+/// bound on theirs).
+fn bounding_gap(i: &Placed<f64>, j: &Placed<f64>) -> f64 {
+    let ((centre_i, radius_i), (centre_j, radius_j)) = (bounding_sphere(i), bounding_sphere(j));
+    (centre_i - centre_j).norm() - radius_i - radius_j
+}
+
+/// How far two cylinders' axes may turn apart in a run (the sine of the
+/// angle) while their contact is taken for one of parallel cylinders.
+const TILT: f64 = 1e-3;
+
 /// The separation of a contact's solids (the negative of their depth:
 /// the first argument of its `IMPACT` law) and its rate at a state, which
 /// the run watches to switch the law's branches; while two solids of flat
@@ -420,6 +455,7 @@ fn frustum_surface<T: Number>(
 /// closest to it.
 fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
     let centroid = match (i.shape, j.shape) {
+        (Shape::Frustum { .. }, Shape::Frustum { .. }) => cylinders_overlap(i, j)?,
         (Shape::Frustum { .. }, _) => frustum_overlap(i, j)?,
         (_, Shape::Frustum { .. }) => frustum_overlap(j, i)?,
         _ => {
@@ -488,6 +524,96 @@ fn frustum_overlap<T: Number>(round: &Placed<T>, other: &Placed<T>) -> Option<Ve
         index == face || (normal.dot(&centroid) - offset.clone()).value() <= tolerance
     });
     inside.then_some(centroid)
+}
+
+/// The centroid of the overlap of two cylinders whose axes are parallel
+/// (the reader refuses other pairs): across the axes, the lens where their
+/// circles overlap (each circle's segment beyond the common chord), along
+/// them, the middle of the stretch both cover, measured along I's axis
+/// (the run stops where the axes turn apart: [`cylinders_tilted`]).
+fn cylinders_overlap<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Vector3<T>> {
+    let c = T::from;
+    let (
+        Shape::Frustum {
+            radii: [r1, _],
+            bottom: b1,
+            top: t1,
+        },
+        Shape::Frustum {
+            radii: [r2, _],
+            bottom: b2,
+            top: t2,
+        },
+    ) = (*i.shape, *j.shape)
+    else {
+        return None;
+    };
+    let axis = i.axes.column(2).into_owned();
+    // The stretch along I's axis that both cover.
+    let along = |origin: &Vector3<T>| axis.dot(origin);
+    let ends = |placed: &Placed<T>, bottom: f64, top: f64| {
+        let base = along(&placed.origin);
+        let direction = axis.dot(&placed.axes.column(2).into_owned());
+        let (a, b) = (
+            base.clone() + direction.clone() * c(bottom),
+            base + direction * c(top),
+        );
+        if a.value() <= b.value() {
+            (a, b)
+        } else {
+            (b, a)
+        }
+    };
+    let (low_i, high_i) = ends(i, b1, t1);
+    let (low_j, high_j) = ends(j, b2, t2);
+    let low = if low_i.value() >= low_j.value() {
+        low_i
+    } else {
+        low_j
+    };
+    let high = if high_i.value() <= high_j.value() {
+        high_i
+    } else {
+        high_j
+    };
+    if high.value() <= low.value() {
+        return None;
+    }
+    // The axes' places across them.
+    let across = |origin: &Vector3<T>| origin - &axis * axis.dot(origin);
+    let (centre_i, centre_j) = (across(&i.origin), across(&j.origin));
+    let between = &centre_j - &centre_i;
+    let distance = between.norm();
+    if distance.value() >= r1 + r2 {
+        return None;
+    }
+    let lens = if distance.value() <= (r1 - r2).abs() {
+        // One circle within the other: the smaller one.
+        if r1 <= r2 { centre_i } else { centre_j }
+    } else {
+        // The chord at `a` from I's centre towards J's.
+        let toward = &between / distance.clone();
+        let a = (distance.clone() * distance.clone() + c(r1 * r1 - r2 * r2))
+            / (distance.clone() * c(2.0));
+        let b = distance - a.clone();
+        let part = |rho: T, radius: f64| {
+            let theta = (-rho / c(radius)).acos();
+            let (area, first_moment) = segment(&theta);
+            (area * c(radius * radius), first_moment * c(radius.powi(3)))
+        };
+        let chord_middle = &centre_i + &toward * a.clone();
+        let (area_i, moment_i) = part(a, r1);
+        let (area_j, moment_j) = part(b, r2);
+        let area = area_i.clone() + area_j.clone();
+        // A lens too thin for its area to be told from rounding (the
+        // circles just touch) is its chord's middle.
+        if area.value() <= 1e-9 * r1.min(r2).powi(2) {
+            chord_middle
+        } else {
+            (centre_i * area_i + &toward * moment_i + centre_j * area_j - &toward * moment_j) / area
+        }
+    };
+    Some(lens + axis * ((low + high) * c(0.5)))
 }
 
 /// The volume and first moment (about ground's origin) of the round
@@ -995,6 +1121,7 @@ fn distance_bound(i: &Placed<f64>, j: &Placed<f64>) -> Option<f64> {
     match (i.shape, j.shape) {
         (Shape::Sphere { radius }, _) => sphere_distance(&i.origin, *radius, j),
         (_, Shape::Sphere { radius }) => sphere_distance(&j.origin, *radius, i),
+        (Shape::Frustum { .. }, Shape::Frustum { .. }) => Some(cylinders_gap(i, j)),
         (Shape::Frustum { .. }, _) => Some(frustum_gap(i, j)),
         (_, Shape::Frustum { .. }) => Some(frustum_gap(j, i)),
         (Shape::HalfSpace, _) => Some(lowest_height(j, i)),
@@ -1021,6 +1148,29 @@ fn frustum_gap(round: &Placed<f64>, other: &Placed<f64>) -> f64 {
             normal.dot(&middle) - offset - reach
         })
         .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// How far apart two cylinders with parallel axes stand: the larger of
+/// the gap between their round sides (the axes' distance less the radii)
+/// and the gap between their ends along the axes, a lower bound on their
+/// distance (their bounding spheres' distance when the axes have turned
+/// apart).
+fn cylinders_gap(i: &Placed<f64>, j: &Placed<f64>) -> f64 {
+    let (Some(([r1, _, b1, t1], middle_i)), Some(([r2, _, b2, t2], middle_j))) =
+        (frustum_parts(i), frustum_parts(j))
+    else {
+        return 0.0;
+    };
+    let axis = i.axes.column(2).into_owned();
+    if axis.cross(&j.axes.column(2)).norm() > TILT {
+        return bounding_gap(i, j);
+    }
+    let apart = middle_j - middle_i;
+    let along = axis.dot(&apart);
+    let across = (apart - axis * along).norm();
+    let side_gap = across - r1 - r2;
+    let end_gap = along.abs() - (t1 - b1) / 2.0 - (t2 - b2) / 2.0;
+    side_gap.max(end_gap)
 }
 
 /// How far a sphere's surface is from `other` (negative inside it).

@@ -633,6 +633,21 @@ impl<'m> Mechanics<'m> {
         // switching values of an IMPACT.
         let mut apart = Vec::new();
         for (index, &contact) in equations.contacts.iter().enumerate() {
+            if let Some(sine) = contact::cylinders_tilted(model, contact, &kinematics) {
+                return Err(OutputError {
+                    output: crate::simulate::constraints::JOINTS,
+                    error: crate::eval::EvalError::Law {
+                        error: crate::laws::LawError::Domain {
+                            operation: "a contact of two cylinders",
+                            reason: format!(
+                                "their axes have turned {:.3} rad apart; mbexpr meets two cylinders side by side, their axes parallel: hold them so with joints",
+                                sine.asin()
+                            ),
+                        },
+                        span: contact.span,
+                    },
+                });
+            }
             let (separation, rate) = contact::separation(model, contact, &kinematics);
             let held = held
                 .and_then(|sites| sites[program_sites + index])

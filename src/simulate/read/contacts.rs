@@ -3,18 +3,19 @@
 //! the IMPACT normal force and optional Coulomb friction, and the GRAPHICS
 //! statements that give their solids: a sphere (`ELLIPSOID` of equal
 //! scales, which are diameters), a `BOX`, a `CYLINDER`, a `FRUSTUM` (a
-//! cone when a radius is 0) and a `PLANE` (two planes and two round solids
-//! are refused). A
+//! cone when a radius is 0) and a `PLANE` (two planes, a frustum against
+//! a round solid and two cylinders whose axes are not parallel are
+//! refused). A
 //! contact that lists several solids on a side is one contact for each
 //! pair.
 
 use std::collections::HashMap;
 
-use nalgebra::Vector3;
+use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::model::initial::{number, number_list};
 use crate::model::{Dataset, Statement, Value, is_kind};
-use crate::scene::Scene;
+use crate::scene::{Scene, Target};
 use crate::simulate::error::SimulateError;
 use crate::simulate::model::{Contact, Friction, Shape, Solid};
 
@@ -26,6 +27,11 @@ const SHAPES: &str =
 /// The contact types mbexpr simulates: between solids, and the sphere's
 /// two Adams View types, which are solid contacts of particular shapes.
 const TYPES: [&str; 3] = ["SOLID_TO_SOLID", "SPHERE_TO_PLANE", "SPHERE_TO_SPHERE"];
+
+/// The sine of the largest angle between two cylinders' axes that are
+/// taken for parallel (the equations of the contact hold them within it,
+/// [`crate::simulate::equations`]' contact geometry).
+const PARALLEL: f64 = crate::simulate::model::PARALLEL_AXES;
 
 /// The most pairs of solids one contact may list (each is a force the run
 /// evaluates at every step).
@@ -418,7 +424,8 @@ fn round(length: f64, [at_marker, at_end]: [f64; 2]) -> Shape {
 }
 
 /// Refuses a pair the contact geometry does not meet: solids on one part,
-/// two planes, two round solids.
+/// two planes, a frustum against a round solid, two cylinders whose axes
+/// are not parallel where the model is drawn.
 fn check_pair(
     statement: &Statement,
     (i, i_span): &(Solid, crate::span::Span),
@@ -436,12 +443,30 @@ fn check_pair(
         });
     }
     let round = |solid: &Solid| matches!(solid.shape, Shape::Frustum { .. });
+    let cylinder =
+        |solid: &Solid| matches!(solid.shape, Shape::Frustum { radii, .. } if radii[0] == radii[1]);
     let plane = |solid: &Solid| matches!(solid.shape, Shape::HalfSpace);
+    // A solid's z axis in ground, where the model is drawn.
+    let axis = |solid: &Solid| match solid.marker {
+        Target::Ground => Vector3::z(),
+        Target::Marker(index) => {
+            let marker = &scene.markers[index];
+            let turn = marker.body.map_or_else(UnitQuaternion::identity, |body| {
+                scene.bodies[body].orientation
+            });
+            turn * marker.orientation * Vector3::z()
+        }
+    };
     let reason = if plane(i) && plane(j) {
         Some(format!("meets two PLANEs; {SHAPES}"))
-    } else if round(i) && round(j) {
+    } else if round(i) && round(j) && !(cylinder(i) && cylinder(j)) {
         Some(
-            "meets two round solids (CYLINDERs or FRUSTUMs); mbexpr meets a round solid with a sphere, a BOX or a PLANE"
+            "meets two round solids, one a FRUSTUM; mbexpr meets a frustum with a sphere, a BOX or a PLANE, and two CYLINDERs with parallel axes"
+                .to_string(),
+        )
+    } else if round(i) && round(j) && axis(i).cross(&axis(j)).norm() > PARALLEL {
+        Some(
+            "meets two CYLINDERs whose axes are not parallel; mbexpr meets two cylinders side by side (rollers, pins), their axes parallel"
                 .to_string(),
         )
     } else {
