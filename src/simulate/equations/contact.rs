@@ -616,13 +616,12 @@ fn cylinders_overlap<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Vector3<
     Some(lens + axis * ((low + high) * c(0.5)))
 }
 
-/// The volume and first moment (about ground's origin) of the round
-/// solid's slices from `s0` to `s1` along its axis, each a `fraction` of
-/// its disk whose centroid is `shift` times the radius from the axis along
-/// `away`: Simpson's rule, exact since the integrands are cubic in `s`
-/// when the fraction and shift do not change along the axis.
+/// A round solid cut in slices across its axis: the disk at `s` along
+/// the axis is centred at `origin + s axis` with radius `R(s)`.
 struct Slices<'a, T: Number> {
+    /// The marker's origin (where `s = 0`), in ground.
     origin: &'a Vector3<T>,
+    /// The axis (the marker's z), in ground.
     axis: &'a Vector3<T>,
     /// `R(s) = radius.0 + radius.1 s`.
     radius: (f64, f64),
@@ -637,7 +636,9 @@ impl<T: Number> Slices<'_, T> {
         self.origin + self.axis * s.clone()
     }
 
-    /// Whole disks from `s0` to `s1` (nothing when `s1 <= s0`).
+    /// Adds the volume and first moment (about ground's origin) of the
+    /// whole disks from `s0` to `s1` (nothing when `s1 <= s0`): Simpson's
+    /// rule, exact since the integrands are cubic in `s`.
     fn whole(&self, s0: T, s1: T, volume: &mut T, moment: &mut Vector3<T>) {
         if s1.value() <= s0.value() {
             return;
