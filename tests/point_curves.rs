@@ -213,34 +213,56 @@ END
     )
 }
 
+/// The rows of a block started 8 up a ramp sloping at 0.4, with `VEL =
+/// speed` when given (at rest without), with DOP853 and with Radau5, each
+/// checked to slide as `s = 8 + speed t − g sin θ t² / 2` (its DX and DY
+/// along the ramp to 1e-8).
+fn slides_along_the_ramp(vel: Option<f64>) -> Vec<(Method, Vec<Vec<f64>>)> {
+    let theta: f64 = 0.4;
+    let (c, s) = (theta.cos(), theta.sin());
+    let text = block_on_a_ramp(
+        theta,
+        &vel.map_or_else(String::new, |v| format!(", VEL = {v}")),
+    );
+    let speed = vel.unwrap_or(0.0);
+    [Method::Dop853, Method::Radau5]
+        .into_iter()
+        .map(|method| {
+            let mut settings = settings(1.5, 3, 1e-10);
+            settings.method = method;
+            let slid = run(&text, &settings).unwrap_or_else(|error| panic!("{error}"));
+            for row in &slid.rows {
+                let t = row[0];
+                let along = 8.0 + speed * t - 0.5 * G * s * t * t;
+                let n = row.len();
+                assert!(
+                    (row[n - 4] - along * c).abs() < 1e-8,
+                    "{method:?} at {t}: {row:?}"
+                );
+                assert!(
+                    (row[n - 3] - along * s).abs() < 1e-8,
+                    "{method:?} at {t}: {row:?}"
+                );
+            }
+            (method, slid.rows)
+        })
+        .collect()
+}
+
 /// A block on a straight two-point curve (ORDER = 2) sloping at `θ`
 /// slides from rest as `s = g sin θ t² / 2`, and the curve holds it with
 /// the normal force `m g cos θ`.
 #[test]
 fn a_block_on_a_straight_curve_slides_as_the_closed_form() {
-    let theta: f64 = 0.4;
-    let (c, s) = (theta.cos(), theta.sin());
-    let text = block_on_a_ramp(theta, "");
-    for method in [Method::Dop853, Method::Radau5] {
-        let mut settings = settings(1.5, 3, 1e-10);
-        settings.method = method;
-        let slid = run(&text, &settings).unwrap_or_else(|error| panic!("{error}"));
-        for row in &slid.rows {
-            let t = row[0];
-            let along = 8.0 - 0.5 * G * s * t * t;
+    let c = 0.4_f64.cos();
+    for (method, rows) in slides_along_the_ramp(None) {
+        for row in &rows {
             let n = row.len();
-            assert!(
-                (row[n - 4] - along * c).abs() < 1e-8,
-                "{method:?} at {t}: {row:?}"
-            );
-            assert!(
-                (row[n - 3] - along * s).abs() < 1e-8,
-                "{method:?} at {t}: {row:?}"
-            );
             assert!(row[n - 2].abs() < 1e-12);
             assert!(
                 (row[n - 1] - 3.0 * G * c).abs() < 1e-8,
-                "{method:?} at {t}: {row:?}"
+                "{method:?} at {}: {row:?}",
+                row[0]
             );
         }
     }
@@ -254,27 +276,7 @@ fn a_block_on_a_straight_curve_slides_as_the_closed_form() {
 /// starts at `(0.5, 1, 0)` in ground, and `VEL = -0.5` at `(-0.5, 1, 0)`.
 #[test]
 fn vel_starts_the_point_along_its_curve_relative_to_the_curve() {
-    let theta: f64 = 0.4;
-    let (c, s) = (theta.cos(), theta.sin());
-    let ramp = block_on_a_ramp(theta, ", VEL = 2");
-    for method in [Method::Dop853, Method::Radau5] {
-        let mut settings = settings(1.5, 3, 1e-10);
-        settings.method = method;
-        let slid = run(&ramp, &settings).unwrap_or_else(|error| panic!("{error}"));
-        for row in &slid.rows {
-            let t = row[0];
-            let along = 8.0 + 2.0 * t - 0.5 * G * s * t * t;
-            let n = row.len();
-            assert!(
-                (row[n - 4] - along * c).abs() < 1e-8,
-                "{method:?} at {t}: {row:?}"
-            );
-            assert!(
-                (row[n - 3] - along * s).abs() < 1e-8,
-                "{method:?} at {t}: {row:?}"
-            );
-        }
-    }
+    slides_along_the_ramp(Some(2.0));
     for speed in [0.5, -0.5] {
         let rail = format!(
             "bead on a turning rail
