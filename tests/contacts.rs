@@ -574,7 +574,8 @@ END
 /// line, its axis tilted by the half-angle `atan(0.1 / 0.5)` and its
 /// centre of mass at the distance `R cos α` from the line (R = 0.16, the
 /// radius at the centre of mass) less that depth. A cone (TOP = 0) stands
-/// on its base alike.
+/// on its base alike, and on its tip (where its axis meets the overlap's
+/// centroid, so the closest point of its side is no one point).
 #[test]
 fn a_frustum_rests_on_its_ends_and_a_cone_on_its_side_at_the_closed_form_height() {
     let depth = (G / 1e6_f64).powf(1.0 / 1.5);
@@ -588,6 +589,17 @@ fn a_frustum_rests_on_its_ends_and_a_cone_on_its_side_at_the_closed_form_height(
     );
     let cone = settled_on_a_plane("LENGTH = 0.5, BOTTOM = 0.2, TOP = 0", "QG = 0, 0, 0.21");
     assert!((cone[3] - (0.2 - depth)).abs() < 1e-9, "{cone:?}");
+    // Balanced on its tip, drawn tip down or turned over (180D leaves the
+    // axis off the vertical by a rounding error).
+    let tip_down = settled_on_a_plane("LENGTH = 0.5, BOTTOM = 0, TOP = 0.2", "QG = 0, 0, 0.21");
+    let turned_over = settled_on_a_plane(
+        "LENGTH = 0.5, BOTTOM = 0.2, TOP = 0",
+        "QG = 0, 0, 0.31, REULER = 0, 180D, 0",
+    );
+    for (tip, height) in [(tip_down, 0.2), (turned_over, 0.3)] {
+        assert!((tip[3] - (height - depth)).abs() < 1e-9, "{tip:?}");
+        assert!(tip[1].hypot(tip[2]) < 1e-9, "{tip:?}");
+    }
     let half_angle = (0.1_f64 / 0.5).atan();
     let side = settled_on_a_plane(frustum, "QG = 0, 0, 0.3, REULER = 90D, 85D, 0");
     // It still rocks a little on its side line (a cone rolls round its
@@ -789,5 +801,56 @@ proptest::proptest! {
             .jacobian(0.0, &y, &rates, &mut jacobian)
             .expect("the Jacobian");
         proptest::prop_assert!(jacobian.iter().all(|entry| entry.is_finite()));
+    }
+}
+
+/// A solid dropped tilted on a frictionless plane strikes it with a rim,
+/// an edge or a tip, which have no normal of their own: the force is
+/// along the plane's normal (the surfaces' common one), so nothing pushes
+/// the solid sideways and its centre of mass falls and bounces straight,
+/// with both methods.
+#[test]
+fn a_solid_struck_on_its_rim_or_edge_by_a_frictionless_plane_is_not_pushed_sideways() {
+    let solids = [
+        (
+            "0, 0, -0.1",
+            "FRUSTUM, CM = 21, LENGTH = 0.2, BOTTOM = 0.1, TOP = 0.1",
+        ),
+        (
+            "0, 0, -0.1",
+            "FRUSTUM, CM = 21, LENGTH = 0.3, BOTTOM = 0.1, TOP = 0",
+        ),
+        (
+            "-0.1, -0.1, -0.1",
+            "BOX, CORNER = 21, X = 0.2, Y = 0.2, Z = 0.2",
+        ),
+    ];
+    for (corner, shape) in solids {
+        let text = format!(
+            "struck on a rim
+PART/1, GROUND
+MARKER/11, PART = 1
+GRAPHICS/1, PLANE, RM = 11
+PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01, QG = 0, 0, 0.3, REULER = 20D, 30D, 0
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = {corner}
+GRAPHICS/2, {shape}
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E6, DAMPING = 100, DMAX = 1E-3, EXPONENT = 2
+ACCGRAV/KGRAV = -9.81
+END
+"
+        );
+        for name in ["dop853", "radau"] {
+            let run = run(&text, &with_method(name, 0.5, 50, 1e-8))
+                .unwrap_or_else(|e| panic!("{shape} {name}: {e}"));
+            assert!(!run.events.is_empty(), "{shape} {name}: no touch");
+            for row in &run.rows {
+                let sideways = [row[1], row[2], row[8], row[9]];
+                assert!(
+                    sideways.iter().all(|value| value.abs() < 1e-12),
+                    "{shape} {name}: {row:?}"
+                );
+            }
+        }
     }
 }

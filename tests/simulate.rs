@@ -611,6 +611,31 @@ DIFF/2, IC = 2, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e4, 1, 0, 0.01)
     }
 }
 
+/// Without damping an IMPACT's pieces (the damping ramp and full damping)
+/// give one force, so the depth DMAX is no switch: at every depth and
+/// rate the held branch's second switching value stays away from zero
+/// (a switch there, grazed at DMAX by a cone dropped on its side, was
+/// located over and over until the run stopped as chattering).
+#[test]
+fn an_undamped_stop_has_no_switch_at_dmax() {
+    use mbexpr::laws::contact::Stops;
+    let stops = Stops::new(0.0, Some(1.0), [1e4, 2.0, 0.0, 1e-3]);
+    for x in [
+        -2e-3,
+        -1e-3,
+        -1e-3 * (1.0 - 1e-12),
+        -5e-4,
+        1.0005,
+        1.001,
+        1.002,
+    ] {
+        for v in [-1.0, 0.0, 1.0] {
+            let seen = stops.switching(x, v, None);
+            assert_eq!(seen.values[1], 1.0, "x {x}, v {v}: {seen:?}");
+        }
+    }
+}
+
 #[test]
 fn a_conservative_stop_keeps_its_energy() {
     // cmax = 0, e = 1.5: m v^2/2 + k p^(e+1)/(e+1) is constant through

@@ -509,7 +509,15 @@ fn contact_switching<P: Parameter<f64>>(
             let p = side.0;
             match piece {
                 Some(piece) => {
-                    let end = if piece == Piece::Ramp { d - p } else { p - d };
+                    // Without damping the pieces are one, and their
+                    // meeting no switch.
+                    let end = if parameters[2].value() == 0.0 {
+                        1.0
+                    } else if piece == Piece::Ramp {
+                        d - p
+                    } else {
+                        p - d
+                    };
                     let force = raw(upper_side, side, piece);
                     ([p, end, force], if upper_side { -force } else { force })
                 }

@@ -287,7 +287,7 @@ fn sphere_touch<T: Number>(
 /// The point of `solid`'s surface closest to `point` and the surface's
 /// outward unit normal there (towards `point` when it is outside, the
 /// nearest face's when inside); `None` where they are not defined (a
-/// point at a sphere's centre or on a round solid's axis inside it).
+/// point at a sphere's centre).
 fn closest_surface<T: Number>(
     solid: &Placed<T>,
     point: &Vector3<T>,
@@ -404,9 +404,24 @@ fn frustum_surface<T: Number>(
     };
     let gaps = [end_gap(bottom, radii[0]), side_gap, end_gap(top, radii[1])];
     // A cone's tip is an end of no size: its side is nearer.
-    let nearest = (0..3)
+    let mut nearest = (0..3)
         .filter(|&k| k == 1 || radii[k / 2] > 0.0)
         .min_by(|&a, &b| gaps[a].total_cmp(&gaps[b]))?;
+    let on_axis = rho <= 1e-12 * (radii[0].max(radii[1]) + height.abs());
+    if nearest == 1 && on_axis {
+        // On the axis the side is equally near all round, and no one of
+        // its points is the closest: the nearer end along the axis (a
+        // cone's tip included) is taken, which keeps the closest point and
+        // the normal on the axis, where the symmetry puts them. Within
+        // rounding of the axis counts as on it (a solid turned by 180D is
+        // off its axis by 1e-16, and the side's normal would swing round
+        // with the rounding).
+        nearest = if (z - bottom).abs() <= (top - z).abs() {
+            0
+        } else {
+            2
+        };
+    }
     let lift = |r: T, z: T| -> Option<Vector3<T>> {
         if r.value() == 0.0 {
             return Some(Vector3::new(c(0.0), c(0.0), z));
@@ -452,12 +467,22 @@ fn frustum_surface<T: Number>(
 /// the overlap with the plane (or the block's face the solid stands
 /// beyond), integrated slice by slice. The force acts at the overlap's
 /// centroid, the depth the distance between the two surfaces' points
-/// closest to it.
+/// closest to it (Adams' definition). The normal is the common one of the
+/// surfaces where one is flat there (a plane's, the block face's a round
+/// solid meets: an edge or a rim has no normal of its own), otherwise the
+/// line between those two points.
 fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
-    let centroid = match (i.shape, j.shape) {
-        (Shape::Frustum { .. }, Shape::Frustum { .. }) => cylinders_overlap(i, j)?,
-        (Shape::Frustum { .. }, _) => frustum_overlap(i, j)?,
-        (_, Shape::Frustum { .. }) => frustum_overlap(j, i)?,
+    // The flat face's outward normal, and whether the face is I's.
+    let (centroid, face) = match (i.shape, j.shape) {
+        (Shape::Frustum { .. }, Shape::Frustum { .. }) => (cylinders_overlap(i, j)?, None),
+        (Shape::Frustum { .. }, _) => {
+            let (centroid, normal) = frustum_overlap(i, j)?;
+            (centroid, Some((normal, false)))
+        }
+        (_, Shape::Frustum { .. }) => {
+            let (centroid, normal) = frustum_overlap(j, i)?;
+            (centroid, Some((normal, true)))
+        }
         _ => {
             // Clip the bounded one by the other's faces (two planes have
             // no bounded overlap, and the reader refuses that pair).
@@ -472,7 +497,12 @@ fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
                     return None;
                 }
             }
-            centroid(&faces)?
+            let plane = match (i.shape, j.shape) {
+                (Shape::HalfSpace, _) => Some((i.axes.column(2).into_owned(), true)),
+                (_, Shape::HalfSpace) => Some((j.axes.column(2).into_owned(), false)),
+                _ => None,
+            };
+            (centroid(&faces)?, plane)
         }
     };
     let (on_i, _) = closest_surface(i, &centroid)?;
@@ -482,12 +512,26 @@ fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
     if depth.value() == 0.0 {
         return None;
     }
-    let mut normal = between / depth.clone();
-    // The normal pushes I away from J: towards I's inside.
-    let away = i.inside(&centroid) - j.inside(&centroid);
-    if normal.dot(&away).value() < 0.0 {
-        normal = -normal;
-    }
+    let normal = match face {
+        // It pushes I away from J: out of J's face, into I's.
+        Some((outward, of_i)) => {
+            if of_i {
+                -outward
+            } else {
+                outward
+            }
+        }
+        None => {
+            let normal = between / depth.clone();
+            // Towards I's inside.
+            let away = i.inside(&centroid) - j.inside(&centroid);
+            if normal.dot(&away).value() < 0.0 {
+                -normal
+            } else {
+                normal
+            }
+        }
+    };
     Some(Touch {
         point: centroid,
         normal,
@@ -505,10 +549,13 @@ fn frustum_parts<T: Number>(round: &Placed<T>) -> Option<([f64; 4], Vector3<T>)>
 }
 
 /// The centroid of a round solid's overlap with `other`, a plane or a
-/// block: with a block, the overlap with the face the solid's centre
-/// stands farthest beyond, kept while its centroid lies within the block's
-/// other faces.
-fn frustum_overlap<T: Number>(round: &Placed<T>, other: &Placed<T>) -> Option<Vector3<T>> {
+/// block, and the outward normal of the face it meets: with a block, the
+/// overlap with the face the solid's centre stands farthest beyond, kept
+/// while its centroid lies within the block's other faces.
+fn frustum_overlap<T: Number>(
+    round: &Placed<T>,
+    other: &Placed<T>,
+) -> Option<(Vector3<T>, Vector3<T>)> {
     let (size, middle) = frustum_parts(round)?;
     let planes = half_spaces(other);
     let (face, (normal, offset)) = planes.iter().enumerate().max_by(|(_, a), (_, b)| {
@@ -523,7 +570,7 @@ fn frustum_overlap<T: Number>(round: &Placed<T>, other: &Placed<T>) -> Option<Ve
     let inside = planes.iter().enumerate().all(|(index, (normal, offset))| {
         index == face || (normal.dot(&centroid) - offset.clone()).value() <= tolerance
     });
-    inside.then_some(centroid)
+    inside.then(|| (centroid, normal.clone()))
 }
 
 /// The centroid of the overlap of two cylinders whose axes are parallel
@@ -1132,21 +1179,22 @@ fn distance_bound(i: &Placed<f64>, j: &Placed<f64>) -> Option<f64> {
 }
 
 /// How far a round solid stands beyond the farthest of `other`'s faces (a
-/// plane's one, a block's six): a lower bound on their distance (the
-/// cylinder of its greater radius), exact for a cylinder and a plane.
+/// plane's one, a block's six): a lower bound on their distance, exact
+/// for a plane (the solid's lowest point towards a face lies on the rim of
+/// one of its ends).
 fn frustum_gap(round: &Placed<f64>, other: &Placed<f64>) -> f64 {
-    let Some(([r0, r1, bottom, top], middle)) = frustum_parts(round) else {
+    let Some(([r0, r1, bottom, top], _)) = frustum_parts(round) else {
         return 0.0;
     };
-    let radius = r0.max(r1);
     let axis = round.axes.column(2).into_owned();
+    let end_centre = |at: f64| round.ground(&Vector3::new(0.0, 0.0, at));
     half_spaces(other)
         .iter()
         .map(|(normal, offset)| {
-            let along = normal.dot(&axis);
-            let reach =
-                along.abs() * (top - bottom) / 2.0 + radius * (normal - axis * along).norm();
-            normal.dot(&middle) - offset - reach
+            let across = (normal - axis * normal.dot(&axis)).norm();
+            let beyond =
+                |at: f64, radius: f64| normal.dot(&end_centre(at)) - offset - radius * across;
+            beyond(bottom, r0).min(beyond(top, r1))
         })
         .fold(f64::NEG_INFINITY, f64::max)
 }
