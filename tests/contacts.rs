@@ -804,13 +804,17 @@ proptest::proptest! {
     }
 }
 
-/// A solid dropped tilted on a frictionless plane strikes it with a rim,
-/// an edge or a tip, which have no normal of their own: the force is
-/// along the plane's normal (the surfaces' common one), so nothing pushes
-/// the solid sideways and its centre of mass falls and bounces straight,
-/// with both methods.
+/// A solid dropped tilted on a frictionless plane or table (a block)
+/// strikes it with a rim, an edge or a tip, which have no normal of their
+/// own: the force is along the face's normal (the surfaces' common one),
+/// so nothing pushes the solid sideways and its centre of mass falls and
+/// bounces straight, with both methods.
 #[test]
-fn a_solid_struck_on_its_rim_or_edge_by_a_frictionless_plane_is_not_pushed_sideways() {
+fn a_solid_struck_on_its_rim_or_edge_by_a_frictionless_face_is_not_pushed_sideways() {
+    let grounds = [
+        "GRAPHICS/1, PLANE, RM = 11",
+        "MARKER/12, PART = 1, QP = -1, -1, -0.2\nGRAPHICS/1, BOX, CORNER = 12, X = 2, Y = 2, Z = 0.2",
+    ];
     let solids = [
         (
             "0, 0, -0.1",
@@ -825,12 +829,13 @@ fn a_solid_struck_on_its_rim_or_edge_by_a_frictionless_plane_is_not_pushed_sidew
             "BOX, CORNER = 21, X = 0.2, Y = 0.2, Z = 0.2",
         ),
     ];
-    for (corner, shape) in solids {
-        let text = format!(
-            "struck on a rim
+    for ground in grounds {
+        for (corner, shape) in solids {
+            let text = format!(
+                "struck on a rim
 PART/1, GROUND
 MARKER/11, PART = 1
-GRAPHICS/1, PLANE, RM = 11
+{ground}
 PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01, QG = 0, 0, 0.3, REULER = 20D, 30D, 0
 MARKER/20, PART = 2
 MARKER/21, PART = 2, QP = {corner}
@@ -839,17 +844,18 @@ CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E6, DAMPING = 100, DMAX = 
 ACCGRAV/KGRAV = -9.81
 END
 "
-        );
-        for name in ["dop853", "radau"] {
-            let run = run(&text, &with_method(name, 0.5, 50, 1e-8))
-                .unwrap_or_else(|e| panic!("{shape} {name}: {e}"));
-            assert!(!run.events.is_empty(), "{shape} {name}: no touch");
-            for row in &run.rows {
-                let sideways = [row[1], row[2], row[8], row[9]];
-                assert!(
-                    sideways.iter().all(|value| value.abs() < 1e-12),
-                    "{shape} {name}: {row:?}"
-                );
+            );
+            for name in ["dop853", "radau"] {
+                let run = run(&text, &with_method(name, 0.5, 50, 1e-8))
+                    .unwrap_or_else(|e| panic!("{ground}, {shape} {name}: {e}"));
+                assert!(!run.events.is_empty(), "{ground}, {shape} {name}: no touch");
+                for row in &run.rows {
+                    let sideways = [row[1], row[2], row[8], row[9]];
+                    assert!(
+                        sideways.iter().all(|value| value.abs() < 1e-12),
+                        "{ground}, {shape} {name}: {row:?}"
+                    );
+                }
             }
         }
     }

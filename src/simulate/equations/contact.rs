@@ -5,8 +5,12 @@
 //!
 //! The geometry follows Adams' account of its solid-to-solid contact: the
 //! overlap's centroid, the closest point of each solid's surface to it,
-//! the depth the distance between those two points and the normal the
-//! direction between them. A sphere's overlap with a sphere, a plane, a
+//! the depth the distance between those two points. The normal is the
+//! surfaces' common one: a plane's or a block face's where a solid meets
+//! it (a rim, an edge or a tip has none of its own), for two blocks the
+//! axis their shadows overlap least on (a struck face's normal, or the
+//! cross product of two crossing edges), and otherwise the direction
+//! between those two points. A sphere's overlap with a sphere, a plane, a
 //! block or a round solid has its depth in closed form (the depth along the
 //! line of the centroid is the distance from the sphere's deepest point to
 //! the other surface); two blocks, or a block and a plane, overlap in a
@@ -33,7 +37,17 @@ struct Placed<'s, T: Number> {
     body: Option<usize>,
 }
 
-impl<T: Number> Placed<'_, T> {
+impl<'s, T: Number> Placed<'s, T> {
+    /// The solid placed where it is, in plain numbers.
+    fn values(&self) -> Placed<'s, f64> {
+        Placed {
+            origin: self.origin.map(|c| c.value()),
+            axes: self.axes.map(|c| c.value()),
+            shape: self.shape,
+            body: self.body,
+        }
+    }
+
     /// A point of ground in the marker's axes.
     fn local(&self, point: &Vector3<T>) -> Vector3<T> {
         self.axes.tr_mul(&(point - &self.origin))
@@ -500,7 +514,7 @@ fn overlap_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
             let plane = match (i.shape, j.shape) {
                 (Shape::HalfSpace, _) => Some((i.axes.column(2).into_owned(), true)),
                 (_, Shape::HalfSpace) => Some((j.axes.column(2).into_owned(), false)),
-                _ => None,
+                _ => Some((blocks_normal(i, j)?, false)),
             };
             (centroid(&faces)?, plane)
         }
@@ -1256,21 +1270,36 @@ fn corners(block: &Placed<f64>) -> Vec<Vector3<f64>> {
         .collect()
 }
 
-/// The widest gap between the shadows of two blocks on their face normals
-/// and the cross products of their edges.
-fn shadow_gap(i: &Placed<f64>, j: &Placed<f64>) -> f64 {
-    let (a, b) = (corners(i), corners(j));
-    let mut axes: Vec<Vector3<f64>> = Vec::new();
-    for k in 0..3 {
-        axes.push(i.axes.column(k).into_owned());
-        axes.push(j.axes.column(k).into_owned());
-        for l in 0..3 {
-            let cross = i.axes.column(k).cross(&j.axes.column(l));
-            if cross.norm() > 1e-9 {
-                axes.push(cross.normalize());
+/// An axis two blocks' shadows are compared on: a face normal of I's or
+/// of J's block, or the cross product of an edge of each.
+#[derive(Clone, Copy)]
+enum ShadowAxis {
+    OfI(usize),
+    OfJ(usize),
+    Edges(usize, usize),
+}
+
+impl ShadowAxis {
+    /// The unit axis, from the blocks' axes (`None` for the cross
+    /// product of parallel edges).
+    fn direction<T: Number>(self, i: &Placed<T>, j: &Placed<T>) -> Option<Vector3<T>> {
+        match self {
+            ShadowAxis::OfI(k) => Some(i.axes.column(k).into_owned()),
+            ShadowAxis::OfJ(k) => Some(j.axes.column(k).into_owned()),
+            ShadowAxis::Edges(k, l) => {
+                let cross = i.axes.column(k).cross(&j.axes.column(l));
+                let length = cross.norm();
+                (length.value() > 1e-9).then(|| cross / length)
             }
         }
     }
+}
+
+/// The gap between the shadows of two blocks on each of their face
+/// normals and the cross products of their edges (negative where the
+/// shadows overlap).
+fn shadow_gaps(i: &Placed<f64>, j: &Placed<f64>) -> Vec<(ShadowAxis, f64)> {
+    let (a, b) = (corners(i), corners(j));
     let shadow = |points: &[Vector3<f64>], axis: &Vector3<f64>| {
         points
             .iter()
@@ -1279,12 +1308,50 @@ fn shadow_gap(i: &Placed<f64>, j: &Placed<f64>) -> f64 {
                 (low.min(x), high.max(x))
             })
     };
-    axes.iter()
-        .map(|axis| {
-            let ((a_low, a_high), (b_low, b_high)) = (shadow(&a, axis), shadow(&b, axis));
-            (a_low - b_high).max(b_low - a_high)
+    let faces = (0..3).flat_map(|k| [ShadowAxis::OfI(k), ShadowAxis::OfJ(k)]);
+    let edges = (0..3).flat_map(|k| (0..3).map(move |l| ShadowAxis::Edges(k, l)));
+    faces
+        .chain(edges)
+        .filter_map(|kind| {
+            let axis = kind.direction(i, j)?;
+            let ((a_low, a_high), (b_low, b_high)) = (shadow(&a, &axis), shadow(&b, &axis));
+            Some((kind, (a_low - b_high).max(b_low - a_high)))
         })
+        .collect()
+}
+
+/// The widest gap between the shadows of two blocks on their face normals
+/// and the cross products of their edges.
+fn shadow_gap(i: &Placed<f64>, j: &Placed<f64>) -> f64 {
+    shadow_gaps(i, j)
+        .iter()
+        .map(|&(_, gap)| gap)
         .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The common normal of two overlapping blocks: the axis their shadows
+/// overlap least on (a face's normal where an edge or a corner strikes
+/// it, the cross product of two edges that cross), pointing from J's
+/// block to I's. A face is preferred to a pair of edges that overlap
+/// almost as little, so that blocks face to face keep a face's normal.
+fn blocks_normal<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Vector3<T>> {
+    let (i_values, j_values) = (i.values(), j.values());
+    let gaps = shadow_gaps(&i_values, &j_values);
+    let least = |edges: bool| {
+        gaps.iter()
+            .filter(|(kind, _)| matches!(kind, ShadowAxis::Edges(..)) == edges)
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .copied()
+    };
+    let (face, edge) = (least(false)?, least(true));
+    let (kind, _) = match edge {
+        Some(edge) if edge.1 > 0.95 * face.1 + 1e-12 * face.1.abs().max(1.0) => edge,
+        _ => face,
+    };
+    let normal = kind.direction(i, j)?;
+    let apart = i_values.centre()? - j_values.centre()?;
+    let along = normal.map(|c| c.value()).dot(&apart);
+    Some(if along < 0.0 { -normal } else { normal })
 }
 
 #[cfg(test)]
