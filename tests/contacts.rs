@@ -860,3 +860,42 @@ END
         }
     }
 }
+
+/// A tilted cylinder or cone dropped on a plane touches it when the
+/// lowest point of its rim reaches the plane, at the closed-form time of
+/// the fall, whatever the volume of their first overlap (too thin to
+/// integrate at first: the distance to the plane is exact, and below zero
+/// through it).
+#[test]
+fn a_tilted_round_solid_touches_a_plane_when_its_rim_reaches_it() {
+    let tilt = 30_f64.to_radians();
+    // The rim's lowest point: the marker 0.1 below the centre of mass
+    // along the tilted axis, less the radius across it.
+    let lowest = 0.3 - 0.1 * tilt.cos() - 0.1 * tilt.sin();
+    let fall = (2.0 * lowest / G).sqrt();
+    for top in ["0.1", "0"] {
+        let text = format!(
+            "tilted round solid dropped
+PART/1, GROUND
+MARKER/11, PART = 1
+GRAPHICS/1, PLANE, RM = 11
+PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01, QG = 0, 0, 0.3, REULER = 0, 30D, 0
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = 0, 0, -0.1
+GRAPHICS/2, FRUSTUM, CM = 21, LENGTH = 0.2, BOTTOM = 0.1, TOP = {top}
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E6, DAMPING = 100, DMAX = 1E-3, EXPONENT = 2
+ACCGRAV/KGRAV = -9.81
+END
+"
+        );
+        for name in ["dop853", "radau"] {
+            let run = run(&text, &with_method(name, 0.2, 2, 1e-10))
+                .unwrap_or_else(|e| panic!("TOP = {top} {name}: {e}"));
+            let touch = run.events.first().expect("a touch").time;
+            assert!(
+                (touch - fall).abs() < 1e-10,
+                "TOP = {top} {name}: touches at {touch}, not {fall}"
+            );
+        }
+    }
+}

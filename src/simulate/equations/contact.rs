@@ -201,7 +201,17 @@ pub(super) fn separation(
             let relative = relative_velocity(kinematics, &i, &j, &touch.point);
             (-touch.depth, touch.normal.dot(&relative))
         }
-        None => (distance_bound(&i, &j).unwrap_or(0.0).max(0.0), 0.0),
+        None => {
+            let bound = distance_bound(&i, &j).unwrap_or(0.0);
+            // Against a plane the distance is exact, and below zero where
+            // the overlap is too thin to integrate: the touch is located
+            // where the solids meet, not where their overlap shows.
+            let exact = matches!(
+                (i.shape, j.shape),
+                (_, Shape::HalfSpace) | (Shape::HalfSpace, _)
+            );
+            (if exact { bound } else { bound.max(0.0) }, 0.0)
+        }
     }
 }
 
