@@ -831,20 +831,7 @@ fn a_solid_struck_on_its_rim_or_edge_by_a_frictionless_face_is_not_pushed_sidewa
     ];
     for ground in grounds {
         for (corner, shape) in solids {
-            let text = format!(
-                "struck on a rim
-PART/1, GROUND
-MARKER/11, PART = 1
-{ground}
-PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01, QG = 0, 0, 0.3, REULER = 20D, 30D, 0
-MARKER/20, PART = 2
-MARKER/21, PART = 2, QP = {corner}
-GRAPHICS/2, {shape}
-CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E6, DAMPING = 100, DMAX = 1E-3, EXPONENT = 2
-ACCGRAV/KGRAV = -9.81
-END
-"
-            );
+            let text = dropped(ground, "20D, 30D, 0", corner, shape);
             for name in ["dop853", "radau"] {
                 let run = run(&text, &with_method(name, 0.5, 50, 1e-8))
                     .unwrap_or_else(|e| panic!("{ground}, {shape} {name}: {e}"));
@@ -874,19 +861,12 @@ fn a_tilted_round_solid_touches_a_plane_when_its_rim_reaches_it() {
     let lowest = 0.3 - 0.1 * tilt.cos() - 0.1 * tilt.sin();
     let fall = (2.0 * lowest / G).sqrt();
     for top in ["0.1", "0"] {
-        let text = format!(
-            "tilted round solid dropped
-PART/1, GROUND
-MARKER/11, PART = 1
-GRAPHICS/1, PLANE, RM = 11
-PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01, QG = 0, 0, 0.3, REULER = 0, 30D, 0
-MARKER/20, PART = 2
-MARKER/21, PART = 2, QP = 0, 0, -0.1
-GRAPHICS/2, FRUSTUM, CM = 21, LENGTH = 0.2, BOTTOM = 0.1, TOP = {top}
-CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E6, DAMPING = 100, DMAX = 1E-3, EXPONENT = 2
-ACCGRAV/KGRAV = -9.81
-END
-"
+        let shape = format!("FRUSTUM, CM = 21, LENGTH = 0.2, BOTTOM = 0.1, TOP = {top}");
+        let text = dropped(
+            "GRAPHICS/1, PLANE, RM = 11",
+            "0, 30D, 0",
+            "0, 0, -0.1",
+            &shape,
         );
         for name in ["dop853", "radau"] {
             let run = run(&text, &with_method(name, 0.2, 2, 1e-10))
@@ -898,4 +878,24 @@ END
             );
         }
     }
+}
+
+/// A solid (part 2, mass 1, its marker 21 at `corner`, drawn as `shape`)
+/// turned by `euler` and dropped from 0.3 on `ground` (part 1's marker 11
+/// is the plane's), frictionless and damped.
+fn dropped(ground: &str, euler: &str, corner: &str, shape: &str) -> String {
+    format!(
+        "dropped solid
+PART/1, GROUND
+MARKER/11, PART = 1
+{ground}
+PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01, QG = 0, 0, 0.3, REULER = {euler}
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = {corner}
+GRAPHICS/2, {shape}
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E6, DAMPING = 100, DMAX = 1E-3, EXPONENT = 2
+ACCGRAV/KGRAV = -9.81
+END
+"
+    )
 }
