@@ -899,3 +899,35 @@ END
 "
     )
 }
+
+/// A cone on its tip against a stiff plane (k = 1e8, e = 1) settles at
+/// the depth `m g / k` ≈ 1e-7, where its overlap (≈ 1e-22 m³) is too thin
+/// to integrate: the touch is taken at the tip, and the run ends in a
+/// blink (without it the tip had no force below 2e-6 and the run hung).
+#[test]
+fn a_cone_on_its_tip_settles_on_a_stiff_plane_at_a_depth_too_thin_to_integrate() {
+    let text = "cone on its tip, stiff
+PART/1, GROUND
+MARKER/11, PART = 1
+GRAPHICS/1, PLANE, RM = 11
+PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01, QG = 0, 0, 0.101
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = 0, 0, -0.1
+GRAPHICS/2, FRUSTUM, CM = 21, LENGTH = 0.2, BOTTOM = 0, TOP = 0.1
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E8, DAMPING = 1000, DMAX = 1E-6, EXPONENT = 1
+ACCGRAV/KGRAV = -9.81
+REQUEST/1, F2 = CONTACT(1, 0, 1, 0)
+END
+";
+    for name in ["dop853", "radau"] {
+        let run =
+            run(text, &with_method(name, 2.0, 2, 1e-8)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let last = run.rows.last().expect("rows");
+        assert!(
+            (last[3] - (0.1 - G / 1e8)).abs() < 1e-12,
+            "{name}: {last:?}"
+        );
+        // k = 1e8 turns the height's 1e-13 into 1e-5 of force.
+        assert!((last[14] - G).abs() < 1e-4, "{name}: {last:?}");
+    }
+}

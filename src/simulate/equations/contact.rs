@@ -283,8 +283,60 @@ fn touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
             normal: -touch.normal,
             ..touch
         }),
-        _ => overlap_touch(i, j),
+        _ => overlap_touch(i, j).or_else(|| thin_touch(i, j)),
     }
+}
+
+/// A solid's overlap with a plane too thin to integrate (a cone's tip or
+/// a rim a millionth of the size in): the touch at the solid's lowest
+/// point, its depth the plane's height above it, along the plane's
+/// normal, so that no depth is too small to push back.
+fn thin_touch<T: Number>(i: &Placed<T>, j: &Placed<T>) -> Option<Touch<T>> {
+    let (solid, plane, plane_is_i) = match (i.shape, j.shape) {
+        (_, Shape::HalfSpace) => (i, j, false),
+        (Shape::HalfSpace, _) => (j, i, true),
+        _ => return None,
+    };
+    let up = plane.axes.column(2).into_owned();
+    let lowest = lowest_point(solid, &up)?;
+    let depth = up.dot(&(&plane.origin - &lowest));
+    if depth.value() <= 0.0 {
+        return None;
+    }
+    let on_plane = &lowest + &up * depth.clone();
+    Some(Touch {
+        point: (lowest + on_plane) * T::from(0.5),
+        normal: if plane_is_i { -up } else { up },
+        depth,
+    })
+}
+
+/// The point of a block or a round solid lowest along `up` (a corner, a
+/// point of a rim; `None` for another shape).
+fn lowest_point<T: Number>(solid: &Placed<T>, up: &Vector3<T>) -> Option<Vector3<T>> {
+    let candidates: Vec<Vector3<T>> = match *solid.shape {
+        Shape::Block { .. } => corners(solid),
+        Shape::Frustum { radii, bottom, top } => {
+            let axis = solid.axes.column(2).into_owned();
+            let across = up - &axis * up.dot(&axis);
+            let length = across.norm();
+            [(bottom, radii[0]), (top, radii[1])]
+                .into_iter()
+                .map(|(at, radius)| {
+                    let centre = solid.ground(&Vector3::new(0.0, 0.0, at).map(T::from));
+                    if length.value() > 0.0 && radius > 0.0 {
+                        centre - &across * (T::from(radius) / length.clone())
+                    } else {
+                        centre
+                    }
+                })
+                .collect()
+        }
+        Shape::Sphere { .. } | Shape::HalfSpace => return None,
+    };
+    candidates
+        .into_iter()
+        .min_by(|a, b| up.dot(a).value().total_cmp(&up.dot(b).value()))
 }
 
 /// A sphere about `centre` against `other`: the normal points from the
@@ -1262,7 +1314,7 @@ fn lowest_height(block: &Placed<f64>, plane: &Placed<f64>) -> f64 {
 }
 
 /// A block's eight corners in ground.
-fn corners(block: &Placed<f64>) -> Vec<Vector3<f64>> {
+fn corners<T: Number>(block: &Placed<T>) -> Vec<Vector3<T>> {
     let Shape::Block { lower, upper } = *block.shape else {
         return Vec::new();
     };
@@ -1275,7 +1327,7 @@ fn corners(block: &Placed<f64>) -> Vec<Vector3<f64>> {
                     lower[axis]
                 }
             };
-            block.ground(&Vector3::new(pick(0), pick(1), pick(2)))
+            block.ground(&Vector3::new(pick(0), pick(1), pick(2)).map(T::from))
         })
         .collect()
 }
