@@ -931,3 +931,32 @@ END
         assert!((last[14] - G).abs() < 1e-4, "{name}: {last:?}");
     }
 }
+
+/// mbexpr meets a round solid with the block face it stands beyond: a
+/// block's edge driven into a cylinder's end (no face of the block
+/// there) stops the run at the contact, named, rather than passing
+/// through unseen.
+#[test]
+fn a_block_edge_in_a_round_solid_stops_the_run_at_the_contact() {
+    let text = "block edge into a cylinder's end
+PART/1, GROUND
+PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = 0, 0, -0.1
+GRAPHICS/2, CYLINDER, CM = 21, LENGTH = 0.2, RADIUS = 0.1
+PART/3, MASS = 2, CM = 30, IP = 0.02, 0.03, 0.04, QG = 0, 0, 0.2114, REULER = 0, 45D, 0
+MARKER/30, PART = 3
+MARKER/31, PART = 3, QP = -0.1, -0.1, -0.1
+GRAPHICS/3, BOX, CORNER = 31, X = 0.2, Y = 0.2, Z = 0.2
+CONTACT/2, IGEOM = 3, JGEOM = 2, IMPACT, STIFFNESS = 1E6, DAMPING = 0, DMAX = 1E-3, EXPONENT = 1
+END
+";
+    let error = run(text, &settings(0.1, 1, 1e-8))
+        .err()
+        .expect("the run stops");
+    let message = error.to_string();
+    assert!(
+        message.contains("a block's edge or corner has gone into the round solid"),
+        "{message}"
+    );
+}

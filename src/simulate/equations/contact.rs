@@ -172,6 +172,69 @@ pub(super) fn cylinders_tilted(
     (sine > TILT && bounding_gap(&i, &j) <= 0.0).then_some(sine)
 }
 
+/// Whether a contact's round solid and block overlap where its geometry
+/// does not look: no overlap found, yet a block's corner or a point of
+/// its edges lies inside the round solid, or a point of the round solid's
+/// rims inside the block (mbexpr meets a round solid with the block face
+/// it stands beyond only).
+pub(super) fn block_edge_unseen(
+    model: &Model,
+    contact: &Contact,
+    kinematics: &[Kinematics<f64>],
+) -> bool {
+    let (round, block) = match (&contact.i.shape, &contact.j.shape) {
+        (Shape::Frustum { .. }, Shape::Block { .. }) => (&contact.i, &contact.j),
+        (Shape::Block { .. }, Shape::Frustum { .. }) => (&contact.j, &contact.i),
+        _ => return false,
+    };
+    let (round, block) = (
+        placed(model, round, kinematics),
+        placed(model, block, kinematics),
+    );
+    let Shape::Frustum { radii, bottom, top } = *round.shape else {
+        return false;
+    };
+    if overlap_touch(&round, &block).is_some() {
+        return false;
+    }
+    // Deeper than rounding and than an overlap too thin to integrate at
+    // the first touch.
+    let margin = 1e-5 * (radii[0].max(radii[1]) + top - bottom);
+    let in_round = |point: &Vector3<f64>| {
+        let local = round.local(point);
+        let radius = radii[0] + (radii[1] - radii[0]) * (local.z - bottom) / (top - bottom);
+        local.z > bottom + margin
+            && local.z < top - margin
+            && local.x.hypot(local.y) < radius - margin
+    };
+    let corners = corners(&block);
+    // Each edge once, from a corner to the one a bit above it, at nine
+    // points.
+    let mut on_edges = Vec::new();
+    for (a, start) in corners.iter().enumerate() {
+        for bit in (0..3).filter(|bit| a >> bit & 1 == 0) {
+            let end = corners[a | 1 << bit];
+            on_edges.extend((0..=8).map(|k| start + (end - start) * (f64::from(k) / 8.0)));
+        }
+    }
+    let planes = half_spaces(&block);
+    let in_block = |point: &Vector3<f64>| {
+        planes
+            .iter()
+            .all(|(normal, offset)| normal.dot(point) < offset - margin)
+    };
+    let on_rims = [(bottom, radii[0]), (top, radii[1])]
+        .into_iter()
+        .flat_map(|(at, radius)| {
+            (0..32).map(move |k| {
+                let angle = f64::from(k) * std::f64::consts::TAU / 32.0;
+                Vector3::new(radius * angle.cos(), radius * angle.sin(), at)
+            })
+        })
+        .map(|local| round.ground(&local));
+    on_edges.iter().any(in_round) || on_rims.into_iter().any(|point| in_block(&point))
+}
+
 /// The distance between two bounded solids' bounding spheres (a lower
 /// bound on theirs).
 fn bounding_gap(i: &Placed<f64>, j: &Placed<f64>) -> f64 {

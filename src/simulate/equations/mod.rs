@@ -648,6 +648,18 @@ impl<'m> Mechanics<'m> {
                     },
                 });
             }
+            if contact::block_edge_unseen(model, contact, &kinematics) {
+                return Err(OutputError {
+                    output: crate::simulate::constraints::JOINTS,
+                    error: crate::eval::EvalError::Law {
+                        error: crate::laws::LawError::Domain {
+                            operation: "a contact of a block and a round solid",
+                            reason: "a block's edge or corner has gone into the round solid, or its rim into the block away from the face it stands beyond; mbexpr meets a round solid with a block's face only (a wheel on a table): write the block's face as a PLANE, or the edge as a thin CYLINDER side by side with the round one".to_string(),
+                        },
+                        span: contact.span,
+                    },
+                });
+            }
             let (separation, rate) = contact::separation(model, contact, &kinematics);
             let held = held
                 .and_then(|sites| sites[program_sites + index])
