@@ -172,31 +172,20 @@ pub(super) fn cylinders_tilted(
     (sine > TILT && bounding_gap(&i, &j) <= 0.0).then_some(sine)
 }
 
-/// Whether a contact's round solid and block overlap where its geometry
-/// does not look: no overlap found, yet a block's corner or a point of
-/// its edges lies inside the round solid, or a point of the round solid's
-/// rims inside the block (mbexpr meets a round solid with the block face
-/// it stands beyond only).
-pub(super) fn block_edge_unseen(
-    model: &Model,
-    contact: &Contact,
-    kinematics: &[Kinematics<f64>],
-) -> bool {
-    let (round, block) = match (&contact.i.shape, &contact.j.shape) {
-        (Shape::Frustum { .. }, Shape::Block { .. }) => (&contact.i, &contact.j),
-        (Shape::Block { .. }, Shape::Frustum { .. }) => (&contact.j, &contact.i),
+/// Whether a round solid and a block whose overlap was not found overlap
+/// where the geometry does not look: a block's corner or a point of its
+/// edges inside the round solid, or a point of the round solid's rims
+/// inside the block (mbexpr meets a round solid with the block face it
+/// stands beyond only).
+fn block_edge_unseen(i: &Placed<f64>, j: &Placed<f64>) -> bool {
+    let (round, block) = match (i.shape, j.shape) {
+        (Shape::Frustum { .. }, Shape::Block { .. }) => (i, j),
+        (Shape::Block { .. }, Shape::Frustum { .. }) => (j, i),
         _ => return false,
     };
-    let (round, block) = (
-        placed(model, round, kinematics),
-        placed(model, block, kinematics),
-    );
     let Shape::Frustum { radii, bottom, top } = *round.shape else {
         return false;
     };
-    if overlap_touch(&round, &block).is_some() {
-        return false;
-    }
     // Deeper than rounding and than an overlap too thin to integrate at
     // the first touch.
     let margin = 1e-5 * (radii[0].max(radii[1]) + top - bottom);
@@ -207,7 +196,7 @@ pub(super) fn block_edge_unseen(
             && local.z < top - margin
             && local.x.hypot(local.y) < radius - margin
     };
-    let corners = corners(&block);
+    let corners = corners(block);
     // Each edge once, from a corner to the one a bit above it, at nine
     // points.
     let mut on_edges = Vec::new();
@@ -217,7 +206,7 @@ pub(super) fn block_edge_unseen(
             on_edges.extend((0..=8).map(|k| start + (end - start) * (f64::from(k) / 8.0)));
         }
     }
-    let planes = half_spaces(&block);
+    let planes = half_spaces(block);
     let in_block = |point: &Vector3<f64>| {
         planes
             .iter()
@@ -249,21 +238,24 @@ const TILT: f64 = 1e-3;
 /// The separation of a contact's solids (the negative of their depth:
 /// the first argument of its `IMPACT` law) and its rate at a state, which
 /// the run watches to switch the law's branches; while two solids of flat
-/// faces are apart, a lower bound on their distance and no rate.
+/// faces are apart, a lower bound on their distance and no rate. `None`
+/// where a round solid and a block overlap where the geometry does not
+/// look (a block's edge or corner in the round solid).
 pub(super) fn separation(
     model: &Model,
     contact: &Contact,
     kinematics: &[Kinematics<f64>],
-) -> (f64, f64) {
+) -> Option<(f64, f64)> {
     let (i, j) = (
         placed(model, &contact.i, kinematics),
         placed(model, &contact.j, kinematics),
     );
-    match touch(&i, &j) {
+    Some(match touch(&i, &j) {
         Some(touch) => {
             let relative = relative_velocity(kinematics, &i, &j, &touch.point);
             (-touch.depth, touch.normal.dot(&relative))
         }
+        None if block_edge_unseen(&i, &j) => return None,
         None => {
             let bound = distance_bound(&i, &j).unwrap_or(0.0);
             // Against a plane the distance is exact, and below zero where
@@ -275,7 +267,7 @@ pub(super) fn separation(
             );
             (if exact { bound } else { bound.max(0.0) }, 0.0)
         }
-    }
+    })
 }
 
 /// The force on I's solid: the contact's `IMPACT` law of the separation
@@ -1322,19 +1314,9 @@ fn distance_bound(i: &Placed<f64>, j: &Placed<f64>) -> Option<f64> {
 /// for a plane (the solid's lowest point towards a face lies on the rim of
 /// one of its ends).
 fn frustum_gap(round: &Placed<f64>, other: &Placed<f64>) -> f64 {
-    let Some(([r0, r1, bottom, top], _)) = frustum_parts(round) else {
-        return 0.0;
-    };
-    let axis = round.axes.column(2).into_owned();
-    let end_centre = |at: f64| round.ground(&Vector3::new(0.0, 0.0, at));
     half_spaces(other)
         .iter()
-        .map(|(normal, offset)| {
-            let across = (normal - axis * normal.dot(&axis)).norm();
-            let beyond =
-                |at: f64, radius: f64| normal.dot(&end_centre(at)) - offset - radius * across;
-            beyond(bottom, r0).min(beyond(top, r1))
-        })
+        .filter_map(|(normal, offset)| Some(normal.dot(&lowest_point(round, normal)?) - offset))
         .fold(f64::NEG_INFINITY, f64::max)
 }
 
@@ -1369,11 +1351,8 @@ fn sphere_distance(centre: &Vector3<f64>, radius: f64, other: &Placed<f64>) -> O
 
 /// How high a block's lowest corner stands above a plane.
 fn lowest_height(block: &Placed<f64>, plane: &Placed<f64>) -> f64 {
-    let normal = plane.axes.column(2).into_owned();
-    corners(block)
-        .iter()
-        .map(|corner| normal.dot(&(corner - plane.origin)))
-        .fold(f64::INFINITY, f64::min)
+    let up = plane.axes.column(2).into_owned();
+    lowest_point(block, &up).map_or(f64::INFINITY, |corner| up.dot(&(corner - plane.origin)))
 }
 
 /// A block's eight corners in ground.

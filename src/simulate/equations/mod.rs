@@ -634,33 +634,22 @@ impl<'m> Mechanics<'m> {
         let mut apart = Vec::new();
         for (index, &contact) in equations.contacts.iter().enumerate() {
             if let Some(sine) = contact::cylinders_tilted(model, contact, &kinematics) {
-                return Err(OutputError {
-                    output: crate::simulate::constraints::JOINTS,
-                    error: crate::eval::EvalError::Law {
-                        error: crate::laws::LawError::Domain {
-                            operation: "a contact of two cylinders",
-                            reason: format!(
-                                "their axes have turned {:.3} rad apart; mbexpr meets two cylinders side by side, their axes parallel: hold them so with joints",
-                                sine.asin()
-                            ),
-                        },
-                        span: contact.span,
-                    },
-                });
+                return Err(contact_refused(
+                    contact,
+                    "a contact of two cylinders",
+                    format!(
+                        "their axes have turned {:.3} rad apart; mbexpr meets two cylinders side by side, their axes parallel: hold them so with joints",
+                        sine.asin()
+                    ),
+                ));
             }
-            if contact::block_edge_unseen(model, contact, &kinematics) {
-                return Err(OutputError {
-                    output: crate::simulate::constraints::JOINTS,
-                    error: crate::eval::EvalError::Law {
-                        error: crate::laws::LawError::Domain {
-                            operation: "a contact of a block and a round solid",
-                            reason: "a block's edge or corner has gone into the round solid, or its rim into the block away from the face it stands beyond; mbexpr meets a round solid with a block's face only (a wheel on a table): write the block's face as a PLANE, or the edge as a thin CYLINDER side by side with the round one".to_string(),
-                        },
-                        span: contact.span,
-                    },
-                });
-            }
-            let (separation, rate) = contact::separation(model, contact, &kinematics);
+            let Some((separation, rate)) = contact::separation(model, contact, &kinematics) else {
+                return Err(contact_refused(
+                    contact,
+                    "a contact of a block and a round solid",
+                    "a block's edge or corner has gone into the round solid, or its rim into the block away from the face it stands beyond; mbexpr meets a round solid with a block's face only (a wheel on a table): write the block's face as a PLANE, or the edge as a thin CYLINDER side by side with the round one".to_string(),
+                ));
+            };
             let held = held
                 .and_then(|sites| sites[program_sites + index])
                 .map(ContactBranch::from_code);
@@ -1556,5 +1545,21 @@ impl Equations<'_> {
             }
         }
         Ok(())
+    }
+}
+
+/// A run stopped at a contact whose solids have gone where its geometry
+/// does not follow them: `operation` and why, at the contact's statement.
+fn contact_refused(
+    contact: &crate::simulate::model::Contact,
+    operation: &'static str,
+    reason: String,
+) -> OutputError {
+    OutputError {
+        output: crate::simulate::constraints::JOINTS,
+        error: crate::eval::EvalError::Law {
+            error: crate::laws::LawError::Domain { operation, reason },
+            span: contact.span,
+        },
     }
 }
