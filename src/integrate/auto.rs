@@ -20,8 +20,9 @@
 //! every step. A change is decided at the end of a step and made at the
 //! start of the next, from the current state, as a restart.
 
-use super::core::{Core, evaluate, rms};
+use super::core::Core;
 use super::dop853::{STABILITY_EDGE, StiffnessTest};
+use super::spectral::SpectralRadius;
 use super::{Method, System};
 
 /// DOP853's stiffness test under Auto: at every step, `h |λ|` beyond half
@@ -52,11 +53,8 @@ pub(super) struct Auto {
     /// The change decided at the end of the last step, made at the start
     /// of the next.
     pending: Option<Method>,
-    /// Power iteration's vector (not normalised).
-    direction: Vec<f64>,
-    /// A shifted state and its rates, working storage.
-    shifted: Vec<f64>,
-    rates: Vec<f64>,
+    /// Power iteration for `|λ|`.
+    spectral: SpectralRadius,
     /// Radau5 steps in a row whose `h |λ|` is within the margin.
     within: u32,
 }
@@ -66,9 +64,7 @@ impl Auto {
     pub fn new(n: usize) -> Auto {
         Auto {
             pending: None,
-            direction: vec![1.0; n],
-            shifted: vec![0.0; n],
-            rates: vec![0.0; n],
+            spectral: SpectralRadius::new(n),
             within: 0,
         }
     }
@@ -85,45 +81,13 @@ impl Auto {
     /// valid): one power iteration for `|λ|`, counted against the step
     /// Radau5 proposes next. A state the system refuses says nothing.
     pub fn after_implicit<S: System + ?Sized>(&mut self, core: &mut Core, system: &mut S) {
-        let n = core.y.len();
-        let mut size = rms(self.direction.iter().copied(), n);
-        if !(size > 0.0 && size.is_finite()) {
-            self.direction.copy_from_slice(&core.dy);
-            size = rms(self.direction.iter().copied(), n);
-            if !(size > 0.0 && size.is_finite()) {
-                self.direction.fill(1.0);
-                size = 1.0;
-            }
-        }
-        // A shift of about half the digits of the state.
-        let delta = f64::EPSILON.sqrt() * (1.0 + rms(core.y.iter().copied(), n));
-        for (shifted, (y, direction)) in self
-            .shifted
-            .iter_mut()
-            .zip(core.y.iter().zip(&self.direction))
-        {
-            *shifted = y + delta * direction / size;
-        }
-        if evaluate(
-            system,
-            &mut core.stats,
-            core.t,
-            &self.shifted,
-            &mut self.rates,
-        )
-        .is_err()
-        {
+        let Some(lambda) =
+            self.spectral
+                .iterate(system, &mut core.stats, core.t, &core.y, &core.dy)
+        else {
             self.within = 0;
             return;
-        }
-        for (direction, (shifted_rate, rate)) in self
-            .direction
-            .iter_mut()
-            .zip(self.rates.iter().zip(&core.dy))
-        {
-            *direction = (shifted_rate - rate) / delta;
-        }
-        let lambda = rms(self.direction.iter().copied(), n);
+        };
         if core.h.min(core.h_max) * lambda <= RETURN_EDGE {
             self.within += 1;
         } else {
