@@ -960,3 +960,64 @@ END
         "{message}"
     );
 }
+
+/// A block or a round solid whose centre has gone below a contact's plane
+/// is past where Adams' depth (between the surfaces' points closest to
+/// the overlap's centroid) pushes it out: the depth runs to its far faces
+/// and jumps between them on rounding. A box started under the plane
+/// stalled every method, a cone on too soft a contact sank through; both
+/// now stop the run at the contact, named, the first at the start.
+#[test]
+fn a_solid_sunk_past_its_centre_in_a_plane_stops_the_run_at_the_contact() {
+    let cases = [
+        (
+            "box started under",
+            "QG = 0, 0, -0.2",
+            "-0.1, -0.1, -0.1",
+            "BOX, CORNER = 21, X = 0.2, Y = 0.2, Z = 0.2",
+            "1E6",
+            true,
+        ),
+        (
+            "cone on a soft contact",
+            "QG = 0, 0, 0.101",
+            "0, 0, -0.1",
+            "FRUSTUM, CM = 21, LENGTH = 0.2, BOTTOM = 0, TOP = 0.1",
+            "65",
+            false,
+        ),
+        (
+            "level cylinder on a soft contact",
+            "QG = 0, 0, 0.1, REULER = 0, 90D, 0",
+            "0, 0, -0.1",
+            "CYLINDER, CM = 21, LENGTH = 0.2, RADIUS = 0.05",
+            "50",
+            false,
+        ),
+    ];
+    for (name, place, corner, shape, stiffness, at_start) in cases {
+        let text = format!(
+            "{name}
+PART/1, GROUND
+MARKER/11, PART = 1
+GRAPHICS/1, PLANE, RM = 11
+PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01, {place}
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = {corner}
+GRAPHICS/2, {shape}
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = {stiffness}, DAMPING = 20, DMAX = 1E-4, EXPONENT = 1
+ACCGRAV/KGRAV = -9.81
+END
+"
+        );
+        let error = run(&text, &settings(5.0, 5, 1e-6))
+            .err()
+            .unwrap_or_else(|| panic!("{name}: the run stops"));
+        let message = error.to_string();
+        assert!(
+            message.contains("the solid's centre has gone"),
+            "{name}: {message}"
+        );
+        assert_eq!(message.contains("t = 0:"), at_start, "{name}: {message}");
+    }
+}

@@ -172,6 +172,30 @@ pub(super) fn cylinders_tilted(
     (sine > TILT && bounding_gap(&i, &j) <= 0.0).then_some(sine)
 }
 
+/// How far the centre of a block or a round solid has gone below a
+/// contact's plane, when it has. Beyond there the depth Adams measures
+/// (between the surfaces' points closest to the overlap's centroid) runs
+/// to the solid's far faces, jumps between them on rounding, and no longer
+/// pushes the solid out (a box started under a plane stalled every method;
+/// a cone sunk on its tip sank through).
+pub(super) fn sunk_past_centre(
+    model: &Model,
+    contact: &Contact,
+    kinematics: &[Kinematics<f64>],
+) -> Option<f64> {
+    let (i, j) = (
+        placed(model, &contact.i, kinematics),
+        placed(model, &contact.j, kinematics),
+    );
+    let (solid, plane) = match (i.shape, j.shape) {
+        (Shape::Block { .. } | Shape::Frustum { .. }, Shape::HalfSpace) => (&i, &j),
+        (Shape::HalfSpace, Shape::Block { .. } | Shape::Frustum { .. }) => (&j, &i),
+        _ => return None,
+    };
+    let height = plane.local(&solid.centre()?).z;
+    (height < 0.0).then_some(-height)
+}
+
 /// Whether a round solid and a block whose overlap was not found overlap
 /// where the geometry does not look: a block's corner or a point of its
 /// edges inside the round solid, or a point of the round solid's rims

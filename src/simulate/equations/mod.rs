@@ -643,6 +643,16 @@ impl<'m> Mechanics<'m> {
                     ),
                 ));
             }
+            if let Some(below) = contact::sunk_past_centre(model, contact, &kinematics) {
+                return Err(contact_refused(
+                    contact,
+                    "a contact with a plane",
+                    format!(
+                        "the solid's centre has gone {} below the plane; past there the depth Adams measures (between the surfaces' points closest to the overlap's centroid) runs to the solid's far faces and no longer pushes it out: start the solid above the plane, or make the contact stiffer so that it stays shallow",
+                        crate::shown::Shown(below)
+                    ),
+                ));
+            }
             let Some((separation, rate)) = contact::separation(model, contact, &kinematics) else {
                 return Err(contact_refused(
                     contact,
