@@ -22,13 +22,13 @@
 //!   caller says the solution is not smooth: [`Stepper::set_smooth`]), and
 //!   the step size follows `h_new = h / clamp(err^(1/8) / 0.9,
 //!   1/6, 1/0.333)`. Three more stages give the 7th-order dense output.
-//!   The steps are also held to `h |λ| ≤ 4.5`, `|λ|` the largest of the
+//!   The steps are also held to `h |λ| ≤ 3`, `|λ|` the largest of the
 //!   Jacobian by power iteration on differences of `f` (one more
 //!   evaluation a step while `h |λ|` passes 2, every eighth step below):
-//!   between there and the edge of stability (6.1), where the error
-//!   control holds a stiff problem's steps, the step's ends are right but
-//!   the dense output's polynomial in `h λ` amplifies a barely excited
-//!   stiff mode 10 to 30 times inside the step.
+//!   beyond, up to the edge of stability (6.1) where the error control
+//!   holds a stiff problem's steps, the step's ends are right but the
+//!   dense output's polynomial in `h λ` departs from the mode inside the
+//!   step, by up to 10 to 30 times the mode at the edge.
 //! - **Radau IIA of order 5** (Hairer, Wanner II, IV.8): the three-stage
 //!   collocation method at the Radau points `(4 ∓ √6)/10, 1`. The stage
 //!   equations are solved by simplified Newton iterations on the system

@@ -1045,9 +1045,8 @@ impl Simulation<'_> {
                 &mut system,
                 &mut stepper,
                 (t0, &step_start, step_end),
-                located,
-                &dense,
-                slope,
+                (located, &dense, slope),
+                settings,
             )?;
             dense.copy_from_slice(&state);
             let mut residuals = None;
@@ -1157,15 +1156,16 @@ impl Simulation<'_> {
     /// switch by no more than the location's tolerance. When the integrated
     /// states never confirm the switch (a loose tolerance, where the
     /// continuous output strays), the located time and `located_state`, the
-    /// continuous output's state there, are kept. The time and the state.
+    /// continuous output's state there, are kept. The time and the state;
+    /// a step budget spent in the integration is the settings' (as in a
+    /// step of the run).
     fn cut(
         &self,
         system: &mut Held<'_>,
         stepper: &mut Stepper,
         (t0, y0, step_end): (f64, &[f64], f64),
-        located: Switch,
-        located_state: &[f64],
-        slope: f64,
+        (located, located_state, slope): (Switch, &[f64], f64),
+        settings: &Settings,
     ) -> Result<(f64, Vec<f64>), SimulateError> {
         let mut natural = vec![None; system.mechanics.site_count()];
         let mut switching = vec![0.0; system.mechanics.switch_count()];
@@ -1177,7 +1177,7 @@ impl Simulation<'_> {
             while stepper.t() < time {
                 stepper
                     .step_to(system, time)
-                    .map_err(|error| self.integration_error(error))?;
+                    .map_err(|error| self.step_error(error, settings, None, None))?;
             }
             let state = stepper.y().to_vec();
             system
