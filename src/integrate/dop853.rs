@@ -424,11 +424,14 @@ impl Dop853 {
     /// Takes over `other`'s stiffness test where it stands and its estimate
     /// of `|λ|`: a fresh start at an event goes on counting (a run whose
     /// every step crosses a branch boundary is still found stiff), and its
-    /// first step, chosen anew, is held by the stiffest mode as the last.
+    /// first step, chosen anew, is held by the stiffest mode as the last,
+    /// which the end of that step estimates again (the event may have
+    /// changed it: a contact's spring met).
     pub fn continue_from(&mut self, other: &Dop853) {
         self.stiffness = other.stiffness.clone();
         self.spectral = other.spectral.clone();
         self.lambda = other.lambda;
+        self.since_estimate = ESTIMATE_EVERY;
     }
 
     /// Forgets the last step.
