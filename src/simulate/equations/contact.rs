@@ -148,48 +148,31 @@ fn relative_velocity<T: Number>(
     velocity(i.body) - velocity(j.body)
 }
 
-/// The sine of the angle between the axes of a contact's two cylinders,
-/// when it has two, they have turned further apart than its geometry
-/// takes for parallel (a thousandth of a radian, [`TILT`]) and they are
-/// near enough to touch (their bounding spheres meet).
-pub(super) fn cylinders_tilted(
-    model: &Model,
-    contact: &Contact,
-    kinematics: &[Kinematics<f64>],
-) -> Option<f64> {
-    let both_round = matches!(
-        (&contact.i.shape, &contact.j.shape),
+/// The sine of the angle between the axes of two cylinders, when the
+/// solids are two, they have turned further apart than the geometry takes
+/// for parallel (a thousandth of a radian, [`TILT`]) and they are near
+/// enough to touch (their bounding spheres meet).
+fn cylinders_tilted(i: &Placed<f64>, j: &Placed<f64>) -> Option<f64> {
+    if !matches!(
+        (i.shape, j.shape),
         (Shape::Frustum { .. }, Shape::Frustum { .. })
-    );
-    if !both_round {
+    ) {
         return None;
     }
-    let (i, j) = (
-        placed(model, &contact.i, kinematics),
-        placed(model, &contact.j, kinematics),
-    );
     let sine = i.axes.column(2).cross(&j.axes.column(2)).norm();
-    (sine > TILT && bounding_gap(&i, &j) <= 0.0).then_some(sine)
+    (sine > TILT && bounding_gap(i, j) <= 0.0).then_some(sine)
 }
 
-/// How far the centre of a block or a round solid has gone below a
-/// contact's plane, when it has. Beyond there the depth Adams measures
-/// (between the surfaces' points closest to the overlap's centroid) runs
-/// to the solid's far faces, jumps between them on rounding, and no longer
+/// How far the centre of a block or a round solid has gone below a plane,
+/// when it has. Beyond there the depth Adams measures (between the
+/// surfaces' points closest to the overlap's centroid) runs to the
+/// solid's far faces, jumps between them on rounding, and no longer
 /// pushes the solid out (a box started under a plane stalled every method;
 /// a cone sunk on its tip sank through).
-pub(super) fn sunk_past_centre(
-    model: &Model,
-    contact: &Contact,
-    kinematics: &[Kinematics<f64>],
-) -> Option<f64> {
-    let (i, j) = (
-        placed(model, &contact.i, kinematics),
-        placed(model, &contact.j, kinematics),
-    );
+fn sunk_past_centre(i: &Placed<f64>, j: &Placed<f64>) -> Option<f64> {
     let (solid, plane) = match (i.shape, j.shape) {
-        (Shape::Block { .. } | Shape::Frustum { .. }, Shape::HalfSpace) => (&i, &j),
-        (Shape::HalfSpace, Shape::Block { .. } | Shape::Frustum { .. }) => (&j, &i),
+        (Shape::Block { .. } | Shape::Frustum { .. }, Shape::HalfSpace) => (i, j),
+        (Shape::HalfSpace, Shape::Block { .. } | Shape::Frustum { .. }) => (j, i),
         _ => return None,
     };
     let height = plane.local(&solid.centre()?).z;
@@ -259,27 +242,61 @@ fn bounding_gap(i: &Placed<f64>, j: &Placed<f64>) -> f64 {
 /// angle) while their contact is taken for one of parallel cylinders.
 const TILT: f64 = 1e-3;
 
+/// Why a run stops at a contact whose solids have gone where its geometry
+/// does not follow them: the operation and the reason.
+pub(super) struct Refusal {
+    /// What the geometry could not do.
+    pub operation: &'static str,
+    /// Why, and what to write instead.
+    pub reason: String,
+}
+
 /// The separation of a contact's solids (the negative of their depth:
 /// the first argument of its `IMPACT` law) and its rate at a state, which
 /// the run watches to switch the law's branches; while two solids of flat
-/// faces are apart, a lower bound on their distance and no rate. `None`
-/// where a round solid and a block overlap where the geometry does not
-/// look (a block's edge or corner in the round solid).
+/// faces are apart, a lower bound on their distance and no rate. A
+/// refusal where the geometry does not follow the solids: two cylinders
+/// turned apart, a solid's centre below a plane, a round solid and a block
+/// overlapping where the geometry does not look (a block's edge or corner
+/// in the round solid).
 pub(super) fn separation(
     model: &Model,
     contact: &Contact,
     kinematics: &[Kinematics<f64>],
-) -> Option<(f64, f64)> {
+) -> Result<(f64, f64), Refusal> {
     let (i, j) = (
         placed(model, &contact.i, kinematics),
         placed(model, &contact.j, kinematics),
     );
-    Some(match touch(&i, &j) {
+    if let Some(sine) = cylinders_tilted(&i, &j) {
+        return Err(Refusal {
+            operation: "a contact of two cylinders",
+            reason: format!(
+                "their axes have turned {:.3} rad apart; mbexpr meets two cylinders side by side, their axes parallel: hold them so with joints",
+                sine.asin()
+            ),
+        });
+    }
+    if let Some(below) = sunk_past_centre(&i, &j) {
+        return Err(Refusal {
+            operation: "a contact with a plane",
+            reason: format!(
+                "the solid's centre has gone {} below the plane; past there the depth Adams measures (between the surfaces' points closest to the overlap's centroid) runs to the solid's far faces and no longer pushes it out: start the solid above the plane, or make the contact stiffer so that it stays shallow",
+                crate::shown::Shown(below)
+            ),
+        });
+    }
+    Ok(match touch(&i, &j) {
         Some(touch) => {
             let relative = relative_velocity(kinematics, &i, &j, &touch.point);
             (-touch.depth, touch.normal.dot(&relative))
         }
-        None if block_edge_unseen(&i, &j) => return None,
+        None if block_edge_unseen(&i, &j) => {
+            return Err(Refusal {
+                operation: "a contact of a block and a round solid",
+                reason: "a block's edge or corner has gone into the round solid, or its rim into the block away from the face it stands beyond; mbexpr meets a round solid with a block's face only (a wheel on a table): write the block's face as a PLANE, or the edge as a thin CYLINDER side by side with the round one".to_string(),
+            });
+        }
         None => {
             let bound = distance_bound(&i, &j).unwrap_or(0.0);
             // Against a plane the distance is exact, and below zero where

@@ -633,33 +633,8 @@ impl<'m> Mechanics<'m> {
         // switching values of an IMPACT.
         let mut apart = Vec::new();
         for (index, &contact) in equations.contacts.iter().enumerate() {
-            if let Some(sine) = contact::cylinders_tilted(model, contact, &kinematics) {
-                return Err(contact_refused(
-                    contact,
-                    "a contact of two cylinders",
-                    format!(
-                        "their axes have turned {:.3} rad apart; mbexpr meets two cylinders side by side, their axes parallel: hold them so with joints",
-                        sine.asin()
-                    ),
-                ));
-            }
-            if let Some(below) = contact::sunk_past_centre(model, contact, &kinematics) {
-                return Err(contact_refused(
-                    contact,
-                    "a contact with a plane",
-                    format!(
-                        "the solid's centre has gone {} below the plane; past there the depth Adams measures (between the surfaces' points closest to the overlap's centroid) runs to the solid's far faces and no longer pushes it out: start the solid above the plane, or make the contact stiffer so that it stays shallow",
-                        crate::shown::Shown(below)
-                    ),
-                ));
-            }
-            let Some((separation, rate)) = contact::separation(model, contact, &kinematics) else {
-                return Err(contact_refused(
-                    contact,
-                    "a contact of a block and a round solid",
-                    "a block's edge or corner has gone into the round solid, or its rim into the block away from the face it stands beyond; mbexpr meets a round solid with a block's face only (a wheel on a table): write the block's face as a PLANE, or the edge as a thin CYLINDER side by side with the round one".to_string(),
-                ));
-            };
+            let (separation, rate) = contact::separation(model, contact, &kinematics)
+                .map_err(|refusal| contact_refused(contact, refusal))?;
             let held = held
                 .and_then(|sites| sites[program_sites + index])
                 .map(ContactBranch::from_code);
@@ -1559,12 +1534,12 @@ impl Equations<'_> {
 }
 
 /// A run stopped at a contact whose solids have gone where its geometry
-/// does not follow them: `operation` and why, at the contact's statement.
+/// does not follow them, at the contact's statement.
 fn contact_refused(
     contact: &crate::simulate::model::Contact,
-    operation: &'static str,
-    reason: String,
+    refusal: contact::Refusal,
 ) -> OutputError {
+    let contact::Refusal { operation, reason } = refusal;
     OutputError {
         output: crate::simulate::constraints::JOINTS,
         error: crate::eval::EvalError::Law {
