@@ -262,7 +262,6 @@ fn a_restart_at_an_event_continues_on_the_solution() {
             }
         }
         stepper.dense(high, &mut y);
-        let before = stepper.stats();
         stepper.restart(high, &y);
         assert_eq!((stepper.t(), stepper.t_previous()), (high, high));
         let mut same = [0.0; 2];
@@ -271,7 +270,6 @@ fn a_restart_at_an_event_continues_on_the_solution() {
         while stepper.t() < 3.0 {
             stepper.step_to(system, 3.0).unwrap();
         }
-        let after = stepper.stats();
         assert!(
             (error(&exact(3.0), stepper.y(), &[1.0, 1.0])) < 1e-8,
             "{method}"
@@ -280,9 +278,6 @@ fn a_restart_at_an_event_continues_on_the_solution() {
             (exact(high)[0] - 0.25).abs() < 1e-9,
             "{method} event at {high}"
         );
-        if method.uses_jacobian() {
-            assert!(after.jacobian_evaluations > before.jacobian_evaluations);
-        }
     }
 }
 
@@ -559,4 +554,49 @@ fn dop853s_rows_inside_its_steps_follow_a_stiff_mode_it_steps_over() {
             Ok(())
         })
         .unwrap();
+}
+
+/// Radau5 keeps its Jacobian through a restart: the event driver goes back
+/// to a step's start to cut the step at a switch, on the same system, and
+/// a Jacobian and LU per cut made Radau5 cost 6 times DOP853 on a chain of
+/// balls meeting 225 times. After a fresh start (the system may have
+/// changed at the event) it evaluates a new one.
+#[test]
+fn radau5_keeps_its_jacobian_through_a_restart_but_not_a_fresh_start() {
+    let mut lag = ForcedLag {
+        lambda: -500.0,
+        omega: 2.0,
+    };
+    let options = Options {
+        rtol: 1e-8,
+        atol: 1e-8.into(),
+        ..Options::default()
+    };
+    let mut stepper = Stepper::new(
+        Method::Radau5,
+        options.clone(),
+        0.0,
+        &lag.exact(0.0),
+        &mut lag,
+    )
+    .unwrap();
+    for _ in 0..5 {
+        stepper.step(&mut lag).unwrap();
+    }
+    let (t0, y0) = (stepper.t(), stepper.y().to_vec());
+    stepper.step(&mut lag).unwrap();
+    let jacobians = stepper.stats().jacobian_evaluations;
+    let middle = 0.5 * (t0 + stepper.t());
+    stepper.restart(t0, &y0);
+    while stepper.t() < middle {
+        stepper.step_to(&mut lag, middle).unwrap();
+    }
+    assert_eq!(stepper.stats().jacobian_evaluations, jacobians);
+    let scale = [1.0; 3];
+    assert!(error(&lag.exact(middle), stepper.y(), &scale) < 1e-7);
+    let y = stepper.y().to_vec();
+    let mut fresh = stepper.fresh_start(options, middle, &y, &mut lag).unwrap();
+    fresh.step(&mut lag).unwrap();
+    assert_eq!(fresh.stats().jacobian_evaluations, 1);
+    assert!(error(&lag.exact(fresh.t()), fresh.y(), &scale) < 1e-7);
 }

@@ -310,6 +310,11 @@ pub struct Options {
     /// in units of the tolerance, is below this (Hairer's `fnewt`; by
     /// default `max(10 ε / rtol, min(0.03, rtol^(1/2)))`).
     pub newton_tolerance: Option<f64>,
+    /// Radau5 only: the Jacobian is kept for the next step while the
+    /// Newton iteration contracts by at most this factor (Hairer's `thet`:
+    /// by default 0.001, for a Jacobian that costs a few right-hand sides;
+    /// more where it costs more; from 0 to below 1).
+    pub jacobian_reuse: f64,
     /// The solution is smooth to the method's order (the default). See
     /// [`Stepper::set_smooth`].
     pub smooth: bool,
@@ -324,6 +329,7 @@ impl Default for Options {
             h_init: None,
             max_steps: 100_000,
             newton_tolerance: None,
+            jacobian_reuse: 0.001,
             smooth: true,
         }
     }
@@ -400,7 +406,7 @@ impl Stepper {
             Method::Auto => Method::Dop853,
             fixed => fixed,
         };
-        Self::start(method, first, options, t0, y0, system)
+        Self::start(method, first, options, t0, y0, system, None)
     }
 
     /// A new stepper from `(t, y)` with this one's method (under
@@ -408,9 +414,10 @@ impl Stepper {
     /// chosen anew and its counts from zero: a fresh start after the caller
     /// has changed the system at an event. DOP853's stiffness test goes on
     /// where it stood, and its estimate of the stiffest mode holds the
-    /// first step.
+    /// first step. Radau5 keeps its Jacobian and factorisations where
+    /// the system's pattern is the same (as [`Stepper::restart`] does).
     pub fn fresh_start<S: System + ?Sized>(
-        &self,
+        self,
         options: Options,
         t: f64,
         y: &[f64],
@@ -421,14 +428,13 @@ impl Stepper {
         } else {
             self.method()
         };
-        let mut next = Self::start(choice, self.method(), options, t, y, system)?;
-        if let (Scheme::Dop853(old), Scheme::Dop853(new)) = (&self.scheme, &mut next.scheme) {
-            new.continue_from(old);
-        }
-        Ok(next)
+        let method = self.method();
+        Self::start(choice, method, options, t, y, system, Some(self.scheme))
     }
 
-    /// Starts `choice` (a method or Auto) at `(t0, y0)` with `first`.
+    /// Starts `choice` (a method or Auto) at `(t0, y0)` with `first`,
+    /// continuing from `previous`, the state of the method in use before a
+    /// fresh start.
     fn start<S: System + ?Sized>(
         choice: Method,
         first: Method,
@@ -436,10 +442,11 @@ impl Stepper {
         t0: f64,
         y0: &[f64],
         system: &mut S,
+        previous: Option<Scheme>,
     ) -> Result<Self, IntegrateError<S::Error>> {
         let mut core = Core::new(&options, t0, y0, system.dimension())?;
         let auto = (choice == Method::Auto).then(|| Auto::new(y0.len()));
-        let scheme = Self::scheme(first, &options, &core, auto.is_some(), system)?;
+        let scheme = Self::continued(previous, first, &options, &core, auto.is_some(), system)?;
         core.start(system)?;
         core.h = match options.h_init {
             Some(h) => h,
@@ -467,6 +474,37 @@ impl Stepper {
             options,
             auto,
         })
+    }
+
+    /// The working state of `first` after `previous` (none at a start):
+    /// Radau5's storage and symbolic analysis kept where the Jacobian's
+    /// pattern is the same, DOP853's stiffness test and estimate of the
+    /// stiffest mode carried over.
+    fn continued<S: System + ?Sized>(
+        previous: Option<Scheme>,
+        first: Method,
+        options: &Options,
+        core: &Core,
+        auto: bool,
+        system: &mut S,
+    ) -> Result<Scheme, IntegrateError<S::Error>> {
+        match previous {
+            Some(Scheme::Radau5(radau)) if first == Method::Radau5 => {
+                let pattern = system.jacobian_pattern();
+                if let Some(radau) = radau.renewed(options, pattern.as_ref())? {
+                    return Ok(Scheme::Radau5(radau));
+                }
+            }
+            Some(Scheme::Dop853(old)) => {
+                let mut scheme = Self::scheme(first, options, core, auto, system)?;
+                if let Scheme::Dop853(new) = &mut scheme {
+                    new.continue_from(&old);
+                }
+                return Ok(scheme);
+            }
+            _ => {}
+        }
+        Self::scheme(first, options, core, auto, system)
     }
 
     /// The working state of `method` (Radau5 or DOP853; DOP853 runs its
@@ -539,7 +577,8 @@ impl Stepper {
 
     /// Continues from `(t, y)` afresh, as at a start: the caller has cut the
     /// last step short at an event and perhaps changed the system. The
-    /// method forgets its history (Radau5 recomputes its Jacobian); the step
+    /// method forgets its history (Radau5 keeps its Jacobian as one of an
+    /// earlier state, renewed where Newton's iteration fails with it); the step
     /// size is the last proposal, within the maximum step. `f(t, y)` is
     /// evaluated by the next step.
     ///
