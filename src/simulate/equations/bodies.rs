@@ -11,6 +11,10 @@ use crate::simulate::model::{MassProperties, Model};
 /// Components of a body's state.
 pub(crate) const BODY_STATES: usize = 13;
 
+/// The body's first components, its position and orientation, whose rates
+/// are its own velocity and spin ([`Kinematics::rates`]).
+pub(crate) const KINEMATIC_RATES: usize = 7;
+
 /// The state index of the first component of body `body`.
 pub(crate) fn body_offset(model: &Model, body: usize) -> usize {
     model.diffs.len() + BODY_STATES * body

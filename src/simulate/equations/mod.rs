@@ -48,7 +48,7 @@ use crate::simulate::constraints::{
 };
 use crate::simulate::model::{Contact, Force, Model};
 use accelerations::{Accelerations, Measure};
-pub(crate) use bodies::{BODY_STATES, body_offset};
+pub(crate) use bodies::{BODY_STATES, KINEMATIC_RATES, body_offset};
 use bodies::{Kinematics, Loads};
 use element_values::{ELEMENT_FUNCTIONS, ElementComponent, NetForce};
 use sparsity::Sparsity;

@@ -31,7 +31,7 @@
 //! the motion of every body.
 
 use super::forces::body_of;
-use super::{BODY_STATES, Source, body_offset};
+use super::{BODY_STATES, KINEMATIC_RATES, Source, body_offset};
 use crate::compile::Program;
 use crate::integrate::linalg::Pattern;
 use crate::scene::Target;
@@ -255,9 +255,21 @@ impl Sparsity {
         }
         let directions =
             BODY_STATES * body_colours + diff_colours + width * colours_of(Kind::Equations);
+        // A body's position and orientation rates (its first seven) are
+        // its own velocity and spin: they read its own states only, and
+        // the LU meets no neighbour's block in those rows.
         let entries_of = |group: usize| {
             let columns: Vec<usize> = reads[group].iter().flat_map(|&g| states_of(g)).collect();
-            states_of(group).flat_map(move |row| columns.clone().into_iter().map(move |c| (row, c)))
+            let own: Vec<usize> = states_of(group).collect();
+            let body = kind_of(group) == Kind::Body;
+            states_of(group).enumerate().flat_map(move |(index, row)| {
+                let read = if body && index < KINEMATIC_RATES {
+                    own.clone()
+                } else {
+                    columns.clone()
+                };
+                read.into_iter().map(move |column| (row, column))
+            })
         };
         let pattern = Pattern::new(dimension, (0..groups).flat_map(entries_of));
         let mut row_entries: Vec<Vec<(usize, usize)>> = vec![Vec::new(); dimension];
