@@ -14,7 +14,7 @@ use crate::integrate_problems::{Equations, Problem, Refused, problem};
 /// h=H [key=value ...]` integrates with the fixed steps H, H/2, H/4 and
 /// reports the observed orders at the step ends and inside the steps.
 /// Keys: `rtol`, `atol` (one value, or values split by `/`), `h_init`,
-/// `h_max`, `max_steps`, `newton`, `y0` (split by `/`), `t_end`.
+/// `h_max`, `max_steps`, `newton`, `reuse` (`jacobian_reuse`), `y0` (split by `/`), `t_end`.
 fn check(case: &str) -> String {
     let words: Vec<&str> = case.split_whitespace().collect();
     let [action, name, method, settings @ ..] = words.as_slice() else {
@@ -34,6 +34,7 @@ fn check(case: &str) -> String {
             "h_max" | "h" => options.h_max = number(),
             "max_steps" => options.max_steps = number() as usize,
             "newton" => options.newton_tolerance = Some(number()),
+            "reuse" => options.jacobian_reuse = number(),
             "y0" => problem.y0 = numbers(),
             "t_end" => problem.t_end = number(),
             _ => panic!("unknown setting {key}"),
@@ -189,6 +190,9 @@ fn hostile_right_hand_sides() {
         solve arenstorf radau atol=1e-6/1e-6
         solve arenstorf dop853 h_max=-1
         solve arenstorf radau newton=0
+        solve arenstorf radau reuse=1
+        solve arenstorf radau reuse=NaN
+        solve arenstorf radau reuse=0.1 rtol=1e-10 atol=1e-10
         solve empty dop853
         ",
         check
