@@ -414,8 +414,9 @@ impl Stepper {
     /// chosen anew and its counts from zero: a fresh start after the caller
     /// has changed the system at an event. DOP853's stiffness test goes on
     /// where it stood, and its estimate of the stiffest mode holds the
-    /// first step. Radau5 keeps its Jacobian and factorisations where
-    /// the system's pattern is the same (as [`Stepper::restart`] does).
+    /// first step. Radau5 evaluates a new Jacobian, keeping its storage
+    /// and its sparse LU's symbolic analysis where the system's pattern is
+    /// the same.
     pub fn fresh_start<S: System + ?Sized>(
         self,
         options: Options,

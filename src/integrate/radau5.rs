@@ -216,11 +216,12 @@ impl Radau5 {
     /// history. The Jacobian (and the factorisations, while the step size
     /// stays) is kept as one of an earlier state, which Newton's iteration
     /// may use: where it does not converge with it, the step is tried
-    /// again with a new one, as after any step. At a switch the rates jump
-    /// but their derivatives mostly do not (a contact's force `k x^e` with
-    /// `e > 1` starts with zero stiffness), and a Jacobian and LU per
-    /// switch made Radau5 cost 6 times DOP853 on a chain of balls meeting
-    /// 225 times.
+    /// again with a new one, as after any step. A restart is the event
+    /// driver's cut, which integrates the same system again from a step's
+    /// start to place a switch inside it (or its projection's small move),
+    /// where the step's Jacobian holds; a new one at each cut made Radau5
+    /// cost 6 times DOP853 on a chain of balls meeting 225 times. A
+    /// changed system takes [`Radau5::renewed`].
     pub fn restart(&mut self) {
         self.first = true;
         self.after_rejection = false;
