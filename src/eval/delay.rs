@@ -139,30 +139,46 @@ impl DelayRecord {
         self.starts.push(starts);
     }
 
-    /// The first time after `time` at which a DELAY, with the delay it had
-    /// at the last sample, looks back across the start of a piece whose
-    /// kink is below [`KINK_LEVELS`] (where its expression's derivatives
-    /// jump: the run's start, a located switch, a kink landed on before),
-    /// with that kink's level: the run lands a step there, so that no step
-    /// carries the kink inside it, and begins a piece there one level up.
-    pub fn next_kink(&self, time: f64) -> Option<(f64, u8)> {
-        let mut next: Option<(f64, u8)> = None;
-        for &delay in self.delays.iter().filter(|&&delay| delay > 0.0) {
-            let at = time - delay;
-            let after = self.times.partition_point(|&sample| sample <= at);
-            let from = self.breaks.partition_point(|&index| index < after);
-            let kink = self.breaks[from..].iter().find_map(|&index| {
-                self.starts[index]
-                    .filter(|&level| level < KINK_LEVELS)
-                    .map(|level| (self.times[index] + delay, level))
-            });
-            if let Some(kink) = kink
-                && next.is_none_or(|next| kink.0 < next.0)
-            {
-                next = Some(kink);
-            }
-        }
-        next
+    /// The first time more than `gap` after `time` at which a DELAY, with
+    /// the delay it had at the last sample, looks back across the start of
+    /// a piece whose kink is below [`KINK_LEVELS`] (where its expression's
+    /// derivatives jump: the run's start, a located switch, a kink landed
+    /// on before), with that kink's level: the run lands a step there, so
+    /// that no step carries the kink inside it, and begins a piece there
+    /// one level up. A kink within `gap` of `time` is not a step away: it
+    /// is at `time` ([`DelayRecord::kink_at`]).
+    pub fn next_kink(&self, time: f64, gap: f64) -> Option<(f64, u8)> {
+        self.kinks_after(time + gap)
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+    }
+
+    /// The lowest level of the kinks within `gap` of `time` (either side):
+    /// a step that ends there has landed on them, though rounding put its
+    /// end a little off (steps of a delay's length add up to a time a few
+    /// ulps from the kink the delay carries forward).
+    pub fn kink_at(&self, time: f64, gap: f64) -> Option<u8> {
+        self.kinks_after(time - gap)
+            .filter(|&(kink, _)| kink <= time + gap)
+            .map(|(_, level)| level)
+            .min()
+    }
+
+    /// Per DELAY, the first kink after `time` it reads across, with its
+    /// level.
+    fn kinks_after(&self, time: f64) -> impl Iterator<Item = (f64, u8)> + '_ {
+        self.delays
+            .iter()
+            .filter(|&&delay| delay > 0.0)
+            .filter_map(move |&delay| {
+                let at = time - delay;
+                let after = self.times.partition_point(|&sample| sample <= at);
+                let from = self.breaks.partition_point(|&index| index < after);
+                self.breaks[from..].iter().find_map(|&index| {
+                    self.starts[index]
+                        .filter(|&level| level < KINK_LEVELS)
+                        .map(|level| (self.times[index] + delay, level))
+                })
+            })
     }
 
     /// The smallest positive delay at the last sample (infinity for none).

@@ -306,14 +306,27 @@ impl<'m> Mechanics<'m> {
             .record(t, &values, &delays, starts);
     }
 
-    /// The first time after `t` at which a DELAY reads across a kink in
-    /// its record, and the kink's level ([`DelayRecord::next_kink`]).
-    pub(crate) fn next_delay_kink(&self, t: f64) -> Option<(f64, u8)> {
+    /// The first time more than `gap` after `t` at which a DELAY reads
+    /// across a kink in its record, and the kink's level
+    /// ([`DelayRecord::next_kink`]).
+    pub(crate) fn next_delay_kink(&self, t: f64, gap: f64) -> Option<(f64, u8)> {
+        self.read_delays(|record| record.next_kink(t, gap))
+    }
+
+    /// The lowest level of the kinks a DELAY reads across within `gap` of
+    /// `t` ([`DelayRecord::kink_at`]).
+    pub(crate) fn delay_kink_at(&self, t: f64, gap: f64) -> Option<u8> {
+        self.read_delays(|record| record.kink_at(t, gap))
+    }
+
+    /// What `read` finds in the DELAYs' record (`None` without DELAYs).
+    fn read_delays<R>(&self, read: impl FnOnce(&DelayRecord) -> Option<R>) -> Option<R> {
         self.delays.as_ref().and_then(|record| {
-            record
-                .read()
-                .unwrap_or_else(|poisoned| poisoned.into_inner())
-                .next_kink(t)
+            read(
+                &record
+                    .read()
+                    .unwrap_or_else(|poisoned| poisoned.into_inner()),
+            )
         })
     }
 

@@ -101,9 +101,15 @@ const SAMPLES_INSIDE: u32 = 7;
 /// to its expression now.
 const DELAY_CAP_FLOOR: f64 = 1e-4;
 
-/// The least distance ahead, relative to the time, of a kink a step lands
-/// on (one nearer is passed over).
+/// How near, relative to the time, a DELAY's kink is to a step's end for
+/// the step to have landed on it (rounding puts the sum of steps of a
+/// delay's length a few ulps off the kink the delay carries forward).
 const KINK_GAP: f64 = 1e-9;
+
+/// [`KINK_GAP`] at time `t`.
+fn kink_gap(t: f64) -> f64 {
+    KINK_GAP * t.abs().max(1.0)
+}
 
 /// Radau5 keeps its Jacobian while Newton's iteration contracts by at most
 /// this ([`Options::jacobian_reuse`]; Hairer's default is 0.001, for a
@@ -846,15 +852,12 @@ impl Simulation<'_> {
             // A step lands where a DELAY reads across a kink in its record
             // (its expression's derivatives jump there: the method's error
             // estimate would not see it inside a step).
-            let mut kink = None;
             if delays {
                 let now = stepper.t();
-                if let Some((time, level)) = system.mechanics.next_delay_kink(now)
-                    && time - now > KINK_GAP * now.abs().max(1.0)
+                if let Some((time, _)) = system.mechanics.next_delay_kink(now, kink_gap(now))
                     && time <= target
                 {
                     target = time;
-                    kink = Some((time, level));
                 }
             }
             stepper.step_to(&mut system, target).map_err(|error| {
@@ -1036,10 +1039,13 @@ impl Simulation<'_> {
                         }
                     }
                     dense.copy_from_slice(stepper.y());
-                    // A step landed on a kink begins a piece one level up.
-                    let starts = kink
-                        .filter(|&(time, _)| time == t1)
-                        .map(|(_, level)| level + 1);
+                    // A step landed on a kink begins a piece one level up
+                    // (a step that ends within rounding of one has landed
+                    // on it too).
+                    let starts = system
+                        .mechanics
+                        .delay_kink_at(t1, kink_gap(t1))
+                        .map(|level| level + 1);
                     accept(&mut system, &mut rows, t1, &dense, starts)
                         .map_err(|error| self.failure(t1, error))?;
                     continue;
