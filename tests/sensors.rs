@@ -1,7 +1,8 @@
 //! SENSOR: a function watched after every accepted step; when it becomes
 //! active (its comparison with VALUE within ERROR) the run halts there or
-//! reports the time, located on the step's continuous output. Checked
-//! against the closed-form times of a falling part and of an oscillator.
+//! reports the time, located on the step's continuous output, or spaces
+//! the rows anew (DT). Checked against the closed-form times of a falling
+//! part and of an oscillator.
 
 use mbexpr::simulate::Settings;
 
@@ -108,6 +109,10 @@ fn sensors_that_cannot_be_watched_are_refused_at_their_place() {
         SENSOR/1, VALUE = 0.5, ERROR = -1, HALT, FUNCTION = DIF(1)
         SENSOR/1, VALUE = 0.5, HALT, FUNCTION = USER(1, 2)
         SENSOR/1, GE, LE, VALUE = 0.5, HALT, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, DT = 0, PRINT, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, DT = -0.1, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, DT = 1e400, FUNCTION = DIF(1)
+        SENSOR/1, VALUE = 0.5, DT = 0.25, FUNCTION = DIF(1)
     ";
     insta::assert_snapshot!(super::table(cases, check));
 }
@@ -193,5 +198,48 @@ END
         assert_eq!(senval_at(1.0), 0.0);
         assert!((senval_at(2.0) - PI / 2.0).abs() < 1e-9);
         assert!((senval_at(8.0) - 2.5 * PI).abs() < 1e-9);
+    }
+}
+
+/// A sensor's DT spaces the rows anew after each trip: `x = t² / 2`
+/// (two DIFFs) passes 0.125 at `t = 0.5`; the rows before it are the run's
+/// (0, 0.25, 0.5 at `--steps 4` to 1), then every 0.05 on the grid from
+/// the last row, the last at the end, each on the closed form. A second
+/// sensor's trip at `x = 0.32` (`t = 0.8`), in the same step while the
+/// first stays active (it was once not looked for after the first trip),
+/// spaces them 0.1 apart on the grid from the last row (0.75).
+#[test]
+fn a_sensor_dt_spaces_the_rows_after_its_trip() {
+    let text = "a cart pushed from rest
+DIFF/1, IC = 0, FUNCTION = DIF(2)
+DIFF/2, IC = 0, FUNCTION = 1
+SENSOR/1, GE, VALUE = 0.125, ERROR = 1e-9, DT = 0.05, FUNCTION = DIF(1)
+SENSOR/2, GE, VALUE = 0.32, ERROR = 1e-9, DT = 0.1, FUNCTION = DIF(1)
+END
+";
+    let run = run(text, &settings(1.0, 4, 1e-10)).expect("it runs");
+    let times: Vec<f64> = run.rows.iter().map(|row| row[0]).collect();
+    let expected = [0.0, 0.25, 0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.85, 0.95, 1.0];
+    println!("{times:?}");
+    assert_eq!(times.len(), expected.len(), "{times:?}");
+    for (time, expected) in times.iter().zip(expected) {
+        assert!((time - expected).abs() < 1e-12, "{times:?}");
+    }
+    for row in &run.rows {
+        let t = row[0];
+        assert!(
+            (row[1] - t * t / 2.0).abs() < 1e-9 && (row[2] - t).abs() < 1e-9,
+            "{row:?}"
+        );
+    }
+    let trips: Vec<f64> = run
+        .summary
+        .sensor_trips
+        .iter()
+        .map(|trip| trip.time)
+        .collect();
+    assert_eq!(trips.len(), 2, "{trips:?}");
+    for (trip, expected) in trips.iter().zip([0.25_f64, 0.64]) {
+        assert!((trip - (expected - 2e-9).sqrt()).abs() < 1e-8, "{trips:?}");
     }
 }

@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 40] = [
+    let cases: [(&str, &str, Settings); 43] = [
         (
             "a torque near the largest double: the steps shrink to nothing, and the part it spins is named",
             "huge torque
@@ -558,8 +558,44 @@ ACCGRAV/JGRAV = 1e308
 ",
             Settings {
                 statics: true,
-                ..short
+                ..short.clone()
             },
+        ),
+        (
+            "a state near the largest double, whose continuous output between the steps overflows",
+            "huge state
+DIFF/1, IC = 1e306, FUNCTION = 1e306
+",
+            Settings {
+                method: Method::Dop853,
+                ..settings(0.1, 2, 1e-6)
+            },
+        ),
+        (
+            "a zero principal moment turned by the CM marker's orientation",
+            "flat inertia
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 20, IP = 0, 0.1, 0.1
+MARKER/20, PART = 2, QP = 2, 0, 0, REULER = 180D, 90D, 90D
+MARKER/21, PART = 2
+JOINT/1, REVOLUTE, I = 21, J = 1
+",
+            short.clone(),
+        ),
+        (
+            "two massless parts, each free to slide along its joint",
+            "massless sliders
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, CM = 20
+MARKER/20, PART = 2
+PART/3, CM = 30
+MARKER/30, PART = 3
+JOINT/1, TRANSLATIONAL, I = 20, J = 1
+JOINT/2, TRANSLATIONAL, I = 30, J = 1
+",
+            short,
         ),
     ];
     let table: String = cases

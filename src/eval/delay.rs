@@ -34,6 +34,10 @@ pub const KINK_LEVELS: u8 = 8;
 /// spacing before it ([`DelayRecord::record`]).
 pub const CLOSEST: f64 = 0.2;
 
+/// How near a sample may be to the start of a piece, relative to the time,
+/// before it is the start again ([`DelayRecord::record`]).
+const ROUNDING: f64 = 1e-12;
+
 /// The samples of every DELAY of one program, shared by the evaluators of
 /// the program in a run (the values' and the Jacobian's).
 #[derive(Clone, Debug, Default)]
@@ -92,7 +96,12 @@ impl DelayRecord {
     /// not kept, or, when it begins a piece, the last goes instead (two
     /// starts at once are one): the polynomials' nodes stay spread, where a
     /// short step (landing on a kink, cut at a switch) would crowd them and
-    /// its rounding error grow, and a piece begins where its kink is.
+    /// its rounding error grow, and a piece begins where its kink is. After
+    /// the start of a piece the spacing before is the last piece's, which
+    /// says nothing of this one's: there only a sample within rounding of
+    /// the start is crowded, so that two kinks close together (delays of
+    /// 0.1 and 0.2001 read across 0.3 and 0.3001) make a short piece of
+    /// their own, each kink its start.
     pub fn record(&mut self, time: f64, values: &[f64], delays: &[f64], starts: Option<u8>) {
         let keep = self.times.partition_point(|&at| at < time);
         self.times.truncate(keep);
@@ -103,8 +112,12 @@ impl DelayRecord {
             record.truncate(keep);
         }
         self.delays.copy_from_slice(delays);
+        let crowded = |before: f64, last: f64, starts: Option<u8>| match starts {
+            Some(_) => time - last <= ROUNDING * time.abs().max(1.0),
+            None => time - last < CLOSEST * (last - before),
+        };
         if let [.., before, last] = self.times[..]
-            && time - last < CLOSEST * (last - before)
+            && crowded(before, last, self.starts[keep - 1])
         {
             match (self.starts[keep - 1], starts) {
                 // Two starts at once (a step landed on a kink, and a switch

@@ -771,6 +771,9 @@ pub struct Sensor {
     /// Its EVALUATE, an index into [`Model::expressions`]: the value of
     /// `SENVAL(id)` from each trip on is this expression's there.
     pub evaluate: Option<usize>,
+    /// Its DT: after each trip, the output steps are this far apart, on
+    /// the grid from the last row before the trip (the last at the end).
+    pub output_step: Option<f64>,
     /// The statement's place in the file.
     pub span: Span,
 }

@@ -767,7 +767,7 @@ impl Reader<'_> {
                     "{label} has no MASS but an inertia: give MASS = a positive number, or leave IP out for a massless part"
                 ),
             );
-        } else if mass > 0.0 && inertia.cholesky().is_none() {
+        } else if mass > 0.0 && !positive_definite(&inertia) {
             fail(
                 &mut self.errors,
                 format!(
@@ -1176,6 +1176,7 @@ impl Reader<'_> {
                 error: settings.error,
                 action: settings.action,
                 evaluate,
+                output_step: settings.output_step,
                 span: statement.span,
             });
         }
@@ -1391,6 +1392,16 @@ fn marker_named<'s>(
         Target::Marker(index) => Some(&scene.markers[index]),
         Target::Ground => None,
     }
+}
+
+/// Whether `inertia` is positive definite beyond rounding: its least
+/// principal moment above `1e-12` of its largest (a zero moment turned by
+/// a marker's orientation is a rounding error away from zero, which a
+/// Cholesky factorisation alone takes as positive).
+fn positive_definite(inertia: &Matrix3<f64>) -> bool {
+    let moments = inertia.symmetric_eigenvalues();
+    let (least, largest) = (moments.min(), moments.max());
+    least.is_finite() && largest.is_finite() && least > 1e-12 * largest
 }
 
 /// Why a statement of kind `name` is not simulated, and what to write

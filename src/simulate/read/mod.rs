@@ -16,7 +16,7 @@ mod scene;
 mod sensors;
 mod units;
 
-pub use commands::{RunCommands, run_settings};
+pub use commands::{MOST_OUTPUT_STEPS, RunCommands, run_settings};
 pub use dataset::from_dataset;
 pub use scene::from_scene;
 

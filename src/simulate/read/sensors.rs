@@ -6,9 +6,9 @@
 //! named in a note, the sensor watched (a sensor with no other action
 //! only counts its trips). EVALUATE is read by the dataset reader (its
 //! expression's value at each trip is `SENVAL`), a sensor with no other
-//! action only storing it. DT (which changes the output times) and the
-//! user subroutines' ROUTINE and EVALUATE_ROUTINE are refused at their
-//! keyword.
+//! action only storing it. DT redefines the time between output steps from
+//! each trip on. The user subroutines' ROUTINE and EVALUATE_ROUTINE are
+//! refused at their keyword.
 
 use crate::model::Statement;
 use crate::model::initial::number;
@@ -48,12 +48,14 @@ pub(super) struct Settings {
     pub(super) action: SensorAction,
     /// The note on its steering actions, when it has any.
     pub(super) steering: Option<String>,
+    /// Its DT: the time between output steps from a trip on.
+    pub(super) output_step: Option<f64>,
 }
 
 /// A sensor's comparison, value, tolerance and action, or why it has none.
 pub(super) fn settings(statement: &Statement) -> Result<Settings, Unread> {
     let label = statement.label();
-    for keyword in ["DT", "EVALUATE_ROUTINE", "ROUTINE"] {
+    for keyword in ["EVALUATE_ROUTINE", "ROUTINE"] {
         if let Some(argument) = statement
             .arguments
             .iter()
@@ -61,7 +63,7 @@ pub(super) fn settings(statement: &Statement) -> Result<Settings, Unread> {
         {
             return Err(Unread::Action {
                 reason: format!(
-                    "has {keyword}, an action mbexpr does not carry out (its sensors HALT, RETURN, PRINT or EVALUATE, and read CODGEN, RESTART, STEPSIZE and YYDUMP)"
+                    "has {keyword}, an action mbexpr does not carry out (its sensors HALT, RETURN, PRINT, EVALUATE or change the output step, DT, and read CODGEN, RESTART, STEPSIZE and YYDUMP)"
                 ),
                 span: argument.span,
             });
@@ -95,11 +97,11 @@ pub(super) fn settings(statement: &Statement) -> Result<Settings, Unread> {
         SensorAction::Return
     } else if has("PRINT") {
         SensorAction::Print
-    } else if !steers.is_empty() || statement.argument("EVALUATE", 4).is_some() {
+    } else if !steers.is_empty() || statement.argument("EVALUATE", 4).is_some() || has("DT") {
         SensorAction::Watch
     } else {
         return Err(Unread::Setting(
-            format!("{label}: give its action: HALT, RETURN, PRINT or EVALUATE"),
+            format!("{label}: give its action: HALT, RETURN, PRINT, EVALUATE or DT"),
             statement.span,
         ));
     };
@@ -143,11 +145,26 @@ pub(super) fn settings(statement: &Statement) -> Result<Settings, Unread> {
             statement.span,
         ));
     }
+    let output_step = match statement.argument("DT", 2) {
+        Some(argument) => match number(statement, "DT", f64::NAN).map_err(refusal)? {
+            step if step.is_finite() && step > 0.0 => Some(step),
+            _ => {
+                return Err(Unread::Setting(
+                    format!(
+                        "{label}: DT, the time between output steps from a trip on, must be a number above 0"
+                    ),
+                    argument.span,
+                ));
+            }
+        },
+        None => None,
+    };
     Ok(Settings {
         relation,
         value,
         error,
         action,
         steering,
+        output_step,
     })
 }

@@ -101,6 +101,84 @@ const SAMPLES_INSIDE: u32 = 7;
 /// to its expression now.
 const DELAY_CAP_FLOOR: f64 = 1e-4;
 
+/// The times of a run's rows after the first (at 0): `steps` equally
+/// spaced up to the end, until a sensor's DT spaces them anew after its
+/// trip (the last row still at the end).
+struct OutputTimes {
+    /// The time the rows are counted from: 0, or the last row before a
+    /// trip with a DT.
+    origin: f64,
+    /// The time between rows, when a DT gives it (`None`: the run's
+    /// `steps` rows share the time from the origin to the end).
+    step: Option<f64>,
+    /// How many rows from the origin to the end.
+    count: usize,
+    /// The index of the next row from the origin (from 1).
+    index: usize,
+    /// The run's end time.
+    end: f64,
+    /// The time of the last row written.
+    last: f64,
+}
+
+impl OutputTimes {
+    /// `steps` rows after 0, equally spaced up to `end`.
+    fn new(end: f64, steps: usize) -> OutputTimes {
+        OutputTimes {
+            origin: 0.0,
+            step: None,
+            count: steps,
+            index: 1,
+            end,
+            last: 0.0,
+        }
+    }
+
+    /// The time of the next row, if one is left.
+    fn next(&self) -> Option<f64> {
+        if self.index > self.count {
+            return None;
+        }
+        Some(match self.step {
+            Some(_) if self.index == self.count => self.end,
+            Some(step) => self.origin + step * self.index as f64,
+            None => self.origin + (self.end - self.origin) * self.index as f64 / self.count as f64,
+        })
+    }
+
+    /// The next row, at `time`, is written.
+    fn written(&mut self, time: f64) {
+        self.index += 1;
+        self.last = time;
+    }
+
+    /// The time of the last row written.
+    fn last(&self) -> f64 {
+        self.last
+    }
+
+    /// After a trip at `from`, rows `step` apart on the grid from the last
+    /// row (so that they stay at round times), the first after the trip,
+    /// the last at the end.
+    fn respace(&mut self, from: f64, step: f64) {
+        let span = self.end - self.last;
+        if span <= 0.0 {
+            return;
+        }
+        // A DT small against the run still ends: at most as many rows as a
+        // command file's DTOUT may ask for.
+        let count = (span / step * (1.0 - 1e-9))
+            .ceil()
+            .clamp(1.0, super::read::MOST_OUTPUT_STEPS as f64);
+        let step = step.max(span / count);
+        let first = ((from - self.last) / step).floor() + 1.0;
+        self.origin = self.last;
+        self.step = Some(step);
+        self.count = count as usize;
+        self.index = (first.max(1.0) as usize).min(self.count);
+    }
+}
+
 /// How near, relative to the time, a DELAY's kink is to a step's end for
 /// the step to have landed on it (rounding puts the sum of steps of a
 /// delay's length a few ulps off the kink the delay carries forward).
@@ -479,15 +557,15 @@ impl Rows<'_> {
         Ok(())
     }
 
-    /// The first sensor that is active at `(t, y)` and was not at the last
-    /// look (`active`, updated), or none.
-    fn tripped(&mut self, t: f64, y: &[f64], active: &mut [bool]) -> Result<Option<usize>, Failed> {
+    /// The sensors that are active at `(t, y)` and were not at the last
+    /// look (`active`, updated), in the model's order.
+    fn tripped(&mut self, t: f64, y: &[f64], active: &mut [bool]) -> Result<Vec<usize>, Failed> {
         if self.model.sensors.is_empty() {
-            return Ok(None);
+            return Ok(Vec::new());
         }
         self.at(t, y)?;
         let from = self.sensed_from();
-        let mut first = None;
+        let mut newly = Vec::new();
         for (k, ((sensor, &value), before)) in self
             .model
             .sensors
@@ -497,13 +575,13 @@ impl Rows<'_> {
             .enumerate()
         {
             let now = sensor.is_active(value) || sensor.passes(*before, value);
-            if now && !active[k] && first.is_none() {
-                first = Some(k);
+            if now && !active[k] {
+                newly.push(k);
             }
             active[k] = now;
             *before = value;
         }
-        Ok(first)
+        Ok(newly)
     }
 }
 
@@ -818,12 +896,11 @@ impl Simulation<'_> {
             sensor_trips: Vec::new(),
         };
         let mut active = vec![false; model.sensors.len()];
-        let output_time = |index: usize| settings.end * index as f64 / settings.steps as f64;
+        let mut outputs = OutputTimes::new(settings.end, settings.steps);
         let values = rows
             .at(0.0, &y0)
             .map_err(|error| self.failure(0.0, error))?;
         summary.stopped = sink.row(0.0, values).is_break();
-        let mut next_output = 1;
         let mut dense = vec![0.0; y0.len()];
         let mut recent = VecDeque::new();
         // The counts of the steppers before the last restart.
@@ -840,14 +917,12 @@ impl Simulation<'_> {
             step_start.copy_from_slice(stepper.y());
             // Radau5 steps onto the next output time (its continuous output
             // is of lower order than its steps).
-            let lands_on_output = settings.land_on_outputs
-                && stepper.method() == Method::Radau5
-                && next_output <= settings.steps
-                && output_time(next_output) > stepper.t();
-            let mut target = if lands_on_output {
-                output_time(next_output).min(settings.end)
-            } else {
-                settings.end
+            let next_output = outputs.next().filter(|&time| time > stepper.t());
+            let mut target = match next_output {
+                Some(time) if settings.land_on_outputs && stepper.method() == Method::Radau5 => {
+                    time.min(settings.end)
+                }
+                _ => settings.end,
             };
             // A step lands where a DELAY reads across a kink in its record
             // (its expression's derivatives jump there: the method's error
@@ -897,12 +972,16 @@ impl Simulation<'_> {
             )
             .map_err(|(time, error)| self.failure(time, error))?;
             let mut reached = switch.map_or(t1, |located| located.right);
-            // A sensor that becomes active in a step without a switch, at
-            // the time located on the step's continuous output.
-            let mut trip = None;
-            // Looked at four times in the step, so that a sensor active
-            // only inside it is seen.
-            let mut tripped = None;
+            // The sensors that become active in a step without a switch,
+            // each at the time located on the step's continuous output, in
+            // time order; the step is cut at the first that halts the run
+            // or sets SENVAL. Looked at four times in the step, so that a
+            // sensor active only inside it is seen.
+            let cuts = |sensor: usize| {
+                let watched = &model.sensors[sensor];
+                watched.action.halts() || watched.evaluate.is_some()
+            };
+            let mut trips: Vec<(usize, f64)> = Vec::new();
             if switch.is_err() && !model.sensors.is_empty() {
                 let mut before = t0;
                 for look in 1..=SENSOR_LOOKS {
@@ -913,54 +992,49 @@ impl Simulation<'_> {
                     };
                     stepper.dense(time, &mut dense);
                     let state = if time == t1 { stepper.y() } else { &dense };
-                    if let Some(sensor) = rows
+                    let newly = rows
                         .tripped(time, state, &mut active)
-                        .map_err(|error| self.failure(time, error))?
-                    {
-                        tripped = Some((sensor, before, time));
+                        .map_err(|error| self.failure(time, error))?;
+                    for sensor in newly {
+                        let at = self
+                            .locate_trip(&mut rows, &stepper, sensor, before, time, &mut dense)
+                            .map_err(|(time, error)| self.failure(time, error))?;
+                        trips.push((sensor, at));
+                    }
+                    if trips.iter().any(|&(sensor, _)| cuts(sensor)) {
                         break;
                     }
                     before = time;
                 }
-            }
-            if let Some((sensor, before, after)) = tripped {
-                let time = self
-                    .locate_trip(&mut rows, &stepper, sensor, before, after, &mut dense)
-                    .map_err(|(time, error)| self.failure(time, error))?;
-                let halts = model.sensors[sensor].action.halts();
-                // A sensor's EVALUATE changes SENVAL at the trip: the step
-                // is cut there too.
-                if halts || model.sensors[sensor].evaluate.is_some() {
-                    reached = time;
+                trips.sort_by(|a, b| a.1.total_cmp(&b.1));
+                if let Some(first) = trips.iter().position(|&(sensor, _)| cuts(sensor)) {
+                    trips.truncate(first + 1);
+                    reached = trips[first].1;
                 }
-                trip = Some((sensor, time, halts));
             }
-            while next_output <= settings.steps && output_time(next_output) <= reached {
-                let time = output_time(next_output);
-                stepper.dense(time, &mut dense);
-                let state = if time == t1 { stepper.y() } else { &dense };
-                let values = rows
-                    .at(time, state)
-                    .map_err(|error| self.failure(time, error))?;
-                if sink.row(time, values).is_break() {
+            // The rows up to each trip, the trip (a DT spacing the rows
+            // after it anew), then the rows up to the step's end.
+            let mut evaluated = None;
+            for &(sensor, time) in &trips {
+                if self.write_rows(&mut outputs, time, (&stepper, &mut rows), sink, &mut dense)? {
                     summary.stopped = true;
                     break;
                 }
-                next_output += 1;
-            }
-            if let Some((sensor, time, halts)) = trip {
+                let watched = &model.sensors[sensor];
+                let halts = watched.action.halts();
                 summary.sensor_trips.push(SensorTrip {
-                    sensor: model.sensors[sensor].id,
+                    sensor: watched.id,
                     time,
                     halted: halts,
                 });
+                if let Some(step) = watched.output_step {
+                    outputs.respace(time, step);
+                }
                 if halts {
                     // The run ends at the sensor: its last row is there.
-                    if !summary.stopped
-                        && next_output <= settings.steps
-                        && output_time(next_output - 1) < time
-                    {
+                    if outputs.next().is_some() && outputs.last() < time {
                         stepper.dense(time, &mut dense);
+                        self.finite_row(time, &dense)?;
                         let values = rows
                             .at(time, &dense)
                             .map_err(|error| self.failure(time, error))?;
@@ -969,10 +1043,23 @@ impl Simulation<'_> {
                     summary.stopped = true;
                     break;
                 }
+                if watched.evaluate.is_some() {
+                    evaluated = Some((sensor, time));
+                }
             }
-            if let Some((sensor, time, _)) = trip
-                && model.sensors[sensor].evaluate.is_some()
-            {
+            if summary.stopped {
+                break;
+            }
+            if self.write_rows(
+                &mut outputs,
+                reached,
+                (&stepper, &mut rows),
+                sink,
+                &mut dense,
+            )? {
+                summary.stopped = true;
+            }
+            if let Some((sensor, time)) = evaluated {
                 // SENVAL takes its EVALUATE's value at the trip: the run
                 // starts again from there, as after a switch.
                 if delays {
@@ -1101,28 +1188,39 @@ impl Simulation<'_> {
             system.held.clone_from(&natural);
             accept(&mut system, &mut rows, right, &dense, Some(0))
                 .map_err(|error| self.failure(right, error))?;
-            if let Some(sensor) = rows
+            let mut halted = false;
+            let newly = rows
                 .tripped(right, &dense, &mut active)
-                .map_err(|error| self.failure(right, error))?
-            {
-                let halts = model.sensors[sensor].action.halts();
+                .map_err(|error| self.failure(right, error))?;
+            for sensor in newly {
+                let watched = &model.sensors[sensor];
+                let halts = watched.action.halts();
                 summary.sensor_trips.push(SensorTrip {
-                    sensor: model.sensors[sensor].id,
+                    sensor: watched.id,
                     time: right,
                     halted: halts,
                 });
+                if let Some(step) = watched.output_step {
+                    outputs.respace(right, step);
+                }
                 if halts {
-                    let values = rows
-                        .at(right, &dense)
-                        .map_err(|error| self.failure(right, error))?;
-                    let _ = sink.row(right, values);
-                    summary.stopped = true;
+                    if outputs.last() < right {
+                        let values = rows
+                            .at(right, &dense)
+                            .map_err(|error| self.failure(right, error))?;
+                        let _ = sink.row(right, values);
+                    }
+                    halted = true;
                     break;
                 }
                 // SENVAL takes its EVALUATE's value; the fresh start below
                 // begins with it.
                 rows.store(sensor, (right, &dense), &mut system.mechanics)
                     .map_err(|error| self.failure(right, error))?;
+            }
+            if halted {
+                summary.stopped = true;
+                break;
             }
             let values = rows
                 .at(right, &dense)
@@ -1245,20 +1343,20 @@ impl Simulation<'_> {
     }
 
     /// Where the joints' failure `error` is placed: at the statement it
-    /// names (a PTCV that lost its curve), else at the massless part when
-    /// the model has one (the likelier cause is a freedom its joints leave
-    /// it, [`crate::simulate::constraints::joints_singular_in`]), else
-    /// nowhere in the file.
+    /// names (a PTCV that lost its curve), else at the first massless part
+    /// when the model has one (the likelier cause is a freedom its joints
+    /// leave it, [`crate::simulate::constraints::joints_singular_in`],
+    /// whose message names them all), else nowhere in the file.
     fn joints_place(&self, error: &OutputError) -> Place {
         let span = error.error.span();
         if span != crate::span::Span::default() {
             return Place::File(span);
         }
-        let mut massless = self.model.masses.iter().filter(|mass| mass.is_massless());
-        match (massless.next(), massless.next()) {
-            (Some(part), None) => Place::File(part.span),
-            _ => Place::None,
-        }
+        self.model
+            .masses
+            .iter()
+            .find(|mass| mass.is_massless())
+            .map_or(Place::None, |part| Place::File(part.span))
     }
 
     /// The model expression that output `output` of `program` computes
@@ -1368,6 +1466,54 @@ impl Simulation<'_> {
             time,
             message,
             place,
+        }
+    }
+
+    /// Hands `sink` the rows due up to `limit` within the last step, from
+    /// its continuous output; `true` when the sink stops the run.
+    fn write_rows(
+        &self,
+        outputs: &mut OutputTimes,
+        limit: f64,
+        (stepper, rows): (&Stepper, &mut Rows<'_>),
+        sink: &mut impl Sink,
+        dense: &mut [f64],
+    ) -> Result<bool, SimulateError> {
+        while let Some(time) = outputs.next().filter(|&time| time <= limit) {
+            stepper.dense(time, dense);
+            let state = if time == stepper.t() {
+                stepper.y()
+            } else {
+                &*dense
+            };
+            self.finite_row(time, state)?;
+            let values = rows
+                .at(time, state)
+                .map_err(|error| self.failure(time, error))?;
+            outputs.written(time);
+            if sink.row(time, values).is_break() {
+                return Ok(true);
+            }
+        }
+        Ok(false)
+    }
+
+    /// An error where the state of a row from a step's continuous output
+    /// is not a finite number (the steps' ends were: the polynomial's
+    /// coefficients overflow near the largest double), naming the state.
+    fn finite_row(&self, time: f64, state: &[f64]) -> Result<(), SimulateError> {
+        match state.iter().position(|value| !value.is_finite()) {
+            None => Ok(()),
+            Some(index) => {
+                let (owner, place) = self.state_owner(index);
+                Err(SimulateError::Integration {
+                    time,
+                    message: format!(
+                        "the continuous output of the step is not a finite number for {owner} (its values near the largest double, 1e308, overflow): the model diverges, or its units make its numbers too large"
+                    ),
+                    place,
+                })
+            }
         }
     }
 
