@@ -243,3 +243,42 @@ END
         assert!((trip - (expected - 2e-9).sqrt()).abs() < 1e-8, "{trips:?}");
     }
 }
+
+/// Sensors are looked at before the first step: `x = exp(−0.654 t)` with
+/// a GE sensor active at the start trips at 0, and an EQ sensor whose
+/// value it passes inside DOP853's long first step trips at
+/// `ln(1 / 0.995) / 0.654` (both were once missed: the first look was a
+/// quarter into the first step, past the GE sensor's band, and the EQ
+/// sensor had no value before it to pass from).
+#[test]
+fn sensors_are_looked_at_before_the_first_step() {
+    let text = "decay
+DIFF/1, IC = 1, FUNCTION = -0.654 * DIF(1)
+SENSOR/1, GE, VALUE = 0.99999, ERROR = 0, PRINT, FUNCTION = DIF(1)
+SENSOR/2, EQ, VALUE = 0.995, ERROR = 0, PRINT, FUNCTION = DIF(1)
+END
+";
+    for method in [
+        mbexpr::integrate::Method::Dop853,
+        mbexpr::integrate::Method::Radau5,
+    ] {
+        let settings = Settings {
+            method,
+            ..settings(6.0, 4, 1e-9)
+        };
+        let run = run(text, &settings).expect("it decays");
+        let trips: Vec<(u64, f64)> = run
+            .summary
+            .sensor_trips
+            .iter()
+            .map(|trip| (trip.sensor, trip.time))
+            .collect();
+        let crossing = (1.0_f64 / 0.995).ln() / 0.654;
+        assert_eq!(trips.len(), 2, "{method:?}: {trips:?}");
+        assert_eq!(trips[0], (1, 0.0), "{method:?}: {trips:?}");
+        assert!(
+            trips[1].0 == 2 && (trips[1].1 - crossing).abs() < 1e-8,
+            "{method:?}: {trips:?}"
+        );
+    }
+}

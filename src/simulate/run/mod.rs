@@ -901,6 +901,39 @@ impl Simulation<'_> {
             .at(0.0, &y0)
             .map_err(|error| self.failure(0.0, error))?;
         summary.stopped = sink.row(0.0, values).is_break();
+        // The sensors active at the start trip there, before any step (and
+        // an EQ sensor's last value is then the start's, so that a crossing
+        // inside the first step is seen).
+        let newly = rows
+            .tripped(0.0, &y0, &mut active)
+            .map_err(|error| self.failure(0.0, error))?;
+        for sensor in newly {
+            let watched = &model.sensors[sensor];
+            let halts = watched.action.halts();
+            summary.sensor_trips.push(SensorTrip {
+                sensor: watched.id,
+                time: 0.0,
+                halted: halts,
+            });
+            if let Some(step) = watched.output_step {
+                outputs.respace(0.0, step);
+            }
+            if halts {
+                summary.stopped = true;
+                break;
+            }
+            if watched.evaluate.is_some() {
+                // SENVAL takes its value before the first step, which
+                // evaluates the rates again.
+                rows.store(sensor, (0.0, &y0), &mut system.mechanics)
+                    .map_err(|error| self.failure(0.0, error))?;
+                stepper.restart(0.0, &y0);
+                // The sensors' states with the new value, as after a trip
+                // in the run.
+                rows.tripped(0.0, &y0, &mut active)
+                    .map_err(|error| self.failure(0.0, error))?;
+            }
+        }
         let mut dense = vec![0.0; y0.len()];
         let mut recent = VecDeque::new();
         // The counts of the steppers before the last restart.
