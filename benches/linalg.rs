@@ -1,9 +1,11 @@
 //! The dense and the sparse LU of Radau5's iteration matrices side by side
 //! (issue 24 item 3): one factorisation of both matrices (`σ I − J`, real
 //! and complex) on the pattern of the stack of N balls of
-//! `scripts/stack_models.py` (each body's 13 rows read its own states and
-//! its two neighbours'), for N from 2 to 128. Where the sparse one becomes
-//! the faster is the crossover `SPARSE_FROM` in `integrate::linalg`.
+//! `scripts/stack_models.py` (a body's 7 position and orientation rows read
+//! its own 13 states, its 6 velocity rows its own and its two neighbours'),
+//! for N from 2 to 128, the sparse LU with and without those 7 rows a body
+//! eliminated first (`Pattern::with_eliminated`). Where the sparse one
+//! becomes the faster is the crossover `SPARSE_FROM` in `integrate::linalg`.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -15,13 +17,20 @@ use nalgebra::{Complex, DMatrix};
 /// States of one body.
 const BODY: usize = 13;
 
+/// A body's position and orientation states, whose rates read only its own.
+const KINEMATIC: usize = 7;
+
 /// The stack's pattern for `bodies` bodies.
 fn stack_pattern(bodies: usize) -> Pattern {
     let n = BODY * bodies;
     let entries = (0..bodies).flat_map(move |body| {
-        let neighbours = body.saturating_sub(1)..(body + 2).min(bodies);
-        neighbours.flat_map(move |other| {
-            (0..BODY).flat_map(move |row| {
+        (0..BODY).flat_map(move |row| {
+            let read = if row < KINEMATIC {
+                body..body + 1
+            } else {
+                body.saturating_sub(1)..(body + 2).min(bodies)
+            };
+            read.flat_map(move |other| {
                 (0..BODY).map(move |column| (BODY * body + row, BODY * other + column))
             })
         })
@@ -64,6 +73,15 @@ fn factorise(c: &mut Criterion) {
         let mut sparse_lu = SparseLu::new(&pattern, n);
         group.bench_with_input(BenchmarkId::new("sparse", n), &sparse, |b, jacobian| {
             b.iter(|| black_box(sparse_lu.factorise(jacobian, real, complex)));
+        });
+        let kinematic = (0..bodies).map(|body| BODY * body..BODY * body + KINEMATIC);
+        let eliminated = pattern
+            .as_ref()
+            .clone()
+            .with_eliminated(kinematic.collect());
+        let mut eliminated_lu = SparseLu::new(&eliminated, n);
+        group.bench_with_input(BenchmarkId::new("eliminated", n), &sparse, |b, jacobian| {
+            b.iter(|| black_box(eliminated_lu.factorise(jacobian, real, complex)));
         });
         if bodies <= 32 {
             let mut dense_lu = DenseLu::new(n, n);

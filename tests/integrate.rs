@@ -349,7 +349,8 @@ fn dop853_tells_a_stiff_problem() {
 /// A Jacobian with algebraic unknowns after the states (the index-1
 /// form's, `f_y f_z; g_y g_z`) factorises, sparse and dense alike, to the
 /// ODE's own iteration matrices `σ I − (f_y − f_z g_z⁻¹ g_y)`: drawn at
-/// random, each solve agrees with the dense solve of the Schur complement.
+/// random, each solve agrees with the dense solve of the Schur complement,
+/// with and without blocks of states eliminated ahead of the sparse LU.
 #[test]
 fn a_jacobian_with_algebraic_unknowns_solves_as_its_schur_complement() {
     use mbexpr::integrate::linalg::{DenseLu, Factorisation, Jacobian, Pattern, SparseLu};
@@ -379,7 +380,25 @@ fn a_jacobian_with_algebraic_unknowns_solves_as_its_schur_complement() {
                 let column = ((next() + 1.0) / 2.0 * dimension as f64) as usize;
                 entries.push((row.min(dimension - 1), column.min(dimension - 1)));
             }
+            // Blocks of states to eliminate (every other run of 1 to 7
+            // states), with no entry between two of them.
+            let mut blocks = Vec::new();
+            let mut start = 0;
+            while start < n {
+                let end = (start + 1 + (next().abs() * 7.0) as usize).min(n);
+                if next() > 0.0 {
+                    blocks.push(start..end);
+                }
+                start = end;
+            }
+            let block_of =
+                |unknown: usize| blocks.iter().position(|block| block.contains(&unknown));
+            entries.retain(|&(row, column)| match (block_of(row), block_of(column)) {
+                (Some(a), Some(b)) => a == b,
+                _ => true,
+            });
             let pattern = std::rc::Rc::new(Pattern::new(dimension, entries));
+            let eliminated = pattern.as_ref().clone().with_eliminated(blocks.clone());
             let values: Vec<f64> = pattern
                 .entries()
                 .map(|(row, column)| {
@@ -427,8 +446,9 @@ fn a_jacobian_with_algebraic_unknowns_solves_as_its_schur_complement() {
                 pattern: pattern.clone(),
                 values,
             };
-            let factorisations: [Box<dyn Factorisation>; 2] = [
+            let factorisations: [Box<dyn Factorisation>; 3] = [
                 Box::new(SparseLu::new(&pattern, n)),
+                Box::new(SparseLu::new(&eliminated, n)),
                 Box::new(DenseLu::new(dimension, n)),
             ];
             let scale = 1e-9 * (1.0 + real_expected.amax() + complex_expected.camax());

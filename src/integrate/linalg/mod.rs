@@ -32,8 +32,10 @@
 //! breakdown.
 
 mod dense;
+mod elimination;
 mod sparse;
 
+use std::ops::Range;
 use std::rc::Rc;
 
 use nalgebra::{Complex, DMatrix};
@@ -65,6 +67,9 @@ pub struct Pattern {
     rows: Vec<usize>,
     /// The position of each diagonal entry among the entries.
     diagonal: Vec<usize>,
+    /// Blocks of states the sparse LU eliminates first
+    /// ([`Pattern::with_eliminated`]).
+    eliminated: Vec<Range<usize>>,
 }
 
 impl Pattern {
@@ -99,7 +104,26 @@ impl Pattern {
             starts,
             rows,
             diagonal,
+            eliminated: Vec::new(),
         }
+    }
+
+    /// The same pattern with `blocks` of states to be eliminated ahead of
+    /// the sparse LU: disjoint ranges of states, in increasing order, with
+    /// no entry between two of them, each of whose iteration matrices
+    /// `σ I − J_kk` is regular for every shift of a step (a body's
+    /// position and orientation, whose rates read only its own states).
+    /// The LU then factorises the other unknowns' Schur complement (see
+    /// the `elimination` module); blocks that do not meet these conditions
+    /// are all ignored.
+    pub fn with_eliminated(mut self, blocks: Vec<Range<usize>>) -> Pattern {
+        self.eliminated = blocks;
+        self
+    }
+
+    /// The blocks of states eliminated ahead of the sparse LU.
+    pub fn eliminated(&self) -> &[Range<usize>] {
+        &self.eliminated
     }
 
     /// The dimension `n`.

@@ -1,6 +1,7 @@
-//! The sparse path: faer's supernodal LU, its fill-reducing ordering and
-//! symbolic analysis computed once per pattern, only the numbers
-//! refactorised.
+//! The sparse path: the pattern's eliminated blocks first (see
+//! `elimination`), then faer's supernodal LU of the kept unknowns, its
+//! fill-reducing ordering and symbolic analysis computed once per
+//! pattern, only the numbers refactorised.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::sparse::linalg::SupernodalThreshold;
@@ -9,28 +10,33 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par};
 use nalgebra::Complex;
 
+use super::elimination::{BlockNumbers, Elimination};
 use super::{Factorisation, Jacobian, Pattern};
 
-/// Sparse LU factorisations of the two iteration matrices, on one pattern.
+/// Sparse LU factorisations of the two iteration matrices, on one pattern
+/// (its eliminated blocks first, see [`Pattern::with_eliminated`]).
 pub struct SparseLu {
-    /// The matrices' dimension: the states, then the algebraic unknowns.
-    dimension: usize,
-    /// How many of the unknowns are states (shifted on the diagonal).
-    states: usize,
+    /// The eliminated blocks and the kept unknowns' pattern.
+    elimination: Elimination,
+    /// The kept unknowns' pattern, as faer reads it.
     structure: SymbolicSparseColMat<usize>,
-    /// Where each diagonal entry is among the entries.
-    diagonal: Vec<usize>,
     symbolic: SymbolicLu<usize>,
     real: NumericLu<usize, f64>,
     complex: NumericLu<usize, Complex<f64>>,
+    /// The kept unknowns' Schur complements, on the reduced pattern.
     real_values: Vec<f64>,
     complex_values: Vec<Complex<f64>>,
+    real_blocks: BlockNumbers<f64>,
+    complex_blocks: BlockNumbers<Complex<f64>>,
     /// Both matrices factorised without a zero pivot.
     factorised: bool,
     scratch: MemBuffer,
-    /// A right-hand side extended with zeros for the algebraic unknowns.
+    /// A right-hand side extended with zeros for the algebraic unknowns,
+    /// and its kept unknowns' part.
     real_work: Vec<f64>,
     complex_work: Vec<Complex<f64>>,
+    real_reduced: Vec<f64>,
+    complex_reduced: Vec<Complex<f64>>,
 }
 
 impl SparseLu {
@@ -42,13 +48,15 @@ impl SparseLu {
     ///
     /// When the analysis runs out of memory.
     pub fn new(pattern: &Pattern, states: usize) -> SparseLu {
-        let n = pattern.dimension();
+        let elimination = Elimination::new(pattern, states, pattern.eliminated());
+        let reduced = &elimination.pattern;
+        let kept = reduced.dimension();
         let structure = SymbolicSparseColMat::new_checked(
-            n,
-            n,
-            pattern.starts.clone(),
+            kept,
+            kept,
+            reduced.starts.clone(),
             None,
-            pattern.rows.clone(),
+            reduced.rows.clone(),
         );
         // Supernodal always: a body's 13 states make dense blocks, which
         // faer's supernodal LU factorises as blocks, where the simplicial
@@ -66,12 +74,12 @@ impl SparseLu {
             symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
             symbolic.solve_in_place_scratch::<Complex<f64>>(1, Par::Seq),
         ]);
+        let n = elimination.dimension();
         SparseLu {
-            dimension: n,
-            states,
-            diagonal: pattern.diagonal.clone(),
-            real_values: vec![0.0; pattern.len()],
-            complex_values: vec![Complex::new(0.0, 0.0); pattern.len()],
+            real_values: vec![0.0; reduced.len()],
+            complex_values: vec![Complex::new(0.0, 0.0); reduced.len()],
+            real_blocks: BlockNumbers::default(),
+            complex_blocks: BlockNumbers::default(),
             structure,
             symbolic,
             real: NumericLu::new(),
@@ -80,6 +88,9 @@ impl SparseLu {
             scratch: MemBuffer::new(scratch),
             real_work: vec![0.0; n],
             complex_work: vec![Complex::new(0.0, 0.0); n],
+            real_reduced: vec![0.0; kept],
+            complex_reduced: vec![Complex::new(0.0, 0.0); kept],
+            elimination,
         }
     }
 }
@@ -94,18 +105,19 @@ impl Factorisation for SparseLu {
         let Jacobian::Sparse { values, .. } = jacobian else {
             unreachable!("a sparse factorisation is made only for a pattern");
         };
-        for ((real, complex), value) in self
-            .real_values
-            .iter_mut()
-            .zip(&mut self.complex_values)
-            .zip(values)
-        {
-            *real = -value;
-            *complex = Complex::new(-value, 0.0);
-        }
-        for &at in &self.diagonal[..self.states] {
-            self.real_values[at] += real_shift;
-            self.complex_values[at] += complex_shift;
+        self.factorised = false;
+        if !self.elimination.eliminate(
+            values,
+            real_shift,
+            &mut self.real_values,
+            &mut self.real_blocks,
+        ) || !self.elimination.eliminate(
+            values,
+            complex_shift,
+            &mut self.complex_values,
+            &mut self.complex_blocks,
+        ) {
+            return false;
         }
         let structure = self.structure.as_ref();
         let stack = MemStack::new(&mut self.scratch);
@@ -133,14 +145,19 @@ impl Factorisation for SparseLu {
         if !self.factorised {
             return;
         }
-        let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&self.symbolic, &self.real);
         let work = bordered(&mut self.real_work, rhs);
+        let reduced = &mut self.real_reduced;
+        let kept = reduced.len();
+        self.elimination
+            .forward(&mut self.real_blocks, work, reduced);
+        let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&self.symbolic, &self.real);
         lu.solve_in_place_with_conj(
             Conj::No,
-            MatMut::from_column_major_slice_mut(work, self.dimension, 1),
+            MatMut::from_column_major_slice_mut(reduced, kept, 1),
             Par::Seq,
             MemStack::new(&mut self.scratch),
         );
+        self.elimination.back(&self.real_blocks, work, reduced);
         rhs.copy_from_slice(&work[..rhs.len()]);
     }
 
@@ -148,14 +165,19 @@ impl Factorisation for SparseLu {
         if !self.factorised {
             return;
         }
-        let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&self.symbolic, &self.complex);
         let work = bordered(&mut self.complex_work, rhs);
+        let reduced = &mut self.complex_reduced;
+        let kept = reduced.len();
+        self.elimination
+            .forward(&mut self.complex_blocks, work, reduced);
+        let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&self.symbolic, &self.complex);
         lu.solve_in_place_with_conj(
             Conj::No,
-            MatMut::from_column_major_slice_mut(work, self.dimension, 1),
+            MatMut::from_column_major_slice_mut(reduced, kept, 1),
             Par::Seq,
             MemStack::new(&mut self.scratch),
         );
+        self.elimination.back(&self.complex_blocks, work, reduced);
         rhs.copy_from_slice(&work[..rhs.len()]);
     }
 }

@@ -271,7 +271,14 @@ impl Sparsity {
                 read.into_iter().map(move |column| (row, column))
             })
         };
-        let pattern = Pattern::new(dimension, (0..groups).flat_map(entries_of));
+        // Those rows are eliminated ahead of the sparse LU, which then
+        // factorises six unknowns a body.
+        let kinematic = (0..bodies).map(|body| {
+            let offset = body_offset(model, body);
+            offset..offset + KINEMATIC_RATES
+        });
+        let pattern = Pattern::new(dimension, (0..groups).flat_map(entries_of))
+            .with_eliminated(kinematic.collect());
         let mut row_entries: Vec<Vec<(usize, usize)>> = vec![Vec::new(); dimension];
         for (position, (row, column)) in pattern.entries().enumerate() {
             row_entries[row].push((position, direction[column]));
