@@ -23,7 +23,7 @@ use super::constraints::{
 use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
 use super::error::{Place, SimulateError};
 use super::initial::initial_state;
-use super::model::Contact;
+use super::model::{Contact, Sensor};
 use super::{Model, Simulation};
 use crate::Shown;
 use crate::compile::{Program, SiteKind};
@@ -337,6 +337,29 @@ pub struct SensorTrip {
     pub time: f64,
     /// Whether it ended the run (HALT or RETURN).
     pub halted: bool,
+}
+
+/// Records that sensor `watched` tripped at `time`: the trip joins
+/// `trips`, and the sensor's DT, when it has one, spaces the output rows
+/// after it anew. Returns whether the trip ends the run (HALT or RETURN);
+/// the rest of what a trip does (the last row of a halted run, SENVAL) is
+/// the caller's.
+fn note_trip(
+    watched: &Sensor,
+    time: f64,
+    trips: &mut Vec<SensorTrip>,
+    outputs: &mut OutputTimes,
+) -> bool {
+    let halts = watched.action.halts();
+    trips.push(SensorTrip {
+        sensor: watched.id,
+        time,
+        halted: halts,
+    });
+    if let Some(step) = watched.output_step {
+        outputs.respace(time, step);
+    }
+    halts
 }
 
 /// The event of `contact`'s law switching from `from` to `to` at `time`.
@@ -909,16 +932,7 @@ impl Simulation<'_> {
             .map_err(|error| self.failure(0.0, error))?;
         for sensor in newly {
             let watched = &model.sensors[sensor];
-            let halts = watched.action.halts();
-            summary.sensor_trips.push(SensorTrip {
-                sensor: watched.id,
-                time: 0.0,
-                halted: halts,
-            });
-            if let Some(step) = watched.output_step {
-                outputs.respace(0.0, step);
-            }
-            if halts {
+            if note_trip(watched, 0.0, &mut summary.sensor_trips, &mut outputs) {
                 summary.stopped = true;
                 break;
             }
@@ -1054,16 +1068,7 @@ impl Simulation<'_> {
                     break;
                 }
                 let watched = &model.sensors[sensor];
-                let halts = watched.action.halts();
-                summary.sensor_trips.push(SensorTrip {
-                    sensor: watched.id,
-                    time,
-                    halted: halts,
-                });
-                if let Some(step) = watched.output_step {
-                    outputs.respace(time, step);
-                }
-                if halts {
+                if note_trip(watched, time, &mut summary.sensor_trips, &mut outputs) {
                     // The run ends at the sensor: its last row is there.
                     if outputs.next().is_some() && outputs.last() < time {
                         stepper.dense(time, &mut dense);
@@ -1227,16 +1232,7 @@ impl Simulation<'_> {
                 .map_err(|error| self.failure(right, error))?;
             for sensor in newly {
                 let watched = &model.sensors[sensor];
-                let halts = watched.action.halts();
-                summary.sensor_trips.push(SensorTrip {
-                    sensor: watched.id,
-                    time: right,
-                    halted: halts,
-                });
-                if let Some(step) = watched.output_step {
-                    outputs.respace(right, step);
-                }
-                if halts {
+                if note_trip(watched, right, &mut summary.sensor_trips, &mut outputs) {
                     if outputs.last() < right {
                         let values = rows
                             .at(right, &dense)
