@@ -282,3 +282,68 @@ END
         );
     }
 }
+
+/// A HALT sensor that becomes active only because another sensor's
+/// EVALUATE sets its SENVAL trips at that same time, whether the first trip
+/// is at the start, inside a step or at a located switch; and a HALT sensor
+/// tripping at exactly the time of an EVALUATE one (the same function) is
+/// not lost. `x = t`: SENSOR/1 (`x ≥ 0.3`, or `x ≥ 0` at the start)
+/// stores 1 into its SENVAL, which SENSOR/2 (`SENVAL(1) ≥ 0.2`, HALT)
+/// watches.
+#[test]
+fn a_sensor_made_active_by_another_sensors_senval_trips_at_the_same_time() {
+    let check = |first_value: f64, switch: bool, second: &str| {
+        let switching = if switch {
+            "DIFF/2, IC = 0, FUNCTION = IF(DIF(1) - 0.3: 0, 0, 1)\n"
+        } else {
+            ""
+        };
+        let text = format!(
+            "senval
+DIFF/1, IC = 0, FUNCTION = 1
+{switching}SENSOR/1, GE, VALUE = {first_value}, ERROR = 1e-9, FUNCTION = DIF(1)\\
+, EVALUATE = 1
+SENSOR/2, GE, VALUE = 0.2, ERROR = 1e-9, HALT, FUNCTION = {second}
+END
+"
+        );
+        let settings = Settings {
+            end: 1.0,
+            steps: 4,
+            rtol: 1e-10,
+            atol: 1e-12,
+            ..Settings::default()
+        };
+        let run = run(&text, &settings).expect("it runs");
+        let trips: Vec<(u64, f64, bool)> = run
+            .summary
+            .sensor_trips
+            .iter()
+            .map(|trip| (trip.sensor, trip.time, trip.halted))
+            .collect();
+        assert!(run.summary.stopped, "{text}: {trips:?}");
+        trips
+    };
+    for (value, switch) in [(0.0, false), (0.3, false), (0.3, true)] {
+        let trips = check(value, switch, "SENVAL(1)");
+        assert_eq!(trips.len(), 2, "{trips:?}");
+        assert!(
+            trips[0].0 == 1 && trips[1].0 == 2 && trips[1].2,
+            "{trips:?}"
+        );
+        assert!((trips[0].1 - value).abs() < 1e-8, "{trips:?}");
+        assert_eq!(trips[0].1, trips[1].1, "{trips:?}");
+    }
+    // Tied: both watch DIF(1) against 0.3.
+    let tied = |value| {
+        let trips = check(value, false, "DIF(1) - 0.1");
+        assert!(
+            trips
+                .iter()
+                .any(|&(sensor, _, halted)| sensor == 2 && halted),
+            "{trips:?}"
+        );
+        assert!((trips.last().unwrap().1 - 0.3).abs() < 1e-8, "{trips:?}");
+    };
+    tied(0.3);
+}

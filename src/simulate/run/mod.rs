@@ -362,6 +362,40 @@ fn note_trip(
     halts
 }
 
+/// Records the sensors `newly` active at `(time, state)` as trips there, in
+/// order. Each EVALUATE stores its SENVAL, and the sensors that the new
+/// value makes active trip at the same time (each sensor at most once at
+/// one instant, so that sensors reading one another's SENVAL cannot loop).
+/// Returns whether a trip ends the run (the trips after it are not
+/// recorded) and whether a SENVAL changed.
+fn trips_at(
+    model: &Model,
+    (rows, mechanics): (&mut Rows<'_>, &mut Mechanics<'_>),
+    (time, state): (f64, &[f64]),
+    newly: Vec<usize>,
+    active: &mut [bool],
+    (trips, outputs): (&mut Vec<SensorTrip>, &mut OutputTimes),
+) -> Result<(bool, bool), Failed> {
+    let mut pending: VecDeque<usize> = newly.into();
+    let mut tripped = vec![false; model.sensors.len()];
+    let mut evaluated = false;
+    while let Some(sensor) = pending.pop_front() {
+        if std::mem::replace(&mut tripped[sensor], true) {
+            continue;
+        }
+        let watched = &model.sensors[sensor];
+        if note_trip(watched, time, trips, outputs) {
+            return Ok((true, evaluated));
+        }
+        if watched.evaluate.is_some() {
+            rows.store(sensor, (time, state), mechanics)?;
+            evaluated = true;
+            pending.extend(rows.tripped(time, state, active)?);
+        }
+    }
+    Ok((false, evaluated))
+}
+
 /// The event of `contact`'s law switching from `from` to `to` at `time`.
 fn contact_event(contact: &Contact, time: f64, from: Code, to: Code) -> Event {
     // The law's stop is where the solids touch.
@@ -930,23 +964,20 @@ impl Simulation<'_> {
         let newly = rows
             .tripped(0.0, &y0, &mut active)
             .map_err(|error| self.failure(0.0, error))?;
-        for sensor in newly {
-            let watched = &model.sensors[sensor];
-            if note_trip(watched, 0.0, &mut summary.sensor_trips, &mut outputs) {
-                summary.stopped = true;
-                break;
-            }
-            if watched.evaluate.is_some() {
-                // SENVAL takes its value before the first step, which
-                // evaluates the rates again.
-                rows.store(sensor, (0.0, &y0), &mut system.mechanics)
-                    .map_err(|error| self.failure(0.0, error))?;
-                stepper.restart(0.0, &y0);
-                // The sensors' states with the new value, as after a trip
-                // in the run.
-                rows.tripped(0.0, &y0, &mut active)
-                    .map_err(|error| self.failure(0.0, error))?;
-            }
+        let (halted, evaluated) = trips_at(
+            model,
+            (&mut rows, &mut system.mechanics),
+            (0.0, &y0),
+            newly,
+            &mut active,
+            (&mut summary.sensor_trips, &mut outputs),
+        )
+        .map_err(|error| self.failure(0.0, error))?;
+        summary.stopped |= halted;
+        if evaluated {
+            // SENVAL takes its value before the first step, which
+            // evaluates the rates again.
+            stepper.restart(0.0, &y0);
         }
         let mut dense = vec![0.0; y0.len()];
         let mut recent = VecDeque::new();
@@ -1055,13 +1086,15 @@ impl Simulation<'_> {
                 }
                 trips.sort_by(|a, b| a.1.total_cmp(&b.1));
                 if let Some(first) = trips.iter().position(|&(sensor, _)| cuts(sensor)) {
-                    trips.truncate(first + 1);
-                    reached = trips[first].1;
+                    // The trips at the cut's time all happen there.
+                    let cut = trips[first].1;
+                    trips.retain(|&(_, time)| time <= cut);
+                    reached = cut;
                 }
             }
             // The rows up to each trip, the trip (a DT spacing the rows
             // after it anew), then the rows up to the step's end.
-            let mut evaluated = None;
+            let mut evaluated = Vec::new();
             for &(sensor, time) in &trips {
                 if self.write_rows(&mut outputs, time, (&stepper, &mut rows), sink, &mut dense)? {
                     summary.stopped = true;
@@ -1082,7 +1115,7 @@ impl Simulation<'_> {
                     break;
                 }
                 if watched.evaluate.is_some() {
-                    evaluated = Some((sensor, time));
+                    evaluated.push(sensor);
                 }
             }
             if summary.stopped {
@@ -1097,7 +1130,8 @@ impl Simulation<'_> {
             )? {
                 summary.stopped = true;
             }
-            if let Some((sensor, time)) = evaluated {
+            if let Some(&sensor) = evaluated.first() {
+                let time = reached;
                 // SENVAL takes its EVALUATE's value at the trip: the run
                 // starts again from there, as after a switch.
                 if delays {
@@ -1124,10 +1158,30 @@ impl Simulation<'_> {
                     });
                 }
                 let at = |error: Failed| self.failure(time, error);
-                rows.store(sensor, (time, &dense), &mut system.mechanics)
-                    .map_err(at)?;
-                // The sensors' states at the trip, not at the look after it.
-                rows.tripped(time, &dense, &mut active).map_err(at)?;
+                for &sensor in &evaluated {
+                    rows.store(sensor, (time, &dense), &mut system.mechanics)
+                        .map_err(at)?;
+                }
+                // The sensors' states at the trip, not at the look after
+                // it: those the new values make active trip there too.
+                let newly = rows.tripped(time, &dense, &mut active).map_err(at)?;
+                let (halted, _) = trips_at(
+                    model,
+                    (&mut rows, &mut system.mechanics),
+                    (time, &dense),
+                    newly,
+                    &mut active,
+                    (&mut summary.sensor_trips, &mut outputs),
+                )
+                .map_err(at)?;
+                if halted {
+                    if outputs.last() < time {
+                        let values = rows.at(time, &dense).map_err(at)?;
+                        let _ = sink.row(time, values);
+                    }
+                    summary.stopped = true;
+                    break;
+                }
                 accept(&mut system, &mut rows, time, &dense, Some(0)).map_err(at)?;
                 let limit = system
                     .look_and_limit(time, &dense, &mut natural, &mut start_values)
@@ -1226,28 +1280,27 @@ impl Simulation<'_> {
             system.held.clone_from(&natural);
             accept(&mut system, &mut rows, right, &dense, Some(0))
                 .map_err(|error| self.failure(right, error))?;
-            let mut halted = false;
             let newly = rows
                 .tripped(right, &dense, &mut active)
                 .map_err(|error| self.failure(right, error))?;
-            for sensor in newly {
-                let watched = &model.sensors[sensor];
-                if note_trip(watched, right, &mut summary.sensor_trips, &mut outputs) {
-                    if outputs.last() < right {
-                        let values = rows
-                            .at(right, &dense)
-                            .map_err(|error| self.failure(right, error))?;
-                        let _ = sink.row(right, values);
-                    }
-                    halted = true;
-                    break;
-                }
-                // SENVAL takes its EVALUATE's value; the fresh start below
-                // begins with it.
-                rows.store(sensor, (right, &dense), &mut system.mechanics)
-                    .map_err(|error| self.failure(right, error))?;
-            }
+            // SENVAL takes its EVALUATE's value; the fresh start below
+            // begins with it.
+            let (halted, _) = trips_at(
+                model,
+                (&mut rows, &mut system.mechanics),
+                (right, &dense),
+                newly,
+                &mut active,
+                (&mut summary.sensor_trips, &mut outputs),
+            )
+            .map_err(|error| self.failure(right, error))?;
             if halted {
+                if outputs.last() < right {
+                    let values = rows
+                        .at(right, &dense)
+                        .map_err(|error| self.failure(right, error))?;
+                    let _ = sink.row(right, values);
+                }
                 summary.stopped = true;
                 break;
             }
