@@ -74,8 +74,8 @@ pub(super) struct BlockNumbers<T> {
     /// A block's matrix being inverted, and a block's part of a solve.
     work: Vec<T>,
     part: Vec<T>,
-    /// The nonzero entries of a block's `E⁻¹ B`.
-    reach_entries: Vec<usize>,
+    /// The nonzero entries of a block's `E⁻¹ B`: row, column, position.
+    reach_entries: Vec<(usize, usize, usize)>,
 }
 
 impl<T> Default for BlockNumbers<T> {
@@ -291,6 +291,9 @@ impl Elimination {
             let block_reach = &mut reach[at..];
             for &(row, column, position) in &block.read_entries {
                 let entry = value(position);
+                if entry == zero {
+                    continue;
+                }
                 for k in 0..size {
                     block_reach[k * reads + column] += block_inverse[k * size + row] * entry;
                 }
@@ -304,12 +307,15 @@ impl Elimination {
             // C E⁻¹ B over the nonzero entries of E⁻¹ B (a body's position
             // rows read only its velocity, its orientation rows its spin).
             reach_entries.clear();
-            reach_entries.extend((0..size * reads).filter(|&at| block_reach[at] != zero));
+            reach_entries.extend(
+                (0..size * reads)
+                    .filter(|&at| block_reach[at] != zero)
+                    .map(|at| (at / reads, at % reads, at)),
+            );
             for row in 0..readers {
                 let coupling = &block_read_by[row * size..(row + 1) * size];
                 let fill = &block.fill[row * reads..(row + 1) * reads];
-                for &at in reach_entries.iter() {
-                    let (k, column) = (at / reads, at % reads);
+                for &(k, column, at) in reach_entries.iter() {
                     reduced_values[fill[column]] -= coupling[k] * block_reach[at];
                 }
             }
@@ -400,8 +406,8 @@ fn invert<T: Scalar>(matrix: &mut [T], size: usize, inverse: &mut [T]) -> bool {
         let pivot_row = (column..size)
             .max_by(|&a, &b| {
                 matrix[a * size + column]
-                    .modulus()
-                    .partial_cmp(&matrix[b * size + column].modulus())
+                    .norm1()
+                    .partial_cmp(&matrix[b * size + column].norm1())
                     .unwrap_or(std::cmp::Ordering::Equal)
             })
             .expect("a row");

@@ -4,6 +4,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use crate::kinematics::times_constant;
 use crate::number::Number;
 use crate::scene::StateComponent;
 use crate::simulate::model::{MassProperties, Model};
@@ -71,8 +72,8 @@ impl<T: Number> Kinematics<T> {
         let turn = (v.clone() * T::from(w0) - v0.map(|c| w.clone() * c) - cross) * T::from(2.0);
         let turn = turn.map(|component| component.clone() - component.value());
         let omega = vector(10);
-        let omega_ground = &rotation * &omega;
-        let to_origin = -(&rotation * centre_in_body.map(T::from));
+        let omega_ground = times(&rotation, &omega);
+        let to_origin = -times_constant(&rotation, centre_in_body);
         let (centre, velocity) = (vector(0), vector(7));
         let origin = &centre + &to_origin;
         let origin_velocity = &velocity + omega_ground.cross(&to_origin);
@@ -100,7 +101,6 @@ impl<T: Number> Kinematics<T> {
         torque: &Vector3<T>,
         rates: &mut [T],
     ) {
-        let inertia = mass.inertia.map(T::from);
         // A massless part's accelerations are the joints' solve's
         // (`Mechanics::rates` puts them in); none here.
         let acceleration = if mass.is_massless() {
@@ -109,9 +109,9 @@ impl<T: Number> Kinematics<T> {
             force / T::from(mass.mass) + gravity.map(T::from)
         };
         let omega = &self.omega;
-        let body_torque = self.rotation.transpose() * torque;
-        let angular =
-            inverse_inertia.map(T::from) * (body_torque - omega.cross(&(&inertia * omega)));
+        let body_torque = transpose_times(&self.rotation, torque);
+        let momentum = constant_times(&mass.inertia, omega);
+        let angular = constant_times(inverse_inertia, &(body_torque - omega.cross(&momentum)));
         let [w, x, y, z] = &self.quaternion;
         let v = Vector3::new(x.clone(), y.clone(), z.clone());
         let spin_w = -v.dot(omega) * 0.5;
@@ -145,6 +145,33 @@ impl<T: Number> Kinematics<T> {
             StateComponent::AngularVelocity(axis) => self.omega_ground[axis].clone(),
         }
     }
+}
+
+/// `a v`, summed in the order of nalgebra's product (so that plain numbers
+/// come out the same), without its copies of the numbers.
+fn times<T: Number>(a: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
+    Vector3::from_fn(|row, _| {
+        a[(row, 0)].clone() * v[0].clone()
+            + a[(row, 1)].clone() * v[1].clone()
+            + a[(row, 2)].clone() * v[2].clone()
+    })
+}
+
+/// `aᵀ v`, as [`times`], without the transposed copy.
+fn transpose_times<T: Number>(a: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
+    Vector3::from_fn(|row, _| {
+        a[(0, row)].clone() * v[0].clone()
+            + a[(1, row)].clone() * v[1].clone()
+            + a[(2, row)].clone() * v[2].clone()
+    })
+}
+
+/// `a v` for a constant `a`: no product with a constant's zero derivative
+/// parts.
+fn constant_times<T: Number>(a: &Matrix3<f64>, v: &Vector3<T>) -> Vector3<T> {
+    Vector3::from_fn(|row, _| {
+        v[0].clone() * a[(row, 0)] + v[1].clone() * a[(row, 1)] + v[2].clone() * a[(row, 2)]
+    })
 }
 
 /// The rotation matrix of the unit quaternion `w x y z`.
