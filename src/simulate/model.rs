@@ -783,8 +783,6 @@ pub struct Sensor {
 pub enum Relation {
     /// `EQ`: active within `error` of the value.
     Equal,
-    /// `NE`: active further than `error` from the value.
-    NotEqual,
     /// `GE`: active at or above the value, less `error`.
     AtLeast,
     /// `LE`: active at or below the value, plus `error`.
@@ -820,7 +818,6 @@ impl Sensor {
         let off = value - self.value;
         match self.relation {
             Relation::Equal => off.abs() <= self.error,
-            Relation::NotEqual => off.abs() > self.error,
             Relation::AtLeast => off >= -self.error,
             Relation::AtMost => off <= self.error,
         }

@@ -74,21 +74,20 @@ pub(super) fn settings(statement: &Statement) -> Result<Settings, Unread> {
         .into_iter()
         .filter(|keyword| has(keyword))
         .collect();
-    if ["EQ", "NE", "GE", "LE"]
+    if ["EQ", "GE", "LE"]
         .iter()
         .filter(|keyword| has(keyword))
         .count()
         > 1
     {
         return Err(Unread::Setting(
-            format!("{label}: give one comparison of EQ, NE, GE and LE"),
+            format!("{label}: give one comparison of EQ, GE and LE"),
             statement.span,
         ));
     }
-    let relation = match (has("NE"), has("GE"), has("LE")) {
-        (true, _, _) => Relation::NotEqual,
-        (_, true, _) => Relation::AtLeast,
-        (_, _, true) => Relation::AtMost,
+    let relation = match (has("GE"), has("LE")) {
+        (true, _) => Relation::AtLeast,
+        (_, true) => Relation::AtMost,
         _ => Relation::Equal,
     };
     let action = if has("HALT") {
