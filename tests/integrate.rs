@@ -470,6 +470,52 @@ fn a_jacobian_with_algebraic_unknowns_solves_as_its_schur_complement() {
         .expect("every drawn system");
 }
 
+/// An eliminated block whose iteration matrix is singular (`J_kk = σ I`)
+/// makes the factorisation fail, as a singular LU does; at another shift
+/// it factorises and solves.
+#[test]
+fn an_eliminated_block_that_is_singular_fails_the_factorisation() {
+    use mbexpr::integrate::linalg::{Factorisation, Jacobian, Pattern, SparseLu};
+    use nalgebra::Complex;
+    // Eight 7-state blocks and eight 6-state rows (a body's layout), each
+    // block's rows reading its own states, each kept row its body's.
+    let bodies = 8;
+    let n = 13 * bodies;
+    let entries: Vec<(usize, usize)> = (0..bodies)
+        .flat_map(|body| {
+            let own = 13 * body..13 * body + 13;
+            own.clone()
+                .flat_map(move |row| (13 * body..13 * body + 13).map(move |column| (row, column)))
+        })
+        .collect();
+    let blocks: Vec<std::ops::Range<usize>> =
+        (0..bodies).map(|body| 13 * body..13 * body + 7).collect();
+    let pattern = std::rc::Rc::new(Pattern::new(n, entries).with_eliminated(blocks));
+    let shift = 5.0;
+    // The identity times the real shift on the first block's diagonal, a
+    // diagonally dominant matrix elsewhere.
+    let values: Vec<f64> = pattern
+        .entries()
+        .map(|(row, column)| match (row == column, row < 7) {
+            (true, true) => shift,
+            (true, false) => -20.0,
+            (false, true) => 0.0,
+            (false, false) => 0.1,
+        })
+        .collect();
+    let jacobian = Jacobian::Sparse {
+        pattern: pattern.clone(),
+        values,
+    };
+    let mut lu = SparseLu::new(&pattern, n);
+    assert!(!lu.factorise(&jacobian, shift, Complex::new(3.0, 2.0)));
+    assert!(lu.factorise(&jacobian, shift + 1.0, Complex::new(3.0, 2.0)));
+    // Solved: the first block's rows are (σ − 5) x = r.
+    let mut rhs = vec![1.0; n];
+    lu.solve_real(&mut rhs);
+    assert!((rhs[0] - 1.0).abs() < 1e-14, "{}", rhs[0]);
+}
+
 /// A fast lag following a slow oscillator, `y₀' = λ (y₀ − y₁)`, `y₁' = ω
 /// y₂`, `y₂' = −ω y₁`, started on its particular solution so that the lag's
 /// own mode `e^(λt)` is barely excited.
