@@ -49,6 +49,16 @@ struct Block {
     fill: Vec<usize>,
 }
 
+impl Block {
+    /// The entries of the reduced pattern `C E⁻¹ B` fills: each reader's
+    /// row in each read column, in the order of [`Block::fill`].
+    fn fill_entries(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.readers
+            .iter()
+            .flat_map(|&row| self.reads.iter().map(move |&column| (row, column)))
+    }
+}
+
 /// How a pattern's unknowns split into eliminated blocks and kept ones,
 /// and the pattern of the kept ones' Schur complement.
 pub(super) struct Elimination {
@@ -184,18 +194,12 @@ impl Elimination {
                 entry.0 = block.readers.binary_search(&entry.0).expect("reader");
             }
         }
-        let fill_entries = eliminated.iter().flat_map(|block| {
-            block
-                .readers
-                .iter()
-                .flat_map(|&row| block.reads.iter().map(move |&column| (row, column)))
-        });
         let reduced_pattern = Pattern::new(
             kept,
             kept_pairs
                 .iter()
                 .map(|&(_, row, column)| (row, column))
-                .chain(fill_entries),
+                .chain(eliminated.iter().flat_map(Block::fill_entries)),
         );
         // Elimination that fills the kept unknowns' pattern beyond the full
         // one's would cost more than it saves.
@@ -209,9 +213,7 @@ impl Elimination {
         };
         for block in &mut eliminated {
             block.fill = block
-                .readers
-                .iter()
-                .flat_map(|&row| block.reads.iter().map(move |&column| (row, column)))
+                .fill_entries()
                 .map(|(row, column)| position(row, column))
                 .collect();
         }

@@ -362,21 +362,21 @@ fn note_trip(
     halts
 }
 
-/// Records the sensors `newly` active at `(time, state)` as trips there, in
-/// order. Each EVALUATE stores its SENVAL, and the sensors that the new
-/// value makes active trip at the same time (each sensor at most once at
-/// one instant, so that sensors reading one another's SENVAL cannot loop).
-/// Returns whether a trip ends the run (the trips after it are not
-/// recorded) and whether a SENVAL changed.
+/// Looks at the sensors at `(time, state)` and records those newly active
+/// (`active`, updated) as trips there, in order. Each EVALUATE stores its
+/// SENVAL, and the sensors that the new value makes active trip at the
+/// same time (each sensor at most once at one instant, so that sensors
+/// reading one another's SENVAL cannot loop). Returns whether a trip ends
+/// the run (the trips after it are not recorded) and whether a SENVAL
+/// changed.
 fn trips_at(
     model: &Model,
     (rows, mechanics): (&mut Rows<'_>, &mut Mechanics<'_>),
     (time, state): (f64, &[f64]),
-    newly: Vec<usize>,
     active: &mut [bool],
     (trips, outputs): (&mut Vec<SensorTrip>, &mut OutputTimes),
 ) -> Result<(bool, bool), Failed> {
-    let mut pending: VecDeque<usize> = newly.into();
+    let mut pending: VecDeque<usize> = rows.tripped(time, state, active)?.into();
     let mut tripped = vec![false; model.sensors.len()];
     let mut evaluated = false;
     while let Some(sensor) = pending.pop_front() {
@@ -961,14 +961,10 @@ impl Simulation<'_> {
         // The sensors active at the start trip there, before any step (and
         // an EQ sensor's last value is then the start's, so that a crossing
         // inside the first step is seen).
-        let newly = rows
-            .tripped(0.0, &y0, &mut active)
-            .map_err(|error| self.failure(0.0, error))?;
         let (halted, evaluated) = trips_at(
             model,
             (&mut rows, &mut system.mechanics),
             (0.0, &y0),
-            newly,
             &mut active,
             (&mut summary.sensor_trips, &mut outputs),
         )
@@ -1164,12 +1160,10 @@ impl Simulation<'_> {
                 }
                 // The sensors' states at the trip, not at the look after
                 // it: those the new values make active trip there too.
-                let newly = rows.tripped(time, &dense, &mut active).map_err(at)?;
                 let (halted, _) = trips_at(
                     model,
                     (&mut rows, &mut system.mechanics),
                     (time, &dense),
-                    newly,
                     &mut active,
                     (&mut summary.sensor_trips, &mut outputs),
                 )
@@ -1280,16 +1274,12 @@ impl Simulation<'_> {
             system.held.clone_from(&natural);
             accept(&mut system, &mut rows, right, &dense, Some(0))
                 .map_err(|error| self.failure(right, error))?;
-            let newly = rows
-                .tripped(right, &dense, &mut active)
-                .map_err(|error| self.failure(right, error))?;
             // SENVAL takes its EVALUATE's value; the fresh start below
             // begins with it.
             let (halted, _) = trips_at(
                 model,
                 (&mut rows, &mut system.mechanics),
                 (right, &dense),
-                newly,
                 &mut active,
                 (&mut summary.sensor_trips, &mut outputs),
             )
