@@ -1099,14 +1099,13 @@ impl Simulation<'_> {
                 let watched = &model.sensors[sensor];
                 if note_trip(watched, time, &mut summary.sensor_trips, &mut outputs) {
                     // The run ends at the sensor: its last row is there.
-                    if outputs.next().is_some() && outputs.last() < time {
-                        stepper.dense(time, &mut dense);
-                        self.finite_row(time, &dense)?;
-                        let values = rows
-                            .at(time, &dense)
-                            .map_err(|error| self.failure(time, error))?;
-                        let _ = sink.row(time, values);
-                    }
+                    stepper.dense(time, &mut dense);
+                    let state = if time == stepper.t() {
+                        stepper.y()
+                    } else {
+                        &*dense
+                    };
+                    self.last_row(&outputs, time, state, &mut rows, sink)?;
                     summary.stopped = true;
                     break;
                 }
@@ -1169,10 +1168,7 @@ impl Simulation<'_> {
                 )
                 .map_err(at)?;
                 if halted {
-                    if outputs.last() < time {
-                        let values = rows.at(time, &dense).map_err(at)?;
-                        let _ = sink.row(time, values);
-                    }
+                    self.last_row(&outputs, time, &dense, &mut rows, sink)?;
                     summary.stopped = true;
                     break;
                 }
@@ -1285,12 +1281,7 @@ impl Simulation<'_> {
             )
             .map_err(|error| self.failure(right, error))?;
             if halted {
-                if outputs.last() < right {
-                    let values = rows
-                        .at(right, &dense)
-                        .map_err(|error| self.failure(right, error))?;
-                    let _ = sink.row(right, values);
-                }
+                self.last_row(&outputs, right, &dense, &mut rows, sink)?;
                 summary.stopped = true;
                 break;
             }
@@ -1568,6 +1559,27 @@ impl Simulation<'_> {
             }
         }
         Ok(false)
+    }
+
+    /// The last row of a run a sensor halts at `time`, the state there
+    /// `state`, unless a row at `time` (or the run's end) has been written
+    /// already; an error where the state is not a finite number.
+    fn last_row(
+        &self,
+        outputs: &OutputTimes,
+        time: f64,
+        state: &[f64],
+        rows: &mut Rows<'_>,
+        sink: &mut impl Sink,
+    ) -> Result<(), SimulateError> {
+        if outputs.last() < time {
+            self.finite_row(time, state)?;
+            let values = rows
+                .at(time, state)
+                .map_err(|error| self.failure(time, error))?;
+            let _ = sink.row(time, values);
+        }
+        Ok(())
     }
 
     /// An error where the state of a row from a step's continuous output
