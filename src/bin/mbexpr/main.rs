@@ -12,6 +12,12 @@ use std::process::ExitCode;
 
 use clap::{CommandFactory, Parser, Subcommand};
 
+/// mimalloc keeps the memory a run frees for its next use, where glibc's
+/// allocator hands large blocks back to the system and faults them in
+/// again (BENCHMARKS.md, "The allocator").
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// Read, check and evaluate the function expressions of multibody models.
 #[derive(Parser)]
 #[command(name = "mbexpr", version, about)]
