@@ -148,6 +148,9 @@ fn eval_points_gives_one_line_per_row_and_goes_on_after_errors() {
     ) + &check(
         &["eval", "LOG(x)", "--points", path, "--format", "json"],
         "",
+    ) + &check(
+        &["eval", "TIME * 2 + x", "--points", "-"],
+        "TIME,x\n1,1\n2.5,0\n",
     );
     std::fs::remove_dir_all(&dir).unwrap();
     insta::assert_snapshot!(report.replace(path, "points.csv"));

@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 43] = [
+    let cases: [(&str, &str, Settings); 44] = [
         (
             "a torque near the largest double: the steps shrink to nothing, and the part it spins is named",
             "huge torque
@@ -594,6 +594,19 @@ PART/3, CM = 30
 MARKER/30, PART = 3
 JOINT/1, TRANSLATIONAL, I = 20, J = 1
 JOINT/2, TRANSLATIONAL, I = 30, J = 1
+",
+            short.clone(),
+        ),
+        (
+            "a JFLOAT that is not a whole id, and a bushing with a negative damping",
+            "bushing
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2
+MARKER/4, PART = 1, FLOATING
+VFORCE/1, I = 3, JFLOAT = 4.7, RM = 1, FX = 0, FY = 0, FZ = 1
+BUSHING/1, I = 3, J = 1, K = 100, 100, 100, C = -1e6, 1, 1
 ",
             short,
         ),
@@ -1744,6 +1757,10 @@ fn command_files_give_one_run_of_equally_spaced_outputs() {
         (
             "sim/dyn, steps = 10",
             "SIMULATE: give END = the end time (or DURATION = how long)",
+        ),
+        (
+            "sim/dyn, end = 1e308, steps = 1; sim/dyn, duration = 1e308, steps = 1",
+            "SIMULATE: the command ends past the largest double (END = inf, from 1e308)",
         ),
         (
             "sim/dyn, end = 1, steps = 2.5",

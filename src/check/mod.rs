@@ -40,6 +40,20 @@ impl Checked {
         names
     }
 
+    /// The system variables the expression reads (`TIME`, `MODE`), each
+    /// once, in order of first use.
+    pub fn system_variables(&self) -> Vec<SystemVariable> {
+        let mut read = Vec::new();
+        visit(&self.root, &mut |node| {
+            if let NodeKind::System(variable) = node.kind
+                && !read.contains(&variable)
+            {
+                read.push(variable);
+            }
+        });
+        read
+    }
+
     /// Every use of a name the context must bind, with its place, in the
     /// order written.
     pub fn variable_uses(&self) -> Vec<(&str, Span)> {

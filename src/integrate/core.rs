@@ -223,10 +223,22 @@ impl Core {
     }
 
     /// Counts a rejected trial step and sets the step size to try next.
+    ///
+    /// `cause` keeps the step's latest reason, but a failure of the system
+    /// or a state that is not finite is not replaced by a tolerance
+    /// rejection after it: when the step size runs out, the reason given
+    /// is the one that shrank it first (a rate that overflows, not the
+    /// error estimates of the smaller trials after it).
     pub fn reject<E>(&mut self, h_next: f64, why: Rejection<E>, cause: &mut Option<Rejection<E>>) {
         self.stats.rejected += 1;
         self.h = h_next;
-        *cause = Some(why);
+        let keeps = matches!(why, Rejection::Tolerance)
+            && cause
+                .as_ref()
+                .is_some_and(|earlier| !matches!(earlier, Rejection::Tolerance));
+        if !keeps {
+            *cause = Some(why);
+        }
     }
 }
 
@@ -275,13 +287,24 @@ pub(super) fn initial_step<S: System + ?Sized>(
 ) -> f64 {
     let n = y.len();
     let scale = |i: usize, value: f64| atol[i] + rtol * value.abs();
+    // The Euclidean norm of the scaled values, scaled by the largest so
+    // that values near the largest double do not overflow its squares.
     let size_of = |values: &[f64]| {
-        (values
-            .iter()
-            .enumerate()
-            .map(|(i, value)| (value / scale(i, y[i])).powi(2))
-            .sum::<f64>())
-        .sqrt()
+        let scaled = || {
+            values
+                .iter()
+                .enumerate()
+                .map(|(i, value)| value / scale(i, y[i]))
+        };
+        let largest = scaled().fold(0.0_f64, |largest, value| largest.max(value.abs()));
+        if largest == 0.0 || !largest.is_finite() {
+            return largest;
+        }
+        largest
+            * scaled()
+                .map(|value| (value / largest).powi(2))
+                .sum::<f64>()
+                .sqrt()
     };
     let (norm_f, norm_y) = (size_of(f0), size_of(y));
     let mut h = if norm_f <= 1e-5 || norm_y <= 1e-5 {
@@ -289,7 +312,7 @@ pub(super) fn initial_step<S: System + ?Sized>(
     } else {
         0.01 * norm_y / norm_f
     };
-    let first_guess = h.min(h_max);
+    let first_guess = positive_or(h.min(h_max), 1e-6_f64.min(h_max));
     h = first_guess;
     let mut euler = vec![0.0; n];
     let mut f1 = vec![0.0; n];
@@ -308,9 +331,20 @@ pub(super) fn initial_step<S: System + ?Sized>(
             } else {
                 (0.01 / largest).powf(1.0 / f64::from(order))
             };
-            return (100.0 * h).min(h_order).min(h_max);
+            return positive_or((100.0 * h).min(h_order).min(h_max), first_guess);
         }
         h *= 0.1;
     }
     first_guess
+}
+
+/// `h` where it is a positive number, else `fallback` (the sizes of a
+/// system whose rates are near the largest double give a first step of 0:
+/// trials of a small step find out what is wrong with it instead).
+fn positive_or(h: f64, fallback: f64) -> f64 {
+    if h > 0.0 && h.is_finite() {
+        h
+    } else {
+        fallback
+    }
 }

@@ -84,7 +84,11 @@ fn statement(pair: Pair<'_, Rule>, base: usize) -> (Statement, Option<ReadError>
         match part.as_rule() {
             Rule::statement_name => name = part.as_str().to_uppercase(),
             Rule::id => {
-                id = part.as_str().parse().ok();
+                id = part
+                    .as_str()
+                    .parse()
+                    .ok()
+                    .filter(|&id| id <= super::LARGEST_ID);
                 if id.is_none() {
                     id_too_large = Some(ReadError::IdTooLarge {
                         span: span_of(&part, base),

@@ -330,11 +330,13 @@ pub fn initial_scene(
                 number(statement, "WZ", 0.0)?,
             );
             let cm = number(statement, "CM", 0.0)?;
-            Ok([
+            let markers = [
                 cm,
                 number(statement, "VM", cm)?,
                 number(statement, "WM", cm)?,
-            ])
+            ];
+            number(statement, "MASS", 0.0)?;
+            Ok(markers)
         })();
         // A part whose data has an error still exists for its markers (no
         // second error at each of them).
@@ -355,7 +357,9 @@ pub fn initial_scene(
     {
         let Some(id) = statement.id else { continue };
         let mut body = Body::new(statement.label());
-        if let Err(error) = place(&mut body, statement) {
+        if let Err(error) =
+            place(&mut body, statement).and_then(|()| number(statement, "MASS", 0.0).map(drop))
+        {
             errors.push(error);
         }
         point_masses.insert(id, scene.bodies.len());

@@ -182,6 +182,11 @@ pub enum Value {
     },
 }
 
+/// The largest statement id: every whole number up to it is a double, so
+/// that a reference to a statement (`I = 12`, read as a number) names it
+/// and no other.
+pub const LARGEST_ID: u64 = (1 << 53) - 1;
+
 /// One item of a value list.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ValueItem {
@@ -218,8 +223,9 @@ pub enum ReadError {
         /// The line.
         span: Span,
     },
-    /// A statement's id past the largest whole number mbexpr holds.
-    #[error("this id is too large: ids are whole numbers up to {}", u64::MAX)]
+    /// A statement's id past [`LARGEST_ID`]: the references to it are read
+    /// as numbers, which hold every whole number only up to there.
+    #[error("this id is too large: ids are whole numbers up to {LARGEST_ID} (2^53 - 1)")]
     IdTooLarge {
         /// The id.
         span: Span,

@@ -439,9 +439,9 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
             let span = name_span(findings.text, statement.span, &statement.name).unwrap_or(span);
             findings.push(
                 ModelError::UnknownStatement {
-                    name: statement.name.to_string(),
+                    name: as_written(&statement.name),
                     file,
-                    suggestions: vocabulary::suggestions(&statement.name, known),
+                    suggestions: suggestions(&statement.name, known),
                     span,
                 },
                 Some(index),
@@ -460,9 +460,9 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
             if !vocabulary::is_keyword(&argument.keyword, keywords) {
                 findings.push(
                     ModelError::UnknownKeyword {
-                        keyword: argument.keyword.to_string(),
+                        keyword: as_written(&argument.keyword),
                         statement: statement.label(),
-                        suggestions: vocabulary::suggestions(&argument.keyword, keywords),
+                        suggestions: suggestions(&argument.keyword, keywords),
                         span: argument.keyword_span,
                     },
                     Some(index),
@@ -495,6 +495,28 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
         }
     }
     check_grounds(dataset, findings);
+}
+
+/// The longest name a message repeats whole.
+const LONGEST_NAME: usize = 60;
+
+/// A name as written, cut after [`LONGEST_NAME`] characters (a line of
+/// a megabyte is not repeated in its message).
+fn as_written(name: &str) -> String {
+    match name.char_indices().nth(LONGEST_NAME) {
+        Some((end, _)) => format!("{}…", &name[..end]),
+        None => name.to_string(),
+    }
+}
+
+/// The vocabulary's names close to `written` (" (did you mean ...?)"), not
+/// looked for when it is longer than any name could be.
+fn suggestions(written: &str, known: &[&str]) -> String {
+    if written.len() > LONGEST_NAME {
+        String::new()
+    } else {
+        vocabulary::suggestions(written, known)
+    }
 }
 
 /// The keyword of `keywords` that `written` is or abbreviates, when it

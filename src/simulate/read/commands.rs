@@ -4,6 +4,7 @@
 use crate::model::initial::number;
 use crate::model::vocabulary::{COMMANDS, statement_name};
 use crate::model::{Dataset, Value};
+use crate::shown::Shown;
 use crate::span::Span;
 
 /// The most output steps a command file may ask for (a hundred million
@@ -162,10 +163,22 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
             }
         };
         let length = segment_end - end;
+        if !segment_end.is_finite() {
+            return Err((
+                format!(
+                    "{label}: the command ends past the largest double (END = {}, from {}): give an earlier END or a shorter DURATION",
+                    Shown(segment_end),
+                    Shown(end)
+                ),
+                statement.span,
+            ));
+        }
         if !(length > 0.0 && length.is_finite()) {
             return Err((
                 format!(
-                    "{label}: the command must end after it starts (END = {segment_end}, from {end}): give a later END or a positive DURATION"
+                    "{label}: the command must end after it starts (END = {}, from {}): give a later END or a positive DURATION",
+                    Shown(segment_end),
+                    Shown(end)
                 ),
                 statement.span,
             ));
@@ -222,7 +235,8 @@ pub fn run_settings(commands: &Dataset) -> Result<Option<RunCommands>, (String, 
     if steps > MOST_OUTPUT_STEPS as f64 {
         return Err((
             format!(
-                "SIMULATE: {steps:.3e} output steps to END = {end} (at most {MOST_OUTPUT_STEPS}: give fewer STEPS or a larger DTOUT)"
+                "SIMULATE: {steps:.3e} output steps to END = {} (at most {MOST_OUTPUT_STEPS}: give fewer STEPS or a larger DTOUT)",
+                Shown(end)
             ),
             span,
         ));

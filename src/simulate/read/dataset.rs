@@ -655,15 +655,25 @@ impl Reader<'_> {
     /// left out), no inertia. Its inverse inertia is zero, so no torque
     /// turns it: its axes stay as placed, as Adams keeps them.
     fn point_mass(&mut self, statement: &Statement) -> MassProperties {
-        let mass = number(statement, "MASS", f64::NAN).unwrap_or(f64::NAN);
-        if !(mass > 0.0 && mass.is_finite()) {
+        // Not a number where it cannot be read (an error already).
+        let mass = self.mass_number(statement, f64::NAN);
+        let written = statement.argument("MASS", 2);
+        let wrong = match written {
+            None => Some(statement.span),
+            Some(argument) => (mass <= 0.0).then_some(argument.span),
+        };
+        if let Some(span) = wrong {
             self.errors.push(SimulateError::Model {
                 message: format!(
-                    "{}: MASS must be a positive number, not {}",
+                    "{}: MASS must be a positive number{}",
                     statement.label(),
-                    Shown(mass)
+                    if written.is_some() {
+                        format!(", not {}", Shown(mass))
+                    } else {
+                        String::new()
+                    }
                 ),
-                span: statement.span,
+                span,
             });
         }
         self.markers_on_the_part(statement);
@@ -714,6 +724,18 @@ impl Reader<'_> {
         }
     }
 
+    /// The MASS of a PART or POINT_MASS, `default` where it has none; not a
+    /// number, its error recorded at the value, where it is not one.
+    fn mass_number(&mut self, statement: &Statement, default: f64) -> f64 {
+        number(statement, "MASS", default).unwrap_or_else(|error| {
+            self.errors.push(SimulateError::Model {
+                message: error.to_string(),
+                span: error.span(),
+            });
+            f64::NAN
+        })
+    }
+
     fn mass(&mut self, statement: &Statement) -> MassProperties {
         let label = statement.label();
         let fail = |errors: &mut Vec<SimulateError>, message: String| {
@@ -723,8 +745,9 @@ impl Reader<'_> {
             });
         };
         // No MASS, or MASS = 0: a massless part, which joints must hold.
-        let mass = number(statement, "MASS", 0.0).unwrap_or(f64::NAN);
-        if !(mass >= 0.0 && mass.is_finite()) {
+        // Not a number where it cannot be read (an error already).
+        let mass = self.mass_number(statement, 0.0);
+        if mass < 0.0 {
             fail(
                 &mut self.errors,
                 format!(
@@ -742,7 +765,10 @@ impl Reader<'_> {
             Err(_) => match numbers(statement, "IP", [0.0; 3]) {
                 Ok([xx, yy, zz]) => [xx, yy, zz, 0.0, 0.0, 0.0],
                 Err(error) => {
-                    fail(&mut self.errors, error.to_string());
+                    self.errors.push(SimulateError::Model {
+                        message: error.to_string(),
+                        span: error.span(),
+                    });
                     [0.0; 6]
                 }
             },
@@ -918,8 +944,7 @@ impl Reader<'_> {
             let reaction = match statement.argument("JFLOAT", 2) {
                 None => None,
                 Some(argument) => {
-                    let id = number(statement, "JFLOAT", f64::NAN).unwrap_or(f64::NAN);
-                    match floating.get(&(id as u64)) {
+                    match super::whole_id(statement, "JFLOAT").and_then(|id| floating.get(&id)) {
                         Some(body) => *body,
                         None => {
                             let message = format!(

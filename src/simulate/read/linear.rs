@@ -94,6 +94,22 @@ pub(super) fn bushing(statement: &Statement) -> Result<Linear, Refusal> {
     let values = |keyword: &str| numbers(statement, keyword, [0.0; 3]).map_err(refusal);
     let [k, c, force, kt, ct, torque] = ["K", "C", "FORCE", "KT", "CT", "TORQUE"].map(values);
     let (k, c, force, kt, ct, torque) = (k?, c?, force?, kt?, ct?, torque?);
+    // Adams' range: stiffness and damping at least 0 (a negative one drives
+    // the parts apart, or pumps energy into them).
+    for (keyword, coefficients) in [("K", k), ("C", c), ("KT", kt), ("CT", ct)] {
+        if let Some(negative) = coefficients.iter().find(|value| **value < 0.0)
+            && let Some(argument) = statement.argument(keyword, keyword.len())
+        {
+            return Err((
+                format!(
+                    "{}: {keyword} must be at least 0 (each of its three), not {}",
+                    statement.label(),
+                    crate::shown::Shown(*negative)
+                ),
+                argument.span,
+            ));
+        }
+    }
     Ok(Linear {
         stiffness: diagonal(k, kt),
         damping: diagonal(c, ct),

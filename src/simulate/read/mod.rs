@@ -104,14 +104,17 @@ fn named_marker(
     keyword: &str,
     scene: &crate::scene::Scene,
 ) -> Option<crate::scene::Target> {
+    whole_id(statement, keyword)
+        .and_then(|id| scene.find_marker(&crate::check::Reference::Id(id)).ok())
+}
+
+/// The id `keyword = id` gives in `statement`: a whole positive number
+/// (`None` for anything else, `4.7` too).
+fn whole_id(statement: &model::Statement, keyword: &str) -> Option<u64> {
     model::initial::number(statement, keyword, f64::NAN)
         .ok()
-        .filter(|id| id.fract() == 0.0 && *id > 0.0)
-        .and_then(|id| {
-            scene
-                .find_marker(&crate::check::Reference::Id(id as u64))
-                .ok()
-        })
+        .filter(|id| id.fract() == 0.0 && *id > 0.0 && *id <= model::LARGEST_ID as f64)
+        .map(|id| id as u64)
 }
 
 /// `path:line:column: message`, a line each.

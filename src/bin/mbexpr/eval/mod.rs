@@ -536,6 +536,12 @@ fn readable_columns(
         .variables()
         .iter()
         .map(|name| name.to_ascii_lowercase())
+        .chain(
+            checked
+                .system_variables()
+                .iter()
+                .map(|variable| variable.name().to_ascii_lowercase()),
+        )
         .collect();
     readable.extend(
         context

@@ -6,7 +6,7 @@
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use mbexpr::{Checked, Counted, Evaluation, Order, Scene};
+use mbexpr::{Checked, Counted, Evaluation, Order, Scene, Shown};
 
 /// One curve to draw: a name and its points.
 pub struct Curve {
@@ -76,9 +76,10 @@ impl Plot {
         let mut text = format!("wrote {file} ({}", Counted(points, "point"));
         if let Some((x, message)) = &self.first_failure {
             text += &format!(
-                "; {} of {} could not be evaluated and are a gap, the first at {over} = {x}: {message}",
+                "; {} of {} could not be evaluated and are a gap, the first at {over} = {}: {message}",
                 self.failed,
-                Counted(self.sampled, "sample")
+                Counted(self.sampled, "sample"),
+                Shown(*x)
             );
         }
         text + ")"
