@@ -15,6 +15,11 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+/// mimalloc keeps the memory a simulation frees for its next use
+/// (BENCHMARKS.md, "The allocator"); the Rust side of the module only.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 create_exception!(
     _core,
     Error,
