@@ -80,7 +80,10 @@ fn command(pair: Pair<'_, Rule>, base: usize) -> Statement {
         .iter()
         .find(|argument: &&Argument| argument.keyword == "ADAMS_ID")
         .and_then(|argument| match &argument.value {
-            Value::List(items) => items.first().and_then(|item| item.text.parse().ok()),
+            Value::List(items) => items
+                .first()
+                .and_then(|item| item.text.parse().ok())
+                .filter(|&id| id <= super::LARGEST_ID),
             _ => None,
         });
     Statement {
