@@ -123,7 +123,20 @@ class program {
     return mbexpr_program_input_count(handle_.get());
   }
 
+  // Throws unless `given` values (of `what`) are one for each input: the
+  // library reads one from each.
+  void check_size(std::size_t given, const char *what) const {
+    std::size_t inputs = input_count();
+    if (given != inputs) {
+      throw error(std::string(what) + " has " + std::to_string(given) +
+                      " values for " + std::to_string(inputs) +
+                      " inputs: give one for each input",
+                  0, 0);
+    }
+  }
+
   double value(const std::vector<double> &point) const {
+    check_size(point.size(), "the point");
     mbexpr_error failure = {};
     double result = 0.0;
     detail::check(mbexpr_value(handle_.get(), point.data(), &result, &failure),
@@ -135,6 +148,7 @@ class program {
   evaluation derivatives(const std::vector<double> &point,
                          const std::vector<std::size_t> &wrt,
                          bool hessian = false) const {
+    check_size(point.size(), "the point");
     evaluation result;
     result.gradient.resize(wrt.size());
     mbexpr_error failure = {};
@@ -160,6 +174,7 @@ class program {
   bulk evaluate(const std::vector<const double *> &columns, std::size_t n,
                 const std::vector<std::size_t> &wrt = {}, int order = 0,
                 std::size_t threads = 0) const {
+    check_size(columns.size(), "the columns");
     bulk result;
     std::size_t k = wrt.size();
     result.values.resize(n);

@@ -112,6 +112,22 @@ impl Expression {
         text: &str,
         inputs: &[S],
     ) -> Result<Expression, Vec<Located>> {
+        // Names are read in any case, so two that differ only in case are
+        // one input given twice.
+        for (index, name) in inputs.iter().enumerate() {
+            let name = name.as_ref();
+            if let Some(first) = inputs[..index]
+                .iter()
+                .position(|other| other.as_ref().eq_ignore_ascii_case(name))
+            {
+                return Err(vec![Located::nowhere(format!(
+                    "input {} ({name:?}) repeats input {} ({:?}): names are read in any case, so give each input once",
+                    index + 1,
+                    first + 1,
+                    inputs[first].as_ref()
+                ))]);
+            }
+        }
         let tree = crate::parse(text)
             .map_err(|error| vec![Located::at(text, error.span(), error.to_string())])?;
         let checked =
@@ -199,6 +215,7 @@ impl Expression {
         threads: usize,
     ) -> Result<usize, Located> {
         self.check_directions(wrt)?;
+        thread_count(threads)?;
         let n = out.status.len();
         let inputs = self.inputs().len();
         if columns.len() != inputs {
@@ -354,9 +371,26 @@ struct Piece<'o> {
 /// there to be told).
 static POOLS: Mutex<Vec<(u32, usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
 
+/// The most threads a bulk evaluation starts for each core: more only
+/// share the cores, and each count's pool is kept for the process's life.
+const MOST_THREADS_PER_CORE: usize = 16;
+
+/// `threads` where a bulk evaluation may start that many (0: one a core),
+/// else the error that says how many it may.
+fn thread_count(threads: usize) -> Result<usize, Located> {
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    let most = MOST_THREADS_PER_CORE * cores;
+    if threads > most {
+        return Err(Located::nowhere(format!(
+            "at most {most} threads ({MOST_THREADS_PER_CORE} a core on this machine's {cores}), not {threads}: give 0 for one a core"
+        )));
+    }
+    Ok(threads)
+}
+
 /// The pool of `threads` threads (0: one per core) of this process.
 fn pool(threads: usize) -> Result<Arc<rayon::ThreadPool>, Located> {
-    let threads = match threads {
+    let threads = match thread_count(threads)? {
         0 => std::thread::available_parallelism().map_or(1, usize::from),
         threads => threads,
     };

@@ -772,4 +772,24 @@ fn bulk_evaluation_is_single_evaluation_at_every_point_on_any_threads() {
         error.message,
         "derivative direction 0 (x) is asked for twice"
     );
+    // More threads than a bulk evaluation starts, and inputs that differ
+    // only in case.
+    let mut values = vec![0.0; 1];
+    let mut status = vec![0; 1];
+    let one: [&[f64]; 2] = [&[1.0], &[2.0]];
+    let out = Bulk {
+        values: &mut values,
+        gradients: &mut [],
+        hessians: &mut [],
+        status: &mut status,
+    };
+    let error = expression
+        .evaluate_bulk(&one, &[], Order::Value, out, usize::MAX)
+        .unwrap_err();
+    assert!(error.message.starts_with("at most "), "{}", error.message);
+    let error = Expression::compile("x", &["x", "X"]).unwrap_err();
+    assert_eq!(
+        error.message,
+        "input 2 (\"X\") repeats input 1 (\"x\"): names are read in any case, so give each input once"
+    );
 }

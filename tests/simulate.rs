@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 44] = [
+    let cases: [(&str, &str, Settings); 45] = [
         (
             "a torque near the largest double: the steps shrink to nothing, and the part it spins is named",
             "huge torque
@@ -242,6 +242,11 @@ DIFF/1, IC = 0, IMPLICIT, FUNCTION = DIF1(1) - 1
             settings(0.0, 10, 1e-6),
         ),
         ("no output step", BALL, settings(1.0, 0, 1e-6)),
+        (
+            "more output steps than a run ends",
+            BALL,
+            settings(1.0, usize::MAX, 1e-6),
+        ),
         (
             "a relative tolerance below rounding",
             BALL,

@@ -137,6 +137,13 @@ impl Program {
             .ok_or_else(|| PyValueError::new_err(format!("order {order} is not 0, 1 or 2")))?;
         let columns: Vec<Cow<'_, [f64]>> = columns.iter().map(values).collect();
         let n = columns.first().map_or(0, |column| column.len());
+        if let Some(index) = columns.iter().position(|column| column.len() != n) {
+            return Err(PyValueError::new_err(format!(
+                "input {} has {} values, the first {n}: give each input as many",
+                index + 1,
+                columns[index].len()
+            )));
+        }
         let k = wrt.len();
         let widths = [
             if order >= Order::Gradient { k } else { 0 },
@@ -204,6 +211,13 @@ fn utility_bulk<'py>(
         return Err(PyValueError::new_err(format!(
             "{name} takes {arity} arguments before iord, not {}",
             columns.len()
+        )));
+    }
+    if let Some(k) = columns.iter().position(|column| column.len() != n) {
+        return Err(PyValueError::new_err(format!(
+            "{name}: argument {} has {} values, the first {n}: give each argument as many",
+            k + 1,
+            columns[k].len()
         )));
     }
     let run = || -> Result<Vec<f64>, (usize, String)> {

@@ -177,3 +177,14 @@ def test_utilities_over_arrays_with_iord():
     assert "point 0" in str(caught.value)
     with pytest.raises(mbexpr.Error):
         mbexpr.step(0.5, 0, 0, 1, 1, iord=3)
+
+
+def test_columns_of_unequal_length_and_repeated_inputs_are_refused():
+    # The private bulk entry points check what the public ones broadcast.
+    from mbexpr import _core
+
+    one = np.ones(3)
+    with pytest.raises(ValueError, match="argument 2 has 1 values"):
+        _core.utility_bulk("step", [one * 0.5, np.zeros(1), one * 0, one, one], 0)
+    with pytest.raises(mbexpr.Error, match="repeats input 1"):
+        mbexpr.compile("x", ["x", "X"])

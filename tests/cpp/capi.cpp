@@ -58,6 +58,12 @@ int main() {
   } catch (const mbexpr::error &e) {
     std::printf("error at %zu:%zu: %s\n", e.line, e.column, e.what());
   }
+  // A point shorter than the inputs is refused, not read past its end.
+  try {
+    force.value({0.03});
+  } catch (const mbexpr::error &e) {
+    std::printf("%s\n", e.what());
+  }
 
   // A simulation: rows into a lambda, which stops it after three rows;
   // an exception from the lambda comes back out of simulate.

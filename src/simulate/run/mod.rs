@@ -232,6 +232,12 @@ impl Settings {
             ))
         } else if self.steps == 0 {
             Some("the number of output steps must be at least 1".to_string())
+        } else if self.steps > crate::simulate::read::MOST_OUTPUT_STEPS {
+            Some(format!(
+                "the number of output steps must be at most {} (a row each; the run would not end), not {}",
+                crate::simulate::read::MOST_OUTPUT_STEPS,
+                self.steps
+            ))
         } else if !(self.rtol >= SMALLEST_RTOL && self.rtol < 1.0) {
             Some(format!(
                 "the relative tolerance must be at least {} (ten rounding units: below it a step's error cannot be told from rounding) and less than 1, not {}",
