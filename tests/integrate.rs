@@ -300,7 +300,7 @@ fn methods_by_name() {
             "radau (Radau5)",
             "radau (Radau5)",
             "dop853 (Dop853)",
-            "unknown integration method `rk4`: expected radau or dop853"
+            "unknown integration method `rk4`: expected auto, radau (radau5) or dop853"
         ]
     );
 }

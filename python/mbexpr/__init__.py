@@ -134,7 +134,7 @@ class Program:
         shape, columns = self._points(args, kwargs)
         directions = self._directions(wrt) if order > 0 else []
         values, gradients, hessians, status = self._program.evaluate(
-            columns, directions, order, threads
+            columns, directions, order, threads, int(np.prod(shape, dtype=np.int64))
         )
         if errors == "raise" and status.any():
             point = int(np.argmax(status != 0))

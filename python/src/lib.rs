@@ -121,10 +121,11 @@ impl Program {
         self.expression.inputs().to_vec()
     }
 
-    /// Evaluates at the points of `columns` (one 1-D array per input, of
-    /// equal length) for `order` 0, 1 or 2 in the inputs `wrt`, on
-    /// `threads` threads (0: every core), without the GIL. Returns flat
-    /// values, gradients (`k` a point), Hessians (`k²`) and the status.
+    /// Evaluates at the `points` points of `columns` (one 1-D array per
+    /// input, each of `points` values; a program without inputs has no
+    /// column) for `order` 0, 1 or 2 in the inputs `wrt`, on `threads`
+    /// threads (0: every core), without the GIL. Returns flat values,
+    /// gradients (`k` a point), Hessians (`k²`) and the status.
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
@@ -132,14 +133,15 @@ impl Program {
         wrt: Vec<usize>,
         order: u8,
         threads: usize,
+        points: usize,
     ) -> PyResult<BulkArrays<'py>> {
         let order = Order::from_number(order)
             .ok_or_else(|| PyValueError::new_err(format!("order {order} is not 0, 1 or 2")))?;
         let columns: Vec<Cow<'_, [f64]>> = columns.iter().map(values).collect();
-        let n = columns.first().map_or(0, |column| column.len());
+        let n = points;
         if let Some(index) = columns.iter().position(|column| column.len() != n) {
             return Err(PyValueError::new_err(format!(
-                "input {} has {} values, the first {n}: give each input as many",
+                "input {} has {} values for {n} points: give each input one a point",
                 index + 1,
                 columns[index].len()
             )));

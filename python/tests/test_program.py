@@ -188,3 +188,10 @@ def test_columns_of_unequal_length_and_repeated_inputs_are_refused():
         _core.utility_bulk("step", [one * 0.5, np.zeros(1), one * 0, one, one], 0)
     with pytest.raises(mbexpr.Error, match="repeats input 1"):
         mbexpr.compile("x", ["x", "X"])
+
+
+def test_a_program_without_inputs_evaluates_to_its_constant():
+    program = mbexpr.compile("2 + 3", [])
+    assert program.value() == 5.0
+    value, gradient = program.gradient()
+    assert value == 5.0 and gradient.shape == (0,)

@@ -102,5 +102,5 @@ pub enum Rejection<E> {
 
 /// A method name that is neither `radau` nor `dop853`.
 #[derive(Clone, Debug, Error, PartialEq, Eq)]
-#[error("unknown integration method `{0}`: expected radau or dop853")]
+#[error("unknown integration method `{0}`: expected auto, radau (radau5) or dop853")]
 pub struct UnknownMethod(pub String);

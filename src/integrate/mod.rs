@@ -263,9 +263,9 @@ impl FromStr for Method {
     type Err = UnknownMethod;
 
     /// `radau` (or `radau5`), `dop853` and `auto`, as the command line
-    /// spells them.
+    /// spells them, in any case.
     fn from_str(name: &str) -> Result<Self, UnknownMethod> {
-        match name {
+        match name.to_ascii_lowercase().as_str() {
             "radau" | "radau5" => Ok(Method::Radau5),
             "dop853" => Ok(Method::Dop853),
             "auto" => Ok(Method::Auto),
