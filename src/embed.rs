@@ -215,7 +215,7 @@ impl Expression {
         threads: usize,
     ) -> Result<usize, Located> {
         self.check_directions(wrt)?;
-        thread_count(threads)?;
+        let threads = thread_count(threads)?;
         let n = out.status.len();
         let inputs = self.inputs().len();
         if columns.len() != inputs {
@@ -375,25 +375,22 @@ static POOLS: Mutex<Vec<(u32, usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec:
 /// share the cores, and each count's pool is kept for the process's life.
 const MOST_THREADS_PER_CORE: usize = 16;
 
-/// `threads` where a bulk evaluation may start that many (0: one a core),
-/// else the error that says how many it may.
+/// How many threads a bulk evaluation asked for `threads` starts (0: one a
+/// core), or the error that says how many it may.
 fn thread_count(threads: usize) -> Result<usize, Located> {
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
     let most = MOST_THREADS_PER_CORE * cores;
-    if threads > most {
-        return Err(Located::nowhere(format!(
+    match threads {
+        0 => Ok(cores),
+        threads if threads > most => Err(Located::nowhere(format!(
             "at most {most} threads ({MOST_THREADS_PER_CORE} a core on this machine's {cores}), not {threads}: give 0 for one a core"
-        )));
+        ))),
+        threads => Ok(threads),
     }
-    Ok(threads)
 }
 
-/// The pool of `threads` threads (0: one per core) of this process.
+/// The pool of `threads` threads of this process.
 fn pool(threads: usize) -> Result<Arc<rayon::ThreadPool>, Located> {
-    let threads = match thread_count(threads)? {
-        0 => std::thread::available_parallelism().map_or(1, usize::from),
-        threads => threads,
-    };
     let process = std::process::id();
     let mut pools = POOLS
         .lock()

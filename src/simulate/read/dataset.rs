@@ -655,24 +655,20 @@ impl Reader<'_> {
     /// left out), no inertia. Its inverse inertia is zero, so no torque
     /// turns it: its axes stay as placed, as Adams keeps them.
     fn point_mass(&mut self, statement: &Statement) -> MassProperties {
-        // Not a number where it cannot be read (an error already).
-        let mass = self.mass_number(statement, f64::NAN);
-        let written = statement.argument("MASS", 2);
-        let wrong = match written {
-            None => Some(statement.span),
-            Some(argument) => (mass <= 0.0).then_some(argument.span),
+        // A MASS that is not a number stopped the scene (`initial_scene`).
+        let mass = number(statement, "MASS", f64::NAN).unwrap_or(f64::NAN);
+        let wrong = match statement.argument("MASS", 2) {
+            None => Some(("MASS must be a positive number".to_string(), statement.span)),
+            Some(argument) => (mass <= 0.0).then(|| {
+                (
+                    format!("MASS must be a positive number, not {}", Shown(mass)),
+                    argument.span,
+                )
+            }),
         };
-        if let Some(span) = wrong {
+        if let Some((problem, span)) = wrong {
             self.errors.push(SimulateError::Model {
-                message: format!(
-                    "{}: MASS must be a positive number{}",
-                    statement.label(),
-                    if written.is_some() {
-                        format!(", not {}", Shown(mass))
-                    } else {
-                        String::new()
-                    }
-                ),
+                message: format!("{}: {problem}", statement.label()),
                 span,
             });
         }
@@ -724,18 +720,6 @@ impl Reader<'_> {
         }
     }
 
-    /// The MASS of a PART or POINT_MASS, `default` where it has none; not a
-    /// number, its error recorded at the value, where it is not one.
-    fn mass_number(&mut self, statement: &Statement, default: f64) -> f64 {
-        number(statement, "MASS", default).unwrap_or_else(|error| {
-            self.errors.push(SimulateError::Model {
-                message: error.to_string(),
-                span: error.span(),
-            });
-            f64::NAN
-        })
-    }
-
     fn mass(&mut self, statement: &Statement) -> MassProperties {
         let label = statement.label();
         let fail = |errors: &mut Vec<SimulateError>, message: String| {
@@ -745,9 +729,9 @@ impl Reader<'_> {
             });
         };
         // No MASS, or MASS = 0: a massless part, which joints must hold.
-        // Not a number where it cannot be read (an error already).
-        let mass = self.mass_number(statement, 0.0);
-        if mass < 0.0 {
+        // A MASS that is not a number stopped the scene (`initial_scene`).
+        let mass = number(statement, "MASS", 0.0).unwrap_or(f64::NAN);
+        if !(mass >= 0.0 && mass.is_finite()) {
             fail(
                 &mut self.errors,
                 format!(
