@@ -2,6 +2,8 @@
 //! bounds, counted evaluations of the right-hand side, and the first step
 //! size (Hairer's `hinit`).
 
+use std::ops::Range;
+
 use super::{AbsoluteTolerance, IntegrateError, Options, Rejection, Stats, System};
 use crate::Shown;
 
@@ -51,6 +53,8 @@ pub(super) struct Core {
     pub rtol: f64,
     pub atol: Vec<f64>,
     pub max_steps: usize,
+    /// The groups of states of the error norm ([`System::norm_groups`]).
+    pub groups: Vec<Range<usize>>,
     /// The solution is smooth to the method's order ([`Options::smooth`]).
     pub smooth: bool,
     pub stats: Stats,
@@ -127,6 +131,7 @@ impl Core {
             rtol: options.rtol,
             atol,
             max_steps: options.max_steps,
+            groups: std::iter::once(0..dimension).collect(),
             smooth: options.smooth,
             stats: Stats::default(),
             t0,
@@ -140,6 +145,21 @@ impl Core {
         &mut self,
         system: &mut S,
     ) -> Result<(), IntegrateError<S::Error>> {
+        let groups = system.norm_groups();
+        let mut next = 0;
+        for group in &groups {
+            if group.start != next || group.is_empty() {
+                break;
+            }
+            next = group.end;
+        }
+        if next != self.y.len() || groups.iter().any(Range::is_empty) {
+            return Err(IntegrateError::Settings(format!(
+                "the system's norm groups {groups:?} do not cover its {} states in order",
+                self.y.len()
+            )));
+        }
+        self.groups = groups;
         let (t, y, dy) = (self.t, &self.y, &mut self.dy);
         evaluate(system, &mut self.stats, t, y, dy)
             .map_err(|cause| IntegrateError::Start { t, cause })?;
@@ -267,6 +287,29 @@ pub(super) fn evaluate<S: System + ?Sized>(
 /// The root mean square of `values` (an empty list gives 0).
 pub(super) fn rms(values: impl Iterator<Item = f64>, n: usize) -> f64 {
     (values.map(|value| value * value).sum::<f64>() / n.max(1) as f64).sqrt()
+}
+
+/// The error norm over `groups` ([`System::norm_groups`]): the largest over
+/// the groups of the root mean square within each, where `squares(i)` is
+/// the sum of the squares of state `i`'s `per_state` scaled values.
+pub(super) fn grouped_rms(
+    groups: &[Range<usize>],
+    per_state: usize,
+    squares: impl Fn(usize) -> f64,
+) -> f64 {
+    groups
+        .iter()
+        .map(|group| {
+            let sum: f64 = group.clone().map(&squares).sum();
+            (sum / (per_state * group.len()).max(1) as f64).sqrt()
+        })
+        .fold(0.0, |largest: f64, norm| {
+            if largest.is_nan() || norm.is_nan() {
+                f64::NAN
+            } else {
+                largest.max(norm)
+            }
+        })
 }
 
 /// A first step size for a method of local error `O(h^order)` (Hairer's

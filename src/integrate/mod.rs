@@ -107,6 +107,7 @@ mod radau5;
 mod spectral;
 
 use std::fmt;
+use std::ops::Range;
 use std::str::FromStr;
 
 use nalgebra::DMatrix;
@@ -196,6 +197,18 @@ pub trait System {
             *value = dense[entry];
         }
         Ok(())
+    }
+
+    /// The groups of states whose errors are measured together: a step's
+    /// error (and a Newton increment's size) is the largest over the
+    /// groups of the root mean square of the scaled errors within each.
+    /// The groups are consecutive ranges that cover the states in order
+    /// (asked once, when a stepper starts). The default is one group, the
+    /// root mean square over all states as in Hairer's codes; a system of
+    /// many similar parts gives one group a part, so that parts at rest do
+    /// not dilute the error of the one that moves.
+    fn norm_groups(&mut self) -> Vec<Range<usize>> {
+        std::iter::once(0..self.dimension()).collect()
     }
 }
 

@@ -9,7 +9,7 @@ use std::rc::Rc;
 
 use nalgebra::Complex;
 
-use super::core::{Core, evaluate, rms};
+use super::core::{Core, evaluate, grouped_rms};
 use super::linalg::{Factorisation, Jacobian, Pattern, factorisation_for};
 use super::{IntegrateError, Options, Rejection, System};
 use crate::Shown;
@@ -487,12 +487,14 @@ impl Radau5 {
             // what the rounding of its rate leaves in it over the step
             // where that is larger: a velocity that is rounding noise of
             // a joints' solve cannot contract below it.
-            let scaled = (0..n).flat_map(|i| {
+            let norm = grouped_rms(&core.groups, 3, |i| {
                 let (dw1, dw2) = (self.real_rhs[i], self.complex_rhs[i]);
                 let scale = self.scale[i].max(FLOOR_MARGIN * h * self.floor[i]);
-                [dw1, dw2.re, dw2.im].map(|dw| dw / scale)
+                [dw1, dw2.re, dw2.im]
+                    .map(|dw| (dw / scale).powi(2))
+                    .iter()
+                    .sum()
             });
-            let norm = rms(scaled, 3 * n);
             if !norm.is_finite() {
                 return Err((FAILURE_SHRINK, Rejection::NonFinite));
             }
@@ -560,8 +562,9 @@ impl Radau5 {
             self.real_rhs[i] = combination[i] + core.dy[i];
         }
         self.matrices.solve_real(&mut self.real_rhs);
+        let groups = &core.groups;
         let size = |estimate: &[f64], scale: &[f64]| {
-            let err = rms(estimate.iter().zip(scale).map(|(e, s)| e / s), scale.len());
+            let err = grouped_rms(groups, 1, |i| (estimate[i] / scale[i]).powi(2));
             if err.is_nan() {
                 f64::INFINITY
             } else {

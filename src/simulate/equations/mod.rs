@@ -380,6 +380,24 @@ impl<'m> Mechanics<'m> {
         model.diffs.len() + BODY_STATES * model.scene.bodies.len()
     }
 
+    /// The groups of the integrators' error norm: the DIFFs' states
+    /// together (as one system of equations), and each body's 13 on their
+    /// own, so that the error of a body that moves is not diluted by the
+    /// states of the many that may be at rest or fixed.
+    pub(crate) fn norm_groups(&self) -> Vec<std::ops::Range<usize>> {
+        let model = self.equations.model;
+        let diffs = model.diffs.len();
+        let bodies = (0..model.scene.bodies.len()).map(|body| {
+            let offset = body_offset(model, body);
+            offset..offset + BODY_STATES
+        });
+        (diffs > 0)
+            .then_some(0..diffs)
+            .into_iter()
+            .chain(bodies)
+            .collect()
+    }
+
     /// `dy/dt` at `(t, y)` with the sites on the branches `held`.
     pub(crate) fn rates(
         &mut self,

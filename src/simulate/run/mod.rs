@@ -686,6 +686,10 @@ impl crate::integrate::System for Equations<'_> {
         self.mechanics.rounding_floor(t, y, None, floor)
     }
 
+    fn norm_groups(&mut self) -> Vec<std::ops::Range<usize>> {
+        self.mechanics.norm_groups()
+    }
+
     fn sparse_jacobian(
         &mut self,
         t: f64,

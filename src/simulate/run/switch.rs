@@ -89,6 +89,10 @@ impl System for Held<'_> {
         self.mechanics.rounding_floor(t, y, Some(&self.held), floor)
     }
 
+    fn norm_groups(&mut self) -> Vec<std::ops::Range<usize>> {
+        self.mechanics.norm_groups()
+    }
+
     fn sparse_jacobian(
         &mut self,
         t: f64,
