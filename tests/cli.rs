@@ -1000,6 +1000,7 @@ fn simulate_checks_every_output_before_the_first_step() {
             + &run(&["--rtol", "0"])
             + &run(&["--max-steps", "0"])
             + &run(&["--hmax", "-1"])
+            + &run(&["--hmax", "1e-300"])
     );
 }
 

@@ -623,6 +623,79 @@ BUSHING/1, I = 3, J = 1, K = 100, 100, 100, C = -1e6, 1, 1
     insta::assert_snapshot!(table);
 }
 
+/// A largest step too short to reach the end time is refused before the
+/// run, naming the largest step: the end time over it is more steps than
+/// the most allowed, or it is below the shortest step the integrator takes
+/// at the end time. Before, the first rule's runs failed at t = 0 blaming
+/// the local error tolerance (h_max 1e-300) or ran until the step budget
+/// was spent (1e-9); a largest step just long enough runs.
+#[test]
+fn a_largest_step_too_short_to_reach_the_end_is_refused_naming_it() {
+    const LINE: &str = "line\nDIFF/1, IC = 0, FUNCTION = 1\n";
+    let default = simulate::DEFAULT_MAX_STEPS;
+    // (end, h_max, max_steps, what the run reports)
+    let cases: [(f64, f64, usize, &str); 9] = [
+        (
+            1.0,
+            1e-300,
+            default,
+            "the largest step must be at least 1e-7 (the end time 1 over the most steps the settings allow, 10000000: with shorter steps the run cannot reach its end), not 1e-300",
+        ),
+        (
+            1.0,
+            1e-9,
+            default,
+            "the largest step must be at least 1e-7 (the end time 1 over the most steps the settings allow, 10000000: with shorter steps the run cannot reach its end), not 1e-9",
+        ),
+        (
+            1.0,
+            0.019,
+            50,
+            "the largest step must be at least 0.02 (the end time 1 over the most steps the settings allow, 50: with shorter steps the run cannot reach its end), not 0.019",
+        ),
+        (1.0, 0.02, 60, "ran: 11 rows, 0 events"),
+        (
+            1e-10,
+            1e-15,
+            default,
+            "the largest step must be at least 1e-14 (the shortest step the integrator takes at the end time 1e-10: a shorter one is lost in the rounding of the time), not 1e-15",
+        ),
+        (
+            1e6,
+            1e-9,
+            usize::MAX,
+            "the largest step must be at least 1e-8 (the shortest step the integrator takes at the end time 1000000: a shorter one is lost in the rounding of the time), not 1e-9",
+        ),
+        (1e-15, 1e-15, default, "ran: 11 rows, 0 events"),
+        (1e-10, 1e-14, default, "ran: 11 rows, 0 events"),
+        (1.0, f64::INFINITY, default, "ran: 11 rows, 0 events"),
+    ];
+    for (end, h_max, max_steps, expected) in cases {
+        let settings = Settings {
+            h_max,
+            max_steps,
+            ..settings(end, 10, 1e-6)
+        };
+        assert_eq!(
+            check(LINE, &settings),
+            expected,
+            "end {end}, h_max {h_max}, max_steps {max_steps}"
+        );
+        if !expected.starts_with("ran") {
+            let refused = settings.check().expect_err("refused up front");
+            assert_eq!(refused.to_string(), expected);
+        }
+    }
+    // The end time over the most steps is long enough (the run itself
+    // takes a few more, its first steps short).
+    let boundary = Settings {
+        h_max: 0.02,
+        max_steps: 50,
+        ..settings(1.0, 10, 1e-6)
+    };
+    assert!(boundary.check().is_ok());
+}
+
 /// The rows' column `column` at every output time.
 fn column(run: &Run, column: usize) -> impl Iterator<Item = f64> + '_ {
     run.rows.iter().map(move |row| row[column])

@@ -13,7 +13,7 @@ const LANDING_STRETCH: f64 = 1.01;
 
 /// A landing step may exceed the maximum step by this relative amount: the
 /// rounding of a time reached by many steps of the maximum size.
-const CAP_SLACK: f64 = 1e-9;
+pub(crate) const CAP_SLACK: f64 = 1e-9;
 
 /// Smallest step size relative to `max(|t|, 1)`.
 const SMALLEST_RELATIVE_STEP: f64 = 1e-14;

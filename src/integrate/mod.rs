@@ -115,6 +115,7 @@ use nalgebra::DMatrix;
 use crate::Counted;
 
 use self::auto::Auto;
+pub(crate) use self::core::CAP_SLACK;
 use self::core::Core;
 pub use self::core::smallest_step;
 use self::dop853::Dop853;

@@ -29,7 +29,8 @@ use crate::Shown;
 use crate::compile::{Program, SiteKind};
 use crate::eval::OutputError;
 use crate::integrate::{
-    AbsoluteTolerance, IntegrateError, Method, Options, Rejection, Stats, Stepper,
+    AbsoluteTolerance, CAP_SLACK, IntegrateError, Method, Options, Rejection, Stats, Stepper,
+    smallest_step,
 };
 use crate::laws::branch::{self, Code};
 use crate::laws::contact::{ContactBranch, Piece};
@@ -223,14 +224,34 @@ pub const SMALLEST_RTOL: f64 = 10.0 * f64::EPSILON;
 
 impl Settings {
     /// Refuses settings a run cannot take (what [`Simulation::run`] checks
-    /// first), so that a caller can check them before anything else.
+    /// first), so that a caller can check them before anything else: the
+    /// end time, then [`Settings::check_but_end`], then the largest step
+    /// against the end time (it must reach the end within
+    /// [`Settings::max_steps`] steps, and be no shorter than a step the
+    /// integrator can take there).
     pub fn check(&self) -> Result<(), SimulateError> {
         let problem = if !(self.end > 0.0 && self.end.is_finite()) {
             Some(format!(
                 "the end time must be a positive number, not {}",
                 Shown(self.end)
             ))
-        } else if self.steps == 0 {
+        } else {
+            self.problem_but_end().or_else(|| self.reach_problem())
+        };
+        refused(problem)
+    }
+
+    /// [`Settings::check`] less what depends on the end time (the end
+    /// time itself, and the largest step against it): for the settings of
+    /// runs whose end time comes with each model, checked once before any
+    /// of them starts.
+    pub fn check_but_end(&self) -> Result<(), SimulateError> {
+        refused(self.problem_but_end())
+    }
+
+    /// What [`Settings::check_but_end`] refuses.
+    fn problem_but_end(&self) -> Option<String> {
+        if self.steps == 0 {
             Some("the number of output steps must be at least 1".to_string())
         } else if self.steps > crate::simulate::read::MOST_OUTPUT_STEPS {
             Some(format!(
@@ -258,14 +279,48 @@ impl Settings {
             ))
         } else {
             None
-        };
-        problem.map_or(Ok(()), |message| {
-            Err(SimulateError::Settings {
-                message,
-                span: None,
-            })
-        })
+        }
     }
+
+    /// A largest step too short to reach the end time (`end` positive and
+    /// finite, `h_max` positive): the run needs at least `end / h_max`
+    /// accepted steps (each at most `h_max`, a landing one a rounding
+    /// unit more), more than [`Settings::max_steps`] allows; or, where
+    /// the run needs more than one step, `h_max` is below
+    /// [`smallest_step`] at the end time, the shortest step the
+    /// integrator takes before it gives up (a step that short is lost in
+    /// the rounding of the time).
+    fn reach_problem(&self) -> Option<String> {
+        let least_steps = self.end / self.h_max;
+        if least_steps > self.max_steps as f64 * (1.0 + CAP_SLACK) {
+            Some(format!(
+                "the largest step must be at least {} (the end time {} over the most steps the settings allow, {}: with shorter steps the run cannot reach its end), not {}",
+                Shown(self.end / self.max_steps as f64),
+                Shown(self.end),
+                self.max_steps,
+                Shown(self.h_max)
+            ))
+        } else if least_steps > 1.0 + CAP_SLACK && self.h_max < smallest_step(self.end) {
+            Some(format!(
+                "the largest step must be at least {} (the shortest step the integrator takes at the end time {}: a shorter one is lost in the rounding of the time), not {}",
+                Shown(smallest_step(self.end)),
+                Shown(self.end),
+                Shown(self.h_max)
+            ))
+        } else {
+            None
+        }
+    }
+}
+
+/// A settings error of `problem`, if there is one.
+fn refused(problem: Option<String>) -> Result<(), SimulateError> {
+    problem.map_or(Ok(()), |message| {
+        Err(SimulateError::Settings {
+            message,
+            span: None,
+        })
+    })
 }
 
 /// How many times a step is looked at for a sensor becoming active.
