@@ -49,7 +49,11 @@ void c_step(double x, double x0, double h0, double x1, double h1, int iord,
  * fills *error (when error is not NULL): a message allocated by the
  * library, freed with mbexpr_error_free, and the line and column (from 1;
  * 0 when the error speaks of no place) in the expression or the model's
- * file. There is no global error state and no panic crosses into C.
+ * file. A call that fills an error frees the message it held first, so
+ * one error may be passed to call after call and freed once at the end
+ * (a call that succeeds leaves it as it was); it must therefore start
+ * zeroed, `mbexpr_error error = {0};`, and hold only NULL or a message of
+ * the library. There is no global error state and no panic crosses into C.
  * Every object the library allocates has a _free function.
  */
 

@@ -20,6 +20,17 @@ fn build_dir() -> PathBuf {
 /// library and runs the program; `None` (with a note) when the compiler is
 /// not installed.
 fn compile_and_run(compiler: &str, sources: &[PathBuf], flags: &[&str]) -> Option<String> {
+    compile_and_run_under(&[], compiler, sources, flags)
+}
+
+/// [`compile_and_run`], the program run by the command `runner` (as
+/// `valgrind ... PROGRAM`; none when empty), which must succeed too.
+fn compile_and_run_under(
+    runner: &[&str],
+    compiler: &str,
+    sources: &[PathBuf],
+    flags: &[&str],
+) -> Option<String> {
     if Command::new(compiler).arg("--version").output().is_err() {
         eprintln!(
             "note: {compiler} is not installed; a test of {sources:?} is skipped (.ci/run installs it)"
@@ -54,7 +65,15 @@ fn compile_and_run(compiler: &str, sources: &[PathBuf], flags: &[&str]) -> Optio
     );
     // In the scratch folder: the programs write files of their own
     // (`broken.adm`), which must not land in the source tree.
-    let output = Command::new(&program)
+    let mut command = match runner {
+        [first, rest @ ..] => {
+            let mut command = Command::new(first);
+            command.args(rest).arg(&program);
+            command
+        }
+        [] => Command::new(&program),
+    };
+    let output = command
         .current_dir(&scratch)
         .output()
         .expect("the program runs");
@@ -109,6 +128,35 @@ fn the_c_api_from_c() {
     if let Some(output) = compile_and_run(
         "cc",
         &[file("tests/c/capi.c")],
+        &["-Wall", "-Werror", "-std=c11"],
+    ) {
+        insta::assert_snapshot!(output);
+    }
+}
+
+/// One `mbexpr_error` passed to failing call after failing call without
+/// being freed between them: each failure frees the message it held (under
+/// valgrind no byte is lost; each earlier message was), and a success
+/// leaves it as it was.
+#[test]
+fn an_error_passed_again_frees_its_earlier_message() {
+    if Command::new("valgrind").arg("--version").output().is_err() {
+        eprintln!(
+            "note: valgrind is not installed; the test of a reused mbexpr_error is skipped (.ci/run installs it)"
+        );
+        return;
+    }
+    let valgrind = [
+        "valgrind",
+        "--quiet",
+        "--leak-check=full",
+        "--errors-for-leak-kinds=definite",
+        "--error-exitcode=99",
+    ];
+    if let Some(output) = compile_and_run_under(
+        &valgrind,
+        "cc",
+        &[file("tests/c/error_reuse.c")],
         &["-Wall", "-Werror", "-std=c11"],
     ) {
         insta::assert_snapshot!(output);

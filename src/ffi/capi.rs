@@ -6,7 +6,8 @@
 //!
 //! Every entry point returns [`MBEXPR_OK`] or [`MBEXPR_ERROR`] and, on an
 //! error, fills the caller's [`Error`] (a message with its line and
-//! column; the message is freed with [`mbexpr_error_free`]). There is no
+//! column; the message is freed with [`mbexpr_error_free`], or by the
+//! next call that fills the same error). There is no
 //! global error state, and no panic crosses into C: one is caught and
 //! reported as an internal error. Everything the library allocates has a
 //! `_free` function.
@@ -25,7 +26,9 @@ pub const MBEXPR_OK: c_int = 0;
 pub const MBEXPR_ERROR: c_int = 1;
 
 /// `mbexpr_error`: why a call failed. Line and column count from 1; both
-/// are 0 when the error speaks of no place.
+/// are 0 when the error speaks of no place. It starts zeroed (a NULL
+/// message); a call that fails frees the message it held before writing
+/// its own, so one error may be passed to call after call and freed once.
 #[repr(C)]
 pub struct Error {
     /// The message, NUL-terminated, allocated by the library (NULL when
@@ -163,16 +166,19 @@ fn caught(body: impl FnOnce() -> Result<(), Vec<Located>>) -> Result<(), Vec<Loc
 }
 
 /// Runs `body`, filling `error` with its error or a caught panic (the
-/// first of several, with how many more there are).
+/// first of several, with how many more there are), after freeing the
+/// message an earlier failure left in it.
 fn guarded(error: *mut Error, body: impl FnOnce() -> Result<(), Located>) -> c_int {
     let Err(failures) = caught(|| body().map_err(|failure| vec![failure])) else {
         return MBEXPR_OK;
     };
     let failure = Located::first_of(failures);
     if !error.is_null() {
-        // SAFETY: a non-null `error` points to a writable mbexpr_error (every
-        // entry point's contract).
+        // SAFETY: a non-null `error` points to a writable mbexpr_error whose
+        // message is NULL or the library's (every entry point's contract):
+        // the message of an earlier failure is freed, not leaked.
         unsafe {
+            mbexpr_error_free(error);
             *error = Error {
                 message: c_string(&failure.message).into_raw(),
                 line: failure.line,
@@ -345,7 +351,8 @@ pub unsafe extern "C" fn mbexpr_error_free(error: *mut Error) {
 ///
 /// # Safety
 /// `text` and each of the `input_count` names are NUL-terminated strings;
-/// `program` points to a writable pointer; `error` is null or writable.
+/// `program` points to a writable pointer; `error` is null or a writable
+/// [`Error`] whose message is NULL or the library's.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn mbexpr_compile(
     text: *const c_char,
@@ -495,7 +502,8 @@ unsafe fn evaluate_one(
 ///
 /// # Safety
 /// `program` is a live program; `point` holds one double per input;
-/// `value` is writable; `error` is null or writable.
+/// `value` is writable; `error` is null or a writable [`Error`] whose
+/// message is NULL or the library's.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn mbexpr_value(
     program: *const CProgram,
@@ -637,8 +645,9 @@ unsafe fn evaluate_bulk(call: BulkCall) -> Result<(), Located> {
 ///
 /// # Safety
 /// `program` is live; `columns` holds one pointer per input to `n`
-/// doubles; `values` and `status` have room for `n` entries; `failed` and
-/// `error` are null or writable.
+/// doubles; `values` and `status` have room for `n` entries; `failed` is
+/// null or writable; `error` is null or a writable [`Error`] whose message
+/// is NULL or the library's.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn mbexpr_value_bulk(
     program: *const CProgram,
@@ -750,7 +759,7 @@ pub unsafe extern "C" fn mbexpr_hessian_bulk(
 ///
 /// # Safety
 /// `path` is a NUL-terminated string; `diagnostics` is writable; `error`
-/// is null or writable.
+/// is null or a writable [`Error`] whose message is NULL or the library's.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn mbexpr_check_model(
     path: *const c_char,
@@ -871,7 +880,7 @@ unsafe fn hand_over(model: LoadedModel, out: *mut *mut CModel) -> Result<(), Vec
 ///
 /// # Safety
 /// `path` is a NUL-terminated string; `model` is writable; `error` is null
-/// or writable.
+/// or a writable [`Error`] whose message is NULL or the library's.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn mbexpr_model_load(
     path: *const c_char,
@@ -1028,7 +1037,8 @@ fn options(settings: &CSettings) -> Result<RunOptions, Located> {
 /// # Safety
 /// `model` is live; `settings` is null (the defaults) or readable; the
 /// callbacks are null or functions of the documented types that return
-/// normally; `summary` and `error` are null or writable.
+/// normally; `summary` is null or writable; `error` is null or a writable
+/// [`Error`] whose message is NULL or the library's.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn mbexpr_simulate(
     model: *const CModel,
