@@ -537,6 +537,43 @@ impl Default for RunOptions {
     }
 }
 
+impl RunOptions {
+    /// Refuses options that no run can take, before any model is read (as
+    /// a sweep does once, before its first run): what
+    /// [`LoadedModel::simulate`] refuses of them whatever the model. An end
+    /// time or a number of output steps left to the model is checked with
+    /// each model, by its run.
+    pub fn check(&self) -> Result<(), Located> {
+        let settings = self.settings(self.end.unwrap_or(1.0), self.steps.unwrap_or(1), None);
+        match self.end {
+            Some(_) => settings.check(),
+            None => settings.check_but_end(),
+        }
+        .map_err(|error| Located::nowhere(error.to_string()))
+    }
+
+    /// The settings of a run of `model` to `end` in `steps` output steps:
+    /// these options, and the model's own where they leave a choice (with
+    /// no model, the defaults).
+    fn settings(&self, end: f64, steps: usize, model: Option<&Model>) -> Settings {
+        Settings {
+            method: self.method,
+            end,
+            steps,
+            rtol: self.rtol,
+            atol: self.atol.unwrap_or(self.rtol * 1e-3),
+            h_max: self.h_max.unwrap_or(f64::INFINITY),
+            max_steps: self.max_steps.unwrap_or(simulate::DEFAULT_MAX_STEPS),
+            statics: self
+                .statics
+                .unwrap_or(model.is_some_and(|model| model.statics)),
+            land_on_outputs: self
+                .land_on_outputs
+                .unwrap_or(model.is_some_and(|model| model.land_on_outputs)),
+        }
+    }
+}
+
 /// A located branch switch of a run, placed in the model's file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlacedEvent {
@@ -633,19 +670,7 @@ impl LoadedModel {
                 ));
             }
         };
-        Ok(Settings {
-            method: options.method,
-            end,
-            steps,
-            rtol: options.rtol,
-            atol: options.atol.unwrap_or(options.rtol * 1e-3),
-            h_max: options.h_max.unwrap_or(f64::INFINITY),
-            max_steps: options.max_steps.unwrap_or(simulate::DEFAULT_MAX_STEPS),
-            statics: options.statics.unwrap_or(self.model.statics),
-            land_on_outputs: options
-                .land_on_outputs
-                .unwrap_or(self.model.land_on_outputs),
-        })
+        Ok(options.settings(end, steps, Some(&self.model)))
     }
 
     /// Runs the model with `options`, calling `row` with the time and the

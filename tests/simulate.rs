@@ -696,6 +696,59 @@ fn a_largest_step_too_short_to_reach_the_end_is_refused_naming_it() {
     assert!(boundary.check().is_ok());
 }
 
+/// The run options of many runs (a sweep's) are checked once, before any
+/// model is read: an end time given is checked with the largest step, one
+/// left to each model is not.
+#[test]
+fn run_options_are_checked_before_any_model() {
+    use mbexpr::embed::RunOptions;
+    let cases: [(RunOptions, &str); 6] = [
+        (
+            RunOptions {
+                rtol: -1.0,
+                ..RunOptions::default()
+            },
+            "the relative tolerance must be at least 2.220446049250313e-15 (ten rounding units: below it a step's error cannot be told from rounding) and less than 1, not -1",
+        ),
+        (
+            RunOptions {
+                end: Some(f64::NAN),
+                ..RunOptions::default()
+            },
+            "the end time must be a positive number, not NaN",
+        ),
+        (
+            RunOptions {
+                steps: Some(0),
+                ..RunOptions::default()
+            },
+            "the number of output steps must be at least 1",
+        ),
+        (
+            RunOptions {
+                end: Some(2.0),
+                h_max: Some(1e-300),
+                ..RunOptions::default()
+            },
+            "the largest step must be at least 2e-7 (the end time 2 over the most steps the settings allow, 10000000: with shorter steps the run cannot reach its end), not 1e-300",
+        ),
+        (
+            RunOptions {
+                h_max: Some(1e-300),
+                ..RunOptions::default()
+            },
+            "checks",
+        ),
+        (RunOptions::default(), "checks"),
+    ];
+    for (options, expected) in cases {
+        let found = options
+            .check()
+            .map_or_else(|error| error.to_string(), |()| "checks".to_string());
+        assert_eq!(found, expected, "{options:?}");
+    }
+}
+
 /// The rows' column `column` at every output time.
 fn column(run: &Run, column: usize) -> impl Iterator<Item = f64> + '_ {
     run.rows.iter().map(move |row| row[column])

@@ -300,7 +300,7 @@ def simulate(
     if format is None:
         format = "dataset" if is_path or not _is_scene_text(source) else "scene"
     names, rows, events, statistics = _core.simulate(
-        source, is_path, format, method, end, steps, rtol, atol, h_max, max_steps
+        source, is_path, format, (method, end, steps, rtol, atol, h_max, max_steps)
     )
     table = rows.reshape(-1, len(names))
     columns = {name: np.ascontiguousarray(table[:, i]) for i, name in enumerate(names)}

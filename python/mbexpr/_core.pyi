@@ -41,17 +41,17 @@ def utility_bulk(
     name: str, columns: Sequence[npt.NDArray[np.float64]], iord: int
 ) -> npt.NDArray[np.float64]: ...
 def check_model(path: str) -> List[Diagnostic]: ...
+# (method, end, steps, rtol, atol, h_max, max_steps)
+RunSettings = Tuple[
+    str, Optional[float], Optional[int], float, Optional[float], Optional[float], Optional[int]
+]
+
+def check_settings(format: Optional[str], settings: RunSettings) -> None: ...
 def simulate(
     source: str,
     is_path: bool,
     format: str,
-    method: str,
-    end: Optional[float],
-    steps: Optional[int],
-    rtol: float,
-    atol: Optional[float],
-    h_max: Optional[float],
-    max_steps: Optional[int],
+    settings: RunSettings,
 ) -> Tuple[
     List[str],
     npt.NDArray[np.float64],

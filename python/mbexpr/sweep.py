@@ -15,6 +15,8 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
+from . import _core
+
 Template = Union[str, Callable[[Dict[str, Any]], str]]
 Parameters = Union[Mapping[str, Sequence[Any]], Sequence[Mapping[str, Any]]]
 
@@ -102,6 +104,8 @@ def sweep(
     method: str = "auto",
     rtol: float = 1e-6,
     atol: Optional[float] = None,
+    h_max: Optional[float] = None,
+    max_steps: Optional[int] = None,
     format: Optional[str] = None,  # noqa: A002 - as in simulate
     task_seconds: float = 0.1,
 ) -> Sweep:
@@ -114,7 +118,11 @@ def sweep(
     module-level function, so that process executors can pickle it).
     ``parameters`` is a grid, ``{"k": [1e4, 1e5], "d": [0.01, 0.02]}``, or
     a list of parameter sets, ``[{"k": 1e4, "d": 0.01}, ...]``. The run
-    settings are those of :func:`mbexpr.simulate`.
+    settings are those of :func:`mbexpr.simulate`, checked once before any
+    run: settings no run can take (an unknown method, a tolerance or an end
+    time out of range, a largest step too short to reach the end) raise
+    :class:`mbexpr.Error` and start nothing. An end time or a number of
+    output steps left to the model is checked by each run.
 
     ``executor`` is any ``concurrent.futures.Executor``: by default a
     process pool of one worker per core started with ``forkserver`` (never
@@ -124,8 +132,18 @@ def sweep(
     each, so that the executor's overhead per task (about 0.2 ms for a
     process pool, 1 ms or more for Dask) stays small.
     """
+    _core.check_settings(format, (method, end, steps, rtol, atol, h_max, max_steps))
     sets = _parameter_sets(parameters)
-    settings = dict(end=end, steps=steps, method=method, rtol=rtol, atol=atol, format=format)
+    settings = dict(
+        end=end,
+        steps=steps,
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        h_max=h_max,
+        max_steps=max_steps,
+        format=format,
+    )
     started = time.perf_counter()
     outcomes = []
     if sets:

@@ -270,39 +270,28 @@ type RunTuple<'py> = (
     Bound<'py, PyDict>,
 );
 
-/// Runs a model (a file when `is_path`, else text of `format` "dataset"
-/// or "scene"), without the GIL. Returns the column names, the rows flat,
-/// the events and the statistics.
-#[pyfunction]
-#[pyo3(signature = (source, is_path, format, method, end, steps, rtol, atol, h_max, max_steps))]
-#[allow(clippy::too_many_arguments)]
-fn simulate<'py>(
-    py: Python<'py>,
-    source: String,
-    is_path: bool,
-    format: &str,
-    method: &str,
-    end: Option<f64>,
-    steps: Option<usize>,
-    rtol: f64,
-    atol: Option<f64>,
-    h_max: Option<f64>,
-    max_steps: Option<usize>,
-) -> PyResult<RunTuple<'py>> {
+/// A run's settings as Python passes them: `(method, end, steps, rtol,
+/// atol, h_max, max_steps)`, `None` for the model's own or the default.
+type RunSettings = (
+    String,
+    Option<f64>,
+    Option<usize>,
+    f64,
+    Option<f64>,
+    Option<f64>,
+    Option<usize>,
+);
+
+/// The run options of `settings` (the model's own statics and landing on
+/// outputs, as its command file says).
+fn run_options(py: Python<'_>, settings: RunSettings) -> PyResult<RunOptions> {
+    let (method, end, steps, rtol, atol, h_max, max_steps) = settings;
     let method: Method = method
         .parse()
         .map_err(|error: mbexpr::integrate::UnknownMethod| {
             raise(py, &Located::nowhere(error.to_string()))
         })?;
-    let format = match format {
-        "dataset" => ModelFormat::Dataset,
-        "scene" => ModelFormat::Scene,
-        other => {
-            let message = format!("format {other:?} is neither \"dataset\" nor \"scene\"");
-            return Err(raise(py, &Located::nowhere(message)));
-        }
-    };
-    let options = RunOptions {
+    Ok(RunOptions {
         method,
         end,
         steps,
@@ -313,7 +302,47 @@ fn simulate<'py>(
         // As the model's command file says.
         statics: None,
         land_on_outputs: None,
-    };
+    })
+}
+
+/// The format of a model's text, "dataset" or "scene".
+fn model_format(py: Python<'_>, format: &str) -> PyResult<ModelFormat> {
+    match format {
+        "dataset" => Ok(ModelFormat::Dataset),
+        "scene" => Ok(ModelFormat::Scene),
+        other => {
+            let message = format!("format {other:?} is neither \"dataset\" nor \"scene\"");
+            Err(raise(py, &Located::nowhere(message)))
+        }
+    }
+}
+
+/// Refuses run settings that no model's run can take, before any run (as
+/// a sweep does once): the format (when given), the method and what
+/// [`RunOptions::check`] refuses.
+#[pyfunction]
+fn check_settings(py: Python<'_>, format: Option<&str>, settings: RunSettings) -> PyResult<()> {
+    if let Some(format) = format {
+        model_format(py, format)?;
+    }
+    run_options(py, settings)?
+        .check()
+        .map_err(|error| raise(py, &error))
+}
+
+/// Runs a model (a file when `is_path`, else text of `format` "dataset"
+/// or "scene") with `settings`, without the GIL. Returns the column names,
+/// the rows flat, the events and the statistics.
+#[pyfunction]
+fn simulate<'py>(
+    py: Python<'py>,
+    source: String,
+    is_path: bool,
+    format: &str,
+    settings: RunSettings,
+) -> PyResult<RunTuple<'py>> {
+    let options = run_options(py, settings)?;
+    let format = model_format(py, format)?;
     let outcome = py.detach(|| {
         let loaded = if is_path {
             LoadedModel::from_path(&source)
@@ -372,6 +401,7 @@ fn _core(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<Program>()?;
     module.add_function(wrap_pyfunction!(utility_bulk, module)?)?;
     module.add_function(wrap_pyfunction!(check_model, module)?)?;
+    module.add_function(wrap_pyfunction!(check_settings, module)?)?;
     module.add_function(wrap_pyfunction!(simulate, module)?)?;
     Ok(())
 }

@@ -53,6 +53,33 @@ def test_a_failed_run_is_a_row_with_its_message():
     assert np.isnan(table["final DIF(1)"][1])
 
 
+def test_settings_no_run_can_take_are_refused_before_any_run():
+    # Each run failed with the same message, the first in this process and
+    # the rest on the executor.
+    made = []
+
+    def counted(values):
+        made.append(values)
+        return A1.format(**values)
+
+    grid = {"k": [1e4, 1e5], "cmax": [50], "d": [0.01]}
+    refusals = [
+        (dict(end=1.0, steps=10, rtol=-1.0), "relative tolerance"),
+        (dict(end=math.nan, steps=10), "end time must be a positive number, not NaN"),
+        (dict(end=1.0, steps=10, h_max=1e-300), "largest step must be at least 1e-7"),
+        (dict(steps=10, atol=0.0), "absolute tolerance"),
+        (dict(end=1.0, steps=10, method="euler"), "unknown integration method"),
+        (dict(end=1.0, steps=10, format="csv"), "neither"),
+    ]
+    for settings, message in refusals:
+        with pytest.raises(mbexpr.Error, match=message):
+            mbexpr.sweep(counted, grid, ThreadPoolExecutor(2), **settings)
+    assert made == []
+    # The settings checked are those the runs take.
+    table = mbexpr.sweep(counted, grid, ThreadPoolExecutor(2), end=0.1, steps=2, h_max=0.01, max_steps=1000)
+    assert table.errors == [None, None] and len(made) == 2
+
+
 def test_a_study_on_a_dask_cluster_of_two_workers():
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(
