@@ -18,6 +18,7 @@ its own, so it does not hang).
 
 from __future__ import annotations
 
+import errno
 import os
 import re
 from dataclasses import dataclass, field
@@ -261,6 +262,39 @@ class Simulation:
         return self.columns["time"]
 
 
+#: The suffixes of model files (any case): a one-line string ending in one
+#: is a path.
+_MODEL_SUFFIXES = (".adm", ".acf", ".cmd", ".dat", ".toml")
+
+
+def _source(path_or_text: Union[str, os.PathLike]) -> Tuple[str, bool]:
+    """``(source, is_path)``: a path-like object is a path; a string is a
+    path when a file of that name exists or when it looks like one: a
+    single line (no line break) with no ``=`` that ends in one of
+    ``_MODEL_SUFFIXES`` or holds a path separator. Model text never
+    looks like a path: a dataset's first line is its title, so a one-line
+    dataset has no statement, and a scene's settings are ``key = value``.
+    A path to no file raises ``FileNotFoundError`` naming it."""
+    source = os.fspath(path_or_text)
+    one_line = "\n" not in source and "\r" not in source
+    if isinstance(path_or_text, str):
+        separators = {"/", os.sep, os.altsep} - {None}
+        looks_like_path = "=" not in source and (
+            source.lower().endswith(_MODEL_SUFFIXES) or any(s in source for s in separators)
+        )
+        is_path = one_line and (os.path.exists(source) or looks_like_path)
+    else:
+        is_path = True
+    if is_path and not os.path.exists(source):
+        raise FileNotFoundError(
+            errno.ENOENT,
+            "no such model file (a one-line string ending in .adm, .acf, .cmd, .dat or .toml, "
+            "or holding a path separator, is read as a path, not as model text)",
+            source,
+        )
+    return source, is_path
+
+
 def _is_scene_text(text: str) -> bool:
     return re.search(r"^\s*\[", text, re.MULTILINE) is not None
 
@@ -283,7 +317,12 @@ def simulate(
     ``path_or_text`` is a file (a solver dataset, with END and STEPS of a
     ``SIMULATE/DYNAMIC`` command in an ``.acf`` beside it, or a scene file
     ``.toml``) or the model's text (``format`` "dataset" or "scene"; by
-    default a text with a line starting ``[`` is a scene). ``end`` and
+    default a text with a line starting ``[`` is a scene). A path-like
+    object, a string naming a file that exists, and a one-line string with
+    no ``=`` that ends in ``.adm``, ``.acf``, ``.cmd``, ``.dat`` or
+    ``.toml`` (any case) or holds a path separator are paths: a path to no
+    file raises ``FileNotFoundError`` naming it (model text is never such a
+    string: a dataset's first line is its title). ``end`` and
     ``steps`` default to the model's own; ``method`` is "auto" (the
     default, as on the command line: DOP853 while the model is not stiff,
     Radau5 while it is; ``statistics["method_changes"]`` lists each change),
@@ -295,8 +334,7 @@ def simulate(
     ``errors`` (the first's line and column its own), or when the run
     cannot go on.
     """
-    source = os.fspath(path_or_text)
-    is_path = "\n" not in source and os.path.exists(source)
+    source, is_path = _source(path_or_text)
     if format is None:
         format = "dataset" if is_path or not _is_scene_text(source) else "scene"
     names, rows, events, statistics = _core.simulate(

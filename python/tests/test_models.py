@@ -1,6 +1,7 @@
 """Model files checked and simulated from Python."""
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -23,6 +24,22 @@ def test_check_model_lists_problems_with_lines_and_columns(tmp_path, examples):
     assert "STEP takes 5 arguments" in found.message
     with pytest.raises(mbexpr.Error, match="cannot read"):
         mbexpr.check_model(tmp_path / "missing.adm")
+
+
+def test_a_path_to_no_file_raises_file_not_found_naming_it(tmp_path):
+    # Each was read as model text: a parse error about the path's own words.
+    for missing in ["missing.adm", "ball.ACF", "run.cmd", "model.dat", "scene.toml",
+                    "models/a1", str(tmp_path / "a1.adm"), tmp_path / "a1"]:
+        with pytest.raises(FileNotFoundError) as caught:
+            mbexpr.simulate(missing, end=1.0, steps=1)
+        assert caught.value.filename == os.fspath(missing), missing
+        assert os.fspath(missing) in str(caught.value)
+    # Model text stays text: a title that ends in .adm and holds a slash,
+    # and a one-line dataset (only a title, so no state) with its `=`.
+    text = "from models/a1.adm\nDIFF/1, IC = 0, FUNCTION = 1\nEND\n"
+    assert mbexpr.simulate(text, end=1.0, steps=1)["DIF(1)"][-1] == pytest.approx(1.0)
+    with pytest.raises(mbexpr.Error, match="no state"):
+        mbexpr.simulate("DIFF/1, IC = 0, FUNCTION = 1", end=1.0, steps=1)
 
 
 def test_a_free_flight_is_the_closed_form():
