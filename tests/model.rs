@@ -161,7 +161,19 @@ fn corpus_models() -> Vec<(String, String)> {
 /// a comma or a `\`, outside comments.
 fn expression_keys(text: &str) -> usize {
     let keys = [
-        "FUNCTION", "FUNC", "FU", "FX", "FY", "FZ", "TX", "TY", "TZ", "CRATIO", "EVALUATE",
+        "FUNCTION",
+        "FUNC",
+        "FU",
+        "FX",
+        "FY",
+        "FZ",
+        "TX",
+        "TY",
+        "TZ",
+        "CRATIO",
+        "EVALUATE",
+        "SAMPLE_PERIOD",
+        "SAMPLE_OFFSET",
     ];
     text.lines()
         .filter(|line| !line.trim_start().starts_with('!'))
@@ -577,6 +589,9 @@ fn statements_as_adams_view_writes_them() {
         GRAPHICS/206, FORCE, ETYPE = SFORCE, EID = 1, EMARKER = 2
         CONTACT/1, TYPE = SOLID_TO_SOLID, IGEOM = 1, JGEOM = 2, POISSON, PENALTY = 1E5, RESTITUTION_COEFFICIENT = 0.5
         FRICTION/1, JOINT = 3, MU_STATIC = 0.3, MU_DYNAMIC = 0.2, PIN_RADIUS = 1, BALL_RADIUS = 1
+        JOINT/7, REVOLUTE, I = 1, J = 2, DELTA_V = 0.01, MAXIMUM_DEFORMATION = 0.01, MU_DYN_ROT = 0.3, MU_STAT_ROT = 0.4, MAX_FRIC_ROT = 0, PRELOAD_RADIAL = 0, PRELOAD_AXIAL = 0, INNER_RADIUS = 1, OUTER_RADIUS = 1.1
+        JOINT/8, TRANSLATIONAL, I = 1, J = 2, FRICTION = ON, MU_DYN_TRANS = 0.2, MU_STAT_TRANS = 0.3, MAX_FRIC_TRANS = 0, HEIGHT = 1, WIDTH = 1, PRELOAD_X = 0, PRELOAD_Y = 0
+        GSE/990, NS = 0, NO = 1, U = 991, Y = 992, SAMPLE_PERIOD = 1.0\, FUNCTION = USER(0)\, INTERFACE = lib::gse_deriv, lib::gse_output
         MARK/1, PAR = 1, QP = 0, 0, 0
         SFOR/1, TRANS, I = 1, J = 2, FUNC = 1
         REQUEST/1, F2 = 1, C = comment

@@ -148,7 +148,7 @@ JPRIM/2, INPLANE, I = 3, J = 1
             short.clone(),
         ),
         (
-            "a screw joint without its PITCH, joints with no type or two, with DELTA_V, with an IC of another joint type, without their markers",
+            "a screw joint without its PITCH, joints with no type or two, with friction, with an IC of another joint type, without their markers",
             "joints
 PART/1, GROUND
 MARKER/1, PART = 1
@@ -156,7 +156,7 @@ PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
 JOINT/1, SCREW, I = 3, J = 1
 JOINT/2, I = 3, J = 1
-JOINT/3, REVOLUTE, I = 3, J = 1, DELTA_V = 0.1
+JOINT/3, REVOLUTE, I = 3, J = 1, DELTA_V = 0.1, MU_DYN_ROT = 0.3
 JOINT/4, SPHERICAL, I = 3
 JOINT/5, SPHERICAL, I = 3, J = 1, ICROT = 0, 0
 JOINT/6, REVOLUTE, TRANSLATIONAL, I = 3, J = 1
@@ -746,6 +746,66 @@ fn run_options_are_checked_before_any_model() {
             .check()
             .map_or_else(|error| error.to_string(), |()| "checks".to_string());
         assert_eq!(found, expected, "{options:?}");
+    }
+}
+
+/// Joint friction as older Adams View writes it on the JOINT statement:
+/// `DELTA_V` and `MAXIMUM_DEFORMATION` alone (Adams View 12 writes them on
+/// every revolute joint), coefficients and preloads of 0, or `FRICTION =
+/// OFF` make no force, and the pendulum swings as it does without them; a
+/// coefficient or preload that is not 0 (its name abbreviated or not), or
+/// `FRICTION = ON` alone, is refused at its place.
+#[test]
+fn a_joints_own_friction_runs_where_it_makes_no_force_and_is_refused_where_it_does() {
+    let pendulum = |friction: &str| {
+        format!(
+            "pendulum
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
+MARKER/3, PART = 2, QP = 1, 0, 0
+MARKER/4, PART = 2
+JOINT/1, REVOLUTE, I = 4, J = 1{friction}
+ACCGRAV/JGRAV = -9.81
+"
+        )
+    };
+    let settings = settings(1.0, 10, 1e-8);
+    let plain = run(&pendulum(""), &settings).unwrap();
+    for friction in [
+        ", DELTA_V = 0.01, MAXIMUM_DEFORMATION = 0.01",
+        ", DELTA_V = 0.01, MAXIMUM_DEFORMATION = 0.01
+, MU_DYN_ROT = 0, MU_STAT_ROT = 0, MAX_FRIC_ROT = 0, PRELOAD_RADIAL = 0
+, PRELOAD_AXIAL = 0, INNER_RADIUS = 1, OUTER_RADIUS = 1.1",
+        ", FRICTION = OFF, MU_DYN_ROT = 0.3, MU_STAT_ROT = 0.4",
+    ] {
+        let with = run(&pendulum(friction), &settings).unwrap_or_else(|error| panic!("{error}"));
+        assert_eq!(with.rows, plain.rows, "{friction}");
+    }
+    for (friction, refused) in [
+        (
+            ", MU_DYN_ROT = 0.3, MU_STAT_ROT = 0.4",
+            "7:34: not simulated: JOINT/1 sets MU_DYN_ROT",
+        ),
+        (
+            ", MU_STAT_R = 0.4",
+            "7:34: not simulated: JOINT/1 sets MU_STAT_ROT",
+        ),
+        (
+            ", MU_DYN_ROT = 0, PRELOAD_AX = 5",
+            "7:50: not simulated: JOINT/1 sets PRELOAD_AXIAL",
+        ),
+        (
+            ", FRICTION = ON",
+            "7:34: not simulated: JOINT/1 sets FRICTION",
+        ),
+    ] {
+        let report = check(&pendulum(friction), &settings);
+        assert_eq!(
+            report,
+            format!("{refused}: joint friction is not simulated"),
+            "{friction}"
+        );
     }
 }
 

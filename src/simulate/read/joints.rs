@@ -1,7 +1,7 @@
 //! `JOINT` and `JPRIM` statements of a dataset.
 
 use crate::model::initial::{number, number_list};
-use crate::model::{Dataset, Statement, is_kind};
+use crate::model::{Dataset, Statement, Value, is_kind};
 use crate::scene::{Scene, Target};
 use crate::simulate::SimulateError;
 use crate::simulate::model::{Joint, JointInitial, JointKind, Motion};
@@ -53,14 +53,8 @@ fn joint(statement: &Statement, scene: &Scene, errors: &mut Vec<SimulateError>) 
         });
         return None;
     };
-    for keyword in ["DELTA_V", "MAXIMUM_DEFORMATION", "MU_DYN_ROT", "FRICTION"] {
-        if let Some(argument) = statement.argument(keyword, keyword.len()) {
-            errors.push(SimulateError::Unsupported {
-                statement: label.clone(),
-                reason: format!("sets {keyword}: joint friction is not simulated"),
-                span: argument.span,
-            });
-        }
+    if let Some(error) = friction(statement) {
+        errors.push(error);
     }
     let pitch = match kind {
         JointKind::RackPin => length(statement, "PD", "the pinion's pitch diameter", errors)?,
@@ -68,6 +62,62 @@ fn joint(statement: &Statement, scene: &Scene, errors: &mut Vec<SimulateError>) 
         _ => 0.0,
     };
     between_markers(statement, kind, scene, errors).map(|joint| Joint { pitch, ..joint })
+}
+
+/// The keywords of the joint friction that Adams View writes on a JOINT
+/// statement itself, each with the letters that tell it from the others:
+/// the coefficients, the largest friction and the preloads, any of which
+/// not zero makes a friction force.
+const FRICTION_FORCES: [(&str, usize); 10] = [
+    ("MU_DYN_ROT", 8),
+    ("MU_STAT_ROT", 9),
+    ("MU_DYN_TRANS", 8),
+    ("MU_STAT_TRANS", 9),
+    ("MAX_FRIC_ROT", 10),
+    ("MAX_FRIC_TRANS", 10),
+    ("PRELOAD_RADIAL", 9),
+    ("PRELOAD_AXIAL", 9),
+    ("PRELOAD_X", 9),
+    ("PRELOAD_Y", 9),
+];
+
+/// The refusal of a JOINT's own friction, where it makes a force: a
+/// coefficient, largest friction or preload that is not 0, or `FRICTION =
+/// ON` (or PRELOAD_ONLY) with none of them given; `FRICTION = OFF` has none.
+/// `DELTA_V`, `MAXIMUM_DEFORMATION` and the bearing's sizes (INNER_RADIUS,
+/// OUTER_RADIUS, HEIGHT, WIDTH) alone shape a friction of no force: Adams
+/// View 12 writes the first two on every revolute joint, friction or not.
+fn friction(statement: &Statement) -> Option<SimulateError> {
+    let switch = statement.argument("FRICTION", 3);
+    let word = switch.and_then(|argument| match &argument.value {
+        Value::List(items) if items.len() == 1 => Some(items[0].text.trim().to_ascii_uppercase()),
+        _ => None,
+    });
+    if word
+        .as_deref()
+        .is_some_and(|word| word.len() >= 2 && "OFF".starts_with(word))
+    {
+        return None;
+    }
+    let refuse = |keyword: &str, span: Span| SimulateError::Unsupported {
+        statement: statement.label(),
+        reason: format!("sets {keyword}: joint friction is not simulated"),
+        span,
+    };
+    let mut given = false;
+    for (keyword, shortest) in FRICTION_FORCES {
+        let Some(argument) = statement.argument(keyword, shortest) else {
+            continue;
+        };
+        given = true;
+        if number_list(statement, argument).map_or(true, |values| values != [0.0]) {
+            return Some(refuse(keyword, argument.span));
+        }
+    }
+    match switch {
+        Some(argument) if !given => Some(refuse("FRICTION", argument.span)),
+        _ => None,
+    }
 }
 
 /// The length `keyword` of a RACKPIN or SCREW joint (`what` it is): a
