@@ -210,3 +210,39 @@ END
     println!("beam damping: largest relative difference {worst:.2e}");
     assert!(worst < 1e-9, "{worst}");
 }
+
+/// A BEAM of Adams' LINEAR formulation (written or left out) runs; the
+/// STRING and NONLINEAR formulations are refused as one error of their
+/// kind, the beams named, not one error a beam (a drill string of 40
+/// STRING beams gave 40 errors).
+#[test]
+fn beams_of_another_formulation_are_refused_as_one_error() {
+    let model = beam_model(&[
+        2e11, 8e10, 1e-4, 2e-9, 1e-9, 1e-9, 0.0, 0.0, 1.0, 0.0, -9.81, 0.0,
+    ]);
+    let with = |formulation: &str, count: usize| {
+        let mut text = model.replace("CRATIO = 0.02", &format!("CRATIO = 0.02{formulation}"));
+        for id in 2..=count {
+            text = text.replace(
+                "\nACCGRAV",
+                &format!(
+                    "\nBEAM/{id}, I = 20, J = 1, LENGTH = 1, IXX = 2e-9, IYY = 1e-9, IZZ = 1e-9, AREA = 1e-4\n, EMODULUS = 2e11, GMODULUS = 8e10{formulation}\nACCGRAV"
+                ),
+            );
+        }
+        match run(&text, &settings(0.1, 1, 1e-6)) {
+            Ok(_) => "ran".to_string(),
+            Err(errors) => errors.trim_end().to_string(),
+        }
+    };
+    assert_eq!(with("", 1), "ran");
+    assert_eq!(with(", FORMULATION = LINEAR", 2), "ran");
+    assert_eq!(
+        with(", FORMULATION = STRING", 3),
+        "7:85: not simulated: BEAM/1 has FORMULATION = STRING: mbexpr has the LINEAR formulation of a BEAM (Timoshenko) only; so are BEAM/2, BEAM/3 (3 in all)"
+    );
+    assert_eq!(
+        with(", FORMULATION = NONLIN", 1),
+        "7:85: not simulated: BEAM/1 has FORMULATION = NONLIN: mbexpr has the LINEAR formulation of a BEAM (Timoshenko) only"
+    );
+}

@@ -1035,6 +1035,16 @@ impl Reader<'_> {
             self.expression(index, "FUNCTION");
             return None;
         }
+        if is_kind(&statement.name, "BEAM")
+            && let Some((span, reason)) = linear::nonlinear_beam(statement)
+        {
+            self.errors.push(SimulateError::Unsupported {
+                statement: statement.label(),
+                reason,
+                span,
+            });
+            return None;
+        }
         let matrices = if is_kind(&statement.name, "BEAM") {
             linear::beam(statement)
         } else if is_kind(&statement.name, "FIELD") {

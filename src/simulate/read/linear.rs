@@ -141,29 +141,33 @@ pub(super) fn field(statement: &Statement) -> Result<Linear, Refusal> {
     })
 }
 
+/// The place and reason of a `BEAM`'s FORMULATION other than LINEAR
+/// (STRING, NONLINEAR), which mbexpr does not simulate.
+pub(super) fn nonlinear_beam(statement: &Statement) -> Option<(Span, String)> {
+    let argument = statement.argument("FORMULATION", 3)?;
+    let word = match &argument.value {
+        Value::List(items) if items.len() == 1 => items[0].text.trim().to_ascii_uppercase(),
+        _ => String::new(),
+    };
+    if word.len() >= 3 && "LINEAR".starts_with(word.as_str()) {
+        return None;
+    }
+    Some((
+        argument.span,
+        format!(
+            "has FORMULATION = {word}: mbexpr has the LINEAR formulation of a BEAM (Timoshenko) only"
+        ),
+    ))
+}
+
 /// A BEAM's Timoshenko stiffness (Adams' linear formulation): the beam
 /// along J's x axis from J to I, `LENGTH` long, of cross section `AREA`
 /// with the area moments `IYY`, `IZZ`, the torsional constant `IXX`, the
 /// shear area ratios `ASY`, `ASZ` (0: no shear deflection), the moduli
 /// `EMODULUS` and `GMODULUS`; damping `CRATIO` times the stiffness, or the
 /// 21 numbers of `CMATRIX` (the lower half, column by column).
+/// Its FORMULATION must be LINEAR (or left out): see `nonlinear_beam`.
 pub(super) fn beam(statement: &Statement) -> Result<Linear, Refusal> {
-    if let Some(argument) = statement.argument("FORMULATION", 3) {
-        let linear = matches!(&argument.value, Value::List(items)
-        if items.len() == 1 && {
-            let word = items[0].text.trim().to_ascii_uppercase();
-            word.len() >= 3 && "LINEAR".starts_with(word.as_str())
-        });
-        if !linear {
-            return Err((
-                format!(
-                    "{}: mbexpr has the LINEAR formulation of a BEAM (Timoshenko) only: leave FORMULATION out or write FORMULATION = LINEAR",
-                    statement.label()
-                ),
-                argument.span,
-            ));
-        }
-    }
     let positive = |keyword: &str, what: &str| -> Result<f64, Refusal> {
         let value = number(statement, keyword, f64::NAN).map_err(refusal)?;
         if value > 0.0 && value.is_finite() {
