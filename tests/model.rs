@@ -79,6 +79,29 @@ fn command_file_rules() {
     insta::assert_snapshot!(check(acf, FileKind::Acf));
 }
 
+/// A command file's expressions read the statements of the dataset it
+/// runs (adamspy's drill-string commands: `VARIABLE/1102, FUNCTION =
+/// VARVAL(11021) * ...`, `-STEP5(SENVAL(2001), ...)`), which is not read
+/// with it: an id the command file does not define is no error, as Adams
+/// takes it; a loop among its own VARIABLEs still is.
+#[test]
+fn a_command_file_reads_the_statements_of_its_dataset() {
+    let acf = "file/model=drill
+VARIABLE/1102, FUNCTION = VARVAL(11021) * STEP(TIME, 0, 0, 15, 500) + DX(3, 1)
+VARIABLE/1001, FUNC = -STEP5(SENVAL(2001), 2.0, 0, 4, 20*PI) + ARYVAL(5, 9)
+VARIABLE/1, FUNCTION = VARVAL(2)
+VARIABLE/2, FUNCTION = VARVAL(1)
+simulate/dynamic, end = 1, steps = 10
+";
+    let report = check(acf, FileKind::Acf);
+    assert!(!report.contains("not defined"), "{report}");
+    assert!(
+        report.ends_with("6 statements, 4 expressions, 1 errors\n")
+            && report.contains("VARIABLE/1 depends on itself"),
+        "{report}"
+    );
+}
+
 #[test]
 fn view_command_rules() {
     let cmd = r#"! Adams View command file

@@ -572,6 +572,10 @@ struct References {
     ids: HashSet<(String, u64)>,
     /// The entries of each ARRAY, PINPUT and POUTPUT, by kind and id.
     list_sizes: HashMap<(&'static str, u64), usize>,
+    /// A command file's: its expressions read the markers, VARIABLEs,
+    /// SENSORs ... of the dataset it runs, which is not read with it, so an
+    /// id it does not define itself is not an error.
+    open: bool,
 }
 
 /// The statement kind a model-data or element function refers to.
@@ -659,11 +663,12 @@ impl References {
         References {
             ids: first.into_keys().collect(),
             list_sizes,
+            open: dataset.kind == FileKind::Acf,
         }
     }
 
     fn has(&self, kind: &str, id: u64) -> bool {
-        self.ids.contains(&(kind.to_string(), id))
+        self.open || self.ids.contains(&(kind.to_string(), id))
     }
 
     fn check(
