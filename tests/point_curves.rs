@@ -333,8 +333,12 @@ END
     let cases = [
         ("fast enough to leave the parabola", model(curve, holder, 12.0)),
         (
-            "a user curve",
-            model("CURVE/1, FUNCTION = USER(1, 2)", holder, 0.0),
+            "a user curve under two PTCVs: the curve is named once",
+            model(
+                "CURVE/1, FUNCTION = USER(1, 2)",
+                &format!("{holder}\nPTCV/2, I = 20, JFLOAT = 11, RM = 10, CURVE = 1"),
+                0.0,
+            ),
         ),
         (
             "a MATRIX of the wrong size",

@@ -254,7 +254,16 @@ impl SimulateError {
                     && first.reason() == error.reason()
             };
             match kept.iter_mut().find(same) {
-                Some((_, others)) => others.push(label),
+                // One statement refused again for the same reason (a
+                // CURVE for each PTCV on it) is named once.
+                Some((first, others)) => {
+                    let again = first
+                        .refused_statement()
+                        .is_some_and(|(_, first_label)| first_label == label);
+                    if !again && !others.contains(&label) {
+                        others.push(label);
+                    }
+                }
                 None => kept.push((error, Vec::new())),
             }
         }
