@@ -670,3 +670,76 @@ fn radau5_keeps_its_jacobian_through_a_restart_but_not_a_fresh_start() {
     assert_eq!(fresh.stats().jacobian_evaluations, 1);
     assert!(error(&lag.exact(fresh.t()), fresh.y(), &scale) < 1e-7);
 }
+
+/// [`ForcedLag`] with the error norm's groups given.
+struct GroupedLag {
+    lag: ForcedLag,
+    groups: Vec<std::ops::Range<usize>>,
+}
+
+impl System for GroupedLag {
+    type Error = Refused;
+
+    fn dimension(&self) -> usize {
+        3
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Refused> {
+        self.lag.rhs(t, y, dy)
+    }
+
+    fn norm_groups(&mut self) -> Vec<std::ops::Range<usize>> {
+        self.groups.clone()
+    }
+}
+
+/// The error norm's groups must cover the states in order, each not empty:
+/// any other set is refused when a stepper starts, with both methods (a
+/// second group that went back over the first was taken and read past the
+/// states); groups that do cover them run.
+#[test]
+#[expect(
+    clippy::single_range_in_vec_init,
+    reason = "a list of one range is one group of states"
+)]
+fn norm_groups_that_do_not_cover_the_states_in_order_are_refused() {
+    let cases: [(&[std::ops::Range<usize>], bool); 8] = [
+        (&[0..3], true),
+        (&[0..3, 2..4], false),
+        (&[0..1, 1..3], true),
+        (&[0..1, 1..2, 2..3], true),
+        (&[0..2, 1..3], false),
+        (&[0..2], false),
+        (&[0..1, 1..1, 1..3], false),
+        (&[], false),
+    ];
+    for (groups, covers) in cases {
+        for method in [Method::Radau5, Method::Dop853] {
+            let mut system = GroupedLag {
+                lag: ForcedLag {
+                    lambda: -10.0,
+                    omega: 1.0,
+                },
+                groups: groups.to_vec(),
+            };
+            let started = Stepper::new(
+                method,
+                Options::default(),
+                0.0,
+                &[0.0, 0.0, 1.0],
+                &mut system,
+            );
+            match started {
+                Ok(mut stepper) => {
+                    assert!(covers, "{method} {groups:?} was taken");
+                    stepper.step_to(&mut system, 1.0).expect("steps");
+                }
+                Err(IntegrateError::Settings(message)) => {
+                    assert!(!covers, "{method} {groups:?}: {message}");
+                    assert!(message.contains("do not cover its 3 states"), "{message}");
+                }
+                Err(other) => panic!("{method} {groups:?}: {other}"),
+            }
+        }
+    }
+}

@@ -270,8 +270,9 @@ _MODEL_SUFFIXES = (".adm", ".acf", ".cmd", ".dat", ".toml")
 def _source(path_or_text: Union[str, os.PathLike]) -> Tuple[str, bool]:
     """``(source, is_path)``: a path-like object is a path; a string is a
     path when a file of that name exists or when it looks like one: a
-    single line (no line break) with no ``=`` that ends in one of
-    ``_MODEL_SUFFIXES`` or holds a path separator. Model text never
+    single line (no line break) that ends in one of ``_MODEL_SUFFIXES``
+    (``runs/k=1e4/model.adm``), or has no ``=`` and holds a path
+    separator. Model text never
     looks like a path: a dataset's first line is its title, so a one-line
     dataset has no statement, and a scene's settings are ``key = value``.
     A path to no file raises ``FileNotFoundError`` naming it."""
@@ -279,8 +280,8 @@ def _source(path_or_text: Union[str, os.PathLike]) -> Tuple[str, bool]:
     one_line = "\n" not in source and "\r" not in source
     if isinstance(path_or_text, str):
         separators = {"/", os.sep, os.altsep} - {None}
-        looks_like_path = "=" not in source and (
-            source.lower().endswith(_MODEL_SUFFIXES) or any(s in source for s in separators)
+        looks_like_path = source.lower().endswith(_MODEL_SUFFIXES) or (
+            "=" not in source and any(s in source for s in separators)
         )
         is_path = one_line and (os.path.exists(source) or looks_like_path)
     else:

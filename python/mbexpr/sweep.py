@@ -70,7 +70,7 @@ def _summary(template: Template, settings: Dict[str, Any], values: Dict[str, Any
 
     try:
         result = simulate(_text(template, values), **settings)
-    except (Error, KeyError, IndexError, ValueError) as error:
+    except (Error, KeyError, IndexError, ValueError, OSError) as error:
         return None, None, f"{type(error).__name__}: {error}"
     names = [name for name in result.columns if name != "time"]
     numbers = []

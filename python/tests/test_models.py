@@ -29,7 +29,8 @@ def test_check_model_lists_problems_with_lines_and_columns(tmp_path, examples):
 def test_a_path_to_no_file_raises_file_not_found_naming_it(tmp_path):
     # Each was read as model text: a parse error about the path's own words.
     for missing in ["missing.adm", "ball.ACF", "run.cmd", "model.dat", "scene.toml",
-                    "models/a1", str(tmp_path / "a1.adm"), tmp_path / "a1"]:
+                    "models/a1", "runs/k=1e4/model.adm", str(tmp_path / "a1.adm"),
+                    tmp_path / "a1"]:
         with pytest.raises(FileNotFoundError) as caught:
             mbexpr.simulate(missing, end=1.0, steps=1)
         assert caught.value.filename == os.fspath(missing), missing

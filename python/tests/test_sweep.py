@@ -51,6 +51,12 @@ def test_a_failed_run_is_a_row_with_its_message():
     table = mbexpr.sweep(A1, {"k": [1e5, -1.0], "cmax": [50], "d": [0.01]}, ThreadPoolExecutor(1), end=0.1, steps=2)
     assert table.errors[0] is None and "must not be negative" in table.errors[1]
     assert np.isnan(table["final DIF(1)"][1])
+    # A template that names a model file that is not there fails its row.
+    def named(values):
+        return A1.format(k=1e5, cmax=50, d=0.01) if values["n"] == 0 else "runs/k=1e4/none.adm"
+
+    table = mbexpr.sweep(named, [{"n": 0}, {"n": 1}], ThreadPoolExecutor(1), end=0.1, steps=2)
+    assert table.errors[0] is None and table.errors[1].startswith("FileNotFoundError")
 
 
 def test_settings_no_run_can_take_are_refused_before_any_run():
@@ -66,7 +72,7 @@ def test_settings_no_run_can_take_are_refused_before_any_run():
     refusals = [
         (dict(end=1.0, steps=10, rtol=-1.0), "relative tolerance"),
         (dict(end=math.nan, steps=10), "end time must be a positive number, not NaN"),
-        (dict(end=1.0, steps=10, h_max=1e-300), "largest step must be at least 1e-7"),
+        (dict(end=1.0, steps=10, h_max=-1.0), "largest step must be positive"),
         (dict(steps=10, atol=0.0), "absolute tolerance"),
         (dict(end=1.0, steps=10, method="euler"), "unknown integration method"),
         (dict(end=1.0, steps=10, format="csv"), "neither"),

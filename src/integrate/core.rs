@@ -146,14 +146,10 @@ impl Core {
         system: &mut S,
     ) -> Result<(), IntegrateError<S::Error>> {
         let groups = system.norm_groups();
-        let mut next = 0;
-        for group in &groups {
-            if group.start != next || group.is_empty() {
-                break;
-            }
-            next = group.end;
-        }
-        if next != self.y.len() || groups.iter().any(Range::is_empty) {
+        let covered = groups.iter().try_fold(0, |next, group| {
+            (group.start == next && group.end > group.start).then_some(group.end)
+        });
+        if covered != Some(self.y.len()) {
             return Err(IntegrateError::Settings(format!(
                 "the system's norm groups {groups:?} do not cover its {} states in order",
                 self.y.len()

@@ -204,7 +204,7 @@ pub trait System {
     /// error (and a Newton increment's size) is the largest over the
     /// groups of the root mean square of the scaled errors within each.
     /// The groups are consecutive ranges that cover the states in order
-    /// (asked once, when a stepper starts). The default is one group, the
+    /// (asked at every start and fresh start of a stepper). The default is one group, the
     /// root mean square over all states as in Hairer's codes; a system of
     /// many similar parts gives one group a part, so that parts at rest do
     /// not dilute the error of the one that moves.

@@ -1,5 +1,7 @@
 //! Why a model cannot be simulated, or why a run stops.
 
+use std::collections::HashSet;
+
 use thiserror::Error;
 
 use crate::Shown;
@@ -240,13 +242,16 @@ impl SimulateError {
     /// made one [`SimulateError::Grouped`] at the first, in file order
     /// (those placed in the file first).
     pub(crate) fn grouped(errors: Vec<SimulateError>) -> Vec<SimulateError> {
-        let mut kept: Vec<(SimulateError, Vec<String>)> = Vec::new();
+        // Each kept error, the others of its group in file order, and
+        // their labels as a set (a file of 60 000 refusals of one kind).
+        type Group = (SimulateError, Vec<String>, HashSet<String>);
+        let mut kept: Vec<Group> = Vec::new();
         for error in errors {
             let Some((kind, label)) = error.refused_statement() else {
-                kept.push((error, Vec::new()));
+                kept.push((error, Vec::new(), HashSet::new()));
                 continue;
             };
-            let same = |(first, _): &&mut (SimulateError, Vec<String>)| {
+            let same = |(first, _, _): &&mut Group| {
                 first
                     .refused_statement()
                     .is_some_and(|(first_kind, _)| first_kind == kind)
@@ -256,20 +261,20 @@ impl SimulateError {
             match kept.iter_mut().find(same) {
                 // One statement refused again for the same reason (a
                 // CURVE for each PTCV on it) is named once.
-                Some((first, others)) => {
+                Some((first, others, named)) => {
                     let again = first
                         .refused_statement()
                         .is_some_and(|(_, first_label)| first_label == label);
-                    if !again && !others.contains(&label) {
+                    if !again && named.insert(label.clone()) {
                         others.push(label);
                     }
                 }
-                None => kept.push((error, Vec::new())),
+                None => kept.push((error, Vec::new(), HashSet::new())),
             }
         }
         let mut grouped: Vec<SimulateError> = kept
             .into_iter()
-            .map(|(first, others)| {
+            .map(|(first, others, _)| {
                 if others.is_empty() {
                     first
                 } else {

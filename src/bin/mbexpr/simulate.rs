@@ -330,7 +330,7 @@ pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
     };
     // Every output is checked before the first step.
     settings
-        .check()
+        .check_for(&model)
         .map_err(|error| Fatal::input(source.render(Some(&model), &error)))?;
     if let Some(path) = &args.plot {
         check_svg_name(path)

@@ -83,7 +83,8 @@ const FRICTION_FORCES: [(&str, usize); 10] = [
 
 /// The refusal of a JOINT's own friction, where it makes a force: a
 /// coefficient, largest friction or preload that is not 0, or `FRICTION =
-/// ON` (or PRELOAD_ONLY) with none of them given; `FRICTION = OFF` has none.
+/// ON` (or PRELOAD_ONLY) with no coefficient given; `FRICTION = OFF` has
+/// none.
 /// `DELTA_V`, `MAXIMUM_DEFORMATION` and the bearing's sizes (INNER_RADIUS,
 /// OUTER_RADIUS, HEIGHT, WIDTH) alone shape a friction of no force: Adams
 /// View 12 writes the first two on every revolute joint, friction or not.
@@ -104,18 +105,20 @@ fn friction(statement: &Statement) -> Option<SimulateError> {
         reason: format!("sets {keyword}: joint friction is not simulated"),
         span,
     };
-    let mut given = false;
+    // A coefficient given (as 0 to reach here): without one, a FRICTION
+    // that is on takes coefficients the dataset does not show.
+    let mut coefficient_given = false;
     for (keyword, shortest) in FRICTION_FORCES {
         let Some(argument) = statement.argument(keyword, shortest) else {
             continue;
         };
-        given = true;
+        coefficient_given |= keyword.starts_with("MU_");
         if number_list(statement, argument).map_or(true, |values| values != [0.0]) {
             return Some(refuse(keyword, argument.span));
         }
     }
     match switch {
-        Some(argument) if !given => Some(refuse("FRICTION", argument.span)),
+        Some(argument) if !coefficient_given => Some(refuse("FRICTION", argument.span)),
         _ => None,
     }
 }

@@ -223,12 +223,10 @@ impl From<OutputError> for Failed {
 pub const SMALLEST_RTOL: f64 = 10.0 * f64::EPSILON;
 
 impl Settings {
-    /// Refuses settings a run cannot take (what [`Simulation::run`] checks
-    /// first), so that a caller can check them before anything else: the
-    /// end time, then [`Settings::check_but_end`], then the largest step
-    /// against the end time (it must reach the end within
-    /// [`Settings::max_steps`] steps, and be no shorter than a step the
-    /// integrator can take there).
+    /// Refuses settings no run can take, so that a caller can check them
+    /// before anything else: the end time, then
+    /// [`Settings::check_but_end`]. [`Settings::check_for`] adds what
+    /// depends on the model.
     pub fn check(&self) -> Result<(), SimulateError> {
         let problem = if !(self.end > 0.0 && self.end.is_finite()) {
             Some(format!(
@@ -236,9 +234,23 @@ impl Settings {
                 Shown(self.end)
             ))
         } else {
-            self.problem_but_end().or_else(|| self.reach_problem())
+            self.problem_but_end()
         };
         refused(problem)
+    }
+
+    /// Refuses settings `model`'s run cannot take (what
+    /// [`Simulation::run`] checks first): [`Settings::check`], then,
+    /// unless a SENSOR of the model may end the run sooner (HALT or
+    /// RETURN), the largest step against the end time: it must reach the
+    /// end within [`Settings::max_steps`] steps and be no shorter than a
+    /// step the integrator can take there.
+    pub fn check_for(&self, model: &Model) -> Result<(), SimulateError> {
+        self.check()?;
+        if model.sensors.iter().any(|sensor| sensor.action.halts()) {
+            return Ok(());
+        }
+        refused(self.reach_problem())
     }
 
     /// [`Settings::check`] less what depends on the end time (the end
@@ -798,7 +810,7 @@ impl Simulation<'_> {
         settings: &Settings,
         sink: &mut impl Sink,
     ) -> Result<Summary, SimulateError> {
-        settings.check()?;
+        settings.check_for(self.model)?;
         let started = Instant::now();
         let model = self.model;
         let program = &self.dynamics;
