@@ -154,6 +154,26 @@ fn errors_inside_continued_expressions_point_at_their_line() {
     insta::assert_snapshot!(check(adm, FileKind::Adm));
 }
 
+/// A dataset without its title line: its first statement is read as the
+/// title (Adams' rule), and a continuation of it says so, where it was "not
+/// a statement"; a title that only looks like a statement, or a
+/// continuation after a statement, is as before.
+#[test]
+fn a_continuation_of_the_title_says_the_first_line_is_the_title() {
+    let cases = [
+        "PART/1, GROUND\n, DENSITY = 1\nMARKER/1, PART = 1\nEND\n",
+        "part/ 12 , mass = 1\n! a comment\n, CM = 3\nEND\n",
+        "PART/1 of a test\n, DENSITY = 1\nEND\n",
+        "title\nPART/1, GROUND\n, DENSITY = 1\nEND\n",
+        "title\n, DENSITY = 1\nEND\n",
+    ];
+    let table: String = cases
+        .iter()
+        .map(|text| format!("{text:?}\n{}\n", check(text, FileKind::Adm)))
+        .collect();
+    insta::assert_snapshot!(table);
+}
+
 #[test]
 fn numbers_in_messages_are_short() {
     let adm = "numbers\nPART/1, GROUND\nMARKER/1, PART = 1\nSFORCE/1, I = 1, J = 1, FUNCTION = IMPACT(DX(1), VX(1), 0, 1E300, 1.5, 10, -1E-300)\n";

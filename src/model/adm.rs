@@ -57,14 +57,33 @@ pub fn read(text: &str, kind: FileKind) -> Dataset {
                     dataset.problems.extend(id_too_large);
                     dataset.statements.push(statement);
                 }
-                Rule::unreadable => dataset.problems.push(ReadError::Unreadable {
-                    span: trimmed_span(&pair, base),
-                }),
+                Rule::unreadable => {
+                    let span = trimmed_span(&pair, base);
+                    let continues_title = dataset.statements.is_empty()
+                        && pair.as_str().trim_start().starts_with(',');
+                    let problem = match dataset.title.as_deref().and_then(statement_name) {
+                        Some(statement) if continues_title => {
+                            ReadError::ContinuesTheTitle { statement, span }
+                        }
+                        _ => ReadError::Unreadable { span },
+                    };
+                    dataset.problems.push(problem);
+                }
                 _ => {}
             }
         }
     }
     dataset
+}
+
+/// The `NAME/id` a title line starts with where it reads as a statement
+/// (`PART/1, GROUND` gives `PART/1`), in capitals.
+fn statement_name(title: &str) -> Option<String> {
+    let head = title.split(',').next()?.trim();
+    let (name, id) = head.split_once('/')?;
+    let named = !name.is_empty() && name.chars().all(|c| c.is_ascii_alphabetic() || c == '_');
+    let numbered = !id.trim().is_empty() && id.trim().chars().all(|c| c.is_ascii_digit());
+    (named && numbered).then(|| format!("{}/{}", name.to_ascii_uppercase(), id.trim()))
 }
 
 /// The span of a pair without its trailing blanks and line break.

@@ -223,6 +223,17 @@ pub enum ReadError {
         /// The line.
         span: Span,
     },
+    /// A continuation line (`, KEY = value`) right after the title, where
+    /// the title reads as a statement: a dataset without its title line.
+    #[error(
+        "this line continues `{statement}`, which is line 1, the dataset's title: Adams reads the first line as the title, never as a statement, so begin the file with a title line"
+    )]
+    ContinuesTheTitle {
+        /// The statement the title reads as (`PART/1`).
+        statement: String,
+        /// The line.
+        span: Span,
+    },
     /// A statement's id past [`LARGEST_ID`]: the references to it are read
     /// as numbers, which hold every whole number only up to there.
     #[error("this id is too large: ids are whole numbers up to {LARGEST_ID} (2^53 - 1)")]
@@ -247,6 +258,7 @@ impl ReadError {
     pub fn span(&self) -> Span {
         match self {
             ReadError::Unreadable { span }
+            | ReadError::ContinuesTheTitle { span, .. }
             | ReadError::IdTooLarge { span }
             | ReadError::TooDeep { span, .. } => *span,
         }
