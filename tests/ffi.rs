@@ -798,17 +798,21 @@ fn bulk_evaluation_is_single_evaluation_at_every_point_on_any_threads() {
             assert!(failures < n, "{text}: every point failed");
         }
     }
+    /// The outputs of a bulk evaluation of values alone.
+    fn values_only<'o>(values: &'o mut [f64], status: &'o mut [i32]) -> Bulk<'o> {
+        Bulk {
+            values,
+            gradients: &mut [],
+            hessians: &mut [],
+            status,
+        }
+    }
     // Columns shorter than the points, and a direction that is not an input.
     let expression = Expression::compile("x + v", &["x", "v"]).unwrap();
     let mut values = vec![0.0; 3];
     let mut status = vec![0; 3];
     let short: [&[f64]; 2] = [&[1.0, 2.0, 3.0], &[1.0]];
-    let out = Bulk {
-        values: &mut values,
-        gradients: &mut [],
-        hessians: &mut [],
-        status: &mut status,
-    };
+    let out = values_only(&mut values, &mut status);
     let error = expression
         .evaluate_bulk(&short, &[], Order::Value, out, 1)
         .unwrap_err();
@@ -825,12 +829,7 @@ fn bulk_evaluation_is_single_evaluation_at_every_point_on_any_threads() {
     let mut values = vec![0.0; 1];
     let mut status = vec![0; 1];
     let one: [&[f64]; 2] = [&[1.0], &[2.0]];
-    let out = Bulk {
-        values: &mut values,
-        gradients: &mut [],
-        hessians: &mut [],
-        status: &mut status,
-    };
+    let out = values_only(&mut values, &mut status);
     let error = expression
         .evaluate_bulk(&one, &[], Order::Value, out, usize::MAX)
         .unwrap_err();

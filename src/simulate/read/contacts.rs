@@ -74,10 +74,7 @@ fn refused(statement: &Statement, reason: String, span: crate::span::Span) -> Si
 
 /// The word a keyword is set to (`TYPE = SOLID_TO_SOLID`), upper case.
 fn word(statement: &Statement, keyword: &str) -> Option<String> {
-    match &statement.argument(keyword, keyword.len().min(6))?.value {
-        Value::List(items) if items.len() == 1 => Some(items[0].text.trim().to_ascii_uppercase()),
-        _ => Some(String::new()),
-    }
+    Some(super::word_of(statement.argument(keyword, keyword.len().min(6))?).unwrap_or_default())
 }
 
 fn contact(

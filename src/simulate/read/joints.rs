@@ -1,7 +1,7 @@
 //! `JOINT` and `JPRIM` statements of a dataset.
 
 use crate::model::initial::{number, number_list};
-use crate::model::{Dataset, Statement, Value, is_kind};
+use crate::model::{Dataset, Statement, is_kind};
 use crate::scene::{Scene, Target};
 use crate::simulate::SimulateError;
 use crate::simulate::model::{Joint, JointInitial, JointKind, Motion};
@@ -90,10 +90,7 @@ const FRICTION_FORCES: [(&str, usize); 10] = [
 /// View 12 writes the first two on every revolute joint, friction or not.
 fn friction(statement: &Statement) -> Option<SimulateError> {
     let switch = statement.argument("FRICTION", 3);
-    let word = switch.and_then(|argument| match &argument.value {
-        Value::List(items) if items.len() == 1 => Some(items[0].text.trim().to_ascii_uppercase()),
-        _ => None,
-    });
+    let word = switch.and_then(super::word_of);
     if word
         .as_deref()
         .is_some_and(|word| word.len() >= 2 && "OFF".starts_with(word))

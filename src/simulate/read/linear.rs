@@ -145,10 +145,7 @@ pub(super) fn field(statement: &Statement) -> Result<Linear, Refusal> {
 /// (STRING, NONLINEAR), which mbexpr does not simulate.
 pub(super) fn nonlinear_beam(statement: &Statement) -> Option<(Span, String)> {
     let argument = statement.argument("FORMULATION", 3)?;
-    let word = match &argument.value {
-        Value::List(items) if items.len() == 1 => items[0].text.trim().to_ascii_uppercase(),
-        _ => String::new(),
-    };
+    let word = super::word_of(argument).unwrap_or_default();
     if word.len() >= 3 && "LINEAR".starts_with(word.as_str()) {
         return None;
     }

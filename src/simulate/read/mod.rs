@@ -108,6 +108,18 @@ fn named_marker(
         .and_then(|id| scene.find_marker(&crate::check::Reference::Id(id)).ok())
 }
 
+/// The word an argument is set to (`TYPE = SOLID_TO_SOLID`), upper case;
+/// `None` when its value is not one word (a list, an expression): the one
+/// reading of a keyword's word the dataset's readers share.
+fn word_of(argument: &model::Argument) -> Option<String> {
+    match &argument.value {
+        model::Value::List(items) if items.len() == 1 => {
+            Some(items[0].text.trim().to_ascii_uppercase())
+        }
+        _ => None,
+    }
+}
+
 /// The id `keyword = id` gives in `statement`: a whole positive number
 /// (`None` for anything else, `4.7` too).
 fn whole_id(statement: &model::Statement, keyword: &str) -> Option<u64> {

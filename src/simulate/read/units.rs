@@ -9,7 +9,7 @@
 //! in the dataset's units already, so the simulator multiplies each mass
 //! and inertia by UCF and changes nothing else.
 
-use crate::model::{Dataset, Statement, Value, is_kind};
+use crate::model::{Dataset, Statement, is_kind};
 use crate::simulate::error::SimulateError;
 
 /// Units of force, in newton.
@@ -126,13 +126,7 @@ pub(super) fn consistency_factor(
 
 /// The word given to `keyword` (`INCH`), upper-case.
 fn word(statement: &Statement, keyword: &str) -> Option<String> {
-    let argument = statement.argument(keyword, keyword.len().min(3))?;
-    match &argument.value {
-        Value::List(items) if items.len() == 1 => {
-            Some(items[0].text.to_ascii_uppercase().to_string())
-        }
-        _ => None,
-    }
+    super::word_of(statement.argument(keyword, keyword.len().min(3))?)
 }
 
 /// The size of the unit given to `keyword` in SI, from `units` (the
