@@ -765,7 +765,7 @@ fn run_options_are_checked_before_any_model() {
 /// every revolute joint), coefficients and preloads of 0, or `FRICTION =
 /// OFF` make no force, and the pendulum swings as it does without them; a
 /// coefficient or preload that is not 0 (its name abbreviated or not), or
-/// `FRICTION = ON` alone, is refused at its place.
+/// `FRICTION = ON` with no coefficient given, is refused at its place.
 #[test]
 fn a_joints_own_friction_runs_where_it_makes_no_force_and_is_refused_where_it_does() {
     let pendulum = |friction: &str| {

@@ -319,9 +319,9 @@ def simulate(
     ``SIMULATE/DYNAMIC`` command in an ``.acf`` beside it, or a scene file
     ``.toml``) or the model's text (``format`` "dataset" or "scene"; by
     default a text with a line starting ``[`` is a scene). A path-like
-    object, a string naming a file that exists, and a one-line string with
-    no ``=`` that ends in ``.adm``, ``.acf``, ``.cmd``, ``.dat`` or
-    ``.toml`` (any case) or holds a path separator are paths: a path to no
+    object, a string naming a file that exists, a one-line string that
+    ends in ``.adm``, ``.acf``, ``.cmd``, ``.dat`` or ``.toml`` (any case),
+    and one with no ``=`` that holds a path separator are paths: a path to no
     file raises ``FileNotFoundError`` naming it (model text is never such a
     string: a dataset's first line is its title). ``end`` and
     ``steps`` default to the model's own; ``method`` is "auto" (the

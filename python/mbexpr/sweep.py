@@ -120,9 +120,10 @@ def sweep(
     a list of parameter sets, ``[{"k": 1e4, "d": 0.01}, ...]``. The run
     settings are those of :func:`mbexpr.simulate`, checked once before any
     run: settings no run can take (an unknown method, a tolerance or an end
-    time out of range, a largest step too short to reach the end) raise
-    :class:`mbexpr.Error` and start nothing. An end time or a number of
-    output steps left to the model is checked by each run.
+    time out of range) raise :class:`mbexpr.Error` and start nothing. An
+    end time or a number of output steps left to the model, and a largest
+    step against the end time (a model's SENSOR may halt it sooner), are
+    checked by each run.
 
     ``executor`` is any ``concurrent.futures.Executor``: by default a
     process pool of one worker per core started with ``forkserver`` (never
