@@ -19,6 +19,7 @@ mod eval;
 mod ffi;
 mod force_values;
 mod general_constraints;
+mod implicit_diffs;
 mod initial_conditions;
 mod integrate;
 mod integrate_problems;

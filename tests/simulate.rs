@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 45] = [
+    let cases: [(&str, &str, Settings); 48] = [
         (
             "a torque near the largest double: the steps shrink to nothing, and the part it spins is named",
             "huge torque
@@ -230,8 +230,35 @@ DIFF/1, IC = 0, FUNCTION = DIF(7)
             short.clone(),
         ),
         (
-            "an implicit DIFF",
+            "an implicit DIFF that is an algebraic equation",
             "implicit
+DIFF/1, IC = 0, IMPLICIT, FUNCTION = DIF(1) - SIN(TIME)
+",
+            short.clone(),
+        ),
+        (
+            "an implicit DIFF without a root",
+            "implicit
+DIFF/1, IC = 0, IMPLICIT, FUNCTION = DIF1(1)**2 + 1
+",
+            short.clone(),
+        ),
+        (
+            "a DIFF with three initial values",
+            "implicit
+DIFF/1, IC = 0, 1, 2, IMPLICIT, FUNCTION = DIF1(1) - 1
+",
+            short.clone(),
+        ),
+        (
+            "a MOTION that reads an implicit DIFF's rate",
+            "motion
+PART/1, GROUND
+MARKER/10, PART = 1
+PART/2, MASS = 1, CM = 20, IP = 1, 1, 1
+MARKER/20, PART = 2
+JOINT/1, TRANSLATIONAL, I = 20, J = 10
+MOTION/1, JOINT = 1, FUNCTION = DIF1(1)
 DIFF/1, IC = 0, IMPLICIT, FUNCTION = DIF1(1) - 1
 ",
             short.clone(),

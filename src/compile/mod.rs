@@ -608,13 +608,14 @@ impl Compiler<'_> {
         });
         if function == Function::Dif1
             && let Some(id) = id
-            && let Some(tree) = scene
-                .statements
-                .diffs
-                .get(&id)
-                .and_then(|diff| diff.function.as_ref())
+            && let Some(diff) = scene.statements.diffs.get(&id)
         {
-            return self.inline_diff(id, tree, span);
+            if diff.implicit {
+                return self.implicit_rate(id, span);
+            }
+            if let Some(tree) = &diff.function {
+                return self.inline_diff(id, tree, span);
+            }
         }
         match (function, id) {
             (Function::Varval, Some(id)) if scene.statements.variables.contains_key(&id) => {
@@ -771,6 +772,20 @@ impl Compiler<'_> {
         let slot = self.inline_tree(&tree.root, span);
         self.inlining_diffs.pop();
         Ok(slot)
+    }
+
+    /// `DIF1(id)` of an implicit DIFF: for a running solver the root of
+    /// its FUNCTION, a value it gives (when `reactions` accepts it), and
+    /// otherwise the input of that name (the IC's second value by default).
+    fn implicit_rate(&mut self, id: u64, span: Span) -> Result<Slot, CompileError> {
+        let call = RunCall::ImplicitRate(id);
+        match self.reactions {
+            Some(reactions) => match reactions(&call) {
+                Ok(()) => Ok(self.reaction(&call, span)),
+                Err(message) => Err(CompileError::Reaction { message, span }),
+            },
+            None => Ok(self.named_input(call.input_name(), span)),
+        }
     }
 
     /// `ARYVAL(y, i)` of a linear system's Y array `y`: its output `C x +

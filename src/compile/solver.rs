@@ -189,6 +189,9 @@ pub enum RunCall {
     Acceleration(MarkerCall),
     /// A net force between markers.
     NetForce(MarkerCall),
+    /// `DIF1(id)` of an implicit DIFF: the time derivative that makes its
+    /// FUNCTION zero, which the solver finds.
+    ImplicitRate(u64),
 }
 
 impl RunCall {
@@ -197,6 +200,7 @@ impl RunCall {
         match self {
             RunCall::Reaction(call) => call.input_name(),
             RunCall::Acceleration(call) | RunCall::NetForce(call) => call.input_name(),
+            RunCall::ImplicitRate(id) => crate::scene::diff_rate_input(*id),
         }
     }
 
@@ -204,6 +208,9 @@ impl RunCall {
     pub fn parse(name: &str) -> Option<RunCall> {
         if let Some(call) = SolverCall::parse(name) {
             return Some(RunCall::Reaction(call));
+        }
+        if let Some(id) = crate::scene::parse_diff_rate_input(name) {
+            return Some(RunCall::ImplicitRate(id));
         }
         let (function, rest) = name.split_once('(')?;
         let function = Function::lookup(function)?;

@@ -476,15 +476,15 @@ pub fn initial_scene(
         .filter(|(_, s)| is_statement(s, "DIFF"))
     {
         if let Some(id) = statement.id {
-            let [initial] = match statement.argument("IC", 2) {
+            let [initial, initial_rate] = match statement.argument("IC", 2) {
                 Some(argument) => match number_list(statement, argument) {
-                    Ok(values) => [values[0]],
+                    Ok(values) => [values[0], values.get(1).copied().unwrap_or(0.0)],
                     Err(error) => {
                         errors.push(error);
                         continue;
                     }
                 },
-                None => [0.0],
+                None => [0.0; 2],
             };
             let function = report
                 .expressions
@@ -493,10 +493,15 @@ pub fn initial_scene(
                     found.statement == index && "FUNCTION".starts_with(found.keyword.as_str())
                 })
                 .and_then(|found| found.checked.clone());
-            scene
-                .statements
-                .diffs
-                .insert(id, DiffData { initial, function });
+            scene.statements.diffs.insert(
+                id,
+                DiffData {
+                    initial,
+                    function,
+                    implicit: statement.argument("IMPLICIT", 3).is_some(),
+                    initial_rate,
+                },
+            );
         }
     }
     for statement in dataset

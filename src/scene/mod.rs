@@ -326,13 +326,34 @@ pub struct DiffData {
     /// The initial condition `IC` (0 when not given).
     pub initial: f64,
     /// The checked FUNCTION: the state's time derivative (`None` when it
-    /// does not check, or is a user subroutine's).
+    /// does not check, or is a user subroutine's); of an implicit DIFF, the
+    /// residual whose zero defines the derivative.
     pub function: Option<Checked>,
+    /// `IMPLICIT`: FUNCTION = 0 defines the state's time derivative, which
+    /// `DIF1(id)` then reads as the input [`diff_rate_input`] (the solver's
+    /// root of the FUNCTION), not as the FUNCTION compiled in place.
+    pub implicit: bool,
+    /// The second value of `IC`, the time derivative to start from (0 when
+    /// not given): the value of `DIF1(id)` of an implicit DIFF outside a
+    /// run.
+    pub initial_rate: f64,
 }
 
 /// The name of the input that holds `DIF(id)`: `DIF(3)`.
 pub fn diff_input(id: u64) -> String {
     format!("DIF({id})")
+}
+
+/// The name of the input that holds `DIF1(id)` of an implicit DIFF:
+/// `DIF1(3)`.
+pub fn diff_rate_input(id: u64) -> String {
+    format!("DIF1({id})")
+}
+
+/// The id of an implicit DIFF's rate input named by [`diff_rate_input`].
+pub fn parse_diff_rate_input(name: &str) -> Option<u64> {
+    let inner = name.strip_prefix("DIF1(")?.strip_suffix(')')?;
+    inner.parse().ok()
 }
 
 /// The name of the input that holds state `entry` (from 1) of the linear
@@ -526,6 +547,12 @@ impl Scene {
         }
         if let Some(diff) = parse_diff_input(name).and_then(|id| self.statements.diffs.get(&id)) {
             return Ok(diff.initial);
+        }
+        if let Some(diff) = parse_diff_rate_input(name)
+            .and_then(|id| self.statements.diffs.get(&id))
+            .filter(|diff| diff.implicit)
+        {
+            return Ok(diff.initial_rate);
         }
         if let Some(initial) = parse_array_state_input(name).and_then(|(array, entry)| {
             let system = self.statements.system_with_states(array)?;

@@ -204,6 +204,9 @@ impl<'m> Simulation<'m> {
             |call: &crate::compile::RunCall| equations::RunValue::of(model, call).map(|_| ());
         let dynamics = compile(model, &computed, &reaction, &mut errors);
         let outputs = compile(model, &output_expressions, &reaction, &mut errors);
+        if let Some(dynamics) = &dynamics {
+            errors.extend(unread_implicit_rates(model, dynamics));
+        }
         match (dynamics, outputs) {
             (Some(dynamics), Some(outputs)) if errors.is_empty() => Ok(Simulation {
                 model,
@@ -228,13 +231,40 @@ impl<'m> Simulation<'m> {
     }
 }
 
+/// The implicit DIFFs whose rate `DIF1(id)` no FUNCTION of `dynamics`
+/// reads: FUNCTION = 0 then does not define the rate but the state itself,
+/// an algebraic equation, which is not simulated.
+fn unread_implicit_rates<'a>(
+    model: &'a Model,
+    dynamics: &'a Program,
+) -> impl Iterator<Item = SimulateError> + 'a {
+    model
+        .diffs
+        .iter()
+        .filter(|diff| diff.implicit.is_some())
+        .filter(move |diff| {
+            let name = crate::scene::diff_rate_input(diff.id);
+            !dynamics.inputs().contains(&name)
+        })
+        .map(move |diff| {
+            let expression = &model.expressions[diff.function];
+            SimulateError::Model {
+                message: format!(
+                    "DIFF/{0} is implicit but no FUNCTION reads DIF1({0}): FUNCTION = 0 then defines the state, not its rate (an algebraic equation), which mbexpr does not simulate; write the equation with DIF1({0}), or the state as a VARIABLE",
+                    diff.id
+                ),
+                span: expression.file_span(crate::Span::new(0, expression.text.text.len())),
+            }
+        })
+}
+
 /// Refuses a value of the running solver (a reaction, a force element's
 /// value, a net force, an acceleration) read by a MOTION's or a GCON's
 /// FUNCTION: the constraints they are must hold before the forces are
 /// known.
 fn no_reaction(call: &crate::compile::RunCall) -> Result<(), String> {
     Err(format!(
-        "{}: a MOTION or GCON that reads a value of the running solver (a reaction, a force, an acceleration) is not simulated: its constraint must hold before the forces are known; forces, DIFFs, REQUESTs and VARIABLEs read them",
+        "{}: a MOTION or GCON that reads a value of the running solver (a reaction, a force, an acceleration, an implicit DIFF's rate) is not simulated: its constraint must hold before the forces are known; forces, DIFFs, REQUESTs and VARIABLEs read them",
         call.input_name()
     ))
 }

@@ -168,6 +168,10 @@ pub struct Diff {
     /// `STATIC_HOLD`: a static equilibrium (`--statics`) keeps it at its
     /// value instead of making its rate zero.
     pub static_hold: bool,
+    /// `IMPLICIT`: FUNCTION = 0 defines the rate, with the rate to start
+    /// the search from (the IC's second value, 0 when not given); `None`
+    /// for an explicit DIFF, whose FUNCTION is the rate.
+    pub implicit: Option<f64>,
 }
 
 /// A state of a control element's linear system: entry `entry` (from 1)

@@ -213,6 +213,19 @@ impl<'m> Mechanics<'m> {
             .iter()
             .map(|diff| output_of[diff.function])
             .collect();
+        let implicit_rates = model
+            .diffs
+            .iter()
+            .map(|diff| {
+                diff.implicit?;
+                let name = crate::scene::diff_rate_input(diff.id);
+                let input = program.inputs().iter().position(|input| *input == name)?;
+                match sources[input] {
+                    Source::Solver(index) => Some((input, index)),
+                    _ => None,
+                }
+            })
+            .collect();
         let inverse_inertia = model.inverse_inertia();
         let loop_values: Vec<RunValue> = solver_calls
             .iter()
@@ -233,6 +246,9 @@ impl<'m> Mechanics<'m> {
                 program,
                 sources,
                 diff_outputs,
+                implicit_rates,
+                rate_scales: vec![1.0; model.diffs.len()],
+                rates_scaled: false,
                 output_of,
                 inverse_inertia,
                 joint_arms: joint_arms(model),
@@ -255,7 +271,13 @@ impl<'m> Mechanics<'m> {
             values,
             buffers: Buffers::new(program),
             jacobian: None,
-            settled: vec![0.0; loop_values.len()],
+            settled: loop_values
+                .iter()
+                .map(|value| match value {
+                    RunValue::ImplicitRate(diff) => model.diffs[*diff].implicit.unwrap_or(0.0),
+                    _ => 0.0,
+                })
+                .collect(),
             loop_values,
             settling_matrix: None,
             delays,
@@ -487,9 +509,64 @@ impl<'m> Mechanics<'m> {
             return Ok(());
         }
         let calls = std::mem::take(&mut self.loop_values);
+        if !self.equations.rates_scaled {
+            let scaled = self.scale_implicit_rates(t, y, held, &calls);
+            if let Err(error) = scaled {
+                self.loop_values = calls;
+                return Err(error);
+            }
+        }
         let settled = self.settle_values(t, y, held, &calls);
         self.loop_values = calls;
         self.settled = settled?;
+        Ok(())
+    }
+
+    /// Sets [`Equations::rate_scales`] at `(t, y)` from the last settled
+    /// values: each implicit DIFF's FUNCTION's derivative in its own DIF1,
+    /// by a forward difference (left at 1 where it is zero, to be set at a
+    /// later state).
+    fn scale_implicit_rates(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        held: Option<&[Option<Code>]>,
+        calls: &[RunValue],
+    ) -> Result<(), OutputError> {
+        if !calls
+            .iter()
+            .any(|call| matches!(call, RunValue::ImplicitRate(_)))
+        {
+            self.equations.rates_scaled = true;
+            return Ok(());
+        }
+        let guess = self.settled.clone();
+        let given = self.values_at(t, y, held, &guess, calls)?;
+        let mut scaled = true;
+        let mut moved = guess.clone();
+        for (index, call) in calls.iter().enumerate() {
+            let &RunValue::ImplicitRate(diff) = call else {
+                continue;
+            };
+            if self.equations.rate_scales[diff] != 1.0 {
+                continue;
+            }
+            let step = 1e-7 * guess[index].abs().max(1e-3);
+            moved[index] = guess[index] + step;
+            let changed = self.values_at(t, y, held, &moved, calls)?;
+            moved[index] = guess[index];
+            // g = z − F: ∂F/∂z = 1 − ∂g/∂z.
+            let derivative = 1.0 - (changed[index] - given[index]) / step;
+            if derivative.is_finite() && derivative.abs() > 1e-300 {
+                self.equations.rate_scales[diff] = derivative.abs();
+            } else {
+                scaled = false;
+            }
+        }
+        self.equations.rates_scaled = scaled;
+        if self.equations.rate_scales.iter().any(|&scale| scale != 1.0) {
+            self.settling_matrix = None;
+        }
         Ok(())
     }
 
@@ -503,11 +580,26 @@ impl<'m> Mechanics<'m> {
         calls: &[RunValue],
     ) -> Result<Vec<f64>, OutputError> {
         let mut guess = self.settled.clone();
+        // An implicit DIFF's rate is settled to 1e-12 of its state (of 1 at
+        // least) whatever its own size: a rate near zero is known only to
+        // the rounding of its FUNCTION's terms, which can be far larger.
+        let floors: Vec<f64> = calls
+            .iter()
+            .map(|call| match call {
+                &RunValue::ImplicitRate(diff) => 1e-12 * y[diff].abs().max(1.0),
+                _ => 0.0,
+            })
+            .collect();
         let mut fresh = false;
         let mut last_size = f64::INFINITY;
         let mut first_size = None;
-        for _ in 0..SETTLING_ITERATIONS {
-            let given = self.values_at(t, y, held, &guess, calls)?;
+        for iteration in 0..SETTLING_ITERATIONS {
+            // Past the first guess, a value the program cannot take is where
+            // Newton's iterations went, not the state's.
+            let given = match self.values_at(t, y, held, &guess, calls) {
+                Err(_) if iteration > 0 => return Err(self.equations.unsettled()),
+                given => given?,
+            };
             let residual = nalgebra::DVector::from_iterator(
                 guess.len(),
                 given.iter().zip(&guess).map(|(g, z)| g - z),
@@ -519,13 +611,21 @@ impl<'m> Mechanics<'m> {
             let settled = residual
                 .iter()
                 .zip(given.iter().zip(&guess))
-                .all(|(r, (g, z))| r.abs() <= 1e-13 * (g.abs() + z.abs()) + 1e-15 * scale);
+                .zip(&floors)
+                .all(|((r, (g, z)), floor)| {
+                    r.abs() <= 1e-13 * (g.abs() + z.abs()) + 1e-15 * scale + floor
+                });
             let size = residual.amax();
             let first = *first_size.get_or_insert(size);
             // Below a billionth of the values, and a millionth of where it
-            // started, a residual that stops shrinking is the rounding of
-            // the joints' solve.
-            if settled || (size >= last_size && size <= 1e-9 * scale && size <= 1e-6 * first) {
+            // started (or there from the start), a residual that stops
+            // shrinking is the rounding of the joints' solve (or of an
+            // implicit DIFF's FUNCTION, whose terms can be far larger than
+            // a rate near zero).
+            let stalled = size >= last_size
+                && size <= 1e-9 * scale
+                && (size <= 1e-6 * first || first <= 1e-9 * scale);
+            if settled || stalled {
                 return Ok(given);
             }
             // A matrix that does not contract the residual tenfold is
@@ -813,10 +913,12 @@ impl<'m> Mechanics<'m> {
         // The force elements' values: the program's outputs at (t, y).
         let equations = &self.equations;
         let kinematics = equations.kinematics(y);
-        if values
-            .iter()
-            .any(|value| matches!(value, RunValue::Element(_) | RunValue::NetForce(_)))
-        {
+        if values.iter().any(|value| {
+            matches!(
+                value,
+                RunValue::Element(_) | RunValue::NetForce(_) | RunValue::ImplicitRate(_)
+            )
+        }) {
             let inputs = &mut self.buffers.inputs;
             equations.fill_inputs(t, y, &kinematics, solved, inputs);
             reorient(&mut self.values, &kinematics);
@@ -839,6 +941,15 @@ impl<'m> Mechanics<'m> {
                 }
                 (RunValue::Reaction(component), Some(reactions), _) => {
                     Ok(reactions.value(model, component))
+                }
+                // The rate less the residual its FUNCTION leaves: the rate
+                // itself where the FUNCTION is zero, so that Newton's
+                // iterations on the loop values find its root.
+                (&RunValue::ImplicitRate(diff), _, _) => {
+                    let (_, index) = equations.implicit_rates[diff]
+                        .expect("an implicit rate is read as a loop value");
+                    let residual = expression_value(Some(model.diffs[diff].function));
+                    Ok(solved[index] - residual / equations.rate_scales[diff])
                 }
                 (RunValue::Acceleration(measure), _, Some(accelerations)) => accelerations
                     .value(model, measure)
@@ -1047,6 +1158,9 @@ pub(crate) enum RunValue {
     Element(ElementComponent),
     /// The net force between markers.
     NetForce(NetForce),
+    /// The time derivative of the implicit DIFF at this index of the
+    /// model's DIFFs: the root of its FUNCTION.
+    ImplicitRate(usize),
 }
 
 impl RunValue {
@@ -1063,6 +1177,12 @@ impl RunValue {
             RunCall::Reaction(call) => Component::of(model, call).map(RunValue::Reaction),
             RunCall::Acceleration(call) => Measure::of(model, call).map(RunValue::Acceleration),
             RunCall::NetForce(call) => NetForce::of(model, call).map(RunValue::NetForce),
+            RunCall::ImplicitRate(id) => model
+                .diffs
+                .iter()
+                .position(|diff| diff.id == *id && diff.linear.is_none() && diff.implicit.is_some())
+                .map(RunValue::ImplicitRate)
+                .ok_or_else(|| format!("DIFF/{id} is not an implicit DIFF of the model")),
         }
     }
 }
@@ -1178,6 +1298,18 @@ struct Equations<'m> {
     /// The output of the program that is each DIFF's function (`None` in
     /// a program that computes only output columns).
     diff_outputs: Vec<Option<usize>>,
+    /// Of each implicit DIFF, the program's input that holds its rate,
+    /// `DIF1(id)`, and that input's index among the loop values (`None`
+    /// for an explicit DIFF, whose rate is its function's output).
+    implicit_rates: Vec<Option<(usize, usize)>>,
+    /// Of each implicit DIFF, what its FUNCTION is divided by in its loop
+    /// value, `DIF1 − FUNCTION / scale`: the FUNCTION's derivative in its
+    /// DIF1 at the first state where that is not zero (1 before), so that
+    /// Newton's iterations and their test of convergence see the rate
+    /// whatever the FUNCTION's scale (`1e-7·DIF1(1) − ...`).
+    rate_scales: Vec<f64>,
+    /// Whether [`Equations::rate_scales`] are set.
+    rates_scaled: bool,
     /// The program's output of each expression it computes, by expression.
     output_of: Vec<Option<usize>>,
     /// The inverse inertia of each body.
@@ -1218,12 +1350,28 @@ impl Equations<'_> {
                     .any(|&input| matches!(self.sources[input], Source::Solver(_)))
             })
             .unwrap_or(0);
+        let implicit = self
+            .diff_outputs
+            .iter()
+            .zip(&self.implicit_rates)
+            .any(|(diff_output, rate)| *diff_output == Some(output) && rate.is_some());
+        let (operation, reason) = if implicit {
+            (
+                "an implicit DIFF",
+                "FUNCTION = 0 has no root in the DIF1s near their last values at this state: Newton's iterations on them diverge (the FUNCTION has no real root in DIF1 here, or its derivative in DIF1 is zero)",
+            )
+        } else {
+            (
+                "a force that reads the running solver's values",
+                "the values it reads (reactions, accelerations, forces) and those the motion gives do not settle to one at this state: Newton's iterations on them diverge, as at a joint that friction locks, or where a force reads its own value with a gain of 1",
+            )
+        };
         OutputError {
             output,
             error: EvalError::Law {
                 error: crate::laws::LawError::Domain {
-                    operation: "a force that reads the running solver's values",
-                    reason: "the values it reads (reactions, accelerations, forces) and those the motion gives do not settle to one at this state: Newton's iterations on them diverge, as at a joint that friction locks, or where a force reads its own value with a gain of 1".to_string(),
+                    operation,
+                    reason: reason.to_string(),
                 },
                 span: crate::Span::default(),
             },
@@ -1334,8 +1482,15 @@ impl Equations<'_> {
     ) {
         let model = self.model;
         let outputs = &buffers.outputs;
-        for (rate, output) in rates.iter_mut().zip(&self.diff_outputs) {
-            *rate = output.map_or_else(T::zero, |output| outputs[output].clone());
+        for ((rate, output), implicit) in rates
+            .iter_mut()
+            .zip(&self.diff_outputs)
+            .zip(&self.implicit_rates)
+        {
+            *rate = match implicit {
+                Some((input, _)) => buffers.inputs[*input].clone(),
+                None => output.map_or_else(T::zero, |output| outputs[output].clone()),
+            };
         }
         for (body, state) in kinematics.iter().enumerate() {
             let offset = body_offset(model, body);

@@ -800,18 +800,7 @@ impl Reader<'_> {
         for index in indices {
             let statement = &dataset.statements[index];
             let Some(id) = statement.id else { continue };
-            if statement.argument("IMPLICIT", 3).is_some() {
-                self.errors.push(SimulateError::Unsupported {
-                    statement: statement.label(),
-                    reason: "is implicit (FUNCTION = 0 defines the state): only explicit DIFFs (d DIF/dt = FUNCTION) are simulated".to_string(),
-                    span: statement.span,
-                });
-                continue;
-            }
-            let initial = number(statement, "IC", 0.0).unwrap_or_else(|error| {
-                self.refuse(error.to_string(), error.span());
-                0.0
-            });
+            let [initial, initial_rate] = self.diff_initial_values(statement);
             let Some(function) = self.expression(index, "FUNCTION") else {
                 if statement.argument("FUNCTION", 4).is_none() {
                     self.refuse(
@@ -830,10 +819,39 @@ impl Reader<'_> {
                 function,
                 linear: None,
                 static_hold: statement.argument("STATIC_HOLD", 8).is_some(),
+                implicit: statement
+                    .argument("IMPLICIT", 3)
+                    .is_some()
+                    .then_some(initial_rate),
             });
         }
         diffs.extend(self.linear_states());
         diffs
+    }
+
+    /// A DIFF's `IC = value [, rate]`: its initial value and the time
+    /// derivative an implicit one starts from (each 0 when not given).
+    fn diff_initial_values(&mut self, statement: &Statement) -> [f64; 2] {
+        let Some(argument) = statement.argument("IC", 2) else {
+            return [0.0; 2];
+        };
+        match crate::model::initial::number_list(statement, argument) {
+            Ok(values) if values.len() <= 2 => [values[0], values.get(1).copied().unwrap_or(0.0)],
+            Ok(_) => {
+                self.refuse(
+                    format!(
+                        "{}: IC takes the initial value and, for an implicit DIFF, its time derivative, not more",
+                        statement.label()
+                    ),
+                    argument.span,
+                );
+                [0.0; 2]
+            }
+            Err(error) => {
+                self.refuse(error.to_string(), error.span());
+                [0.0; 2]
+            }
+        }
     }
 
     /// The states of the control elements' linear systems (TFSISO, LSE),
@@ -857,6 +875,7 @@ impl Reader<'_> {
                         entry: index + 1,
                     }),
                     static_hold: system.static_hold,
+                    implicit: None,
                 });
             }
         }

@@ -310,6 +310,8 @@ impl Reader<'_> {
                 DiffData {
                     initial: diff.ic,
                     function: Some(self.expressions[function].checked.clone()),
+                    implicit: false,
+                    initial_rate: 0.0,
                 },
             );
             read.push(Diff {
@@ -318,6 +320,7 @@ impl Reader<'_> {
                 function,
                 linear: None,
                 static_hold: false,
+                implicit: None,
             });
         }
         read
