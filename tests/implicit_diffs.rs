@@ -4,6 +4,8 @@
 //! residual), and against the same lag written as an explicit DIFF, with
 //! the residual scaled by factors drawn at random.
 
+use mbexpr::model::{self, FileKind};
+
 use super::joints::method;
 use super::simulate::{run, settings};
 
@@ -113,4 +115,33 @@ fn an_implicit_lag_follows_its_explicit_form_whatever_its_scale() {
             }
         }
     }
+}
+
+/// Outside a run (`eval`, `check`), `DIF1(id)` of an implicit DIFF is the
+/// IC's second value, and of an explicit one its FUNCTION at the state.
+#[test]
+fn outside_a_run_an_implicit_rate_is_the_second_initial_value() {
+    let text = "rates at the start
+DIFF/1, IC = 2, 0.7, IMPLICIT, FUNCTION = DIF1(1) + DIF(1)
+DIFF/2, IC = 3, FUNCTION = -2*DIF(2)
+VARIABLE/3, FUNCTION = DIF1(1) + 10*DIF1(2)
+";
+    let dataset = model::read(text, FileKind::Adm);
+    let report = model::check_model(text, &dataset);
+    let scene = model::initial_scene(&dataset, &report).expect("the scene builds");
+    let found = report
+        .expressions
+        .iter()
+        .find(|found| dataset.statements[found.statement].label() == "VARIABLE/3")
+        .expect("VARIABLE/3 is found");
+    let checked = found.checked.as_ref().expect("it checks");
+    let inputs = scene.input_names();
+    let program = mbexpr::compile_in_scene(checked, &inputs, &scene).expect("it compiles");
+    let values = scene
+        .values(program.inputs())
+        .expect("the scene gives every input");
+    let value = program
+        .evaluate(&values, &[], mbexpr::Order::Value)
+        .expect("it evaluates");
+    assert_eq!(value.value, 0.7 - 60.0);
 }
