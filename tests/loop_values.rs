@@ -34,9 +34,21 @@ fn friction_reference(m: f64, d: f64, izz: f64, c: f64, omega: f64, end: f64) ->
         }
         alpha
     };
-    let steps = 20_000;
+    let (theta, w) = rk4(acceleration, (0.0, omega), end, 20_000);
+    assert!(w > 0.0, "the reference keeps turning one way");
+    (theta, w)
+}
+
+/// `θ'' = acceleration(θ, θ')` from `start` (θ, θ') to `end` by RK4 in
+/// `steps` equal steps: the references' integration.
+pub(super) fn rk4(
+    acceleration: impl Fn(f64, f64) -> f64,
+    start: (f64, f64),
+    end: f64,
+    steps: u32,
+) -> (f64, f64) {
     let h = end / f64::from(steps);
-    let (mut theta, mut w) = (0.0_f64, omega);
+    let (mut theta, mut w) = start;
     for _ in 0..steps {
         let k1 = (w, acceleration(theta, w));
         let k2 = (
@@ -50,7 +62,6 @@ fn friction_reference(m: f64, d: f64, izz: f64, c: f64, omega: f64, end: f64) ->
         let k4 = (w + h * k3.1, acceleration(theta + h * k3.0, w + h * k3.1));
         theta += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
         w += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
-        assert!(w > 0.0, "the reference keeps turning one way");
     }
     (theta, w)
 }

@@ -18,6 +18,7 @@ mod documents;
 mod eval;
 mod ffi;
 mod force_values;
+mod friction;
 mod general_constraints;
 mod implicit_diffs;
 mod initial_conditions;

@@ -294,13 +294,13 @@ DIFF/1, IC = 1, FUNCTION = DIF(1)**2
             settings(2.0, 4, 1e-6),
         ),
         (
-            "joint friction, a GSE and an NFORCE, each saying what to write instead",
+            "a cylindrical joint's friction, a GSE and an NFORCE, each saying what to write instead",
             "elements not simulated
 PART/1, GROUND
 MARKER/1, PART = 1
 PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
-JOINT/1, REVOLUTE, I = 3, J = 1
+JOINT/1, CYLINDRICAL, I = 3, J = 1
 FRICTION/1, JOINT = 1, MU_STATIC = 0.2, MU_DYNAMIC = 0.1
 FRICTION/2, JOINT = 1, MU_STATIC = 0.3, MU_DYNAMIC = 0.1
 GSE/1, NS = 1, NO = 0, X = 1
@@ -845,7 +845,9 @@ ACCGRAV/JGRAV = -9.81
         let report = check(&pendulum(friction), &settings);
         assert_eq!(
             report,
-            format!("{refused}: joint friction is not simulated"),
+            format!(
+                "{refused}: a JOINT's own friction keywords are not simulated: give the joint a FRICTION statement"
+            ),
             "{friction}"
         );
     }

@@ -172,6 +172,9 @@ pub struct Diff {
     /// the search from (the IC's second value, 0 when not given); `None`
     /// for an explicit DIFF, whose FUNCTION is the rate.
     pub implicit: Option<f64>,
+    /// The `FRICTION` whose stiction creep it is (its input a `DIF` of an
+    /// id past the dataset's DIFFs), `None` for the others.
+    pub creep: Option<u64>,
 }
 
 /// A state of a control element's linear system: entry `entry` (from 1)
@@ -195,17 +198,25 @@ impl Diff {
         }
     }
 
-    /// Its column in a run's rows: `DIF(3)`, `TFSISO/2.x1` (no comma, so
-    /// that a CSV header needs no quoting).
+    /// Its column in a run's rows: `DIF(3)`, `TFSISO/2.x1`,
+    /// `FRICTION/4.creep` (no comma, so that a CSV header needs no
+    /// quoting).
     pub fn column(&self) -> String {
+        if let Some(friction) = self.creep {
+            return format!("FRICTION/{friction}.creep");
+        }
         match &self.linear {
             None => crate::scene::diff_input(self.id),
             Some(state) => format!("{}.x{}", state.statement, state.entry),
         }
     }
 
-    /// What it is in messages: `DIFF/3`, `TFSISO/2's state 1`.
+    /// What it is in messages: `DIFF/3`, `TFSISO/2's state 1`,
+    /// `FRICTION/4's creep`.
     pub fn label(&self) -> String {
+        if let Some(friction) = self.creep {
+            return format!("FRICTION/{friction}'s creep");
+        }
         match &self.linear {
             None => format!("DIFF/{}", self.id),
             Some(state) => format!("{}'s state {}", state.statement, state.entry),

@@ -10,7 +10,7 @@ use std::collections::HashMap;
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::{linear, motions, units};
+use super::{frictions, linear, motions, units};
 use crate::Shown;
 use crate::check::Reference;
 use crate::model::initial::{number, numbers};
@@ -76,7 +76,8 @@ const FORCE_ELEMENTS: [&str; 8] = [
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`] (PINPUT
 /// and POUTPUT list the VARIABLEs that `PINVAL` and `POUVAL` read).
-const SIMULATED: [&str; 22] = [
+const SIMULATED: [&str; 23] = [
+    "FRICTION",
     "PART",
     "MARKER",
     "DIFF",
@@ -176,7 +177,7 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
 
 /// A number as the language reads it back exactly (parenthesised when
 /// negative).
-fn literal(value: f64) -> String {
+pub(super) fn literal(value: f64) -> String {
     if value < 0.0 {
         format!("({value:?})")
     } else {
@@ -187,7 +188,7 @@ fn literal(value: f64) -> String {
 /// `Σ coefficient·term` as expression text, the terms whose coefficient
 /// is zero left out (an empty term is the constant itself); `0` when none
 /// is left.
-fn linear_sum(terms: &[(f64, String)]) -> String {
+pub(super) fn linear_sum(terms: &[(f64, String)]) -> String {
     let written: Vec<String> = terms
         .iter()
         .filter(|(coefficient, _)| *coefficient != 0.0)
@@ -301,7 +302,7 @@ impl Reader<'_> {
 
     fn model(&mut self, mut notes: Vec<(String, Span)>) -> Model {
         let masses = self.masses();
-        let diffs = self.diffs();
+        let mut diffs = self.diffs();
         let floating = self.floating_markers();
         let (mut forces, mut force_statements) = self.forces(&floating);
         for contact in super::contacts::contacts(self.dataset, &self.scene, &mut self.errors) {
@@ -316,6 +317,7 @@ impl Reader<'_> {
             &mut self.errors,
         ));
         self.point_masses_turn_freely(&joints, &masses);
+        self.frictions(&joints, &mut forces, &mut force_statements, &mut diffs);
         let (motions, marker_motions) = self.motions(&joints);
         let mut couplers = super::couplers::couplers(self.dataset, &joints, &mut self.errors);
         couplers.extend(super::couplers::gears(
@@ -359,6 +361,81 @@ impl Reader<'_> {
             run: None,
             statics: false,
             land_on_outputs: false,
+        }
+    }
+
+    /// The FRICTION statements on `joints` ([`frictions`]): each a force
+    /// along (or torque about) its joint's axis added to `forces`, and the
+    /// state of its creep, when it has stiction, to `diffs`, its input a
+    /// `DIF` of an id past every DIFF of the dataset.
+    fn frictions(
+        &mut self,
+        joints: &[Joint],
+        forces: &mut Vec<Force>,
+        force_statements: &mut Vec<(&'static str, u64)>,
+        diffs: &mut Vec<Diff>,
+    ) {
+        let read = frictions::frictions(self.dataset, joints, &self.scene, &mut self.errors);
+        let mut next_id = self
+            .scene
+            .statements
+            .diffs
+            .keys()
+            .max()
+            .map_or(1, |id| id + 1);
+        for friction in read {
+            let creep_id = next_id;
+            let input = crate::scene::diff_input(creep_id);
+            let with_creep = |text: &str| text.replace(frictions::CREEP, &input);
+            if let Some(rate) = &friction.creep_rate {
+                let Some(function) =
+                    self.written(friction.statement, "creep rate", &with_creep(rate))
+                else {
+                    continue;
+                };
+                next_id += 1;
+                self.scene.statements.diffs.insert(
+                    creep_id,
+                    crate::scene::DiffData {
+                        initial: 0.0,
+                        function: Some(self.expressions[function].checked.clone()),
+                        implicit: false,
+                        initial_rate: 0.0,
+                    },
+                );
+                diffs.push(Diff {
+                    id: creep_id,
+                    initial: 0.0,
+                    function,
+                    linear: None,
+                    static_hold: true,
+                    implicit: None,
+                    creep: Some(friction.id),
+                });
+            }
+            let what = if friction.rotational {
+                "torque"
+            } else {
+                "force"
+            };
+            let Some(magnitude) =
+                self.written(friction.statement, what, &with_creep(&friction.magnitude))
+            else {
+                continue;
+            };
+            let joint = &joints[friction.joint];
+            forces.push(if friction.rotational {
+                Force::single(true, joint.i, joint.j, magnitude, false)
+            } else {
+                Force::Vector {
+                    i: joint.i,
+                    reaction: self.scene.body_of(&joint.j),
+                    axes: joint.j,
+                    force: [None, None, Some(magnitude)],
+                    torque: [None; 3],
+                }
+            });
+            force_statements.push(("FRICTION", friction.id));
         }
     }
 
@@ -823,6 +900,7 @@ impl Reader<'_> {
                     .argument("IMPLICIT", 3)
                     .is_some()
                     .then_some(initial_rate),
+                creep: None,
             });
         }
         diffs.extend(self.linear_states());
@@ -876,6 +954,7 @@ impl Reader<'_> {
                     }),
                     static_hold: system.static_hold,
                     implicit: None,
+                    creep: None,
                 });
             }
         }
@@ -1446,9 +1525,7 @@ fn positive_definite(inertia: &Matrix3<f64>) -> bool {
 /// instead where there is something.
 fn why_not_simulated(name: &str) -> String {
     let is = |kind: &str| is_kind(name, kind);
-    if is("FRICTION") {
-        "is joint friction (Adams' stiction and sliding on a joint's reactions), which mbexpr does not simulate: write the friction as an SFORCE whose FUNCTION reads the joint's reaction, JOINT(id, 0, comp, rm), and its velocity".to_string()
-    } else if is("GSE") {
+    if is("GSE") {
         "is defined by user subroutines (GSE_DERIV, GSE_OUTPUT ...), which mbexpr does not call: write its states as DIFFs, or as an LSE or a TFSISO where it is linear".to_string()
     } else if is("NFORCE") {
         "is a force among several markers (stiffness and damping matrices), which mbexpr does not simulate: write its components as VFORCEs and VTORQUEs".to_string()

@@ -99,7 +99,9 @@ fn friction(statement: &Statement) -> Option<SimulateError> {
     }
     let refuse = |keyword: &str, span: Span| SimulateError::Unsupported {
         statement: statement.label(),
-        reason: format!("sets {keyword}: joint friction is not simulated"),
+        reason: format!(
+            "sets {keyword}: a JOINT's own friction keywords are not simulated: give the joint a FRICTION statement"
+        ),
         span,
     };
     // A coefficient given (as 0 to reach here): without one, a FRICTION

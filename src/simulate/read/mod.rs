@@ -9,6 +9,7 @@ mod couplers;
 mod curves;
 mod dataset;
 mod exact;
+mod frictions;
 mod joints;
 mod linear;
 mod motions;

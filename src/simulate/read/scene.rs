@@ -321,6 +321,7 @@ impl Reader<'_> {
                 linear: None,
                 static_hold: false,
                 implicit: None,
+                creep: None,
             });
         }
         read
