@@ -12,6 +12,7 @@ mod contacts;
 mod control;
 mod corpus;
 mod couplers;
+mod curve_curve;
 mod delays;
 mod diagnostics;
 mod documents;

@@ -69,7 +69,7 @@ def test_the_ball_rebounds_conserving_what_damping_leaves(examples):
 
 def test_refusals_name_their_place():
     with pytest.raises(mbexpr.Error) as caught:
-        mbexpr.simulate("joint\nPART/1, GROUND\nCVCV/1, IFLOAT = 1, JFLOAT = 2, ICURVE = 3, JCURVE = 4, IRM = 5, JRM = 6\nEND\n", end=1, steps=1)
+        mbexpr.simulate("joint\nPART/1, GROUND\nUCON/1, FUNCTION = USER(1)\nEND\n", end=1, steps=1)
     assert caught.value.line == 3 and "constraint" in str(caught.value)
     with pytest.raises(mbexpr.Error, match="end time"):
         mbexpr.simulate(A1.format(k=1e5), end=-1.0, steps=10)

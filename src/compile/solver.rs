@@ -30,10 +30,11 @@ pub struct SolverCall {
 
 impl SolverCall {
     /// The functions whose calls become inputs.
-    pub const FUNCTIONS: [Function; 12] = [
+    pub const FUNCTIONS: [Function; 13] = [
         Function::Joint,
         Function::Jprim,
         Function::Ptcv,
+        Function::Cvcv,
         Function::Motion,
         Function::Sforce,
         Function::Vforce,

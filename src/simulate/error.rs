@@ -46,7 +46,7 @@ impl Place {
 pub enum SimulateError {
     /// A statement that needs a constraint solver.
     #[error(
-        "not simulated: {statement} is a constraint mbexpr does not hold yet (it holds JOINTs of every type, JPRIMs, PTCVs, COUPLERs, GEARs, GCONs on places, and MOTIONs on joints and between markers)"
+        "not simulated: {statement} is a constraint mbexpr does not hold yet (it holds JOINTs of every type, JPRIMs, PTCVs, CVCVs, COUPLERs, GEARs, GCONs on places, and MOTIONs on joints and between markers)"
     )]
     Constraint {
         /// `JOINT/3`.

@@ -59,9 +59,9 @@ pub use constraints::Residuals;
 pub use curve::{Curve, CurvePoint};
 pub use error::{Place, SimulateError};
 pub use model::{
-    Along, Contact, Diff, ExactPart, Expression, Force, Friction, GeneralConstraint, Given, Joint,
-    JointInitial, JointKind, LinearState, MarkerMotion, MassProperties, Model, Motion, OnCurve,
-    Output, Shape, Solid,
+    Along, Contact, CurvePair, Diff, ExactPart, Expression, Force, Friction, GeneralConstraint,
+    Given, Joint, JointInitial, JointKind, LinearState, MarkerMotion, MassProperties, Model,
+    Motion, OnCurve, Output, Shape, Solid,
 };
 pub use read::{
     CommandFileError, ModelFormat, RunCommands, Unread, format_of_path, from_scene, is_scene_path,

@@ -487,6 +487,10 @@ pub enum JointKind {
     /// part ([`Joint::curve`]), J the floating marker at the point of
     /// contact (2).
     PointCurve,
+    /// `CVCV`: a curve drawn in the axes of I's marker kept in contact with,
+    /// and tangent to, a curve drawn in the axes of J's, in I's x-y plane
+    /// ([`Joint::pair`]) (2).
+    CurveCurve,
 }
 
 impl JointKind {
@@ -528,7 +532,10 @@ impl JointKind {
             | JointKind::Planar
             | JointKind::AtPoint
             | JointKind::Orientation => 3,
-            JointKind::InLine | JointKind::ParallelAxes | JointKind::PointCurve => 2,
+            JointKind::InLine
+            | JointKind::ParallelAxes
+            | JointKind::PointCurve
+            | JointKind::CurveCurve => 2,
             JointKind::InPlane
             | JointKind::Perpendicular
             | JointKind::RackPin
@@ -542,10 +549,12 @@ impl JointKind {
         JointKind::PRIMITIVES.iter().any(|(kind, _)| *kind == self)
     }
 
-    /// The statement that gives it: `JOINT`, `JPRIM` or `PTCV`.
+    /// The statement that gives it: `JOINT`, `JPRIM`, `PTCV` or `CVCV`.
     pub fn statement(self) -> &'static str {
         if self == JointKind::PointCurve {
             "PTCV"
+        } else if self == JointKind::CurveCurve {
+            "CVCV"
         } else if self.is_primitive() {
             "JPRIM"
         } else {
@@ -572,6 +581,8 @@ pub struct Joint {
     /// A PTCV's curve and the marker it is drawn in; `None` for the other
     /// kinds.
     pub curve: Option<OnCurve>,
+    /// A CVCV's two curves; `None` for the other kinds.
+    pub pair: Option<Box<CurvePair>>,
     /// Its equations (indices below [`JointKind::equations`]) that repeat
     /// other joints' at the initial state, left out of the run.
     pub redundant: Vec<usize>,
@@ -579,20 +590,34 @@ pub struct Joint {
     pub span: Span,
 }
 
-/// The curve a `PTCV` holds its I marker's origin on.
+/// The curve a `PTCV` holds its I marker's origin on, or one of a `CVCV`'s
+/// two curves.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OnCurve {
     /// The curve, in the RM marker's axes from its origin.
     pub curve: Curve,
     /// The RM marker (on the part of the joint's J marker).
     pub frame: Target,
-    /// The parameter of the curve's point nearest `DISP`, where the
-    /// initial analysis places the I marker's origin, when DISP is given.
+    /// The parameter of the curve's point nearest `DISP` (a CVCV's IDISP
+    /// or JDISP), where the initial analysis places the point of contact,
+    /// when it is given.
     pub start: Option<f64>,
-    /// The speed of I's origin along the curve at time 0 (`VEL`, relative
-    /// to the curve, positive towards its greater parameters), which the
-    /// initial analysis of the velocities gives it, when VEL is given.
+    /// The speed of the point of contact along the curve at time 0 (`VEL`,
+    /// a CVCV's IVEL or JVEL: relative to the curve, positive towards its
+    /// greater parameters), which the initial analysis of the velocities
+    /// gives it, when it is given.
     pub speed: Option<f64>,
+}
+
+/// The two curves a `CVCV` keeps in contact: each drawn in the axes of its
+/// reference marker (IRM, JRM), with the parameter its IDISP or JDISP sets
+/// at the start and the speed its IVEL or JVEL gives.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurvePair {
+    /// ICURVE, in IRM's axes (IRM is also the joint's I marker).
+    pub i: OnCurve,
+    /// JCURVE, in JRM's axes (JRM is also the joint's J marker).
+    pub j: OnCurve,
 }
 
 impl Joint {

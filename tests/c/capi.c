@@ -248,7 +248,7 @@ int main(void) {
       MBEXPR_ERROR)
     report("method 7", &error);
   mbexpr_model_free(model);
-  if (mbexpr_model_from_text("joint\nPART/1, GROUND\nCVCV/1, IFLOAT = 1, JFLOAT = 2, ICURVE = 3, JCURVE = 4, IRM = 5, JRM = 6\nEND\n",
+  if (mbexpr_model_from_text("joint\nPART/1, GROUND\nUCON/1, FUNCTION = USER(1)\nEND\n",
                              MBEXPR_DATASET, &model, &error) == MBEXPR_ERROR)
     report("joint", &error);
   mbexpr_error_free(&error); /* freeing an empty error does nothing */

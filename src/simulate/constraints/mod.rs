@@ -26,6 +26,7 @@
 //! out-of-plane equations are dependent) are found once, at the initial
 //! state, and left out ([`Joint::redundant`]), as Adams removes them.
 
+mod curve_curve;
 mod drives;
 mod general;
 mod on_curve;
@@ -96,6 +97,9 @@ fn joint_rows<T: crate::number::Number>(
     if let Some(on) = &joint.curve {
         return on_curve::curve_rows(model, joint, on, bodies, piece);
     }
+    if let Some(pair) = &joint.pair {
+        return curve_curve::curve_rows(model, joint, pair, bodies);
+    }
     let i = frame(model, &joint.i, bodies);
     let j = frame(model, &joint.j, bodies);
     let apart = i.origin.minus(&j.origin);
@@ -146,6 +150,7 @@ fn joint_rows<T: crate::number::Number>(
         JointKind::ParallelAxes => parallel().into_iter().collect(),
         JointKind::Perpendicular => vec![zi.dot(zj)],
         JointKind::PointCurve => unreachable!("a PTCV is read with its curve"),
+        JointKind::CurveCurve => unreachable!("a CVCV is read with its curves"),
     }
 }
 
@@ -207,6 +212,9 @@ fn initial_rows(
             if let Some((on, speed)) = curve_speed(joint) {
                 rows.push(on_curve::speed_row(model, joint, on, speed, bodies));
             }
+            if let Some(pair) = &joint.pair {
+                rows.extend(curve_curve::speed_rows(model, joint, pair, bodies));
+            }
         }
     } else {
         for part in &model.exact {
@@ -215,6 +223,9 @@ fn initial_rows(
         for joint in &model.joints {
             if let Some((on, start)) = curve_start(joint) {
                 rows.push(on_curve::start_row(model, joint, on, start, bodies));
+            }
+            if let Some(pair) = &joint.pair {
+                rows.extend(curve_curve::start_rows(model, joint, pair, bodies));
             }
         }
     }
@@ -624,8 +635,19 @@ pub(crate) fn owner_of_row(
                 exact_row_count(part),
             )
         }))
-        .chain(model.joints.iter().filter_map(|joint| {
-            curve_start(joint).map(|_| (format!("the DISP of PTCV/{}", joint.id), joint.span))
+        .chain(model.joints.iter().flat_map(|joint| {
+            let point = curve_start(joint).map(|_| "the DISP of PTCV");
+            let pair = joint.pair.as_deref();
+            let first = pair
+                .and_then(|pair| pair.i.start)
+                .map(|_| "the IDISP of CVCV");
+            let second = pair
+                .and_then(|pair| pair.j.start)
+                .map(|_| "the JDISP of CVCV");
+            [point, first, second]
+                .into_iter()
+                .flatten()
+                .map(|what| (format!("{what}/{}", joint.id), joint.span))
         }));
     motions
         .enumerate()
@@ -708,25 +730,34 @@ pub(crate) fn joints_singular_in(model: &super::Model) -> crate::eval::OutputErr
 
 /// The error of joints whose multipliers cannot be solved at the state
 /// `bodies` give: where an open curve's PTCV has lost its point (I's
-/// origin past an end of the curve), that PTCV's, at its statement;
-/// otherwise [`joints_singular_in`].
+/// origin past an end of the curve), or a CVCV its point of contact, that
+/// PTCV's or CVCV's, at its statement; otherwise [`joints_singular_in`].
 pub(crate) fn joints_failed_in<T: crate::number::Number>(
     model: &super::Model,
     bodies: &[BodyMotion<T>],
 ) -> crate::eval::OutputError {
-    let off_end = model.joints.iter().find(|joint| {
-        joint
-            .curve
-            .as_ref()
-            .is_some_and(|on| on_curve::past_an_end(model, joint, on, bodies))
+    let off_end = model.joints.iter().find_map(|joint| {
+        let point = joint.curve.as_ref().and_then(|on| {
+            on_curve::past_an_end(model, joint, on, bodies).then(|| {
+                format!(
+                    "PTCV/{}: its I marker has run past an end of CURVE/{}, an OPEN curve: a PTCV holds the point between the curve's ends (lengthen the curve, or close it)",
+                    joint.id, on.curve.id
+                )
+            })
+        });
+        let pair = joint.pair.as_ref().and_then(|pair| {
+            curve_curve::past_an_end(model, joint, pair, bodies).map(|curve| {
+                format!(
+                    "CVCV/{}: its point of contact has run past an end of CURVE/{curve}, an OPEN curve: a CVCV holds the contact between the curves' ends (lengthen the curve, or close it)",
+                    joint.id
+                )
+            })
+        });
+        point.or(pair).map(|reason| (joint, reason))
     });
     match off_end {
-        Some(joint) => {
-            let curve = joint.curve.as_ref().map_or(0, |on| on.curve.id);
-            let mut error = singular_because(&format!(
-                "PTCV/{}: its I marker has run past an end of CURVE/{curve}, an OPEN curve: a PTCV holds the point between the curve's ends (lengthen the curve, or close it)",
-                joint.id
-            ));
+        Some((joint, reason)) => {
+            let mut error = singular_because(&reason);
             if let crate::eval::EvalError::Law { span, .. } = &mut error.error {
                 *span = joint.span;
             }

@@ -22,6 +22,7 @@ use nalgebra::Vector3;
 
 use super::rows::{BodyMotion, Row};
 use crate::number::Number;
+use crate::simulate::curve::Curve;
 use crate::simulate::model::{Joint, Model, OnCurve};
 
 /// The two equations of PTCV `joint` on `on`, bodies moving as `bodies`
@@ -60,7 +61,7 @@ pub(super) fn curve_rows<T: Number>(
     // end pieces are continued, so that a point drawn past an end can be
     // put back on the curve.
     let alpha = match nearest {
-        Some(alpha) if curve.closed || piece.is_none() || alpha.abs() <= 1.0 + PAST_END => alpha,
+        Some(alpha) if piece.is_none() || !off_the_ends(curve, alpha) => alpha,
         _ => return vec![failed(), failed()],
     };
     // One Newton step on s'(α) · (ρ − s(α)) = 0 carries α's derivatives.
@@ -122,11 +123,18 @@ pub(super) fn start_row(
     start: f64,
     bodies: &[BodyMotion<f64>],
 ) -> Row<f64> {
-    let Some((mut row, alpha)) = parameter_row(model, joint, on, bodies) else {
-        return failed();
-    };
+    match parameter_row(model, joint, on, bodies) {
+        Some((row, alpha)) => started(row, alpha, start, &on.curve),
+        None => failed(),
+    }
+}
+
+/// The row `row` of a curve's parameter `alpha` (its value 0, its rate
+/// `α'`) made the equation that puts the parameter at `start`: its value
+/// `alpha − start`, for a closed curve in the period nearest it.
+pub(super) fn started(mut row: Row<f64>, alpha: f64, start: f64, curve: &Curve) -> Row<f64> {
     let mut away = alpha - start;
-    if on.curve.closed {
+    if curve.closed {
         away -= 2.0 * (away / 2.0).round();
     }
     row.value = away;
@@ -145,10 +153,18 @@ pub(super) fn speed_row(
     speed: f64,
     bodies: &[BodyMotion<f64>],
 ) -> Row<f64> {
-    let Some((row, alpha)) = parameter_row(model, joint, on, bodies) else {
-        return failed();
-    };
-    let length = on.curve.at(&alpha).tangent.norm();
+    match parameter_row(model, joint, on, bodies) {
+        Some((row, alpha)) => sped(row, alpha, speed, &on.curve),
+        None => failed(),
+    }
+}
+
+/// The row `row` of a curve's parameter `alpha` (its value 0, its rate
+/// `α'`) made the equation that gives the point of contact the speed
+/// `speed` along the curve: its rate `|s'| α' − speed`, its row times
+/// `|s'|`, its value 0.
+pub(super) fn sped(row: Row<f64>, alpha: f64, speed: f64, curve: &Curve) -> Row<f64> {
+    let length = curve.at(&alpha).tangent.norm();
     let mut row = row.scaled(length);
     row.value = 0.0;
     row.rate -= speed;
@@ -172,12 +188,7 @@ fn parameter_row(
     let alpha = on.curve.nearest(&place)?;
     let at = on.curve.at(&alpha);
     let gradient = at.tangent / (at.tangent.norm_squared() - at.bend.dot(&(place - at.place)));
-    let mut row = Row {
-        value: 0.0,
-        rate: 0.0,
-        bias: 0.0,
-        coefficients: Vec::new(),
-    };
+    let mut row = Row::zero();
     for (k, component) in local.iter().enumerate() {
         row.rate += component.rate * gradient[k];
         row = row.plus_coefficients(component, &gradient[k]);
@@ -217,12 +228,15 @@ pub(super) fn past_an_end<T: Number>(
     on: &OnCurve,
     bodies: &[BodyMotion<T>],
 ) -> bool {
-    if on.curve.closed {
-        return false;
-    }
     on.curve
         .nearest(&local_place(model, joint, on, bodies))
-        .is_some_and(|alpha| alpha.abs() > 1.0 + PAST_END)
+        .is_some_and(|alpha| off_the_ends(&on.curve, alpha))
+}
+
+/// Whether `alpha` lies past an end of `curve`, an open curve, by more than
+/// rounding's room: there the point of contact has left the curve.
+pub(super) fn off_the_ends(curve: &Curve, alpha: f64) -> bool {
+    !curve.closed && alpha.abs() > 1.0 + PAST_END
 }
 
 /// How far past ±1 an open curve's parameter may go before the point of
@@ -230,7 +244,7 @@ pub(super) fn past_an_end<T: Number>(
 const PAST_END: f64 = 1e-9;
 
 /// A row whose value is not a number: the curve has no point of contact.
-fn failed<T: Number>() -> Row<T> {
+pub(super) fn failed<T: Number>() -> Row<T> {
     Row {
         value: T::from(f64::NAN),
         rate: T::zero(),

@@ -145,6 +145,9 @@ pub(crate) struct Reactions {
     general: Vec<Vec<(usize, [f64; 6])>>,
     /// Each body's centre of mass and rotation to ground.
     bodies: Vec<(Vector3<f64>, Matrix3<f64>)>,
+    /// For each joint that is a CVCV, its point of contact in ground (where
+    /// its floating markers sit), when one is found.
+    contacts: Vec<Option<Vector3<f64>>>,
 }
 
 /// Adds the loads `−c λ` of the rows `rows` with multipliers from
@@ -217,6 +220,14 @@ impl Reactions {
                 .iter()
                 .map(|body| (body.centre, body.rotation))
                 .collect(),
+            contacts: model
+                .joints
+                .iter()
+                .map(|joint| {
+                    let pair = joint.pair.as_ref()?;
+                    super::curve_curve::contact_point(model, joint, pair, bodies)
+                })
+                .collect(),
         }
     }
 
@@ -274,13 +285,13 @@ impl Reactions {
             None => (-1.0, body_of(model, other)),
         };
         // A PTCV's J side is its floating marker, at the point of contact:
-        // I's origin.
-        let point_curve =
-            matches!(holder, Holder::Joint(index) if model.joints[index].curve.is_some());
-        let origin = if point_curve {
-            self.place(model, i).0
-        } else {
-            self.place(model, marker).0
+        // I's origin; both sides of a CVCV are, at the point of contact.
+        let origin = match holder {
+            Holder::Joint(index) if model.joints[index].curve.is_some() => self.place(model, i).0,
+            Holder::Joint(index) if model.joints[index].pair.is_some() => {
+                self.contacts[index].unwrap_or_else(|| Vector3::repeat(f64::NAN))
+            }
+            _ => self.place(model, marker).0,
         };
         let mut force = Vector3::zeros();
         let mut torque = Vector3::zeros();

@@ -224,6 +224,25 @@ impl<T: Number> Row<T> {
         self
     }
 
+    /// The row of `self + factor · other`, `factor` a number that does not
+    /// move (its own rate left out).
+    pub(crate) fn plus_times(mut self, other: &Row<T>, factor: &T) -> Row<T> {
+        self.value += other.value.clone() * factor.clone();
+        self.rate += other.rate.clone() * factor.clone();
+        self.bias += other.bias.clone() * factor.clone();
+        self.plus_coefficients(other, factor)
+    }
+
+    /// The row that is zero at every state.
+    pub(crate) fn zero() -> Row<T> {
+        Row {
+            value: T::zero(),
+            rate: T::zero(),
+            bias: T::zero(),
+            coefficients: Vec::new(),
+        }
+    }
+
     /// `self` with `factor` times `other`'s row of `G` added to its own
     /// (its value, rate and bias unchanged): the chain rule's part of a
     /// function of rows whose other parts are worked out on their own.

@@ -1,5 +1,5 @@
-//! `PTCV` statements of a dataset, with the `CURVE` and `MATRIX`
-//! statements their curves are made of.
+//! `PTCV` and `CVCV` statements of a dataset, with the `CURVE` and
+//! `MATRIX` statements their curves are made of.
 
 use std::collections::HashMap;
 
@@ -10,7 +10,7 @@ use crate::model::{Dataset, Statement, Value, is_kind};
 use crate::scene::{Scene, Target};
 use crate::simulate::SimulateError;
 use crate::simulate::curve::{Curve, MAX_ORDER};
-use crate::simulate::model::{Joint, JointKind, OnCurve};
+use crate::simulate::model::{CurvePair, Joint, JointKind, OnCurve};
 use crate::span::Span;
 
 /// The PTCV statements of `dataset` as joints, their markers found in
@@ -40,34 +40,13 @@ fn point_curve(
 ) -> Option<Joint> {
     let label = statement.label();
     let model_error = |message: String, span: Span| SimulateError::Model { message, span };
-    let speed = match statement.argument("VEL", 3) {
-        None => None,
-        Some(argument) => match number(statement, "VEL", f64::NAN) {
-            Ok(speed) if speed.is_finite() => Some(speed),
-            _ => {
-                errors.push(model_error(
-                    format!("{label}: VEL = the initial speed along the curve: one number"),
-                    argument.span,
-                ));
-                None
-            }
-        },
-    };
-    let mut marker = |keyword: &str| -> Option<Target> {
-        let found = super::named_marker(statement, keyword, scene);
-        if found.is_none() {
-            errors.push(model_error(
-                format!("{label}: {keyword} must name a fixed MARKER of the model"),
-                statement.place_of(keyword, keyword.len()),
-            ));
-        }
-        found
-    };
+    let speed = given_speed(statement, "VEL", errors);
+    let mut marker = |keyword: &str| fixed_marker(statement, keyword, scene, errors);
     let i = marker("I");
     let rm = marker("RM");
-    let float = floating_body(statement, floating, errors);
-    let curve = statement_curve(dataset, statement, errors);
-    let (i, rm, float, curve) = (i?, rm?, float?, curve?);
+    let float = floating_body(statement, "JFLOAT", floating, errors);
+    let curve = statement_curve(dataset, statement, "CURVE", errors);
+    let (i, rm, float, (curve, _)) = (i?, rm?, float?, curve?);
     if scene.body_of(&rm) != float {
         errors.push(model_error(
             format!(
@@ -86,7 +65,7 @@ fn point_curve(
         ));
         return None;
     }
-    let start = start_parameter(statement, scene, rm, &curve, errors)?;
+    let start = start_parameter(statement, ["DISP", "ICM"], scene, rm, &curve, errors)?;
     Some(Joint {
         id: statement.id.unwrap_or(0),
         kind: JointKind::PointCurve,
@@ -99,29 +78,175 @@ fn point_curve(
             start,
             speed,
         }),
+        pair: None,
         redundant: Vec::new(),
         span: statement.span,
     })
 }
 
+/// The CVCV statements of `dataset` as joints (I the IRM marker, J the
+/// JRM marker), their markers found in `scene` (the floating ones in
+/// `floating`), every problem added to `errors` at its place.
+pub(crate) fn curve_pairs(
+    dataset: &Dataset,
+    scene: &Scene,
+    floating: &HashMap<u64, Option<usize>>,
+    errors: &mut Vec<SimulateError>,
+) -> Vec<Joint> {
+    dataset
+        .statements
+        .iter()
+        .filter(|statement| is_kind(&statement.name, "CVCV"))
+        .filter_map(|statement| curve_pair(dataset, statement, scene, floating, errors))
+        .collect()
+}
+
+/// One side of a CVCV: `ICURVE`, `IRM`, `IFLOAT`, `IDISP`, `IICM`, `IVEL`
+/// (`side` "I") or their J twins.
+fn curve_side(
+    dataset: &Dataset,
+    statement: &Statement,
+    side: &str,
+    scene: &Scene,
+    floating: &HashMap<u64, Option<usize>>,
+    errors: &mut Vec<SimulateError>,
+) -> Option<OnCurve> {
+    let label = statement.label();
+    let word = |name: &str| format!("{side}{name}");
+    let speed = given_speed(statement, &word("VEL"), errors);
+    let frame = fixed_marker(statement, &word("RM"), scene, errors);
+    let float = floating_body(statement, &word("FLOAT"), floating, errors);
+    let found = statement_curve(dataset, statement, &word("CURVE"), errors);
+    let (frame, float, (curve, curve_statement)) = (frame?, float?, found?);
+    if scene.body_of(&frame) != float {
+        errors.push(SimulateError::Model {
+            message: format!(
+                "{label}: {side}FLOAT and {side}RM must be markers of the same part: the curve is drawn in {side}RM's axes and the floating marker moves on that part"
+            ),
+            span: statement.place_of(&word("FLOAT"), 2),
+        });
+        return None;
+    }
+    let order = number(curve_statement, "ORDER", 4.0).unwrap_or(4.0);
+    let lifted = (0..=64)
+        .map(|k| curve.at(&(-1.0 + f64::from(k) / 32.0)).place.z.abs())
+        .fold(0.0, f64::max);
+    let problem = if order < 4.0 {
+        Some(format!(
+            "{label}: CURVE/{} has ORDER = {order}: a CVCV's point of contact crosses its curves' knots, so it needs curves whose tangents and bends are continuous there (ORDER 4 or more)",
+            curve.id
+        ))
+    } else if lifted > 0.0 {
+        Some(format!(
+            "{label}: CURVE/{} leaves the x-y plane of {side}RM (a z coordinate of {lifted:e}): a CVCV's curves are planar, their z coordinates zero",
+            curve.id
+        ))
+    } else {
+        None
+    };
+    if let Some(message) = problem {
+        errors.push(SimulateError::Model {
+            message,
+            span: statement.place_of(&word("CURVE"), 2),
+        });
+        return None;
+    }
+    let start = start_parameter(
+        statement,
+        [&word("DISP"), &word("ICM")],
+        scene,
+        frame,
+        &curve,
+        errors,
+    )?;
+    Some(OnCurve {
+        curve,
+        frame,
+        start,
+        speed,
+    })
+}
+
+fn curve_pair(
+    dataset: &Dataset,
+    statement: &Statement,
+    scene: &Scene,
+    floating: &HashMap<u64, Option<usize>>,
+    errors: &mut Vec<SimulateError>,
+) -> Option<Joint> {
+    let label = statement.label();
+    let i = curve_side(dataset, statement, "I", scene, floating, errors);
+    let j = curve_side(dataset, statement, "J", scene, floating, errors);
+    let (i, j) = (i?, j?);
+    let refuse = |message: String| SimulateError::Model {
+        message: format!("{label}: {message}"),
+        span: statement.span,
+    };
+    if scene.body_of(&i.frame) == scene.body_of(&j.frame) {
+        errors.push(refuse(
+            "its two curves are on one part: a CVCV holds a curve of one part against a curve of another".to_string(),
+        ));
+        return None;
+    }
+    // Each marker's z axis in ground, as drawn.
+    let normal = |target: &Target| match target {
+        Target::Ground => Vector3::z(),
+        Target::Marker(index) => {
+            let marker = &scene.markers[*index];
+            let body = marker
+                .body
+                .map_or_else(nalgebra::UnitQuaternion::identity, |body| {
+                    scene.bodies[body].orientation
+                });
+            body * marker.orientation * Vector3::z()
+        }
+    };
+    let tilt = normal(&i.frame).cross(&normal(&j.frame)).norm();
+    if tilt > PLANE_TILT {
+        errors.push(refuse(format!(
+            "its curves are not in one plane: the z axes of IRM and JRM are {:.3} degrees apart, where a CVCV's curves lie in one plane (the z axes parallel)",
+            tilt.asin().to_degrees()
+        )));
+        return None;
+    }
+    Some(Joint {
+        id: statement.id.unwrap_or(0),
+        kind: JointKind::CurveCurve,
+        i: i.frame,
+        j: j.frame,
+        pitch: 0.0,
+        curve: None,
+        pair: Some(Box::new(CurvePair { i, j })),
+        redundant: Vec::new(),
+        span: statement.span,
+    })
+}
+
+/// The sine of the largest angle between the planes of a CVCV's curves
+/// (the z axes of IRM and JRM) as read: drawing's rounding.
+const PLANE_TILT: f64 = 1e-9;
+
 /// The parameter of the curve's point nearest `statement`'s DISP (given
 /// in the axes of its ICM marker, or of `rm`), where the initial analysis
 /// places the point of contact, as Adams does; `Some(None)` without DISP,
-/// `None` when DISP or ICM cannot be read (the error in `errors`).
+/// `None` when DISP or ICM cannot be read (the error in `errors`). `DISP`
+/// and `ICM` are `keywords`' words (a CVCV's IDISP and IICM, JDISP and
+/// JICM).
 fn start_parameter(
     statement: &Statement,
+    [disp, icm]: [&str; 2],
     scene: &Scene,
     rm: Target,
     curve: &Curve,
     errors: &mut Vec<SimulateError>,
 ) -> Option<Option<f64>> {
-    let Some(argument) = statement.argument("DISP", 4) else {
+    let Some(argument) = statement.argument(disp, disp.len()) else {
         return Some(None);
     };
     let label = statement.label();
-    let Ok([x, y, z]) = numbers(statement, "DISP", [0.0; 3]) else {
+    let Ok([x, y, z]) = numbers(statement, disp, [0.0; 3]) else {
         errors.push(SimulateError::Model {
-            message: format!("{label}: DISP = x, y, z: three numbers"),
+            message: format!("{label}: {disp} = x, y, z: three numbers"),
             span: argument.span,
         });
         return None;
@@ -136,16 +261,16 @@ fn start_parameter(
             )
         }
     };
-    let within = match statement.argument("ICM", 3) {
+    let within = match statement.argument(icm, icm.len()) {
         None => rm,
-        Some(icm) => match super::named_marker(statement, "ICM", scene) {
+        Some(argument) => match super::named_marker(statement, icm, scene) {
             Some(target) if scene.body_of(&target) == scene.body_of(&rm) => target,
             _ => {
                 errors.push(SimulateError::Model {
                         message: format!(
-                            "{label}: ICM must name a fixed MARKER on the part of RM (DISP is given in its axes)"
+                            "{label}: {icm} must name a fixed MARKER on the part of the curve's marker ({disp} is given in its axes)"
                         ),
-                        span: icm.span,
+                        span: argument.span,
                     });
                 return None;
             }
@@ -159,7 +284,7 @@ fn start_parameter(
         _ => {
             errors.push(SimulateError::Model {
                 message: format!(
-                    "{label}: DISP lies beyond an end of CURVE/{}: give a point by the curve",
+                    "{label}: {disp} lies beyond an end of CURVE/{}: give a point by the curve",
                     curve.id
                 ),
                 span: argument.span,
@@ -169,24 +294,25 @@ fn start_parameter(
     }
 }
 
-/// The body of `statement`'s JFLOAT, a floating marker (`Some(None)`
-/// for one on ground), or `None` when it names none.
+/// The body of `statement`'s floating marker `keyword` (JFLOAT, IFLOAT)
+/// (`Some(None)` for one on ground), or `None` when it names none.
 fn floating_body(
     statement: &Statement,
+    keyword: &str,
     floating: &HashMap<u64, Option<usize>>,
     errors: &mut Vec<SimulateError>,
 ) -> Option<Option<usize>> {
-    let id = number(statement, "JFLOAT", f64::NAN)
+    let id = number(statement, keyword, f64::NAN)
         .ok()
         .filter(|id| id.fract() == 0.0 && *id > 0.0);
     let body = id.and_then(|id| floating.get(&(id as u64)).copied());
     if body.is_none() {
         errors.push(SimulateError::Model {
             message: format!(
-                "{}: JFLOAT must name a floating MARKER (MARKER/id, PART = ..., FLOATING) on the part of the curve",
+                "{}: {keyword} must name a floating MARKER (MARKER/id, PART = ..., FLOATING) on the part of the curve",
                 statement.label()
             ),
-            span: statement.place_of("JFLOAT", 2),
+            span: statement.place_of(keyword, 2),
         });
     }
     body
@@ -206,25 +332,68 @@ fn named<'d>(
     })
 }
 
-/// The curve `statement`'s CURVE names.
-fn statement_curve(
-    dataset: &Dataset,
+/// The curve `statement`'s `keyword` (CURVE, ICURVE, JCURVE) names, and
+/// the CURVE statement.
+fn statement_curve<'d>(
+    dataset: &'d Dataset,
     statement: &Statement,
+    keyword: &str,
     errors: &mut Vec<SimulateError>,
-) -> Option<Curve> {
-    let Some(found) = named(dataset, statement, "CURVE", "CURVE") else {
+) -> Option<(Curve, &'d Statement)> {
+    let Some(found) = named(dataset, statement, keyword, "CURVE") else {
         errors.push(SimulateError::Model {
             message: format!(
-                "{}: CURVE must name a CURVE statement of the model",
+                "{}: {keyword} must name a CURVE statement of the model",
                 statement.label()
             ),
-            span: statement.place_of("CURVE", 2),
+            span: statement.place_of(keyword, 2),
         });
         return None;
     };
     curve(dataset, found)
         .map_err(|error| errors.push(error))
         .ok()
+        .map(|curve| (curve, found))
+}
+
+/// The speed along the curve `statement`'s `keyword` (VEL, IVEL, JVEL)
+/// gives, if it gives one (a problem added to `errors`).
+fn given_speed(
+    statement: &Statement,
+    keyword: &str,
+    errors: &mut Vec<SimulateError>,
+) -> Option<f64> {
+    let argument = statement.argument(keyword, keyword.len())?;
+    match number(statement, keyword, f64::NAN) {
+        Ok(speed) if speed.is_finite() => Some(speed),
+        _ => {
+            errors.push(SimulateError::Model {
+                message: format!(
+                    "{}: {keyword} = the initial speed along the curve: one number",
+                    statement.label()
+                ),
+                span: argument.span,
+            });
+            None
+        }
+    }
+}
+
+/// The fixed marker `statement`'s `keyword` names (a problem added to
+/// `errors` when it names none).
+fn fixed_marker(
+    statement: &Statement,
+    keyword: &str,
+    scene: &Scene,
+    errors: &mut Vec<SimulateError>,
+) -> Option<Target> {
+    super::needed_marker(
+        statement,
+        keyword,
+        scene,
+        errors,
+        &format!("{keyword} must name a fixed MARKER of the model"),
+    )
 }
 
 /// The curve of CURVE statement `statement`.

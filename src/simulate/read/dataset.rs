@@ -26,7 +26,7 @@ use crate::simulate::model::{
 use crate::span::Span;
 
 /// Statements that need a constraint solver.
-const CONSTRAINTS: [&str; 4] = ["UCON", "CVCV", "FLEX_BODY", "CONSTRAINT"];
+const CONSTRAINTS: [&str; 3] = ["UCON", "FLEX_BODY", "CONSTRAINT"];
 
 /// Statements that take no part in the motion (output, graphics, units,
 /// solver settings and data read by elements that are refused anyway).
@@ -76,7 +76,7 @@ const FORCE_ELEMENTS: [&str; 8] = [
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`] (PINPUT
 /// and POUTPUT list the VARIABLEs that `PINVAL` and `POUVAL` read).
-const SIMULATED: [&str; 23] = [
+const SIMULATED: [&str; 24] = [
     "FRICTION",
     "PART",
     "MARKER",
@@ -89,6 +89,7 @@ const SIMULATED: [&str; 23] = [
     "JOINT",
     "JPRIM",
     "PTCV",
+    "CVCV",
     "MOTION",
     "COUPLER",
     "GEAR",
@@ -311,6 +312,12 @@ impl Reader<'_> {
         }
         let mut joints = super::joints::joints(self.dataset, &self.scene, &mut self.errors);
         joints.extend(super::curves::point_curves(
+            self.dataset,
+            &self.scene,
+            &floating,
+            &mut self.errors,
+        ));
+        joints.extend(super::curves::curve_pairs(
             self.dataset,
             &self.scene,
             &floating,
@@ -1532,6 +1539,6 @@ fn why_not_simulated(name: &str) -> String {
     } else if is("MFORCE") {
         "is a load on a flexible body, which mbexpr does not simulate".to_string()
     } else {
-        "is not among the elements mbexpr integrates (PART, POINT_MASS, JOINT, JPRIM, PTCV, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, TFSISO, LSE, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, CONTACT, ACCGRAV)".to_string()
+        "is not among the elements mbexpr integrates (PART, POINT_MASS, JOINT, JPRIM, PTCV, CVCV, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, TFSISO, LSE, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, CONTACT, ACCGRAV)".to_string()
     }
 }

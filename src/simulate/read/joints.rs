@@ -204,6 +204,7 @@ fn between_markers(
         j,
         pitch: 0.0,
         curve: None,
+        pair: None,
         redundant: Vec::new(),
         span: statement.span,
     })
@@ -216,17 +217,13 @@ fn marker(
     scene: &Scene,
     errors: &mut Vec<SimulateError>,
 ) -> Option<Target> {
-    let found = super::named_marker(statement, keyword, scene);
-    if found.is_none() {
-        errors.push(SimulateError::Model {
-            message: format!(
-                "{}: a joint needs {keyword} = the id of a MARKER of the model",
-                statement.label()
-            ),
-            span: statement.place_of(keyword, keyword.len()),
-        });
-    }
-    found
+    super::needed_marker(
+        statement,
+        keyword,
+        scene,
+        errors,
+        &format!("a joint needs {keyword} = the id of a MARKER of the model"),
+    )
 }
 
 /// The initial conditions of `joints` (`IC` of a REVOLUTE or TRANSLATIONAL

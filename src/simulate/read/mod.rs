@@ -109,6 +109,26 @@ fn named_marker(
         .and_then(|id| scene.find_marker(&crate::check::Reference::Id(id)).ok())
 }
 
+/// The marker `statement`'s `keyword` names; where it names none,
+/// `None`, and the statement's label and `message` added to `errors` at
+/// the keyword.
+fn needed_marker(
+    statement: &model::Statement,
+    keyword: &str,
+    scene: &crate::scene::Scene,
+    errors: &mut Vec<crate::simulate::SimulateError>,
+    message: &str,
+) -> Option<crate::scene::Target> {
+    let found = named_marker(statement, keyword, scene);
+    if found.is_none() {
+        errors.push(crate::simulate::SimulateError::Model {
+            message: format!("{}: {message}", statement.label()),
+            span: statement.place_of(keyword, keyword.len()),
+        });
+    }
+    found
+}
+
 /// The word an argument is set to (`TYPE = SOLID_TO_SOLID`), upper case;
 /// `None` when its value is not one word (a list, an expression): the one
 /// reading of a keyword's word the dataset's readers share.
