@@ -616,7 +616,7 @@ impl<'m> Mechanics<'m> {
                     r.abs() <= 1e-13 * (g.abs() + z.abs()) + 1e-15 * scale + floor
                 });
             let size = residual.amax();
-            let first = *first_size.get_or_insert(size);
+            let (first, first_scale) = *first_size.get_or_insert((size, scale));
             // Below a billionth of the values, and a millionth of where it
             // started (or there from the start), a residual that stops
             // shrinking is the rounding of the joints' solve (or of an
@@ -624,7 +624,7 @@ impl<'m> Mechanics<'m> {
             // a rate near zero).
             let stalled = size >= last_size
                 && size <= 1e-9 * scale
-                && (size <= 1e-6 * first || first <= 1e-9 * scale);
+                && (size <= 1e-6 * first || first <= 1e-9 * first_scale);
             if settled || stalled {
                 return Ok(given);
             }
