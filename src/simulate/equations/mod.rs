@@ -247,8 +247,7 @@ impl<'m> Mechanics<'m> {
                 sources,
                 diff_outputs,
                 implicit_rates,
-                rate_scales: vec![1.0; model.diffs.len()],
-                rates_scaled: false,
+                rate_scales: vec![None; model.diffs.len()],
                 output_of,
                 inverse_inertia,
                 joint_arms: joint_arms(model),
@@ -509,7 +508,9 @@ impl<'m> Mechanics<'m> {
             return Ok(());
         }
         let calls = std::mem::take(&mut self.loop_values);
-        if !self.equations.rates_scaled {
+        if calls.iter().any(|call| {
+            matches!(call, &RunValue::ImplicitRate(diff) if self.equations.rate_scales[diff].is_none())
+        }) {
             let scaled = self.scale_implicit_rates(t, y, held, &calls);
             if let Err(error) = scaled {
                 self.loop_values = calls;
@@ -524,8 +525,8 @@ impl<'m> Mechanics<'m> {
 
     /// Sets [`Equations::rate_scales`] at `(t, y)` from the last settled
     /// values: each implicit DIFF's FUNCTION's derivative in its own DIF1,
-    /// by a forward difference (left at 1 where it is zero, to be set at a
-    /// later state).
+    /// by a forward difference (left unset where it is zero, to be set at
+    /// a later state).
     fn scale_implicit_rates(
         &mut self,
         t: f64,
@@ -533,22 +534,14 @@ impl<'m> Mechanics<'m> {
         held: Option<&[Option<Code>]>,
         calls: &[RunValue],
     ) -> Result<(), OutputError> {
-        if !calls
-            .iter()
-            .any(|call| matches!(call, RunValue::ImplicitRate(_)))
-        {
-            self.equations.rates_scaled = true;
-            return Ok(());
-        }
         let guess = self.settled.clone();
         let given = self.values_at(t, y, held, &guess, calls)?;
-        let mut scaled = true;
         let mut moved = guess.clone();
         for (index, call) in calls.iter().enumerate() {
             let &RunValue::ImplicitRate(diff) = call else {
                 continue;
             };
-            if self.equations.rate_scales[diff] != 1.0 {
+            if self.equations.rate_scales[diff].is_some() {
                 continue;
             }
             let step = 1e-7 * guess[index].abs().max(1e-3);
@@ -558,14 +551,10 @@ impl<'m> Mechanics<'m> {
             // g = z − F: ∂F/∂z = 1 − ∂g/∂z.
             let derivative = 1.0 - (changed[index] - given[index]) / step;
             if derivative.is_finite() && derivative.abs() > 1e-300 {
-                self.equations.rate_scales[diff] = derivative.abs();
-            } else {
-                scaled = false;
+                self.equations.rate_scales[diff] = Some(derivative.abs());
+                // The matrix of the FUNCTION divided by 1 no longer holds.
+                self.settling_matrix = None;
             }
-        }
-        self.equations.rates_scaled = scaled;
-        if self.equations.rate_scales.iter().any(|&scale| scale != 1.0) {
-            self.settling_matrix = None;
         }
         Ok(())
     }
@@ -949,7 +938,7 @@ impl<'m> Mechanics<'m> {
                     let (_, index) = equations.implicit_rates[diff]
                         .expect("an implicit rate is read as a loop value");
                     let residual = expression_value(Some(model.diffs[diff].function));
-                    Ok(solved[index] - residual / equations.rate_scales[diff])
+                    Ok(solved[index] - residual / equations.rate_scales[diff].unwrap_or(1.0))
                 }
                 (RunValue::Acceleration(measure), _, Some(accelerations)) => accelerations
                     .value(model, measure)
@@ -1304,12 +1293,11 @@ struct Equations<'m> {
     implicit_rates: Vec<Option<(usize, usize)>>,
     /// Of each implicit DIFF, what its FUNCTION is divided by in its loop
     /// value, `DIF1 − FUNCTION / scale`: the FUNCTION's derivative in its
-    /// DIF1 at the first state where that is not zero (1 before), so that
+    /// DIF1 at the first state where that is not zero (`None` before, when
+    /// the FUNCTION is divided by 1), so that
     /// Newton's iterations and their test of convergence see the rate
     /// whatever the FUNCTION's scale (`1e-7·DIF1(1) − ...`).
-    rate_scales: Vec<f64>,
-    /// Whether [`Equations::rate_scales`] are set.
-    rates_scaled: bool,
+    rate_scales: Vec<Option<f64>>,
     /// The program's output of each expression it computes, by expression.
     output_of: Vec<Option<usize>>,
     /// The inverse inertia of each body.
