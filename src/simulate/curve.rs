@@ -258,6 +258,12 @@ impl Curve {
         self.pieces.len()
     }
 
+    /// Each piece's bounding ball, in order: its centre and a radius that
+    /// every point of the piece lies within.
+    pub fn piece_balls(&self) -> impl Iterator<Item = (Vector3<f64>, f64)> + '_ {
+        self.pieces.iter().map(|piece| (piece.centre, piece.radius))
+    }
+
     /// The index of the piece `alpha` falls in (wrapped for a closed
     /// curve; the first or last for an open curve's `alpha` beyond its
     /// ends).

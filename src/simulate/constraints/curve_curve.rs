@@ -313,25 +313,7 @@ const SAMPLES_PER_PIECE: usize = 4;
 /// (in IRM's plane) of the curves' samples, refined by Newton's iterations
 /// on `F`; `None` where they do not settle.
 fn parameters(pair: &CurvePair, placement: &Placement<f64>) -> Option<(f64, f64)> {
-    let samples = |curve: &Curve| {
-        let count = SAMPLES_PER_PIECE * curve.piece_count();
-        (0..=count).map(move |k| -1.0 + 2.0 * k as f64 / count as f64)
-    };
-    let ours: Vec<(f64, Vector3<f64>)> = samples(&pair.i.curve)
-        .map(|alpha| (alpha, pair.i.curve.at(&alpha).place))
-        .collect();
-    let theirs: Vec<(f64, Vector3<f64>)> = samples(&pair.j.curve)
-        .map(|beta| (beta, placement.point(&pair.j.curve.at(&beta).place)))
-        .collect();
-    let apart = |a: &Vector3<f64>, b: &Vector3<f64>| (a.x - b.x).powi(2) + (a.y - b.y).powi(2);
-    let (mut alpha, mut beta, _) = ours
-        .iter()
-        .flat_map(|(alpha, a)| {
-            theirs
-                .iter()
-                .map(move |(beta, b)| (*alpha, *beta, apart(a, b)))
-        })
-        .min_by(|x, y| x.2.total_cmp(&y.2))?;
+    let (mut alpha, mut beta) = nearest_samples(pair, placement)?;
     for _ in 0..50 {
         let (next_alpha, next_beta) = newton(pair, placement, alpha, beta)?;
         let settled = (next_alpha - alpha).abs() <= 1e-13 * (1.0 + alpha.abs())
@@ -346,6 +328,91 @@ fn parameters(pair: &CurvePair, placement: &Placement<f64>) -> Option<(f64, f64)
     }
     let (f, _) = equations(&pair.i.curve.at(&alpha), &pair.j.curve.at(&beta), placement);
     (f[0].abs() + f[1].abs() <= 1e-10).then_some((alpha, beta))
+}
+
+/// The nearest pair (in IRM's plane) of the curves' samples, `SAMPLES_PER_PIECE`
+/// a piece evenly in each curve's parameter, the first in the order of the
+/// parameters among equals. Only the samples of pieces whose bounding
+/// balls come as near each other as the nearest pair of balls' far sides
+/// are looked at: no pair of the other pieces' samples can be nearer, so
+/// the pair is the one all the samples give.
+fn nearest_samples(pair: &CurvePair, placement: &Placement<f64>) -> Option<(f64, f64)> {
+    // In IRM's plane (JCURVE's shadow on it is no larger than the curve).
+    let planar =
+        |a: &Vector3<f64>, b: &Vector3<f64>| ((a.x - b.x).powi(2) + (a.y - b.y).powi(2)).sqrt();
+    let ours: Vec<(Vector3<f64>, f64)> = pair.i.curve.piece_balls().collect();
+    let theirs: Vec<(Vector3<f64>, f64)> = pair
+        .j
+        .curve
+        .piece_balls()
+        .map(|(centre, radius)| (placement.point(&centre), radius))
+        .collect();
+    // The least and most each pair of balls' points can be apart.
+    let bounds: Vec<(f64, f64)> = ours
+        .iter()
+        .flat_map(|(a, ra)| {
+            theirs.iter().map(move |(b, rb)| {
+                let between = planar(a, b);
+                (between - ra - rb, between + ra + rb)
+            })
+        })
+        .collect();
+    let reach = bounds
+        .iter()
+        .map(|&(_, most)| most)
+        .fold(f64::INFINITY, f64::min);
+    if !reach.is_finite() {
+        return None;
+    }
+    // Each piece's samples `(index along the curve, α)`, and their points
+    // in IRM's axes once a pair of pieces near enough needs them.
+    let by_piece = |curve: &Curve| {
+        let count = SAMPLES_PER_PIECE * curve.piece_count();
+        let mut pieces = vec![Vec::new(); curve.piece_count()];
+        for k in 0..=count {
+            let alpha = -1.0 + 2.0 * k as f64 / count as f64;
+            pieces[curve.piece_of(alpha)].push((k, alpha));
+        }
+        pieces
+    };
+    let placed =
+        |curve: &Curve, samples: &[(usize, f64)], place: &dyn Fn(&Vector3<f64>) -> Vector3<f64>| {
+            samples
+                .iter()
+                .map(|&(k, alpha)| (k, alpha, place(&curve.at(&alpha).place)))
+                .collect::<Vec<_>>()
+        };
+    let (our_samples, their_samples) = (by_piece(&pair.i.curve), by_piece(&pair.j.curve));
+    let mut our_points = vec![None; ours.len()];
+    let mut their_points = vec![None; theirs.len()];
+    let mut nearest: Option<(f64, usize, usize, f64, f64)> = None;
+    for a in 0..ours.len() {
+        for b in 0..theirs.len() {
+            if bounds[a * theirs.len() + b].0 > reach {
+                continue;
+            }
+            let our_points: &Vec<_> = our_points[a]
+                .get_or_insert_with(|| placed(&pair.i.curve, &our_samples[a], &|p| *p));
+            let their_points: &Vec<_> = their_points[b].get_or_insert_with(|| {
+                placed(&pair.j.curve, &their_samples[b], &|p| placement.point(p))
+            });
+            for &(k, alpha, p) in our_points {
+                for &(l, beta, q) in their_points {
+                    let apart = (p.x - q.x).powi(2) + (p.y - q.y).powi(2);
+                    let candidate = (apart, k, l, alpha, beta);
+                    let better = nearest.is_none_or(|best| {
+                        (candidate.0, candidate.1, candidate.2)
+                            .partial_cmp(&(best.0, best.1, best.2))
+                            == Some(std::cmp::Ordering::Less)
+                    });
+                    if better {
+                        nearest = Some(candidate);
+                    }
+                }
+            }
+        }
+    }
+    nearest.map(|(_, _, _, alpha, beta)| (alpha, beta))
 }
 
 /// The point of contact at a state: the parameters, each curve's point
