@@ -27,18 +27,12 @@ fn geared_difference(rows: &[Vec<f64>], alpha: f64, ratio: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Two wheels (Izz `i1`, `i2`) turning about ground's z at their own
-/// pivots, `AZ1 + ratio·AZ2 = 0`, a torque `torque` on the first:
-/// `AZ1 = ½ τ/(I1 + I2/ratio²) t²`.
-#[test]
-fn two_geared_wheels_turn_as_their_reflected_inertia_says() {
-    for (i1, i2, ratio, torque) in [
-        (0.5, 0.2, 2.7, 3.0),
-        (1.0, 4.0, -0.6, 30.0),
-        (0.1, 0.1, 1.0, 2.0),
-    ] {
-        let text = format!(
-            "gears
+/// Two wheels (Izz `i1`, `i2`) on revolute joints at their own pivots on
+/// ground, coupled `AZ1 + ratio·AZ2 = 0`, a torque `torque` on the first,
+/// and a REQUEST of the columns `request`.
+fn geared_wheels((i1, i2, ratio, torque): (f64, f64, f64, f64), request: &str) -> String {
+    format!(
+        "gears
 PART/1, GROUND
 MARKER/1, PART = 1
 MARKER/2, PART = 1, QP = 1, 0, 0
@@ -50,10 +44,23 @@ JOINT/1, REVOLUTE, I = 20, J = 1
 JOINT/2, REVOLUTE, I = 30, J = 2
 COUPLER/1, JOINTS = 1, 2, TYPE = R:R, SCALES = 1, {ratio}
 SFORCE/1, ROTATIONAL, I = 20, J = 1, FUNCTION = {torque}
-REQUEST/1, F1 = AZ(20, 1), F2 = AZ(30, 2)
+REQUEST/1, {request}
 END
 "
-        );
+    )
+}
+
+/// Two wheels (Izz `i1`, `i2`) turning about ground's z at their own
+/// pivots, `AZ1 + ratio·AZ2 = 0`, a torque `torque` on the first:
+/// `AZ1 = ½ τ/(I1 + I2/ratio²) t²`.
+#[test]
+fn two_geared_wheels_turn_as_their_reflected_inertia_says() {
+    for (i1, i2, ratio, torque) in [
+        (0.5, 0.2, 2.7, 3.0),
+        (1.0, 4.0, -0.6, 30.0),
+        (0.1, 0.1, 1.0, 2.0),
+    ] {
+        let text = geared_wheels((i1, i2, ratio, torque), "F1 = AZ(20, 1), F2 = AZ(30, 2)");
         let run = run(&text, &settings(4.0, 40, 1e-9)).expect("the gears turn");
         let reflected = i1 + i2 / (ratio * ratio);
         let worst = geared_difference(&run.rows, torque / reflected, 1.0 / ratio);
@@ -63,6 +70,41 @@ END
         );
         assert!(turns.abs() > 1.0, "{turns}");
         assert!(worst < 1e-6, "{worst}");
+    }
+}
+
+/// The net torque at each wheel's joint markers, `TZ(i, j, j)` (and with
+/// j = 0, everything at I), counts what the coupler applies through that
+/// joint: with no other torque about z on a wheel but the SFORCE on the
+/// first, it is each wheel's `Izz α` (the revolute joint's own reaction
+/// has no z torque), `α1 = τ/(I1 + I2/ratio²)`, `α2 = −α1/ratio`.
+#[test]
+fn the_net_torque_at_a_coupled_joint_is_what_turns_its_wheel() {
+    for (i1, i2, ratio, torque) in [(0.5, 0.2, 2.7, 3.0), (1.0, 4.0, -0.6, 30.0)] {
+        let text = geared_wheels(
+            (i1, i2, ratio, torque),
+            "F1 = TZ(20, 1, 1), F2 = TZ(30, 2, 2), F3 = TZ(30, 0, 2), F4 = TZ(2, 30, 2)",
+        );
+        let run = run(&text, &settings(1.0, 10, 1e-9)).expect("the gears turn");
+        let alpha1 = torque / (i1 + i2 / (ratio * ratio));
+        let expected = [i1 * alpha1, -i2 * alpha1 / ratio];
+        let worst = run
+            .rows
+            .iter()
+            .map(|row| {
+                let columns = &row[FIRST..FIRST + 4];
+                let off = [
+                    columns[0] - expected[0],
+                    columns[1] - expected[1],
+                    columns[2] - expected[1],
+                    // On the other side of the joint, the opposite.
+                    columns[3] + expected[1],
+                ];
+                off.iter().map(|d| d.abs()).fold(0.0, f64::max) / torque
+            })
+            .fold(0.0, f64::max);
+        println!("I {i1} {i2} ratio {ratio}: net torques off by {worst:.2e} of the torque");
+        assert!(worst < 1e-7, "{worst}");
     }
 }
 

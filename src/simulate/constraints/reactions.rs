@@ -31,6 +31,9 @@ enum Holder {
     Joint(usize),
     Motion(usize),
     MarkerMotion(usize),
+    /// A coupler through one of the joints it couples: the coupler's
+    /// index, and the joint's place among its joints.
+    Coupler(usize, usize),
 }
 
 /// A reaction component a model's expression asks for, found in the model.
@@ -132,17 +135,25 @@ pub(crate) fn pick(force: &Vector3<f64>, torque: &Vector3<f64>, component: usize
     }
 }
 
+/// A holder's loads on the bodies it holds: each body's index and `[force
+/// | torque about the centre of mass]`, in ground.
+type BodyLoads = Vec<(usize, [f64; 6])>;
+
 /// The reactions at one state: each holder's loads on the bodies.
 pub(crate) struct Reactions {
     /// For each joint, its load on each body it holds: `[force | torque
     /// about the centre of mass]`, in ground.
-    joints: Vec<Vec<(usize, [f64; 6])>>,
+    joints: Vec<BodyLoads>,
     /// The same for each motion on a joint.
-    motions: Vec<Vec<(usize, [f64; 6])>>,
+    motions: Vec<BodyLoads>,
     /// The same for each motion between markers.
-    marker_motions: Vec<Vec<(usize, [f64; 6])>>,
-    /// The same for each general constraint.
-    general: Vec<Vec<(usize, [f64; 6])>>,
+    marker_motions: Vec<BodyLoads>,
+    /// For each coupler, for each joint it couples, the loads its
+    /// equation puts on that joint's bodies through that joint's
+    /// displacement (the equation is the sum of the joints' terms).
+    couplers: Vec<Vec<BodyLoads>>,
+    /// For each general constraint, its load on each body it holds.
+    general: Vec<BodyLoads>,
     /// Each body's centre of mass and rotation to ground.
     bodies: Vec<(Vector3<f64>, Matrix3<f64>)>,
     /// For each joint that is a CVCV, its point of contact in ground (where
@@ -150,12 +161,24 @@ pub(crate) struct Reactions {
     contacts: Vec<Option<Vector3<f64>>>,
 }
 
+/// The loads `−c λ` of the next `count` rows of `rows` with the next
+/// multipliers of `multipliers`.
+fn take_loads(
+    rows: &mut impl Iterator<Item = super::rows::Row<f64>>,
+    multipliers: &mut impl Iterator<Item = f64>,
+    count: usize,
+) -> BodyLoads {
+    let mut loads = Vec::new();
+    add_loads(rows.take(count), multipliers, &mut loads);
+    loads
+}
+
 /// Adds the loads `−c λ` of the rows `rows` with multipliers from
 /// `multipliers` (taken in order) to `loads`.
 fn add_loads(
     rows: impl Iterator<Item = super::rows::Row<f64>>,
     multipliers: &mut impl Iterator<Item = f64>,
-    loads: &mut Vec<(usize, [f64; 6])>,
+    loads: &mut BodyLoads,
 ) {
     for row in rows {
         let Some(lambda) = multipliers.next() else {
@@ -191,11 +214,7 @@ impl Reactions {
         // as it holds, with their multipliers.
         let mut rows = active_rows(model, bodies, imposed).into_iter();
         let mut multipliers = multipliers.iter().copied();
-        let mut loads_of = |count: usize| {
-            let mut loads = Vec::new();
-            add_loads(rows.by_ref().take(count), &mut multipliers, &mut loads);
-            loads
-        };
+        let mut loads_of = |count: usize| take_loads(&mut rows, &mut multipliers, count);
         let joints = model
             .joints
             .iter()
@@ -203,18 +222,49 @@ impl Reactions {
             .collect();
         let motions = model.motions.iter().map(|_| loads_of(1)).collect();
         let marker_motions = model.marker_motions.iter().map(|_| loads_of(1)).collect();
-        // The couplers' reactions are not asked for (a net force refuses
-        // them): their equations are passed over.
-        loads_of(model.couplers.len());
+        // A coupler's equation `Σ s q = 0` puts on each joint's bodies the
+        // load of its own term `s q` (the equation's whole load is their
+        // sum).
+        let couplers = model
+            .couplers
+            .iter()
+            .map(|coupler| {
+                let whole = rows.next();
+                let lambda = multipliers.next().filter(|_| whole.is_some());
+                coupler
+                    .joints
+                    .iter()
+                    .map(|&(joint, rotation, scale)| {
+                        let mut loads = Vec::new();
+                        if let Some(lambda) = lambda {
+                            let term = super::joint_displacement(
+                                model,
+                                &model.joints[joint],
+                                rotation,
+                                bodies,
+                            )
+                            .scaled(scale);
+                            add_loads(
+                                std::iter::once(term),
+                                &mut std::iter::once(lambda),
+                                &mut loads,
+                            );
+                        }
+                        loads
+                    })
+                    .collect()
+            })
+            .collect();
         let general = model
             .general_constraints
             .iter()
-            .map(|_| loads_of(1))
+            .map(|_| take_loads(&mut rows, &mut multipliers, 1))
             .collect();
         Reactions {
             joints,
             motions,
             marker_motions,
+            couplers,
             general,
             bodies: bodies
                 .iter()
@@ -277,6 +327,10 @@ impl Reactions {
                 let motion = &model.marker_motions[index];
                 (&self.marker_motions[index], &motion.i, &motion.j)
             }
+            Holder::Coupler(index, term) => {
+                let joint = &model.joints[model.couplers[index].joints[term].0];
+                (&self.couplers[index][term], &joint.i, &joint.j)
+            }
         };
         let (marker, other) = if on_j { (j, i) } else { (i, j) };
         // On ground, the opposite of what the other marker's body takes.
@@ -335,8 +389,9 @@ impl Reactions {
     }
 
     /// The force and the torque about `i`'s origin, in ground, that the
-    /// joints, primitives and motions between markers `i` and `j` (every
-    /// other marker when `j` is ground, id 0) apply on `i`.
+    /// joints, primitives, motions and couplers (through the joints they
+    /// couple) between markers `i` and `j` (every other marker when `j` is
+    /// ground, id 0) apply on `i`.
     pub(crate) fn between(
         &self,
         model: &Model,
@@ -358,6 +413,22 @@ impl Reactions {
                     .iter()
                     .enumerate()
                     .map(|(index, motion)| (Holder::MarkerMotion(index), &motion.i, &motion.j)),
+            )
+            .chain(
+                model
+                    .couplers
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(index, coupler)| {
+                        coupler
+                            .joints
+                            .iter()
+                            .enumerate()
+                            .map(move |(term, &(joint, _, _))| {
+                                let joint = &model.joints[joint];
+                                (Holder::Coupler(index, term), &joint.i, &joint.j)
+                            })
+                    }),
             );
         let mut sum = (Vector3::zeros(), Vector3::zeros());
         for (holder, holder_i, holder_j) in holders {

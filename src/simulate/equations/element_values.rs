@@ -160,8 +160,9 @@ enum About {
 
 /// The net force between two markers, `FX FY FZ FM TX TY TZ TM (i, j,
 /// k)`, found in the model: the sum at marker I of what the force elements
-/// and the joints, primitives and motions between I and J apply on it (all
-/// that act at I when J is 0), the torque about I's origin, along K's axes.
+/// and the joints, primitives, motions and couplers (through the joints they
+/// couple) between I and J apply on it (all that act at I when J is 0), the
+/// torque about I's origin, along K's axes.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct NetForce {
     function: Function,
@@ -178,28 +179,6 @@ impl NetForce {
             .map_err(|why| format!("{}: {why}", call.input_name()))?;
         let marker = |position: usize| markers.get(position).copied().unwrap_or(Target::Ground);
         let (i, j) = (marker(0), marker(1));
-        // What acts at I whose reaction is not computed: a coupler on a
-        // joint at I (left out, the sum would be silently short).
-        let between = |a: &Target, b: &Target| {
-            (*a == i && (j == Target::Ground || *b == j))
-                || (*b == i && (j == Target::Ground || *a == j))
-        };
-        let unknown = model
-            .couplers
-            .iter()
-            .find(|coupler| {
-                coupler.joints.iter().any(|&(joint, _, _)| {
-                    let joint = &model.joints[joint];
-                    between(&joint.i, &joint.j)
-                })
-            })
-            .map(|coupler| format!("{}/{}", coupler.statement, coupler.id));
-        if let Some(holder) = unknown {
-            return Err(format!(
-                "{}: {holder} acts there and its reaction is not computed yet, so the net force would leave it out",
-                call.input_name()
-            ));
-        }
         Ok(NetForce {
             function: call.function,
             i,
