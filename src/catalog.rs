@@ -304,7 +304,7 @@ functions! {
     Beam "BEAM" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a force component of BEAM id";
     Bush "BUSH" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a force component of BUSHING id";
     Field "FIELD" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a force component of FIELD id";
-    Nforce "NFORCE" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jfloat", "comp", "rm") "a force component of NFORCE id";
+    Nforce "NFORCE" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "at_marker", "comp", "rm") "a force component of NFORCE id at marker at_marker (one of its I markers, or its J)";
     Contact "CONTACT" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a force component of CONTACT id";
     Ptcv "PTCV" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a reaction component of point-to-curve constraint id";
     Cvcv "CVCV" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a reaction component of curve-to-curve constraint id";

@@ -33,6 +33,7 @@ mod magnitudes;
 mod massless;
 mod model;
 mod motions;
+mod nforce;
 mod numerics;
 mod parse;
 mod plot;

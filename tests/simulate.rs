@@ -294,7 +294,7 @@ DIFF/1, IC = 1, FUNCTION = DIF(1)**2
             settings(2.0, 4, 1e-6),
         ),
         (
-            "a cylindrical joint's friction, a GSE and an NFORCE, each saying what to write instead",
+            "a cylindrical joint's friction and a GSE, each saying what to write instead, and an NFORCE without its stiffness",
             "elements not simulated
 PART/1, GROUND
 MARKER/1, PART = 1

@@ -20,7 +20,8 @@ pub struct SolverCall {
     pub function: Function,
     /// The statement id.
     pub id: u64,
-    /// 0: the reaction on the I marker; 1: on the J marker.
+    /// 0: the reaction on the I marker; 1: on the J marker (NFORCE: the
+    /// id of the marker, one of its I markers or its J).
     pub jflag: i64,
     /// The component, 1 to 8.
     pub component: i64,
@@ -30,7 +31,7 @@ pub struct SolverCall {
 
 impl SolverCall {
     /// The functions whose calls become inputs.
-    pub const FUNCTIONS: [Function; 13] = [
+    pub const FUNCTIONS: [Function; 14] = [
         Function::Joint,
         Function::Jprim,
         Function::Ptcv,
@@ -43,6 +44,7 @@ impl SolverCall {
         Function::Bush,
         Function::Beam,
         Function::Field,
+        Function::Nforce,
         Function::Contact,
     ];
 

@@ -60,7 +60,7 @@ fn id_of(statement: &Statement, keyword: &str) -> Result<Option<u64>, Configurat
 }
 
 /// The statement `kind/id` of the dataset.
-fn find<'d>(dataset: &'d Dataset, kind: &str, id: u64) -> Option<&'d Statement> {
+pub(crate) fn find<'d>(dataset: &'d Dataset, kind: &str, id: u64) -> Option<&'d Statement> {
     dataset
         .statements
         .iter()
@@ -251,7 +251,7 @@ fn state_equations(
 /// A MATRIX statement's matrix: `FULL = RORDER` (by rows) or `CORDER` (by
 /// columns, the default) with `ROWS`, `COLUMNS` and `VALUES`, or `SPARSE`
 /// with `I`, `J` and `VALUES` (entries not given are zero).
-fn read_matrix(statement: &Statement) -> Result<DMatrix<f64>, ConfigurationError> {
+pub(crate) fn read_matrix(statement: &Statement) -> Result<DMatrix<f64>, ConfigurationError> {
     if statement.argument("FILE", 4).is_some() {
         return Err(refused(
             statement,

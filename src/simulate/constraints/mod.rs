@@ -38,7 +38,7 @@ mod solve;
 pub(crate) use drives::{Drive, Drives, Imposed, MOTIONS, curve_joints};
 pub(crate) use general::{GeneralConstraints, bodies_of};
 pub(crate) use on_curve::contact_parameter;
-pub(crate) use reactions::{Component, Reactions, flags, pick};
+pub(crate) use reactions::{Component, Reactions, component_and_rm, flags, pick};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
 pub(crate) use solve::{

@@ -106,6 +106,17 @@ pub(crate) fn flags(
             ));
         }
     };
+    let (component, rm) = component_and_rm(model, call)?;
+    Ok((on_j, component, rm))
+}
+
+/// The component (1 to 8) and `rm` marker of `call` in `model`, or why
+/// they cannot be had.
+pub(crate) fn component_and_rm(
+    model: &Model,
+    call: &SolverCall,
+) -> Result<(usize, Target), String> {
+    let written = call.input_name();
     let component = match usize::try_from(call.component) {
         Ok(component @ 1..=8) => component,
         _ => {
@@ -121,7 +132,7 @@ pub(crate) fn flags(
             call.rm
         ));
     };
-    Ok((on_j, component, rm))
+    Ok((component, rm))
 }
 
 /// Component `component` (1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty

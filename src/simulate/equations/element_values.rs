@@ -1,13 +1,16 @@
 //! The values of force elements during a run, as the functions
 //! `SFORCE(id, jflag, comp, rm)`, `VFORCE`, `VTORQ`, `GFORCE`, `BUSH`,
-//! `BEAM`, `FIELD` and `CONTACT`
+//! `BEAM`, `FIELD`, `NFORCE` and `CONTACT`
 //! give them (Adams' convention): the force and the torque the element
 //! applies on its I marker (jflag 0) or its J marker (jflag 1, the floating
 //! marker of a VFORCE, VTORQUE or GFORCE, which sits at I), the torque
 //! about that marker's origin, along the axes of marker `rm` (ground's
 //! when 0); comp 1 `|F|`, 2–4 `Fx Fy Fz`, 5 `|T|`, 6–8 `Tx Ty Tz`. A
 //! CONTACT's value sums its pairs of solids, on the part of its I (or J)
-//! solid, the torque about that part's centre of mass.
+//! solid, the torque about that part's centre of mass. An NFORCE's second
+//! argument is a marker, `NFORCE(id, at_marker, comp, rm)` (Adams
+//! Solver's function): one of its I markers, its force there, or its J
+//! marker, the reactions of all its forces, about J's origin.
 //!
 //! What the element applies is [`super::forces::actions`], the one place
 //! its geometry is written: so a BUSHING's torque on J carries the moment
@@ -19,14 +22,15 @@ use nalgebra::Vector3;
 use super::bodies::Kinematics;
 use super::forces::{Action, actions, axes, body_of, place};
 use crate::catalog::Function;
+use crate::check::Reference;
 use crate::compile::{MarkerCall, SolverCall};
 use crate::scene::Target;
 use crate::simulate::constraints::Reactions;
-use crate::simulate::constraints::{flags, pick};
+use crate::simulate::constraints::{component_and_rm, flags, pick};
 use crate::simulate::model::{Force, Model};
 
 /// The force elements' functions and the statements they read.
-pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 8] = [
+pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 9] = [
     (Function::Sforce, "SFORCE"),
     (Function::Vforce, "VFORCE"),
     (Function::Vtorq, "VTORQUE"),
@@ -34,6 +38,7 @@ pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 8] = [
     (Function::Bush, "BUSHING"),
     (Function::Beam, "BEAM"),
     (Function::Field, "FIELD"),
+    (Function::Nforce, "NFORCE"),
     (Function::Contact, "CONTACT"),
 ];
 
@@ -75,6 +80,9 @@ impl ElementComponent {
                 call.id
             ));
         };
+        if call.function == Function::Nforce {
+            return multipoint(model, call, forces);
+        }
         let (on_j, component, rm) = flags(model, call, "force")?;
         let (i, j) = markers(model, force);
         // A floating marker sits at I; a contact's force is about the
@@ -120,7 +128,7 @@ impl ElementComponent {
 }
 
 /// The I marker of force element `index` of `model` and its J marker: the
-/// J of an SFORCE, the J of a BUSHING, BEAM or FIELD (the marker of its axes); `None` for
+/// J of an SFORCE, the J of a BUSHING, BEAM, FIELD or NFORCE (the marker of its axes); `None` for
 /// the floating marker of a VFORCE, VTORQUE or GFORCE (and any vector
 /// force of a scene), which the model does not keep.
 fn markers(model: &Model, index: usize) -> (Target, Option<Target>) {
@@ -130,11 +138,54 @@ fn markers(model: &Model, index: usize) -> (Target, Option<Target>) {
             let bushing = model
                 .force_statements
                 .get(index)
-                .is_some_and(|(kind, _)| ["BUSHING", "BEAM", "FIELD"].contains(kind));
+                .is_some_and(|(kind, _)| ["BUSHING", "BEAM", "FIELD", "NFORCE"].contains(kind));
             (*i, bushing.then_some(*axes))
         }
         Force::Contact(contact) => (contact.i.marker, Some(contact.j.marker)),
     }
+}
+
+/// The component `NFORCE(id, at_marker, comp, rm)` asks of `model`, whose
+/// forces `forces` are the NFORCE's (one on each I marker, in I's order):
+/// at one of its I markers, that marker's force; at its J marker, the
+/// reactions of them all, the torque about J's origin.
+fn multipoint(
+    model: &Model,
+    call: &SolverCall,
+    forces: Vec<usize>,
+) -> Result<ElementComponent, String> {
+    let (component, rm) = component_and_rm(model, call)?;
+    let at = u64::try_from(call.jflag)
+        .ok()
+        .filter(|id| *id > 0)
+        .and_then(|id| model.scene.find_marker(&Reference::Id(id)).ok());
+    let (i, j) = markers(model, forces[0]);
+    let j = j.unwrap_or(i);
+    let (forces, on_j, marker) = match at {
+        Some(at) if at == j => (forces, true, j),
+        Some(at) => match forces.iter().find(|&&force| markers(model, force).0 == at) {
+            Some(&force) => (vec![force], false, at),
+            None => return Err(not_connected(call)),
+        },
+        None => return Err(not_connected(call)),
+    };
+    Ok(ElementComponent {
+        forces,
+        on_j,
+        about: About::Marker(marker),
+        component,
+        rm,
+    })
+}
+
+/// The error of an NFORCE call whose marker is not one the NFORCE joins.
+fn not_connected(call: &SolverCall) -> String {
+    format!(
+        "{}: at_marker must be one of the markers NFORCE/{} joins (its I markers or its J), not {}",
+        call.input_name(),
+        call.id,
+        call.jflag
+    )
 }
 
 /// The force of `action` and its torque about `origin`, in ground (zero

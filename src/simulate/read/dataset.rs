@@ -8,9 +8,9 @@
 
 use std::collections::HashMap;
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{DMatrix, Matrix3, Vector3};
 
-use super::{frictions, linear, motions, units};
+use super::{frictions, linear, motions, nforce, units};
 use crate::Shown;
 use crate::check::Reference;
 use crate::model::initial::{number, numbers};
@@ -63,7 +63,7 @@ const SOLVER_SETTINGS: [&str; 5] = [
 ];
 
 /// The force elements' statements, as the model names them.
-const FORCE_ELEMENTS: [&str; 8] = [
+const FORCE_ELEMENTS: [&str; 9] = [
     "SFORCE",
     "VFORCE",
     "VTORQUE",
@@ -72,6 +72,7 @@ const FORCE_ELEMENTS: [&str; 8] = [
     "SPRINGDAMPER",
     "BEAM",
     "FIELD",
+    "NFORCE",
 ];
 
 /// The statements the simulator reads besides [`FORCE_ELEMENTS`] (PINPUT
@@ -996,6 +997,10 @@ impl Reader<'_> {
             let dataset = self.dataset;
             current = (kind, dataset.statements[index].id.unwrap_or(0));
             let statement = &dataset.statements[index];
+            if is_kind(&statement.name, "NFORCE") {
+                forces.extend(self.multipoint(index));
+                continue;
+            }
             let Some(i) = self.marker(statement, "I") else {
                 continue;
             };
@@ -1164,45 +1169,120 @@ impl Reader<'_> {
                 return None;
             }
         };
-        let displacement = ["DX", "DY", "DZ"]
-            .map(|name| format!("{name}({i_id},{j_id},{j_id})"))
-            .into_iter()
-            .chain(["AX", "AY", "AZ"].map(|name| format!("{name}({i_id},{j_id})")));
-        let displacement: Vec<String> = displacement
-            .zip(linear.free)
-            .map(|(measure, free)| {
-                if free == 0.0 {
-                    measure
-                } else {
-                    format!("({measure} - {})", literal(free))
-                }
-            })
-            .collect();
-        let rate: Vec<String> = ["VX", "VY", "VZ"]
-            .map(|name| format!("{name}({i_id},{j_id},{j_id},{j_id})"))
-            .into_iter()
-            .chain(["WX", "WY", "WZ"].map(|name| format!("{name}({i_id},{j_id},{j_id})")))
-            .collect();
-        let mut components = [None; 6];
-        for (row, name) in ["FX", "FY", "FZ", "TX", "TY", "TZ"].iter().enumerate() {
-            let terms: Vec<(f64, String)> = (0..6)
-                .map(|column| (-linear.stiffness[row][column], displacement[column].clone()))
-                .chain((0..6).map(|column| (-linear.damping[row][column], rate[column].clone())))
-                .chain([(linear.preload[row], String::new())])
-                .collect();
-            components[row] = Some(self.written(index, name, &linear_sum(&terms))?);
+        let square =
+            |matrix: &linear::Matrix6| DMatrix::from_fn(6, 6, |row, column| matrix[row][column]);
+        let forces = self.linear_forces(
+            index,
+            &[(i_id, i)],
+            (j_id, j),
+            [&square(&linear.stiffness), &square(&linear.damping)],
+            &linear.free,
+            &linear.preload,
+        )?;
+        forces.into_iter().next()
+    }
+
+    /// The forces of the linear element of statement `index` (a BUSHING,
+    /// BEAM or FIELD: one I marker; an NFORCE: several) between its I
+    /// markers `i` and its J marker `j` (ids and places): on I marker `n`,
+    /// along J's axes, `Fₙ = −Σₘ Kₙₘ (Xₘ − Lₘ) − Σₘ Cₙₘ Vₘ + F₀ₙ`, `Xₘ`
+    /// the displacement of I marker `m` from J (`DX DY DZ (Iₘ,J,J)`, then
+    /// the angles `AX AY AZ (Iₘ,J)`) and `Vₘ` its rate (`VX VY VZ
+    /// (Iₘ,J,J,J)`, then `WX WY WZ (Iₘ,J,J)`), each marker's six rows and
+    /// columns of `[K, C]`, `free` (`L`) and `preload` (`F₀`) in turn; each
+    /// component written out as an expression, the reaction on J's part
+    /// at I's origin.
+    fn linear_forces(
+        &mut self,
+        index: usize,
+        i: &[(u64, Target)],
+        (j_id, j): (u64, Target),
+        [stiffness, damping]: [&DMatrix<f64>; 2],
+        free: &[f64],
+        preload: &[f64],
+    ) -> Option<Vec<Force>> {
+        let mut displacement = Vec::with_capacity(6 * i.len());
+        let mut rate = Vec::with_capacity(6 * i.len());
+        for (i_id, _) in i {
+            let measures = ["DX", "DY", "DZ"]
+                .map(|name| format!("{name}({i_id},{j_id},{j_id})"))
+                .into_iter()
+                .chain(["AX", "AY", "AZ"].map(|name| format!("{name}({i_id},{j_id})")));
+            displacement.extend(measures.zip(&free[displacement.len()..]).map(
+                |(measure, free)| {
+                    if *free == 0.0 {
+                        measure
+                    } else {
+                        format!("({measure} - {})", literal(*free))
+                    }
+                },
+            ));
+            rate.extend(
+                ["VX", "VY", "VZ"]
+                    .map(|name| format!("{name}({i_id},{j_id},{j_id},{j_id})"))
+                    .into_iter()
+                    .chain(["WX", "WY", "WZ"].map(|name| format!("{name}({i_id},{j_id},{j_id})"))),
+            );
         }
         let reaction = match j {
             Target::Marker(marker) => self.scene.markers[marker].body,
             _ => None,
         };
-        Some(Force::Vector {
-            i,
-            reaction,
-            axes: j,
-            force: [components[0], components[1], components[2]],
-            torque: [components[3], components[4], components[5]],
-        })
+        let mut forces = Vec::with_capacity(i.len());
+        for (n, (i_id, place)) in i.iter().enumerate() {
+            let mut components = [None; 6];
+            for (offset, name) in ["FX", "FY", "FZ", "TX", "TY", "TZ"].iter().enumerate() {
+                let row = 6 * n + offset;
+                let terms: Vec<(f64, String)> = [(stiffness, &displacement), (damping, &rate)]
+                    .into_iter()
+                    .flat_map(|(matrix, measures)| {
+                        measures
+                            .iter()
+                            .enumerate()
+                            .filter(move |(column, _)| matrix[(row, *column)] != 0.0)
+                            .map(move |(column, measure)| (-matrix[(row, column)], measure.clone()))
+                    })
+                    .chain([(preload[row], String::new())])
+                    .collect();
+                let what = if i.len() == 1 {
+                    (*name).to_string()
+                } else {
+                    format!("{name} on MARKER/{i_id}")
+                };
+                components[offset] = Some(self.written(index, &what, &linear_sum(&terms))?);
+            }
+            forces.push(Force::Vector {
+                i: *place,
+                reaction,
+                axes: j,
+                force: [components[0], components[1], components[2]],
+                torque: [components[3], components[4], components[5]],
+            });
+        }
+        Some(forces)
+    }
+
+    /// An NFORCE of statement `index` ([`nforce`] reads its markers and
+    /// matrices): one force on each of its I markers, the reactions on
+    /// its J marker's part.
+    fn multipoint(&mut self, index: usize) -> Vec<Force> {
+        let statement = &self.dataset.statements[index];
+        match nforce::multipoint(self.dataset, statement, &self.scene) {
+            Ok(read) => self
+                .linear_forces(
+                    index,
+                    &read.i,
+                    read.j,
+                    [&read.stiffness, &read.damping],
+                    &read.free,
+                    &read.preload,
+                )
+                .unwrap_or_default(),
+            Err((message, span)) => {
+                self.refuse(message, span);
+                Vec::new()
+            }
+        }
     }
 
     /// Records a statement's numbers that cannot be read.
@@ -1534,11 +1614,9 @@ fn why_not_simulated(name: &str) -> String {
     let is = |kind: &str| is_kind(name, kind);
     if is("GSE") {
         "is defined by user subroutines (GSE_DERIV, GSE_OUTPUT ...), which mbexpr does not call: write its states as DIFFs, or as an LSE or a TFSISO where it is linear".to_string()
-    } else if is("NFORCE") {
-        "is a force among several markers (stiffness and damping matrices), which mbexpr does not simulate: write its components as VFORCEs and VTORQUEs".to_string()
     } else if is("MFORCE") {
         "is a load on a flexible body, which mbexpr does not simulate".to_string()
     } else {
-        "is not among the elements mbexpr integrates (PART, POINT_MASS, JOINT, JPRIM, PTCV, CVCV, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, TFSISO, LSE, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, CONTACT, ACCGRAV)".to_string()
+        "is not among the elements mbexpr integrates (PART, POINT_MASS, JOINT, JPRIM, PTCV, CVCV, MOTION, COUPLER, GEAR, GCON, SENSOR, DIFF, TFSISO, LSE, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING, SPRINGDAMPER, BEAM, FIELD, NFORCE, CONTACT, ACCGRAV)".to_string()
     }
 }

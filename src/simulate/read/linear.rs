@@ -36,7 +36,7 @@ pub(super) struct Linear {
 /// Why an element's numbers give no matrices: the message and its place.
 pub(super) type Refusal = (String, Span);
 
-fn refusal(error: crate::model::initial::ConfigurationError) -> Refusal {
+pub(super) fn refusal(error: crate::model::initial::ConfigurationError) -> Refusal {
     (error.to_string(), error.span())
 }
 
@@ -50,7 +50,8 @@ fn diagonal(values: [f64; 3], rotations: [f64; 3]) -> Matrix6 {
 }
 
 /// `CRATIO`, 0 when it is left out. The dataset grammar reads it as an
-/// expression (other statements give it one); here it is a number.
+/// expression (other statements give it one); here it is a number, at
+/// least 0 (a negative ratio pumps energy into the parts).
 fn damping_ratio(statement: &Statement) -> Result<f64, Refusal> {
     let Some(argument) = statement.argument("CRATIO", 2) else {
         return Ok(0.0);
@@ -59,15 +60,32 @@ fn damping_ratio(statement: &Statement) -> Result<f64, Refusal> {
         Value::Expression { text, .. } => text.text.trim().parse::<f64>().ok(),
         _ => number(statement, "CRATIO", 0.0).ok(),
     };
-    value.filter(|ratio| ratio.is_finite()).ok_or_else(|| {
-        (
-            format!(
-                "{}: CRATIO is a number here (the damping matrix is CRATIO times the stiffness)",
-                statement.label()
-            ),
+    value
+        .filter(|ratio| ratio.is_finite() && *ratio >= 0.0)
+        .ok_or_else(|| {
+            (
+                format!(
+                    "{}: CRATIO is a number at least 0 here (the damping matrix is CRATIO times the stiffness)",
+                    statement.label()
+                ),
+                argument.span,
+            )
+        })
+}
+
+/// How an element's damping is given: `None` where its `CMATRIX` gives
+/// it, else the `CRATIO` that multiplies its stiffness (0, no damping,
+/// when neither is given); both given is an error.
+pub(super) fn damping_ratio_unless_matrix(statement: &Statement) -> Result<Option<f64>, Refusal> {
+    let ratio = damping_ratio(statement)?;
+    match statement.argument("CMATRIX", 2) {
+        Some(argument) if ratio != 0.0 => Err((
+            format!("{}: give CMATRIX or CRATIO, not both", statement.label()),
             argument.span,
-        )
-    })
+        )),
+        Some(_) => Ok(None),
+        None => Ok(Some(ratio)),
+    }
 }
 
 /// The damping of an element: its `CMATRIX` as `written` reads it, or
@@ -77,14 +95,9 @@ fn damping(
     stiffness: &Matrix6,
     written: impl FnOnce() -> Result<Matrix6, Refusal>,
 ) -> Result<Matrix6, Refusal> {
-    let ratio = damping_ratio(statement)?;
-    match statement.argument("CMATRIX", 2) {
-        Some(argument) if ratio != 0.0 => Err((
-            format!("{}: give CMATRIX or CRATIO, not both", statement.label()),
-            argument.span,
-        )),
-        Some(_) => written(),
-        None => Ok(stiffness.map(|row| row.map(|entry| entry * ratio))),
+    match damping_ratio_unless_matrix(statement)? {
+        None => written(),
+        Some(ratio) => Ok(stiffness.map(|row| row.map(|entry| entry * ratio))),
     }
 }
 

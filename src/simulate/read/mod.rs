@@ -13,6 +13,7 @@ mod frictions;
 mod joints;
 mod linear;
 mod motions;
+mod nforce;
 mod scene;
 mod sensors;
 mod units;
@@ -144,10 +145,13 @@ fn word_of(argument: &model::Argument) -> Option<String> {
 /// The id `keyword = id` gives in `statement`: a whole positive number
 /// (`None` for anything else, `4.7` too).
 fn whole_id(statement: &model::Statement, keyword: &str) -> Option<u64> {
-    model::initial::number(statement, keyword, f64::NAN)
-        .ok()
-        .filter(|id| id.fract() == 0.0 && *id > 0.0 && *id <= model::LARGEST_ID as f64)
-        .map(|id| id as u64)
+    whole(model::initial::number(statement, keyword, f64::NAN).ok()?)
+}
+
+/// `value` as an id: a whole number from 1 to the largest id.
+fn whole(value: f64) -> Option<u64> {
+    (value.fract() == 0.0 && value > 0.0 && value <= model::LARGEST_ID as f64)
+        .then_some(value as u64)
 }
 
 /// `path:line:column: message`, a line each.
