@@ -71,7 +71,7 @@ fn largest_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-fn with_method(name: &str, end: f64, steps: usize, rtol: f64) -> Settings {
+pub(super) fn with_method(name: &str, end: f64, steps: usize, rtol: f64) -> Settings {
     Settings {
         method: method(name),
         ..settings(end, steps, rtol)

@@ -5,20 +5,13 @@
 
 use nalgebra::{DMatrix, Matrix6};
 
-use super::joints::method;
+use super::contacts::with_method;
 use super::simulate::{run, settings, the_jacobian_agrees_with_finite_differences};
 use mbexpr::simulate::Settings;
 
 /// The first REQUEST column: after the time and 13 for each of `parts`.
 fn first(parts: usize) -> usize {
     1 + 13 * parts
-}
-
-fn with_method(name: &str, end: f64, steps: usize, rtol: f64) -> Settings {
-    Settings {
-        method: method(name),
-        ..settings(end, steps, rtol)
-    }
 }
 
 /// `MATRIX/id` of `matrix`, column by column.
@@ -162,9 +155,10 @@ fn a_block_diagonal_nforce_moves_as_the_fields_of_its_blocks() {
 /// Two masses on ground's x axis, tied to J at ground's origin through a
 /// 2-DOF chain: ground–mass 1 `k1`, mass 1–mass 2 `k2`, so the NFORCE's
 /// x rows are `[[k1 + k2, −k2], [−k2, k2]]` (off the diagonal blocks);
-/// `LENGTH` the masses' places at rest. `line` is `m1 m2 k1 k2 mode
-/// cratio`.
-fn chain(line: &str) -> (String, [f64; 4]) {
+/// `LENGTH` the masses' places at rest, a stiffness of 10 holding each
+/// other freedom; started `amplitude` along the mode. `line` is `m1 m2 k1
+/// k2 mode cratio`.
+fn chain(line: &str, amplitude: f64) -> (String, [f64; 4]) {
     let numbers: Vec<f64> = line
         .split_whitespace()
         .map(|n| n.parse().unwrap())
@@ -177,7 +171,6 @@ fn chain(line: &str) -> (String, [f64; 4]) {
     let sign = if mode == 1.0 { -1.0 } else { 1.0 };
     let omega2 = (a + sign * (a * a - 4.0 * b).sqrt()) / 2.0;
     let ratio = (k1 + k2 - omega2 * m1) / k2;
-    let amplitude = 0.05;
     let (l1, l2) = (1.0, 2.0);
     let text = format!(
         "chain
@@ -188,8 +181,9 @@ MARKER/20, PART = 2
 PART/3, MASS = {m2}, CM = 30, IP = 1, 1, 1, QG = {}, 0, 0
 MARKER/30, PART = 3
 NFORCE/1, I = 20, 30, J = 1, KMATRIX = 1, CRATIO = {cratio}, LENGTH = 2
-MATRIX/1, SPARSE, ROWS = 12, COLUMNS = 12, I = 1, 1, 7, 7, J = 1, 7, 1, 7
-, VALUES = {}, {}, {}, {k2}
+MATRIX/1, SPARSE, ROWS = 12, COLUMNS = 12, I = 1, 1, 7, 7, 2, 3, 4, 5, 6, 8, 9, 10, 11, 12
+, J = 1, 7, 1, 7, 2, 3, 4, 5, 6, 8, 9, 10, 11, 12
+, VALUES = {}, {}, {}, {k2}, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10
 MATRIX/2, SPARSE, ROWS = 12, COLUMNS = 1, I = 1, 7, J = 1, 1, VALUES = {l1}, {l2}
 REQUEST/1, F2 = NFORCE(1, 20, 2, 0), F3 = NFORCE(1, 30, 2, 0), F4 = NFORCE(1, 1, 2, 0)
 END
@@ -215,7 +209,7 @@ fn a_two_mass_chain_moves_in_its_closed_form_normal_modes() {
         3 1 40 90 2 0
     ";
     for line in cases.lines().map(str::trim).filter(|line| !line.is_empty()) {
-        let (text, [omega, amplitude, ratio, _]) = chain(line);
+        let (text, [omega, amplitude, ratio, _]) = chain(line, 0.05);
         for name in ["radau", "dop853"] {
             let run =
                 run(&text, &with_method(name, 2.0, 40, 1e-11)).unwrap_or_else(|e| panic!("{e}"));
@@ -239,7 +233,7 @@ fn a_two_mass_chain_moves_in_its_closed_form_normal_modes() {
 #[test]
 fn cratio_damping_takes_the_chains_energy_monotonically() {
     for (line, falls) in [("1 2 100 50 2 0.02", true), ("1 2 100 50 2 0", false)] {
-        let (text, _) = chain(line);
+        let (text, _) = chain(line, 0.05);
         let (m1, m2, k1, k2) = (1.0, 2.0, 100.0, 50.0);
         for name in ["radau", "dop853"] {
             let run =
@@ -271,4 +265,157 @@ fn cratio_damping_takes_the_chains_energy_monotonically() {
             }
         }
     }
+}
+
+/// The element applies no net force or moment: the forces at its I
+/// markers and the reaction at J (`NFORCE(id, at_marker, comp, 0)`) sum
+/// to zero, and so do their moments about ground's origin, along a run
+/// of a full (coupled) stiffness and damping.
+#[test]
+fn the_reaction_on_j_balances_the_forces_on_the_i_markers() {
+    let k = DMatrix::from_fn(12, 12, |row, column| {
+        let (a, b) = (row.min(column) as f64, row.max(column) as f64);
+        if row == column {
+            300.0 + 10.0 * a
+        } else {
+            20.0 * ((a + 1.0) * (b + 2.0)).sin()
+        }
+    });
+    let nforce = format!(
+        "NFORCE/1, I = 31, 41, J = 21, KMATRIX = 1, CRATIO = 0.01\n{}",
+        matrix(1, &k)
+    );
+    let at = |marker: u64| {
+        format!(
+            "F2 = NFORCE(1, {marker}, 2, 0), F3 = NFORCE(1, {marker}, 3, 0), F4 = NFORCE(1, {marker}, 4, 0)\n, F6 = NFORCE(1, {marker}, 6, 0), F7 = NFORCE(1, {marker}, 7, 0), F8 = NFORCE(1, {marker}, 8, 0)"
+        )
+    };
+    let place = |marker: u64| {
+        format!("F2 = DX({marker}, 0, 0), F3 = DY({marker}, 0, 0), F4 = DZ({marker}, 0, 0)")
+    };
+    let request = format!(
+        "REQUEST/1, {}\nREQUEST/2, {}\nREQUEST/3, {}\nREQUEST/4, {}\nREQUEST/5, {}\nREQUEST/6, {}",
+        at(31),
+        at(41),
+        at(21),
+        place(31),
+        place(41),
+        place(21)
+    );
+    let text = three_parts(&nforce, &request);
+    for name in ["radau", "dop853"] {
+        let run = run(&text, &with_method(name, 1.0, 20, 1e-10)).unwrap_or_else(|e| panic!("{e}"));
+        let (mut worst, mut scale): (f64, f64) = (0.0, 0.0);
+        for row in &run.rows {
+            let values = &row[first(3)..];
+            let vector = |start: usize| {
+                nalgebra::Vector3::new(values[start], values[start + 1], values[start + 2])
+            };
+            let (mut force, mut moment) = (nalgebra::Vector3::zeros(), nalgebra::Vector3::zeros());
+            for marker in 0..3 {
+                let (f, t, r) = (
+                    vector(6 * marker),
+                    vector(6 * marker + 3),
+                    vector(18 + 3 * marker),
+                );
+                force += f;
+                moment += t + r.cross(&f);
+                scale = scale.max(f.norm()).max(t.norm());
+            }
+            worst = worst.max(force.norm()).max(moment.norm());
+        }
+        println!("{name}: largest net force or moment {worst:.1e}, the forces up to {scale:.1}");
+        assert!(scale > 1.0, "{scale}");
+        assert!(worst < 1e-9 * scale, "{name}: {worst}");
+    }
+}
+
+/// `FORCE` is what the element applies with its I markers at `LENGTH`
+/// (Adams' definition of the preload), and a static equilibrium of the
+/// chain with no other load sits at `X = L + K⁻¹ F₀`.
+#[test]
+fn preload_and_length_give_the_documented_static_offset() {
+    let (k1, k2, f1, f2) = (100.0, 50.0, 3.0, -2.0);
+    // At rest at LENGTH, then FORCE added.
+    let (text, _) = chain("1 2 100 50 1 0.05", 0.0);
+    let text = text.replace(
+            "LENGTH = 2",
+            &format!("LENGTH = 2, FORCE = 3\nMATRIX/3, SPARSE, ROWS = 12, COLUMNS = 1, I = 1, 7, J = 1, 1, VALUES = {f1}, {f2}"),
+        );
+    let start = run(&text, &settings(0.1, 1, 1e-10)).unwrap_or_else(|e| panic!("{e}"));
+    let row = &start.rows[0];
+    assert_eq!((row[1], row[14]), (1.0, 2.0), "{text}");
+    assert_eq!(
+        (row[first(2)], row[first(2) + 1], row[first(2) + 2]),
+        (f1, f2, -f1 - f2)
+    );
+    let statics = Settings {
+        statics: true,
+        ..settings(0.1, 1, 1e-10)
+    };
+    let settled = run(&text, &statics).unwrap_or_else(|e| panic!("{e}"));
+    let row = &settled.rows[0];
+    let d1 = (f1 + f2) / k1;
+    let d2 = d1 + f2 / k2;
+    let offset = [row[1] - 1.0 - d1, row[14] - 2.0 - d2];
+    println!("static offset: {d1}, {d2}; differences {offset:?}");
+    assert!(offset.iter().all(|d| d.abs() < 1e-9), "{offset:?}");
+}
+
+/// Each bad NFORCE, MATRIX or NFORCE call is refused at its place: one
+/// line per case, the chain's text with `from` replaced by `to`.
+#[test]
+fn bad_nforces_are_refused_at_their_place() {
+    let (base, _) = chain("1 2 100 50 1 0", 0.05);
+    let cases = [
+        ("no I", "I = 20, 30, J = 1", "J = 1"),
+        ("I lists a non-marker", "I = 20, 30,", "I = 20, 31,"),
+        ("I lists a marker twice", "I = 20, 30,", "I = 20, 20,"),
+        ("no J", "I = 20, 30, J = 1,", "I = 20, 30,"),
+        ("J among the I markers", "J = 1,", "J = 30,"),
+        ("no KMATRIX", "KMATRIX = 1,", ""),
+        ("KMATRIX names no MATRIX", "KMATRIX = 1,", "KMATRIX = 9,"),
+        ("KMATRIX of the wrong shape", "KMATRIX = 1,", "KMATRIX = 2,"),
+        ("LENGTH of the wrong shape", "LENGTH = 2", "LENGTH = 1"),
+        ("CMATRIX of the wrong shape", "CRATIO = 0", "CMATRIX = 2"),
+        (
+            "CMATRIX and CRATIO",
+            "CRATIO = 0",
+            "CRATIO = 0.1, CMATRIX = 1",
+        ),
+        ("a negative CRATIO", "CRATIO = 0", "CRATIO = -0.1"),
+        (
+            "a MATRIX from a FILE",
+            "MATRIX/2, SPARSE,",
+            "MATRIX/2, FILE = a.mtx, SPARSE,",
+        ),
+        (
+            "NFORCE at a marker it does not join",
+            "NFORCE(1, 1, 2, 0)",
+            "NFORCE(1, 99, 2, 0)",
+        ),
+        (
+            "NFORCE of no NFORCE",
+            "NFORCE(1, 1, 2, 0)",
+            "NFORCE(2, 1, 2, 0)",
+        ),
+        (
+            "NFORCE of a component past 8",
+            "NFORCE(1, 1, 2, 0)",
+            "NFORCE(1, 1, 9, 0)",
+        ),
+    ];
+    let table: String = cases
+        .iter()
+        .map(|(name, from, to)| {
+            assert!(base.contains(from), "{name}: {from}");
+            let text = base.replacen(from, to, 1);
+            let outcome = match run(&text, &settings(0.1, 1, 1e-8)) {
+                Ok(_) => "ran".to_string(),
+                Err(errors) => errors.trim_end().replace('\n', "\n     "),
+            };
+            format!("{name}\n  => {outcome}\n")
+        })
+        .collect();
+    insta::assert_snapshot!(table);
 }
