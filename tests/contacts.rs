@@ -71,6 +71,8 @@ fn largest_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The settings of `settings(end, steps, rtol)` with the method named
+/// `name` (`radau`, `dop853`, else automatic).
 pub(super) fn with_method(name: &str, end: f64, steps: usize, rtol: f64) -> Settings {
     Settings {
         method: method(name),
