@@ -1,7 +1,10 @@
 //! Joint friction (`FRICTION`), checked against references worked out
-//! here: a block on a slope held by stiction (its creep bounded by the
-//! MAX_STICTION_DEFORMATION) or sliding with the closed-form acceleration
-//! `g (sin θ − μd cos θ)` once past the transition band; a pendulum with
+//! here: a block on a slope (on a translational or a cylindrical joint)
+//! held by stiction (its creep bounded by the MAX_STICTION_DEFORMATION) or
+//! sliding with the closed-form acceleration `g (sin θ − μd cos θ)` once
+//! past the transition band; a spinning cylinder sharing its friction
+//! between slide and spin; a ball joint's spin slowing at `μd Rb m g/I`
+//! and holding an off-centre body below its static friction; a pendulum with
 //! pin friction against RK4 of `θ''` written by hand (the reaction found
 //! with `θ''`); energy that never grows for random pendulums; and every bad
 //! input refused at its place.
@@ -247,6 +250,184 @@ fn pin_friction_never_adds_energy() {
     }
 }
 
+/// The block of [`block`] on a CYLINDRICAL joint: two creep states (along
+/// and about z) before the part's columns.
+fn cylinder(slope: f64, friction: &str) -> String {
+    block(slope, friction).replace("TRANSLATIONAL", "CYLINDRICAL")
+}
+
+/// `tan θ < μs` on a cylindrical joint: stiction holds the block as on a
+/// translational joint, the creep along z at `δ·tan θ/μs`, the one about
+/// z at 0, and the block does not turn.
+#[test]
+fn a_cylinder_whose_slope_is_below_static_friction_stays() {
+    let slope = 15_f64.to_radians();
+    let text = cylinder(slope, "MU_STATIC = 0.5, MU_DYNAMIC = 0.3");
+    for name in ["dop853", "radau"] {
+        let settings = Settings {
+            method: method(name),
+            ..settings(3.0, 30, 1e-8)
+        };
+        let run = run(&text, &settings).unwrap_or_else(|error| panic!("{name}: {error}"));
+        let largest = run
+            .rows
+            .iter()
+            .map(|row| row[Z + 1].abs())
+            .fold(0.0, f64::max);
+        let last = run.rows.last().expect("rows");
+        let creep = 0.01 * slope.tan() / 0.5;
+        println!(
+            "{name}: largest travel {largest:.6}, creep {:.9} and {:.3e} against {creep:.9}, vz {:.3e}, wz {:.3e}",
+            last[1],
+            last[2],
+            last[VZ + 1],
+            last[VZ + 4]
+        );
+        assert!(largest < 0.01, "{name}: travel {largest}");
+        assert!((last[1] + creep).abs() < 1e-6, "{name}: {last:?}");
+        assert!(last[2].abs() < 1e-9, "{name}: {last:?}");
+        assert!(last[VZ + 1].abs() < 1e-6 && last[VZ + 4].abs() < 1e-9);
+    }
+}
+
+/// `tan θ > μs` on a cylindrical joint without spin: the block slides at
+/// `g (sin θ − μd cos θ)` past the transition band, as on a translational
+/// joint (its slip all along z).
+#[test]
+fn a_cylinder_whose_slope_is_beyond_static_friction_slides_at_the_dynamic_acceleration() {
+    let slope = 30_f64.to_radians();
+    let text = cylinder(slope, "MU_STATIC = 0.5, MU_DYNAMIC = 0.3");
+    let sliding = G * (slope.sin() - 0.3 * slope.cos());
+    for name in ["dop853", "radau"] {
+        let settings = Settings {
+            method: method(name),
+            ..settings(2.0, 2, 1e-9)
+        };
+        let run = run(&text, &settings).unwrap_or_else(|error| panic!("{name}: {error}"));
+        let gained = run.rows[1][VZ + 1] - run.rows[2][VZ + 1];
+        println!("{name}: acceleration {gained:.10} against {sliding:.10}");
+        assert!((gained - sliding).abs() < 1e-6, "{name}: {gained}");
+    }
+}
+
+/// A spinning cylinder sliding down the slope: the slip `(vz, Rp·wz)`
+/// shares `μd N` between the axial force and the torque over `Rp` by its
+/// direction, so the block's acceleration lies between the frictionless
+/// `g sin θ` and the axial-only `g (sin θ − μd cos θ)`, and the spin's
+/// loss rate `μd N Rp·(Rp wz/|slip|)/Izz` is that of the slip's share.
+#[test]
+fn a_spinning_cylinder_shares_its_friction_between_slide_and_spin() {
+    let slope = 30_f64.to_radians();
+    let (m, mu, pin, izz) = (2.0, 0.3, 0.05, 0.1);
+    let text = cylinder(
+        slope,
+        &format!("MU_STATIC = 0.5, MU_DYNAMIC = {mu}, PIN_RADIUS = {pin}"),
+    )
+    .replace("IP = 0.1, 0.1, 0.1", "IP = 0.1, 0.1, 0.1, WZ = 40");
+    for name in ["dop853", "radau"] {
+        let settings = Settings {
+            method: method(name),
+            ..settings(1.0, 100, 1e-10)
+        };
+        let run = run(&text, &settings).unwrap_or_else(|error| panic!("{name}: {error}"));
+        let [before, after] = [&run.rows[50], &run.rows[51]];
+        let (vz, wz) = (-before[VZ + 1], before[VZ + 4]);
+        let slip = vz.hypot(pin * wz);
+        let normal = m * G * slope.cos();
+        let along = (after[VZ + 1] - before[VZ + 1]) / -0.01;
+        let spun = (before[VZ + 4] - after[VZ + 4]) / 0.01;
+        let expected_along = G * slope.sin() - mu * normal * vz / slip / m;
+        let expected_spun = mu * normal * pin * (pin * wz / slip) / izz;
+        println!(
+            "{name}: along {along:.6} against {expected_along:.6}, spin lost {spun:.6} against {expected_spun:.6}"
+        );
+        assert!((along - expected_along).abs() < 0.01 * expected_along);
+        assert!((spun - expected_spun).abs() < 0.01 * expected_spun);
+    }
+}
+
+/// A body of mass `m` and moments `inertia` hung on a SPHERICAL joint at
+/// the ground's origin with its centre of mass `offset` along x from the
+/// joint, spinning at `spin` (x, y, z), with `friction`.
+fn ball(m: f64, inertia: f64, offset: f64, spin: [f64; 3], friction: &str) -> String {
+    let [wx, wy, wz] = spin;
+    format!(
+        "ball joint
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = {m}, CM = 20, IP = {inertia}, {inertia}, {inertia}, WX = {wx}, WY = {wy}, WZ = {wz}
+MARKER/20, PART = 2, QP = {offset}, 0, 0
+MARKER/21, PART = 2
+JOINT/1, SPHERICAL, I = 21, J = 1
+FRICTION/1, JOINT = 1, {friction}
+ACCGRAV/JGRAV = -9.80665
+END
+"
+    )
+}
+
+/// A body spinning about the vertical on a spherical joint at its centre
+/// of mass: the load is its weight, the friction torque `μd·Rb·m g`, so
+/// its spin falls at `μd Rb m g / I` (past the transition band), with
+/// both methods.
+#[test]
+fn a_spinning_ball_joint_slows_at_the_rate_of_its_friction_torque() {
+    let (m, inertia, mu, radius) = (2.0, 0.1, 0.3, 0.05);
+    let text = ball(
+        m,
+        inertia,
+        0.0,
+        [0.0, 10.0, 0.0],
+        &format!(
+            "MU_STATIC = 0.5, MU_DYNAMIC = {mu}, BALL_RADIUS = {radius}, STICTION_TRANSITION_VELOCITY = 0.01"
+        ),
+    );
+    let rate = mu * radius * m * G / inertia;
+    // Time, three creep states, then the part: wy its 12th column.
+    let wy = 1 + 3 + 11;
+    for name in ["dop853", "radau"] {
+        let settings = Settings {
+            method: method(name),
+            ..settings(2.0, 2, 1e-10)
+        };
+        let run = run(&text, &settings).unwrap_or_else(|error| panic!("{name}: {error}"));
+        let lost = run.rows[1][wy] - run.rows[2][wy];
+        println!("{name}: spin lost {lost:.10} per second against {rate:.10}");
+        assert!((lost - rate).abs() < 1e-6, "{name}: {lost}");
+        assert!((run.rows[0][wy] - run.rows[1][wy] - rate).abs() < 1e-6);
+    }
+}
+
+/// A body hung off-centre on a spherical joint, at rest: gravity's torque
+/// `m g d` about the joint against the friction's capacity `μs·Rb·N`,
+/// `N ≈ m g`: stiction holds it when `d < μs Rb` (turning it by at most
+/// the creep over the ball's radius), and it swings away when `d` is
+/// twice that.
+#[test]
+fn a_ball_joint_holds_an_off_centre_body_below_its_static_friction() {
+    let (mu, radius) = (0.5, 0.05);
+    let arguments = format!("MU_STATIC = {mu}, MU_DYNAMIC = 0.3, BALL_RADIUS = {radius}");
+    // Time, three creep states, then the part: q0 .. q3 at 7 .. 10.
+    let turned = |row: &[f64]| 2.0 * row[8].hypot(row[9]).hypot(row[10]).atan2(row[7]);
+    for (offset, held) in [(0.5 * mu * radius, true), (2.0 * mu * radius, false)] {
+        let text = ball(2.0, 0.1, offset, [0.0; 3], &arguments);
+        for name in ["dop853", "radau"] {
+            let settings = Settings {
+                method: method(name),
+                ..settings(2.0, 20, 1e-8)
+            };
+            let run = run(&text, &settings).unwrap_or_else(|error| panic!("{name}: {error}"));
+            let largest = run.rows.iter().map(|row| turned(row)).fold(0.0, f64::max);
+            println!("{name}: offset {offset}: turned at most {largest:.6} rad");
+            if held {
+                assert!(largest < 2.0 * 0.01 / radius, "{name}: {largest}");
+            } else {
+                assert!(largest > 0.5, "{name}: {largest}");
+            }
+        }
+    }
+}
+
 /// What a model with this FRICTION (after `FRICTION/1,`) on a joint of
 /// each type reports: `kind | arguments`.
 fn check(case: &str) -> String {
@@ -313,7 +494,17 @@ fn bad_friction_is_refused_at_its_place() {
         PLANAR | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3
         CYLINDRICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3
         SPHERICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3
+        CYLINDRICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, EFFECT = SLIDING, FRICTION_FORCE_PRELOAD = 1, FRICTION_TORQUE_PRELOAD = 0.1, MAX_FRICTION_FORCE = 5
+        CYLINDRICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, PIN_RADIUS = 0
+        CYLINDRICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, INITIAL_OVERLAP = -1
+        CYLINDRICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_TORQUE_PRELOAD = -1
+        CYLINDRICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, MAX_FRICTION_TORQUE = 0
+        CYLINDRICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, INPUTS = TORSIONAL_MOMENT
+        SPHERICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, BALL_RADIUS = 0
+        SPHERICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_TORQUE_PRELOAD = -2
+        SPHERICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, INPUTS = (PRELOAD:BENDING_MOMENT)
         HOOKE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, I_YOKE = 20, J_YOKE = 1
+        UNIVERSAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3
         REVOLUTE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3\\nFRICTION/2, JOINT = 1, MU_STATIC = 0.2, MU_DYNAMIC = 0.1
     ";
     insta::assert_snapshot!(super::table(cases, check));

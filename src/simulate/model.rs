@@ -173,8 +173,10 @@ pub struct Diff {
     /// for an explicit DIFF, whose FUNCTION is the rate.
     pub implicit: Option<f64>,
     /// The `FRICTION` whose stiction creep it is (its input a `DIF` of an
-    /// id past the dataset's DIFFs), `None` for the others.
-    pub creep: Option<u64>,
+    /// id past the dataset's DIFFs) and the direction of the slip it is
+    /// along (0 when the slip has one, else from 1), `None` for the
+    /// others.
+    pub creep: Option<(u64, usize)>,
 }
 
 /// A state of a control element's linear system: entry `entry` (from 1)
@@ -199,11 +201,14 @@ impl Diff {
     }
 
     /// Its column in a run's rows: `DIF(3)`, `TFSISO/2.x1`,
-    /// `FRICTION/4.creep` (no comma, so that a CSV header needs no
-    /// quoting).
+    /// `FRICTION/4.creep`, `FRICTION/4.creep2` (no comma, so that a CSV
+    /// header needs no quoting).
     pub fn column(&self) -> String {
-        if let Some(friction) = self.creep {
-            return format!("FRICTION/{friction}.creep");
+        if let Some((friction, direction)) = self.creep {
+            return match direction {
+                0 => format!("FRICTION/{friction}.creep"),
+                _ => format!("FRICTION/{friction}.creep{direction}"),
+            };
         }
         match &self.linear {
             None => crate::scene::diff_input(self.id),
@@ -212,10 +217,13 @@ impl Diff {
     }
 
     /// What it is in messages: `DIFF/3`, `TFSISO/2's state 1`,
-    /// `FRICTION/4's creep`.
+    /// `FRICTION/4's creep`, `FRICTION/4's creep 2`.
     pub fn label(&self) -> String {
-        if let Some(friction) = self.creep {
-            return format!("FRICTION/{friction}'s creep");
+        if let Some((friction, direction)) = self.creep {
+            return match direction {
+                0 => format!("FRICTION/{friction}'s creep"),
+                _ => format!("FRICTION/{friction}'s creep {direction}"),
+            };
         }
         match &self.linear {
             None => format!("DIFF/{}", self.id),

@@ -373,9 +373,10 @@ impl Reader<'_> {
     }
 
     /// The FRICTION statements on `joints` ([`frictions`]): each a force
-    /// along (or torque about) its joint's axis added to `forces`, and the
-    /// state of its creep, when it has stiction, to `diffs`, its input a
-    /// `DIF` of an id past every DIFF of the dataset.
+    /// and torque along its joint's J axes added to `forces`, and the
+    /// states of its creep, one per direction of its slip, when it has
+    /// stiction, to `diffs`, their inputs `DIF`s of ids past every DIFF of
+    /// the dataset.
     fn frictions(
         &mut self,
         joints: &[Joint],
@@ -391,17 +392,28 @@ impl Reader<'_> {
             .keys()
             .max()
             .map_or(1, |id| id + 1);
-        for friction in read {
-            let creep_id = next_id;
-            let input = crate::scene::diff_input(creep_id);
-            let with_creep = |text: &str| text.replace(frictions::CREEP, &input);
-            if let Some(rate) = &friction.creep_rate {
+        'frictions: for friction in read {
+            let directions = friction.creep_rates.len();
+            let inputs: Vec<String> = (0..directions)
+                .map(|k| crate::scene::diff_input(next_id + k as u64))
+                .collect();
+            let with_creep = |text: &str| {
+                inputs
+                    .iter()
+                    .enumerate()
+                    .fold(text.to_string(), |text, (k, input)| {
+                        text.replace(&frictions::creep(k), input)
+                    })
+            };
+            let first_id = next_id;
+            next_id += directions as u64;
+            for (k, rate) in friction.creep_rates.iter().enumerate() {
                 let Some(function) =
                     self.written(friction.statement, "creep rate", &with_creep(rate))
                 else {
-                    continue;
+                    continue 'frictions;
                 };
-                next_id += 1;
+                let creep_id = first_id + k as u64;
                 self.scene.statements.diffs.insert(
                     creep_id,
                     crate::scene::DiffData {
@@ -418,30 +430,26 @@ impl Reader<'_> {
                     linear: None,
                     static_hold: true,
                     implicit: None,
-                    creep: Some(friction.id),
+                    creep: Some((friction.id, if directions == 1 { 0 } else { k + 1 })),
                 });
             }
-            let what = if friction.rotational {
-                "torque"
-            } else {
-                "force"
-            };
-            let Some(magnitude) =
-                self.written(friction.statement, what, &with_creep(&friction.magnitude))
-            else {
-                continue;
-            };
+            let mut written = [None; 6];
+            for (slot, text) in friction.components.iter().enumerate() {
+                let Some(text) = text else { continue };
+                let what = if slot < 3 { "force" } else { "torque" };
+                let Some(component) = self.written(friction.statement, what, &with_creep(text))
+                else {
+                    continue 'frictions;
+                };
+                written[slot] = Some(component);
+            }
             let joint = &joints[friction.joint];
-            forces.push(if friction.rotational {
-                Force::single(true, joint.i, joint.j, magnitude, false)
-            } else {
-                Force::Vector {
-                    i: joint.i,
-                    reaction: self.scene.body_of(&joint.j),
-                    axes: joint.j,
-                    force: [None, None, Some(magnitude)],
-                    torque: [None; 3],
-                }
+            forces.push(Force::Vector {
+                i: joint.i,
+                reaction: self.scene.body_of(&joint.j),
+                axes: joint.j,
+                force: [written[0], written[1], written[2]],
+                torque: [written[3], written[4], written[5]],
             });
             force_statements.push(("FRICTION", friction.id));
         }

@@ -26,7 +26,13 @@
 //!   moment over an arm and its force preload, each of which INPUTS can
 //!   turn off; a revolute joint's friction torque from its radial force at
 //!   the pin radius, its axial force at the friction arm, its bending
-//!   moment through the bending reaction arm and its torque preload.
+//!   moment through the bending reaction arm and its torque preload; a
+//!   cylindrical joint's from its force and torque preloads, PIN_RADIUS and
+//!   INITIAL_OVERLAP (the bending moment divided by the overlap), a
+//!   spherical joint's from its torque preload and BALL_RADIUS, a Hooke or
+//!   universal joint's as a revolute joint's (the keywords of each joint,
+//!   as MotionSolve's `Force_JointFriction` lists them too:
+//!   <https://2021.help.altair.com/2021.2/hwsolvers/ms/topics/solvers/ms/xml-format_11.htm>).
 //!
 //! Where the pages leave the formula to a block diagram this reader could
 //! not see, mbexpr chooses (each choice its own reading, not Adams'
@@ -39,27 +45,46 @@
 //!   `N = P + PIN_RADIUS·(|(Fx, Fy)| + |(Tx, Ty)|/BENDING_REACTION_ARM) + FRICTION_ARM·|Fz|`,
 //!   the reactions those of `JOINT(id, 0, comp, J)` on the I marker along
 //!   J's axes), at most MAX_FRICTION_FORCE (or TORQUE) when given;
+//! - a cylindrical joint's load `N = P + Pt/PIN_RADIUS + |(Fx, Fy)| +
+//!   |(Tx, Ty)|/INITIAL_OVERLAP` (a force on the pin's surface, `P` the
+//!   FRICTION_FORCE_PRELOAD, `Pt` the FRICTION_TORQUE_PRELOAD); a spherical
+//!   joint's torque load `N = Pt + BALL_RADIUS·|(Fx, Fy, Fz)|`;
 //! - the slip speed `v` is `VZ(I, J, J, J)` for a translational joint and
-//!   `PIN_RADIUS·WZ(I, J, J)` on a revolute joint's pin;
+//!   `PIN_RADIUS·WZ(I, J, J)` on a revolute joint's pin; a cylindrical
+//!   joint's slip has two directions, `(VZ(I, J, J, J), PIN_RADIUS·WZ(I,
+//!   J, J))`, its friction `−μₖ·N` along z and `−μₖ·N·PIN_RADIUS` about
+//!   it; a spherical joint's three, `BALL_RADIUS·(WX, WY, WZ)(I, J, J)` on
+//!   the ball's surface, its friction the torque `−μₖ·N` about J's axes;
+//! - a slip of more directions takes its coefficient from its speed,
+//!   `|v|` smoothed to `√(|v|² + ε²) − ε` with `ε = vs/1000`, and the
+//!   sliding coefficient along direction `k` is `μ(|v|)·vₖ/√(|v|² + ε²)`
+//!   (`μ` the STEPs below at `|v| ≥ 0`), so that the friction opposes the
+//!   slip, is 0 at rest with no NaN, and dissipates (its power `−μ N
+//!   |v|²/√(|v|² + ε²) ≤ 0`); MAX_FRICTION_FORCE and TORQUE bound each
+//!   component;
 //! - the sliding coefficient `STEP(v, −vs, −μ₁, vs, μ₁) + STEP(v, vs, 0,
 //!   β·vs, μ₂ − μ₁) + STEP(v, −β·vs, μ₁ − μ₂, −vs, 0)`, odd in `v`: with
 //!   `EFFECT = ALL` `μ₁ = μs`, `μ₂ = μd` (the documented regimes above
 //!   `vs`); `STICTION` `μ₁ = μs`, `μ₂ = 0`; `SLIDING` `μ₁ = μ₂ = μd`;
-//! - the creep is a state `s` of the joint (a bristle, Dahl's model),
+//! - the creep is a state `s` of the joint (a bristle, Dahl's model), one
+//!   per direction of the slip (columns `FRICTION/id.creep`, or
+//!   `.creep1` .. `.creep3` along the directions above),
 //!   `ds/dt = v − |v|·s/δ` with `δ` the MAX_STICTION_DEFORMATION (so `|s| ≤
-//!   δ`), and the coefficient with stiction
+//!   δ`, the vector's length too), and the coefficient with stiction
 //!   `(1 − w)·μs·(s/δ + (ds/dt)/vs) + w·(sliding)`, `w = STEP(|v|, 0, 0,
-//!   vs, 1)`: at rest the joint holds up to `μs·N` as a spring that gives
-//!   at most `δ`, damped as a ramp to `μs` at `vs` would (the damping
-//!   vanishes where the creep is full; both terms take energy, never give
-//!   it); `SLIDING` has no creep state;
+//!   vs, 1)`, along each direction: at rest the joint holds up to `μs·N`
+//!   as a spring that gives at most `δ`, damped as a ramp to `μs` at `vs`
+//!   would (the damping vanishes where the creep is full; both terms take
+//!   energy, never give it); `SLIDING` has no creep state;
 //! - a static equilibrium keeps the creep at its value (no stiction in
 //!   statics, as `INACTIVE = STATIC` asks; sliding friction is 0 at rest).
 //!
-//! Refused at their place: the CYLINDRICAL, HOOKE, UNIVERSAL and SPHERICAL
-//! joints' friction (their slip is two-dimensional), the LuGre model,
+//! Refused at their place: the HOOKE and UNIVERSAL joints' friction (the
+//! slip of each cross pin is not read yet), the LuGre model,
 //! `OVERLAP_DELTA = INCREASE` or `DECREASE`; a joint of another type, a
-//! missing or unknown JOINT and every bad value are errors.
+//! missing or unknown JOINT, an input the joint has not (a revolute or
+//! cylindrical joint's TORSIONAL_MOMENT, a spherical joint's
+//! BENDING_MOMENT) and every bad value are errors.
 
 use super::dataset::{linear_sum, literal};
 use crate::model::initial::number;
@@ -69,8 +94,8 @@ use crate::simulate::SimulateError;
 use crate::simulate::model::{Joint, JointKind};
 use crate::span::Span;
 
-/// A FRICTION statement read: the expressions its force and its creep
-/// state are written as.
+/// A FRICTION statement read: the expressions its force and torque
+/// components and its creep states are written as.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct JointFriction {
     /// The statement id.
@@ -79,17 +104,20 @@ pub(crate) struct JointFriction {
     pub statement: usize,
     /// The joint, an index into the model's joints.
     pub joint: usize,
-    /// A torque about J's z axis (revolute) rather than a force along it.
-    pub rotational: bool,
-    /// The friction force or torque on I, along or about J's z axis.
-    pub magnitude: String,
-    /// The creep's rate, `ds/dt`, when stiction is on; `{creep}` stands
-    /// for the state's input in it and in [`JointFriction::magnitude`].
-    pub creep_rate: Option<String>,
+    /// The friction on I along J's axes: force x, y, z, then torque x, y,
+    /// z, `None` where it has none.
+    pub components: [Option<String>; 6],
+    /// Each creep's rate, `ds/dt`, one per direction of the slip, when
+    /// stiction is on; [`creep`] stands for a state's input in them and in
+    /// [`JointFriction::components`].
+    pub creep_rates: Vec<String>,
 }
 
-/// What stands for the creep state's input in the written expressions.
-pub(crate) const CREEP: &str = "{creep}";
+/// What stands for the input of creep state `k` (from 0) in the written
+/// expressions.
+pub(crate) fn creep(k: usize) -> String {
+    format!("{{creep{k}}}")
+}
 
 /// The FRICTION statements of `dataset` on `joints` (their markers in
 /// `scene`); every problem added to `errors` at its place.
@@ -99,16 +127,14 @@ pub(crate) fn frictions(
     scene: &Scene,
     errors: &mut Vec<SimulateError>,
 ) -> Vec<JointFriction> {
-    let mut frictions = Vec::new();
+    let mut frictions: Vec<JointFriction> = Vec::new();
     for (index, statement) in dataset.statements.iter().enumerate() {
         if !is_kind(&statement.name, "FRICTION") {
             continue;
         }
         match friction(statement, joints, scene) {
-            Ok((joint, _, _, _))
-                if let Some(first) = frictions
-                    .iter()
-                    .find(|friction: &&JointFriction| friction.joint == joint) =>
+            Ok((joint, _, _))
+                if let Some(first) = frictions.iter().find(|friction| friction.joint == joint) =>
             {
                 errors.push(SimulateError::Model {
                     message: format!(
@@ -120,13 +146,12 @@ pub(crate) fn frictions(
                     span: statement.place_of("JOINT", 5),
                 });
             }
-            Ok((joint, magnitude, creep_rate, rotational)) => frictions.push(JointFriction {
+            Ok((joint, components, creep_rates)) => frictions.push(JointFriction {
                 id: statement.id.unwrap_or(0),
                 statement: index,
                 joint,
-                rotational,
-                magnitude,
-                creep_rate,
+                components,
+                creep_rates,
             }),
             Err(error) => errors.push(error),
         }
@@ -173,8 +198,14 @@ const SWITCHES: [Switch; 3] = [
     },
 ];
 
-/// The joint, force, creep rate and kind of one FRICTION.
-type Read = (usize, String, Option<String>, bool);
+/// The joint, the components and the creep rates of one FRICTION.
+type Read = (usize, [Option<String>; 6], Vec<String>);
+
+/// One direction of a joint's slip: its speed on the surface of contact
+/// (as text), the component of [`JointFriction::components`] its friction
+/// is, the factor from the load to that component, and the component's
+/// largest size (MAX_FRICTION_FORCE or TORQUE) when given.
+type Slip = (String, usize, f64, Option<f64>);
 
 fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Read, SimulateError> {
     let label = statement.label();
@@ -213,12 +244,16 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
         .iter()
         .find(|(each, _)| *each == kind)
         .map_or("", |(_, name)| *name);
-    match kind {
-        JointKind::Translational | JointKind::Revolute => {}
-        JointKind::Cylindrical | JointKind::Hooke | JointKind::Universal | JointKind::Spherical => {
+    // The inputs each joint's friction has: preload, reaction force,
+    // bending moment, torsional moment.
+    let available = match kind {
+        JointKind::Translational => [true; 4],
+        JointKind::Revolute | JointKind::Cylindrical => [true, true, true, false],
+        JointKind::Spherical => [true, true, false, false],
+        JointKind::Hooke | JointKind::Universal => {
             return Err(unsupported(
                 format!(
-                    "is friction in a {name} joint, which mbexpr does not simulate (its slip has two directions): it simulates the friction of TRANSLATIONAL and REVOLUTE joints"
+                    "is friction in a {name} joint, which mbexpr does not simulate (the slip of its two cross pins): it simulates the friction of TRANSLATIONAL, REVOLUTE, CYLINDRICAL and SPHERICAL joints"
                 ),
                 argument.span,
             ));
@@ -231,7 +266,7 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
                 argument.span,
             ));
         }
-    }
+    };
     for switch in SWITCHES {
         let Some(argument) = statement.argument(switch.keyword, switch.shortest) else {
             continue;
@@ -286,87 +321,211 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
     let effect = effect(statement).map_err(listed(
         "EFFECT is ALL, STICTION, SLIDING or STICTION:SLIDING",
     ))?;
-    let rotational = kind == JointKind::Revolute;
-    let inputs = inputs(statement, rotational).map_err(listed(
+    let inputs = match inputs(statement).map_err(listed(
         "INPUTS is ALL, NONE or a list of PRELOAD, REACTION_FORCE, BENDING_MOMENT and TORSIONAL_MOMENT",
-    ))?;
+    ))? {
+        Named::All => available,
+        Named::These(named) => {
+            if let Some(index) = (0..4).find(|&index| named[index] && !available[index]) {
+                let has: Vec<&str> = (0..4)
+                    .filter(|&index| available[index])
+                    .map(|index| INPUT_NAMES[index])
+                    .collect();
+                return Err(model(
+                    format!(
+                        "{} is not an input of a {name} joint's friction: it has {}",
+                        INPUT_NAMES[index],
+                        has.join(", ")
+                    ),
+                    statement.place_of("INPUTS", 6),
+                ));
+            }
+            named
+        }
+    };
+    let [preload, force, bending, torsion] = inputs;
     let [i, j] = [joints[joint].i, joints[joint].j].map(|target| marker_id(scene, target));
     let reaction = |comp: u8| format!("JOINT({id},0,{comp},{j})");
-    let magnitude_of = |a: u8, b: u8| format!("SQRT({}**2 + {}**2)", reaction(a), reaction(b));
-    // Each input with whether INPUTS takes it, its factor and its term.
-    let (inputs_terms, slip, limit) = if rotational {
-        if inputs.torsion {
-            return Err(model(
-                "TORSIONAL_MOMENT is an input of a translational joint's friction".to_string(),
-                statement.place_of("INPUTS", 6),
-            ));
-        }
-        let pin = positive("PIN_RADIUS", 1.0)?;
-        let arm = positive("FRICTION_ARM", 1.0)?;
-        let bending_arm = positive("BENDING_REACTION_ARM", 1.0)?;
-        let terms = vec![
-            (
-                inputs.preload,
-                or_more("FRICTION_TORQUE_PRELOAD")?,
-                String::new(),
-            ),
-            (inputs.force, pin, magnitude_of(2, 3)),
-            (inputs.force, arm, format!("ABS({})", reaction(4))),
-            (inputs.bending, pin / bending_arm, magnitude_of(6, 7)),
-        ];
-        let slip = format!("{}*WZ({i},{j},{j})", literal(pin));
-        (terms, slip, largest("MAX_FRICTION_TORQUE")?)
-    } else {
-        let overlap = positive("INITIAL_OVERLAP", 1000.0)?;
-        let arm = positive("REACTION_ARM", 1.0)?;
-        let terms = vec![
-            (
-                inputs.preload,
-                or_more("FRICTION_FORCE_PRELOAD")?,
-                String::new(),
-            ),
-            (inputs.force, 1.0, magnitude_of(2, 3)),
-            (inputs.bending, 1.0 / overlap, magnitude_of(6, 7)),
-            (inputs.torsion, 1.0 / arm, format!("ABS({})", reaction(8))),
-        ];
-        let slip = format!("VZ({i},{j},{j},{j})");
-        (terms, slip, largest("MAX_FRICTION_FORCE")?)
+    let magnitude_of = |comps: &[u8]| {
+        let squares: Vec<String> = comps
+            .iter()
+            .map(|&comp| format!("{}**2", reaction(comp)))
+            .collect();
+        format!("SQRT({})", squares.join(" + "))
     };
-    let load: Vec<(f64, String)> = inputs_terms
+    let turning = |axis: char, radius: f64| format!("{}*W{axis}({i},{j},{j})", literal(radius));
+    let sliding = format!("VZ({i},{j},{j},{j})");
+    // Each input with whether INPUTS takes it, its factor and its term;
+    // each direction of the slip.
+    let (terms, slips): (Vec<(bool, f64, String)>, Vec<Slip>) = match kind {
+        JointKind::Revolute => {
+            let pin = positive("PIN_RADIUS", 1.0)?;
+            let arm = positive("FRICTION_ARM", 1.0)?;
+            let bending_arm = positive("BENDING_REACTION_ARM", 1.0)?;
+            let terms = vec![
+                (preload, or_more("FRICTION_TORQUE_PRELOAD")?, String::new()),
+                (force, pin, magnitude_of(&[2, 3])),
+                (force, arm, format!("ABS({})", reaction(4))),
+                (bending, pin / bending_arm, magnitude_of(&[6, 7])),
+            ];
+            let slip = (turning('Z', pin), 5, 1.0, largest("MAX_FRICTION_TORQUE")?);
+            (terms, vec![slip])
+        }
+        JointKind::Cylindrical => {
+            let pin = positive("PIN_RADIUS", 1.0)?;
+            let overlap = positive("INITIAL_OVERLAP", 1000.0)?;
+            let terms = vec![
+                (
+                    preload,
+                    or_more("FRICTION_FORCE_PRELOAD")? + or_more("FRICTION_TORQUE_PRELOAD")? / pin,
+                    String::new(),
+                ),
+                (force, 1.0, magnitude_of(&[2, 3])),
+                (bending, 1.0 / overlap, magnitude_of(&[6, 7])),
+            ];
+            let slips = vec![
+                (sliding, 2, 1.0, largest("MAX_FRICTION_FORCE")?),
+                (turning('Z', pin), 5, pin, largest("MAX_FRICTION_TORQUE")?),
+            ];
+            (terms, slips)
+        }
+        JointKind::Spherical => {
+            let ball = positive("BALL_RADIUS", 1.0)?;
+            let terms = vec![
+                (preload, or_more("FRICTION_TORQUE_PRELOAD")?, String::new()),
+                (force, ball, magnitude_of(&[2, 3, 4])),
+            ];
+            let limit = largest("MAX_FRICTION_TORQUE")?;
+            let slips = [('X', 3), ('Y', 4), ('Z', 5)]
+                .map(|(axis, slot)| (turning(axis, ball), slot, 1.0, limit))
+                .to_vec();
+            (terms, slips)
+        }
+        _ => {
+            let overlap = positive("INITIAL_OVERLAP", 1000.0)?;
+            let arm = positive("REACTION_ARM", 1.0)?;
+            let terms = vec![
+                (preload, or_more("FRICTION_FORCE_PRELOAD")?, String::new()),
+                (force, 1.0, magnitude_of(&[2, 3])),
+                (bending, 1.0 / overlap, magnitude_of(&[6, 7])),
+                (torsion, 1.0 / arm, format!("ABS({})", reaction(8))),
+            ];
+            (
+                terms,
+                vec![(sliding, 2, 1.0, largest("MAX_FRICTION_FORCE")?)],
+            )
+        }
+    };
+    let load: Vec<(f64, String)> = terms
         .into_iter()
         .filter(|(taken, _, _)| *taken)
         .map(|(_, factor, term)| (factor, term))
         .collect();
-    let (peak, end) = match effect {
-        Effect::All => (mu_static, mu_dynamic),
-        Effect::Stiction => (mu_static, 0.0),
-        Effect::Sliding => (mu_dynamic, mu_dynamic),
+    let law = Law {
+        effect,
+        mu_static,
+        mu_dynamic,
+        vs,
+        beta,
+        deformation,
     };
-    let v = format!("({slip})");
-    let mut coefficient = sum(&[
-        step(&v, -vs, -peak, vs, peak),
-        step(&v, vs, 0.0, beta * vs, end - peak),
-        step(&v, -beta * vs, peak - end, -vs, 0.0),
-    ]);
-    let creep_rate = (effect != Effect::Sliding).then(|| {
-        let rate = format!("{v} - ABS{v}*{CREEP}/{}", literal(deformation));
-        let weight = format!("STEP(ABS{v}, 0, 0, {}, 1)", literal(vs));
-        coefficient = format!(
-            "(1 - {weight})*({}*{CREEP} + {}*({rate})) + {weight}*({coefficient})",
-            literal(mu_static / deformation),
-            literal(mu_static / vs)
-        );
-        rate
-    });
-    let mut magnitude = format!("-({coefficient})*({})", linear_sum(&load));
-    if let Some(limit) = limit {
-        magnitude = format!(
-            "MIN(MAX({magnitude}, {}), {})",
-            literal(-limit),
-            literal(limit)
-        );
+    let speeds: Vec<String> = slips.iter().map(|(speed, ..)| speed.clone()).collect();
+    let (coefficients, creep_rates) = law.coefficients(&speeds);
+    let mut components: [Option<String>; 6] = Default::default();
+    for ((_, slot, factor, limit), coefficient) in slips.into_iter().zip(coefficients) {
+        let scaled: Vec<(f64, String)> = load
+            .iter()
+            .map(|(each, term)| (each * factor, term.clone()))
+            .collect();
+        let mut magnitude = format!("-({coefficient})*({})", linear_sum(&scaled));
+        if let Some(limit) = limit {
+            magnitude = format!(
+                "MIN(MAX({magnitude}, {}), {})",
+                literal(-limit),
+                literal(limit)
+            );
+        }
+        components[slot] = Some(magnitude);
     }
-    Ok((joint, magnitude, creep_rate, rotational))
+    Ok((joint, components, creep_rates))
+}
+
+/// The friction law of a FRICTION: its effects, coefficients, stiction
+/// transition velocity `vs`, transition velocity coefficient `β` and
+/// largest creep `δ`.
+struct Law {
+    effect: Effect,
+    mu_static: f64,
+    mu_dynamic: f64,
+    vs: f64,
+    beta: f64,
+    deformation: f64,
+}
+
+impl Law {
+    /// The coefficient of friction along each direction of the slip whose
+    /// speeds are `slips` (the friction is `−coefficient·N`), and the
+    /// creep states' rates (none without stiction). One direction: the
+    /// coefficient odd in the slip `v`, its speed `|v|`; more: the speed
+    /// `|v|` smoothed to `√(|v|² + ε²) − ε`, `ε = vs/1000`, and each
+    /// sliding coefficient `μ(|v|)·vₖ/√(|v|² + ε²)`, so that the friction
+    /// opposes the slip and is 0 (no NaN) at rest.
+    fn coefficients(&self, slips: &[String]) -> (Vec<String>, Vec<String>) {
+        let (vs, beta) = (self.vs, self.beta);
+        let (peak, end) = match self.effect {
+            Effect::All => (self.mu_static, self.mu_dynamic),
+            Effect::Stiction => (self.mu_static, 0.0),
+            Effect::Sliding => (self.mu_dynamic, self.mu_dynamic),
+        };
+        // The sliding coefficient at `x`, odd in `x` (its negative half
+        // left out for a speed, which is never below 0).
+        let sliding_at = |x: &str, odd: bool| {
+            sum(&[
+                step(x, -vs, -peak, vs, peak),
+                step(x, vs, 0.0, beta * vs, end - peak),
+                if odd {
+                    step(x, -beta * vs, peak - end, -vs, 0.0)
+                } else {
+                    String::new()
+                },
+            ])
+        };
+        let v: Vec<String> = slips.iter().map(|slip| format!("({slip})")).collect();
+        let (speed, sliding) = if let [one] = v.as_slice() {
+            (format!("ABS{one}"), vec![sliding_at(one, true)])
+        } else {
+            let epsilon = vs / 1000.0;
+            let squares: Vec<String> = v.iter().map(|each| format!("{each}**2")).collect();
+            let norm = format!(
+                "SQRT({} + {})",
+                squares.join(" + "),
+                literal(epsilon * epsilon)
+            );
+            let speed = format!("({norm} - {})", literal(epsilon));
+            let mu = sliding_at(&speed, false);
+            let sliding = v
+                .iter()
+                .map(|each| format!("({mu})*{each}/{norm}"))
+                .collect();
+            (speed, sliding)
+        };
+        if self.effect == Effect::Sliding {
+            return (sliding, Vec::new());
+        }
+        let weight = format!("STEP({speed}, 0, 0, {}, 1)", literal(vs));
+        let (mut coefficients, mut rates) = (Vec::new(), Vec::new());
+        for (k, (each, sliding)) in v.iter().zip(sliding).enumerate() {
+            let creep = creep(k);
+            let rate = format!("{each} - {speed}*{creep}/{}", literal(self.deformation));
+            coefficients.push(format!(
+                "(1 - {weight})*({}*{creep} + {}*({rate})) + {weight}*({sliding})",
+                literal(self.mu_static / self.deformation),
+                literal(self.mu_static / vs)
+            ));
+            rates.push(rate);
+        }
+        (coefficients, rates)
+    }
 }
 
 /// `STEP(v, x0, h0, x1, h1)` as text, `""` (left out of a sum) when it
@@ -458,49 +617,42 @@ fn effect(statement: &Statement) -> Result<Effect, Span> {
     })
 }
 
-/// The inputs of the friction's load (`INPUTS`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Inputs {
-    /// `PRELOAD`.
-    preload: bool,
-    /// `REACTION_FORCE`.
-    force: bool,
-    /// `BENDING_MOMENT`.
-    bending: bool,
-    /// `TORSIONAL_MOMENT`.
-    torsion: bool,
+/// The inputs of a friction's load, in the order of [`INPUT_NAMES`].
+type Inputs = [bool; 4];
+
+/// The inputs' names.
+const INPUT_NAMES: [&str; 4] = [
+    "PRELOAD",
+    "REACTION_FORCE",
+    "BENDING_MOMENT",
+    "TORSIONAL_MOMENT",
+];
+
+/// The inputs INPUTS names.
+enum Named {
+    /// `ALL` (or INPUTS left out): all the joint's inputs.
+    All,
+    /// These (`NONE`: none).
+    These(Inputs),
 }
 
-/// `INPUTS`: ALL when left out (a revolute joint has no torsional
-/// moment: ALL leaves it out there); the span of a value that is none of
-/// its words.
-fn inputs(statement: &Statement, rotational: bool) -> Result<Inputs, Span> {
+/// `INPUTS`: ALL when left out; the span of a value that is none of its
+/// words.
+fn inputs(statement: &Statement) -> Result<Named, Span> {
     let Some((words, span)) = words(statement, "INPUTS", 6) else {
-        return Ok(Inputs {
-            preload: true,
-            force: true,
-            bending: true,
-            torsion: !rotational,
-        });
+        return Ok(Named::All);
     };
-    const NAMES: [&str; 6] = [
-        "ALL",
-        "NONE",
-        "PRELOAD",
-        "REACTION_FORCE",
-        "BENDING_MOMENT",
-        "TORSIONAL_MOMENT",
-    ];
-    if words.is_empty() || words.iter().any(|word| !NAMES.contains(&word.as_str())) {
+    let known =
+        |word: &String| word == "ALL" || word == "NONE" || INPUT_NAMES.contains(&word.as_str());
+    if words.is_empty() || !words.iter().all(known) {
         return Err(span);
     }
-    let has = |name: &str| words.iter().any(|word| word == name || word == "ALL");
-    Ok(Inputs {
-        preload: has("PRELOAD"),
-        force: has("REACTION_FORCE"),
-        bending: has("BENDING_MOMENT"),
-        torsion: has("TORSIONAL_MOMENT") && !(rotational && words.iter().any(|word| word == "ALL")),
-    })
+    if words.iter().any(|word| word == "ALL") {
+        return Ok(Named::All);
+    }
+    Ok(Named::These(
+        INPUT_NAMES.map(|name| words.iter().any(|word| word == name)),
+    ))
 }
 
 /// The id a joint's marker has in expressions (`0` for ground itself).
