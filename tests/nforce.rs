@@ -180,7 +180,7 @@ PART/2, MASS = {m1}, CM = 20, IP = 1, 1, 1, QG = {}, 0, 0
 MARKER/20, PART = 2
 PART/3, MASS = {m2}, CM = 30, IP = 1, 1, 1, QG = {}, 0, 0
 MARKER/30, PART = 3
-NFORCE/1, I = 20, 30, J = 1, KMATRIX = 1, CRATIO = {cratio}, LENGTH = 2
+NFORCE/1, IMARKERS = 20, 30, J = 1, KMATRIX = 1, CRATIO = {cratio}, LENGTH = 2
 MATRIX/1, SPARSE, ROWS = 12, COLUMNS = 12, I = 1, 1, 7, 7, 2, 3, 4, 5, 6, 8, 9, 10, 11, 12
 , J = 1, 7, 1, 7, 2, 3, 4, 5, 6, 8, 9, 10, 11, 12
 , VALUES = {}, {}, {}, {k2}, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10
@@ -368,10 +368,18 @@ fn preload_and_length_give_the_documented_static_offset() {
 fn bad_nforces_are_refused_at_their_place() {
     let (base, _) = chain("1 2 100 50 1 0", 0.05);
     let cases = [
-        ("no I", "I = 20, 30, J = 1", "J = 1"),
-        ("I lists a non-marker", "I = 20, 30,", "I = 20, 31,"),
-        ("I lists a marker twice", "I = 20, 30,", "I = 20, 20,"),
-        ("no J", "I = 20, 30, J = 1,", "I = 20, 30,"),
+        ("no IMARKERS", "IMARKERS = 20, 30, J = 1", "J = 1"),
+        (
+            "I (IMARKERS abbreviated) lists a non-marker",
+            "IMARKERS = 20, 30,",
+            "I = 20, 31,",
+        ),
+        (
+            "IMARKERS lists a marker twice",
+            "IMARKERS = 20, 30,",
+            "IMARKERS = 20, 20,",
+        ),
+        ("no J", "IMARKERS = 20, 30, J = 1,", "IMARKERS = 20, 30,"),
         ("J among the I markers", "J = 1,", "J = 30,"),
         ("no KMATRIX", "KMATRIX = 1,", ""),
         ("KMATRIX names no MATRIX", "KMATRIX = 1,", "KMATRIX = 9,"),

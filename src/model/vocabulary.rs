@@ -488,7 +488,9 @@ pub const STATEMENTS: &[(&str, Option<&[&str]>)] = &[
     ),
     (
         "NFORCE",
-        Some(&["CMATRIX", "CRATIO", "FORCE", "I", "J", "KMATRIX", "LENGTH"]),
+        Some(&[
+            "CMATRIX", "CRATIO", "FORCE", "IMARKERS", "J", "KMATRIX", "LENGTH",
+        ]),
     ),
     ("NOLIST", Some(&[])),
     (

@@ -2,7 +2,8 @@
 //! marker by a `6N × 6N` stiffness and damping.
 //!
 //! Documented (Adams Solver's NFORCE statement; MotionSolve's
-//! Force_MultiPoint): `I = id1, ..., idn` lists the markers (1 to 350,
+//! Force_MultiPoint): `IMARKERS = id1, ..., idn` (or any abbreviation of
+//! it, down to `I`) lists the markers (1 to 350,
 //! the J marker not among them); `J` is the marker whose axes resolve
 //! the displacements, the velocities (taken relative to J, in J's frame)
 //! and the forces; `KMATRIX` names a `6N × 6N` MATRIX of stiffness, and
@@ -67,9 +68,10 @@ pub(super) fn multipoint(
     scene: &Scene,
 ) -> Result<Multipoint, Refusal> {
     let label = statement.label();
+    // IMARKERS, as Adams writes it, may be abbreviated to I.
     let ids = |keyword: &str, what: &str| -> Result<(Vec<u64>, crate::span::Span), Refusal> {
         let argument = statement
-            .argument(keyword, keyword.len())
+            .argument(keyword, 1)
             .ok_or_else(|| (format!("{label}: needs {keyword} = {what}"), statement.span))?;
         let listed = number_list(statement, argument).map_err(refusal)?;
         let ids = listed
@@ -95,11 +97,11 @@ pub(super) fn multipoint(
             .find_marker(&Reference::Id(id))
             .unwrap_or(Target::Ground)
     };
-    let (i, i_span) = ids("I", "the markers its forces act on (1 to 350)")?;
+    let (i, i_span) = ids("IMARKERS", "the markers its forces act on (1 to 350)")?;
     if i.is_empty() || i.len() > MOST_MARKERS {
         return Err((
             format!(
-                "{label}: I lists {} markers, where an NFORCE has 1 to {MOST_MARKERS}",
+                "{label}: IMARKERS lists {} markers, where an NFORCE has 1 to {MOST_MARKERS}",
                 i.len()
             ),
             i_span,
@@ -112,7 +114,7 @@ pub(super) fn multipoint(
     {
         return Err((
             format!(
-                "{label}: I lists MARKER/{id} twice (its entry {})",
+                "{label}: IMARKERS lists MARKER/{id} twice (its entry {})",
                 index + 1
             ),
             i_span,
