@@ -24,6 +24,13 @@ use crate::number::Number;
 /// The highest ORDER (degree + 1) read.
 pub const MAX_ORDER: usize = 8;
 
+/// How far, in parts of its piece, a point of contact goes past a knot
+/// before the crossing switches pieces ([`Curve::switching`]): far above
+/// the rounding of its parameter (1e-13 of it), far below anything the
+/// held piece's polynomial continued past the knot changes (its third
+/// derivative's jump times the cube of the overshoot).
+const KNOT_MARGIN: f64 = 1e-8;
+
 /// A B-spline curve as polynomial pieces in its parameter `α ∈ [−1, 1]`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curve {
@@ -309,17 +316,28 @@ impl Curve {
 
     /// The two switching values of piece `piece` at `alpha`: its distance
     /// past the piece's start and short of its end (in the period nearest
-    /// the piece), one changing sign where the point of contact crosses a
-    /// knot; an open curve's own ends never switch (there the point leaves
-    /// the curve).
+    /// the piece), each widened by [`KNOT_MARGIN`] of the piece, one
+    /// changing sign where the point of contact crosses a knot; an open
+    /// curve's own ends never switch (there the point leaves the curve).
+    /// The margin puts a located crossing past the knot by more than the
+    /// rounding of a parameter found by Newton's iterations, so that the
+    /// piece of the point of contact there is the next one beyond doubt:
+    /// without it a crossing located within rounding of a knot found the
+    /// point still on the held piece, and the run went on holding a piece
+    /// the point had left, its switching value negative from then on.
     pub fn switching(&self, alpha: f64, piece: usize) -> [f64; 2] {
         let alpha = self.near_piece(alpha, piece);
         let span = &self.pieces[piece];
+        let margin = KNOT_MARGIN * (span.end - span.start);
         let first = self.closed || piece > 0;
         let last = self.closed || piece + 1 < self.pieces.len();
         [
-            if first { alpha - span.start } else { 1.0 },
-            if last { span.end - alpha } else { 1.0 },
+            if first {
+                alpha - span.start + margin
+            } else {
+                1.0
+            },
+            if last { span.end - alpha + margin } else { 1.0 },
         ]
     }
 

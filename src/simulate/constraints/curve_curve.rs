@@ -51,14 +51,18 @@
 //! (read checks that it is at the start; a JCURVE that tilts is met as its
 //! shadow on ICURVE's plane).
 //!
-//! The contact's knots are not located switches (a PTCV's are): the
-//! curves' points, tangents and bends are continuous across the knots of
-//! the curves of ORDER 4 and more a CVCV takes. Where the point of contact
-//! runs past an end of an open curve, the equations fail and the run
-//! stops at that CVCV, at that time.
+//! The contact's knots are located switches, as a PTCV's are: within a
+//! step each curve is held on the piece its point of contact was on at
+//! the step's start (its polynomial continued past the piece's ends), and
+//! the run locates the point's crossing of a knot, where the curve's third
+//! derivative jumps (its points, tangents and bends are continuous there
+//! on the curves of ORDER 4 and more a CVCV takes). Where the point of
+//! contact runs past an end of an open curve, the equations fail and the
+//! run stops at that CVCV, at that time.
 
 use nalgebra::Vector3;
 
+use super::drives::Pieces;
 use super::on_curve::{failed, off_the_ends, sped, started};
 use super::rows::{BodyMotion, Moving, Row};
 use crate::number::Number;
@@ -66,16 +70,18 @@ use crate::simulate::curve::{Curve, CurvePoint};
 use crate::simulate::model::{CurvePair, Joint, Model, OnCurve};
 
 /// The two equations of CVCV `joint` on `pair`, bodies moving as `bodies`
-/// say (their values not a number where no point of contact is found, or
-/// where it has run past an end of an open curve).
+/// say, each curve on the piece `pieces` holds it on where it does (their
+/// values not a number where no point of contact is found, or where it
+/// has run past an end of an open curve).
 pub(super) fn curve_rows<T: Number>(
     model: &Model,
     joint: &Joint,
     pair: &CurvePair,
     bodies: &[BodyMotion<T>],
+    pieces: Pieces,
 ) -> Vec<Row<T>> {
     let seen = Seen::new(model, joint, bodies);
-    let Some(contact) = Contact::find(pair, &seen) else {
+    let Some(contact) = Contact::find(pair, &seen, pieces) else {
         return vec![failed(), failed()];
     };
     let gap = contact.gap(&seen);
@@ -121,7 +127,7 @@ fn parameter_rows(
 ) -> Vec<Row<f64>> {
     let sides = [&pair.i, &pair.j];
     let seen = Seen::new(model, joint, bodies);
-    let Some(contact) = Contact::find(pair, &seen) else {
+    let Some(contact) = Contact::find(pair, &seen, [None; 2]) else {
         return sides
             .iter()
             .filter(|on| given(on).is_some())
@@ -147,7 +153,7 @@ pub(super) fn contact_point(
     bodies: &[BodyMotion<f64>],
 ) -> Option<Vector3<f64>> {
     let seen = Seen::new(model, joint, bodies);
-    let (alpha, _) = parameters(pair, &seen.placement().plain())?;
+    let (alpha, _) = parameters(pair, &seen.placement().plain(), [None; 2])?;
     let local = pair.i.curve.at(&alpha).place;
     let irm = super::frame(model, &joint.i, bodies);
     let axis = |k: usize| Vector3::from_fn(|m, _| irm.axes[k].component(m).value);
@@ -164,7 +170,7 @@ pub(super) fn past_an_end<T: Number>(
     bodies: &[BodyMotion<T>],
 ) -> Option<u64> {
     let seen = Seen::new(model, joint, bodies);
-    let (alpha, beta) = parameters(pair, &seen.placement().plain())?;
+    let (alpha, beta) = parameters(pair, &seen.placement().plain(), [None; 2])?;
     [(&pair.i.curve, alpha), (&pair.j.curve, beta)]
         .into_iter()
         .find(|(curve, parameter)| off_the_ends(curve, *parameter))
@@ -290,15 +296,16 @@ fn inverse<T: Number>(m: &[[T; 2]; 2]) -> Option<[[T; 2]; 2]> {
     ])
 }
 
-/// One Newton step on `F = 0` from `(alpha, beta)`.
+/// One Newton step on `F = 0` from `(alpha, beta)`, each curve on the
+/// piece `pieces` holds it on where it does.
 fn newton<T: Number>(
     pair: &CurvePair,
     placement: &Placement<T>,
-    alpha: T,
-    beta: T,
+    (alpha, beta): (T, T),
+    pieces: Pieces,
 ) -> Option<(T, T)> {
-    let i = pair.i.curve.at(&alpha);
-    let j = pair.j.curve.at(&beta);
+    let i = pair.i.curve.at_on(&alpha, pieces[0]);
+    let j = pair.j.curve.at_on(&beta, pieces[1]);
     let (f, m) = equations(&i, &j, placement);
     let inverse = inverse(&m)?;
     let step = |row: &[T; 2]| -(row[0].clone() * f[0].clone() + row[1].clone() * f[1].clone());
@@ -309,13 +316,14 @@ fn newton<T: Number>(
 /// contact's start.
 const SAMPLES_PER_PIECE: usize = 4;
 
-/// The contact's parameters `(α, β)` at `placement`: the nearest pair
-/// (in IRM's plane) of the curves' samples, refined by Newton's iterations
-/// on `F`; `None` where they do not settle.
-fn parameters(pair: &CurvePair, placement: &Placement<f64>) -> Option<(f64, f64)> {
-    let (mut alpha, mut beta) = nearest_samples(pair, placement)?;
+/// The contact's parameters `(α, β)` at `placement`, each curve on the
+/// piece `pieces` holds it on where it does: the nearest pair (in IRM's
+/// plane) of the curves' samples (of the held pieces), refined by
+/// Newton's iterations on `F`; `None` where they do not settle.
+fn parameters(pair: &CurvePair, placement: &Placement<f64>, pieces: Pieces) -> Option<(f64, f64)> {
+    let (mut alpha, mut beta) = nearest_samples(pair, placement, pieces)?;
     for _ in 0..50 {
-        let (next_alpha, next_beta) = newton(pair, placement, alpha, beta)?;
+        let (next_alpha, next_beta) = newton(pair, placement, (alpha, beta), pieces)?;
         let settled = (next_alpha - alpha).abs() <= 1e-13 * (1.0 + alpha.abs())
             && (next_beta - beta).abs() <= 1e-13 * (1.0 + beta.abs());
         (alpha, beta) = (next_alpha, next_beta);
@@ -326,17 +334,41 @@ fn parameters(pair: &CurvePair, placement: &Placement<f64>) -> Option<(f64, f64)
             return Some((alpha, beta));
         }
     }
-    let (f, _) = equations(&pair.i.curve.at(&alpha), &pair.j.curve.at(&beta), placement);
+    let (f, _) = equations(
+        &pair.i.curve.at_on(&alpha, pieces[0]),
+        &pair.j.curve.at_on(&beta, pieces[1]),
+        placement,
+    );
     (f[0].abs() + f[1].abs() <= 1e-10).then_some((alpha, beta))
+}
+
+/// CVCV `joint`'s contact parameters `(α, β)` at the state `bodies` give,
+/// each curve on the piece `pieces` holds it on where it does, when they
+/// are found.
+pub(super) fn contact_parameters(
+    model: &Model,
+    joint: &Joint,
+    pair: &CurvePair,
+    bodies: &[BodyMotion<f64>],
+    pieces: Pieces,
+) -> Option<(f64, f64)> {
+    let seen = Seen::new(model, joint, bodies);
+    parameters(pair, &seen.placement(), pieces)
 }
 
 /// The nearest pair (in IRM's plane) of the curves' samples, `SAMPLES_PER_PIECE`
 /// a piece evenly in each curve's parameter, the first in the order of the
-/// parameters among equals. Only the samples of pieces whose bounding
+/// parameters among equals, only the held piece's of a curve `pieces`
+/// holds. Only the samples of pieces whose bounding
 /// balls come as near each other as the nearest pair of balls' far sides
 /// are looked at: no pair of the other pieces' samples can be nearer, so
 /// the pair is the one all the samples give.
-fn nearest_samples(pair: &CurvePair, placement: &Placement<f64>) -> Option<(f64, f64)> {
+fn nearest_samples(
+    pair: &CurvePair,
+    placement: &Placement<f64>,
+    pieces: Pieces,
+) -> Option<(f64, f64)> {
+    let held = |side: usize, piece: usize| pieces[side].is_none_or(|held| held == piece);
     // In IRM's plane (JCURVE's shadow on it is no larger than the curve).
     let planar =
         |a: &Vector3<f64>, b: &Vector3<f64>| ((a.x - b.x).powi(2) + (a.y - b.y).powi(2)).sqrt();
@@ -347,12 +379,17 @@ fn nearest_samples(pair: &CurvePair, placement: &Placement<f64>) -> Option<(f64,
         .piece_balls()
         .map(|(centre, radius)| (placement.point(&centre), radius))
         .collect();
-    // The least and most each pair of balls' points can be apart.
+    // The least and most each pair of balls' points can be apart (a pair
+    // of pieces not held: never looked at).
     let bounds: Vec<(f64, f64)> = ours
         .iter()
-        .flat_map(|(a, ra)| {
-            theirs.iter().map(move |(b, rb)| {
-                let between = planar(a, b);
+        .enumerate()
+        .flat_map(|(a, (centre, ra))| {
+            theirs.iter().enumerate().map(move |(b, (other, rb))| {
+                if !(held(0, a) && held(1, b)) {
+                    return (f64::INFINITY, f64::INFINITY);
+                }
+                let between = planar(centre, other);
                 (between - ra - rb, between + ra + rb)
             })
         })
@@ -439,19 +476,20 @@ struct Contact<T: Number> {
 }
 
 impl<T: Number> Contact<T> {
-    /// The contact at the state `seen` gives; `None` where none is found
-    /// or it lies past an end of an open curve.
-    fn find(pair: &CurvePair, seen: &Seen<T>) -> Option<Contact<T>> {
+    /// The contact at the state `seen` gives, each curve on the piece
+    /// `pieces` holds it on where it does; `None` where none is found or
+    /// it lies past an end of an open curve.
+    fn find(pair: &CurvePair, seen: &Seen<T>, pieces: Pieces) -> Option<Contact<T>> {
         let placement = seen.placement();
-        let (alpha, beta) = parameters(pair, &placement.plain())?;
+        let (alpha, beta) = parameters(pair, &placement.plain(), pieces)?;
         if off_the_ends(&pair.i.curve, alpha) || off_the_ends(&pair.j.curve, beta) {
             return None;
         }
         // One Newton step carries the parameters' derivatives.
         let (alpha_carried, beta_carried) =
-            newton(pair, &placement, T::from(alpha), T::from(beta))?;
-        let i = pair.i.curve.at(&alpha_carried);
-        let j = pair.j.curve.at(&beta_carried);
+            newton(pair, &placement, (T::from(alpha), T::from(beta)), pieces)?;
+        let i = pair.i.curve.at_on(&alpha_carried, pieces[0]);
+        let j = pair.j.curve.at_on(&beta_carried, pieces[1]);
         let (_, m) = equations(&i, &j, &placement);
         let inverse = inverse(&m)?;
         let speed = i.tangent.norm();

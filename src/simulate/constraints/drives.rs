@@ -39,17 +39,33 @@ pub(crate) struct Imposed<'d> {
     pub(crate) time: f64,
     /// The general constraints, compiled.
     pub(crate) general: &'d GeneralConstraints,
-    /// For each joint, the piece of its curve a PTCV is held on within a
-    /// step (empty, or `None` for a joint, where each PTCV takes the piece
-    /// of its point of contact).
-    pub(crate) pieces: Vec<Option<usize>>,
+    /// For each joint, the pieces of its curves a PTCV or a CVCV is held
+    /// on within a step (empty, or `None` for a curve, where each takes
+    /// the piece of its point of contact).
+    pub(crate) pieces: Vec<Pieces>,
 }
 
 impl Imposed<'_> {
-    /// The piece joint `joint`'s curve is held on, if it is.
-    pub(crate) fn piece(&self, joint: usize) -> Option<usize> {
-        self.pieces.get(joint).copied().flatten()
+    /// The pieces joint `joint`'s curves are held on, where they are.
+    pub(crate) fn pieces(&self, joint: usize) -> Pieces {
+        self.pieces.get(joint).copied().unwrap_or_default()
     }
+}
+
+/// The pieces a joint's curves are held on within a step, by
+/// [`CurveSite::side`]: a PTCV's curve first, a CVCV's ICURVE then its
+/// JCURVE (`None`: the piece of the point of contact).
+pub(crate) type Pieces = [Option<usize>; 2];
+
+/// A curve whose point of contact a run holds on one piece within a step,
+/// so that it crosses its knots (where the curve's third derivative
+/// jumps) as located switches: a PTCV's curve, or one of a CVCV's two.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct CurveSite {
+    /// The joint, by its index among the model's joints.
+    pub(crate) joint: usize,
+    /// 0 for a PTCV's curve and a CVCV's ICURVE, 1 for a CVCV's JCURVE.
+    pub(crate) side: usize,
 }
 
 /// The motions' FUNCTIONs compiled together, to be evaluated in time, and
@@ -70,23 +86,32 @@ pub(crate) struct Drives {
     /// program that computes the same call ([`Drives::held_by`]): within a
     /// step a motion stays on the branch its FUNCTION holds there.
     held_sites: Vec<Option<usize>>,
-    /// The first of the PTCVs' sites among the held sites (after the
-    /// forces' program's and the contacts'), one for each joint of
-    /// `curve_joints` in order, when the drives are held on a program.
-    curve_sites: Option<usize>,
-    /// The PTCVs, by their index among the joints.
-    curve_joints: Vec<usize>,
+    /// The first of the curves' sites among the held sites (after the
+    /// forces' program's and the contacts'), one for each of
+    /// `curve_sites` in order, when the drives are held on a program.
+    first_curve_site: Option<usize>,
+    /// The curves of the PTCVs and CVCVs.
+    curve_sites: Vec<CurveSite>,
 }
 
-/// The joints of `model` that are PTCVs, by index: each has a site after
-/// the forces' program's and the contacts', in this order.
-pub(crate) fn curve_joints(model: &Model) -> Vec<usize> {
+/// The curves of `model`'s PTCVs (one each) and CVCVs (two each) in the
+/// order of the joints: each has a site after the forces' program's and
+/// the contacts', in this order.
+pub(crate) fn curve_sites(model: &Model) -> Vec<CurveSite> {
     model
         .joints
         .iter()
         .enumerate()
-        .filter(|(_, joint)| joint.curve.is_some())
-        .map(|(index, _)| index)
+        .flat_map(|(joint, kind)| {
+            let sides = if kind.curve.is_some() {
+                1
+            } else if kind.pair.is_some() {
+                2
+            } else {
+                0
+            };
+            (0..sides).map(move |side| CurveSite { joint, side })
+        })
         .collect()
 }
 
@@ -147,8 +172,8 @@ impl Drives {
             checkpoints: Mutex::new(Vec::new()),
             general: GeneralConstraints::new(model),
             held_sites,
-            curve_sites: forces.map(|(forces, _)| forces.sites().len() + contacts),
-            curve_joints: curve_joints(model),
+            first_curve_site: forces.map(|(forces, _)| forces.sites().len() + contacts),
+            curve_sites: curve_sites(model),
         }
     }
 
@@ -179,13 +204,13 @@ impl Drives {
         t: f64,
         held: Option<&[Option<Code>]>,
     ) -> Result<Imposed<'_>, OutputError> {
-        let mut pieces = Vec::new();
-        if let (Some(sites), Some(first)) = (held, self.curve_sites) {
-            for (k, &joint) in self.curve_joints.iter().enumerate() {
+        let mut pieces: Vec<Pieces> = Vec::new();
+        if let (Some(sites), Some(first)) = (held, self.first_curve_site) {
+            for (k, site) in self.curve_sites.iter().enumerate() {
                 let piece = sites.get(first + k).copied().flatten();
                 if let Some(piece) = piece.and_then(|code| usize::try_from(code).ok()) {
-                    pieces.resize(pieces.len().max(joint + 1), None);
-                    pieces[joint] = Some(piece);
+                    pieces.resize(pieces.len().max(site.joint + 1), [None; 2]);
+                    pieces[site.joint][site.side] = Some(piece);
                 }
             }
         }

@@ -35,9 +35,8 @@ mod reactions;
 mod rows;
 mod solve;
 
-pub(crate) use drives::{Drive, Drives, Imposed, MOTIONS, curve_joints};
+pub(crate) use drives::{CurveSite, Drive, Drives, Imposed, MOTIONS, Pieces, curve_sites};
 pub(crate) use general::{GeneralConstraints, bodies_of};
-pub(crate) use on_curve::contact_parameter;
 pub(crate) use reactions::{Component, Reactions, component_and_rm, flags, pick};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
@@ -86,19 +85,42 @@ fn frame<T: crate::number::Number>(
     }
 }
 
+/// The curves of PTCV or CVCV `joint` (a PTCV's one, a CVCV's ICURVE and
+/// JCURVE), each with the parameter of its point of contact at the state
+/// `bodies` give (not a number where none is found): a CVCV's with its
+/// curves on the pieces `pieces` holds them on, a PTCV's the curve's point
+/// nearest its I marker; none for another joint.
+pub(crate) fn curve_contacts<'j>(
+    model: &super::Model,
+    joint: &'j Joint,
+    bodies: &[BodyMotion<f64>],
+    pieces: Pieces,
+) -> Vec<(&'j crate::simulate::curve::Curve, f64)> {
+    if let Some(on) = &joint.curve {
+        let alpha = on_curve::contact_parameter(model, joint, on, bodies).unwrap_or(f64::NAN);
+        return vec![(&on.curve, alpha)];
+    }
+    let Some(pair) = &joint.pair else {
+        return Vec::new();
+    };
+    let (alpha, beta) = curve_curve::contact_parameters(model, joint, pair, bodies, pieces)
+        .unwrap_or((f64::NAN, f64::NAN));
+    vec![(&pair.i.curve, alpha), (&pair.j.curve, beta)]
+}
+
 /// The equations of `joint` (all of them, redundant ones too), in order;
-/// a PTCV's on piece `piece` of its curve when one is given.
+/// a PTCV's or a CVCV's with its curves on the pieces `pieces` gives.
 fn joint_rows<T: crate::number::Number>(
     model: &super::Model,
     joint: &Joint,
     bodies: &[BodyMotion<T>],
-    piece: Option<usize>,
+    pieces: Pieces,
 ) -> Vec<Row<T>> {
     if let Some(on) = &joint.curve {
-        return on_curve::curve_rows(model, joint, on, bodies, piece);
+        return on_curve::curve_rows(model, joint, on, bodies, pieces[0]);
     }
     if let Some(pair) = &joint.pair {
-        return curve_curve::curve_rows(model, joint, pair, bodies);
+        return curve_curve::curve_rows(model, joint, pair, bodies, pieces);
     }
     let i = frame(model, &joint.i, bodies);
     let j = frame(model, &joint.j, bodies);
@@ -478,7 +500,7 @@ fn active_rows<T: crate::number::Number>(
     let drives = &imposed.drives;
     let mut rows = Vec::new();
     for (index, joint) in model.joints.iter().enumerate() {
-        rows.extend(kept_rows(model, joint, bodies, imposed.piece(index)));
+        rows.extend(kept_rows(model, joint, bodies, imposed.pieces(index)));
     }
     for (motion, drive) in model.motions.iter().zip(drives) {
         rows.push(motion_row(model, motion, drive, bodies));
@@ -664,9 +686,9 @@ fn kept_rows<T: crate::number::Number>(
     model: &super::Model,
     joint: &super::Joint,
     bodies: &[BodyMotion<T>],
-    piece: Option<usize>,
+    pieces: Pieces,
 ) -> impl Iterator<Item = Row<T>> {
-    joint_rows(model, joint, bodies, piece)
+    joint_rows(model, joint, bodies, pieces)
         .into_iter()
         .enumerate()
         .filter(|(index, _)| !joint.redundant.contains(index))

@@ -198,7 +198,7 @@ fn parameter_row(
 
 /// The parameter of the point of contact of PTCV `joint` on `on` at the
 /// state `bodies` give (`None` where none is found).
-pub(crate) fn contact_parameter(
+pub(super) fn contact_parameter(
     model: &Model,
     joint: &Joint,
     on: &OnCurve,

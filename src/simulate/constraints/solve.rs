@@ -1007,7 +1007,7 @@ pub(crate) fn find_redundant(model: &Model, y: &[f64], offsets: &[usize]) -> Vec
     let mut labels = Vec::new();
     let mut rows = Vec::new();
     for (joint_index, joint) in model.joints.iter().enumerate() {
-        for (equation, row) in joint_rows(model, joint, &bodies, None)
+        for (equation, row) in joint_rows(model, joint, &bodies, [None; 2])
             .into_iter()
             .enumerate()
         {
@@ -1052,7 +1052,7 @@ pub(crate) fn disagreeing_redundant(
         .enumerate()
         .filter(|(_, joint)| !joint.redundant.is_empty())
         .flat_map(|(index, joint)| {
-            let rows = joint_rows(model, joint, &bodies, None);
+            let rows = joint_rows(model, joint, &bodies, [None; 2]);
             joint
                 .redundant
                 .iter()

@@ -42,8 +42,8 @@ use crate::laws::contact::ContactBranch;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, is_run_state_input, parse_sensor_input};
 use crate::simulate::constraints::{
-    BodyMotion, Component, Drives, Holder, Reactions, acceleration_residual, constraint_loads,
-    contact_parameter, curve_joints, holders, joints_failed_in, joints_singular_in,
+    BodyMotion, Component, CurveSite, Drives, Holder, Reactions, acceleration_residual,
+    constraint_loads, curve_contacts, curve_sites, holders, joints_failed_in, joints_singular_in,
     multiplier_loads,
 };
 use crate::simulate::model::{Contact, Force, Model};
@@ -261,7 +261,7 @@ impl<'m> Mechanics<'m> {
                         _ => None,
                     })
                     .collect(),
-                curves: curve_joints(model),
+                curves: curve_sites(model),
                 sensed: vec![0.0; model.sensors.len()],
                 massless: (0..model.masses.len())
                     .filter(|&body| model.masses[body].is_massless())
@@ -364,27 +364,29 @@ impl<'m> Mechanics<'m> {
     }
 
     /// The number of sites whose branches a run holds: the program's, then
-    /// one for each contact's law, then one for each PTCV's curve (its
-    /// piece).
+    /// one for each contact's law, then one for each curve of a PTCV or a
+    /// CVCV (its piece).
     pub(crate) fn site_count(&self) -> usize {
         let equations = &self.equations;
         equations.program.sites().len() + equations.contacts.len() + equations.curves.len()
     }
 
     /// The number of switching values [`Mechanics::observe`] gives: the
-    /// program's, then three for each contact, then two for each PTCV.
+    /// program's, then three for each contact, then two for each curve of
+    /// a PTCV or a CVCV.
     pub(crate) fn switch_count(&self) -> usize {
         let equations = &self.equations;
         equations.program.switch_count() + 3 * equations.contacts.len() + 2 * equations.curves.len()
     }
 
-    /// The PTCV of site `site`, when it is one.
-    pub(crate) fn curve_of_site(&self, site: usize) -> Option<&'m crate::simulate::Joint> {
+    /// The PTCV or CVCV of site `site`, when it is one of their curves,
+    /// with the curve's side ([`CurveSite::side`]).
+    pub(crate) fn curve_of_site(&self, site: usize) -> Option<(&'m crate::simulate::Joint, usize)> {
         let equations = &self.equations;
         let first = equations.program.sites().len() + equations.contacts.len();
         let index = site.checked_sub(first)?;
-        let joint = *equations.curves.get(index)?;
-        Some(&equations.model.joints[joint])
+        let site = equations.curves.get(index)?;
+        Some((&equations.model.joints[site.joint], site.side))
     }
 
     /// The contact of site `site`, when it is one (its index among the
@@ -770,24 +772,39 @@ impl<'m> Mechanics<'m> {
                 }
             }
         }
-        // Each PTCV's curve is a site after the contacts', its branch the
-        // piece of its point of contact, with two switching values: the
-        // distances to the held piece's ends.
+        // Each curve of a PTCV or a CVCV is a site after the contacts', its
+        // branch the piece of its point of contact, with two switching
+        // values: the distances to the held piece's ends.
         if !equations.curves.is_empty() {
             let contacts = equations.contacts.len();
             let first_site = program_sites + contacts;
             let bodies = body_motions(&kinematics);
-            for (k, &index) in equations.curves.iter().enumerate() {
-                let joint = &model.joints[index];
-                let Some(on) = &joint.curve else { continue };
-                let alpha = contact_parameter(model, joint, on, &bodies).unwrap_or(f64::NAN);
-                let natural = on.curve.piece_of(alpha);
-                let piece = held
-                    .and_then(|sites| sites[first_site + k])
+            let held_piece = |k: usize| {
+                held.and_then(|sites| sites.get(first_site + k).copied().flatten())
                     .and_then(|code| usize::try_from(code).ok())
-                    .unwrap_or(natural);
+            };
+            let mut found = Vec::new();
+            for (k, site) in equations.curves.iter().enumerate() {
+                // A joint's curves are consecutive sites, side 0 first:
+                // its points of contact are found once, at its first.
+                if site.side == 0 {
+                    let joint = &model.joints[site.joint];
+                    let second = equations.curves.get(k + 1);
+                    let pieces = [
+                        held_piece(k),
+                        second
+                            .filter(|next| next.joint == site.joint)
+                            .and_then(|_| held_piece(k + 1)),
+                    ];
+                    found = curve_contacts(model, joint, &bodies, pieces);
+                }
+                let Some(&(curve, parameter)) = found.get(site.side) else {
+                    continue;
+                };
+                let natural = curve.piece_of(parameter);
+                let piece = held_piece(k).unwrap_or(natural);
                 contact_natural[contacts + k] = Some(natural as Code);
-                let values = on.curve.switching(alpha, piece);
+                let values = curve.switching(parameter, piece);
                 let first_switch = 3 * contacts + 2 * k;
                 contact_switching[first_switch..first_switch + 2].copy_from_slice(&values);
             }
@@ -1312,10 +1329,10 @@ struct Equations<'m> {
     /// The model's contacts, in the order of their sites (after the
     /// program's).
     contacts: Vec<&'m Contact>,
-    /// The model's PTCVs by their index among the joints, in the order of
-    /// their sites (after the contacts'): each holds its curve on one
-    /// piece within a step.
-    curves: Vec<usize>,
+    /// The curves of the model's PTCVs and CVCVs, in the order of their
+    /// sites (after the contacts'): each is held on one piece within a
+    /// step.
+    curves: Vec<CurveSite>,
     /// `SENVAL` of each of the model's sensors: its EVALUATE's value at its
     /// last trip (0 before the first, and for a sensor without one).
     sensed: Vec<f64>,

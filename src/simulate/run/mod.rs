@@ -493,17 +493,29 @@ fn contact_event(contact: &Contact, time: f64, from: Code, to: Code) -> Event {
     }
 }
 
-/// The event of PTCV `joint`'s point of contact crossing from piece
-/// `from` of its curve to piece `to` at `time` (a knot, where the curve's
-/// third derivative changes).
-fn curve_event(joint: &crate::simulate::Joint, time: f64, from: Code, to: Code) -> Event {
-    let curve = joint.curve.as_ref().map_or(0, |on| on.curve.id);
+/// The event of PTCV or CVCV `joint`'s point of contact crossing, on
+/// its curve of side `side` ([`CurveSite::side`](crate::simulate::constraints::CurveSite::side)), from piece `from` to
+/// piece `to` at `time` (a knot, where the curve's third derivative
+/// changes).
+fn curve_event(
+    joint: &crate::simulate::Joint,
+    side: usize,
+    time: f64,
+    from: Code,
+    to: Code,
+) -> Event {
+    let (function, curve) = match (&joint.curve, &joint.pair) {
+        (Some(on), _) => ("PTCV", on.curve.id),
+        (None, Some(pair)) if side == 0 => ("CVCV", pair.i.curve.id),
+        (None, Some(pair)) => ("CVCV", pair.j.curve.id),
+        (None, None) => ("JOINT", 0),
+    };
     let describe = |code: Code| format!("on piece {} of CURVE/{curve}", code + 1);
     Event {
         time,
-        function: "PTCV".to_string(),
+        function: function.to_string(),
         place: Place::File(joint.span),
-        label: format!("PTCV/{}", joint.id),
+        label: format!("{function}/{}", joint.id),
         from: describe(from),
         to: describe(to),
         values: Vec::new(),
@@ -1336,7 +1348,7 @@ impl Simulation<'_> {
                         mechanics.curve_of_site(index),
                     ) {
                         (Some(contact), _) => contact_event(contact, right, *from, *to),
-                        (None, Some(joint)) => curve_event(joint, right, *from, *to),
+                        (None, Some((joint, side))) => curve_event(joint, side, right, *from, *to),
                         (None, None) => {
                             self.event(program, &program.sites()[index], right, *from, *to)
                         }
