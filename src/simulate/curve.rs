@@ -316,7 +316,7 @@ impl Curve {
 
     /// The two switching values of piece `piece` at `alpha`: its distance
     /// past the piece's start and short of its end (in the period nearest
-    /// the piece), each widened by [`KNOT_MARGIN`] of the piece, one
+    /// the piece), each widened by a hundred-millionth of the piece, one
     /// changing sign where the point of contact crosses a knot; an open
     /// curve's own ends never switch (there the point leaves the curve).
     /// The margin puts a located crossing past the knot by more than the
