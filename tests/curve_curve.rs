@@ -400,6 +400,13 @@ fn what_a_curve_pair_refuses_names_its_place() {
             ),
         ),
         (
+            "a pin that fills its hole (the cam's profile the roller's circle)",
+            cam((0.0, 0.0), 0.0, &roller, HOLDER).replace(
+                &circle(1, 72, R, (0.0, 0.0)),
+                &circle(1, 72, ROLLER, (0.0, 0.0)),
+            ),
+        ),
+        (
             "IDISP not three numbers, JVEL not a number",
             cam(
                 (E, 0.0),

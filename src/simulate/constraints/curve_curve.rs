@@ -177,6 +177,46 @@ pub(super) fn past_an_end<T: Number>(
         .map(|(curve, _)| curve.id)
 }
 
+/// How far CVCV `joint`'s curves are from bending alike at their point of
+/// contact at the state `bodies` give: the difference of their curvatures
+/// there (JCURVE's taken along ICURVE's direction) over the sum of their
+/// sizes, 0 where they conform (a pin filling its hole, a flat on a flat),
+/// where the point of contact is not unique and `∂F/∂(α, β)`, whose
+/// determinant is `|s_I'|⁵ λ² (κ_I − sign(λ) κ_J)` (`P' = λ s_I'`), is
+/// singular. The point is the curves' nearest samples refined by Newton's
+/// iterations as far as they go; `None` where the curves have no samples.
+pub(super) fn conformity<T: Number>(
+    model: &Model,
+    joint: &Joint,
+    pair: &CurvePair,
+    bodies: &[BodyMotion<T>],
+) -> Option<f64> {
+    let placement = Seen::new(model, joint, bodies).placement().plain();
+    let (mut alpha, mut beta) = nearest_samples(pair, &placement, [None; 2])?;
+    for _ in 0..50 {
+        match newton(pair, &placement, (alpha, beta), [None; 2]) {
+            Some((next_alpha, next_beta)) if next_alpha.is_finite() && next_beta.is_finite() => {
+                (alpha, beta) = (next_alpha, next_beta);
+            }
+            _ => break,
+        }
+    }
+    let i = pair.i.curve.at(&alpha);
+    let j = pair.j.curve.at(&beta);
+    let tangent = placement.direction(&j.tangent);
+    let bend = placement.direction(&j.bend);
+    let curvature =
+        |tangent: &Vector3<f64>, bend: &Vector3<f64>| cross(tangent, bend) / tangent.norm().powi(3);
+    let ours = curvature(&i.tangent, &i.bend);
+    let theirs = curvature(&tangent, &bend) * i.tangent.dot(&tangent).signum();
+    let size = ours.abs() + theirs.abs();
+    Some(if size > 0.0 {
+        (ours - theirs).abs() / size
+    } else {
+        0.0
+    })
+}
+
 /// JRM seen from IRM: its origin (from IRM's) and its x and y axes, each
 /// component along IRM's axes a [`Row`].
 struct Seen<T: Number> {

@@ -597,6 +597,66 @@ fn coupler_row<T: crate::number::Number>(
     row
 }
 
+/// The joint whose equation is `row` of the held equations
+/// ([`active_rows`]' order), when a joint's is.
+fn joint_of_row(model: &super::Model, row: usize) -> Option<&Joint> {
+    let mut first = 0;
+    for joint in &model.joints {
+        let held = joint.held_equations();
+        if row < first + held {
+            return Some(joint);
+        }
+        first += held;
+    }
+    None
+}
+
+/// Below this [`curve_curve::conformity`] a CVCV's curves are taken to
+/// bend alike at their point of contact, when its equations cannot be met.
+/// Measured on a roller of 0.01 in a hole (both splines, of 36 and 72
+/// points, whose curvatures are a circle's to about 1e-3): a hole 1 %
+/// larger (5e-3) runs, 0.4 % larger (2e-3) and closer stop, the point of
+/// contact jumping between the splines' wiggles.
+const CONFORMING: f64 = 1e-2;
+
+/// A CVCV whose curves bend alike at their point of contact at the state
+/// `bodies` give, with why its equations cannot be met there.
+fn conforming<'m, T: crate::number::Number>(
+    model: &'m super::Model,
+    joint: &'m Joint,
+    bodies: &[BodyMotion<T>],
+) -> Option<(&'m Joint, String)> {
+    let pair = joint.pair.as_ref()?;
+    let conformity = curve_curve::conformity(model, joint, pair, bodies)?;
+    (conformity < CONFORMING).then(|| {
+        (joint, format!(
+            "CVCV/{}: CURVE/{} and CURVE/{} bend alike at their point of contact (their curvatures {conformity:.1e} apart, relative to their sum), so the point of contact is not unique: a CVCV holds curves that touch at one point (a pin that fills its hole, a flat on a flat); leave the curves a clearance, or hold the parts with a joint",
+            joint.id, pair.i.curve.id, pair.j.curve.id
+        ))
+    })
+}
+
+/// Why the held equation `row` (any of them where `None`) cannot be met at
+/// state `y` (each body's states from its entry of `offsets`), where that
+/// is known: a CVCV whose curves bend alike at their point of contact
+/// (with the CVCV's place in the file).
+pub(crate) fn why_unmet(
+    model: &super::Model,
+    y: &[f64],
+    offsets: &[usize],
+    row: Option<usize>,
+) -> Option<(crate::span::Span, String)> {
+    let bodies = solve::motions(y, offsets);
+    let found = match row {
+        Some(row) => conforming(model, joint_of_row(model, row)?, &bodies),
+        None => model
+            .joints
+            .iter()
+            .find_map(|joint| conforming(model, joint, &bodies)),
+    };
+    found.map(|(joint, reason)| (joint.span, reason))
+}
+
 /// The statement (`JOINT/3`, `MOTION/1`) whose equation is `row` of the
 /// held equations ([`active_rows`]' order; in the initial-conditions
 /// analysis, the joints' initial displacements after them), and its place
@@ -605,17 +665,13 @@ pub(crate) fn owner_of_row(
     model: &super::Model,
     row: usize,
 ) -> (String, Option<crate::span::Span>) {
-    let mut first = 0;
-    for joint in &model.joints {
-        let held = joint.held_equations();
-        if row < first + held {
-            return (
-                format!("{}/{}", joint.kind.statement(), joint.id),
-                Some(joint.span),
-            );
-        }
-        first += held;
+    if let Some(joint) = joint_of_row(model, row) {
+        return (
+            format!("{}/{}", joint.kind.statement(), joint.id),
+            Some(joint.span),
+        );
     }
+    let first: usize = model.joints.iter().map(Joint::held_equations).sum();
     let motions = model
         .motions
         .iter()
@@ -752,8 +808,9 @@ pub(crate) fn joints_singular_in(model: &super::Model) -> crate::eval::OutputErr
 
 /// The error of joints whose multipliers cannot be solved at the state
 /// `bodies` give: where an open curve's PTCV has lost its point (I's
-/// origin past an end of the curve), or a CVCV its point of contact, that
-/// PTCV's or CVCV's, at its statement; otherwise [`joints_singular_in`].
+/// origin past an end of the curve), or a CVCV its point of contact, or a
+/// CVCV's curves bend alike there, that PTCV's or CVCV's, at its
+/// statement; otherwise [`joints_singular_in`].
 pub(crate) fn joints_failed_in<T: crate::number::Number>(
     model: &super::Model,
     bodies: &[BodyMotion<T>],
@@ -776,6 +833,12 @@ pub(crate) fn joints_failed_in<T: crate::number::Number>(
             })
         });
         point.or(pair).map(|reason| (joint, reason))
+    });
+    let off_end = off_end.or_else(|| {
+        model
+            .joints
+            .iter()
+            .find_map(|joint| conforming(model, joint, bodies))
     });
     match off_end {
         Some((joint, reason)) => {

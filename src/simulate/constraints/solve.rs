@@ -491,7 +491,7 @@ fn dense_rows(rows: &[Row<f64>], bodies: usize) -> DMatrix<f64> {
 /// The bodies' motions at state `y`, where each body's states start at
 /// its entry of `offsets` (its centre of mass, quaternion `w x y z`,
 /// velocity and angular velocity in its own axes).
-fn motions(y: &[f64], offsets: &[usize]) -> Vec<BodyMotion<f64>> {
+pub(super) fn motions(y: &[f64], offsets: &[usize]) -> Vec<BodyMotion<f64>> {
     offsets
         .iter()
         .map(|&offset| {

@@ -18,7 +18,7 @@ pub use statics::Equilibrium;
 
 use super::constraints::{
     Drives, JOINTS, MOTIONS, Residuals, Tolerance, Unassembled, disagreeing_redundant,
-    owner_of_row, project,
+    owner_of_row, project, why_unmet,
 };
 use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
 use super::error::{Place, SimulateError};
@@ -856,8 +856,14 @@ impl Simulation<'_> {
                 .at(time, None)
                 .map_err(|error| self.failure(time, error))?;
             project(model, y, &offsets, &at, &inverse_inertia, tolerance, initial).map_err(|error| {
+                let unmet = |row: Option<usize>| {
+                    why_unmet(model, y, &offsets, row).map(|(span, reason)| {
+                        (format!("the joints cannot be assembled: {reason}"), Some(span))
+                    })
+                };
                 let (message, owner) = match error {
                     Unassembled::Singular { row } if initial && !(model.joint_initials.is_empty() && model.exact.is_empty()) => ("the joints cannot be assembled: their equations and the initial conditions (the joints' IC, ICTRAN, ICROT, the parts' EXACT) are dependent at this state (an initial condition may set a coordinate the joints, motions or other initial conditions already set, or the configuration is singular)".to_string(), row.and_then(|row| owner_of_row(model, row).1)),
+                    Unassembled::Singular { row } if let Some(unmet) = unmet(row) => unmet,
                     Unassembled::Singular { row: Some(row) } => {
                         let (owner, span) = owner_of_row(model, row);
                         (format!("the joints cannot be assembled: their equations are dependent at this state: an equation of {owner} repeats those before it, or does not move with the parts (two motions or constraints set one freedom, a FUNCTION that reads no part's place, or a singular configuration)"), span)
@@ -865,7 +871,9 @@ impl Simulation<'_> {
                     Unassembled::Singular { row: None } => ("the joints cannot be assembled: their equations are dependent at this state (a singular configuration)".to_string(), None),
                     Unassembled::Apart { row, residual } => {
                         let (owner, span) = owner_of_row(model, row);
-                        let message = if residual.is_nan() {
+                        let message = if let Some((message, _)) = unmet(Some(row)) {
+                            message
+                        } else if residual.is_nan() {
                             format!("the joints cannot be assembled: the equation of {owner} cannot be evaluated at this state (its FUNCTION leaves its domain)")
                         } else {
                             format!("the joints cannot be assembled: {owner} stays off by {residual:.3e} after Newton's iterations (the parts cannot be placed as the joints and motions ask: check the markers' places and axes and the motions' values at this time)")
