@@ -2,7 +2,9 @@
 //! points): an eccentric circular cam turned by a MOTION lifts a roller
 //! follower and a flat-faced follower on a translational joint as the
 //! closed forms say, with the contact force Newton's law on the follower
-//! gives; what cannot be read, and a contact run off an open curve, are
+//! gives, and so do cams and followers drawn at random; the point of
+//! contact crosses the curves' knots as located switches; what cannot be
+//! read, a contact run off an open curve and curves that bend alike are
 //! refused at their place.
 
 use mbexpr::integrate::Method;
@@ -427,4 +429,92 @@ fn what_a_curve_pair_refuses_names_its_place() {
         })
         .collect();
     insta::assert_snapshot!(table);
+}
+
+/// The height of a roller's centre kept `d` from the centre of a disc
+/// `e` off its axis, turned `θ` (the follower on the line through the
+/// axis, square to the disc's offset at `θ = 0`).
+fn kept_at(d: f64, e: f64, theta: f64) -> f64 {
+    let (sin, cos) = theta.sin_cos();
+    e * sin + (d * d - e * e * cos * cos).sqrt()
+}
+
+/// An interpolating cubic spline's distance from the circle of radius
+/// `radius` through `points` evenly spaced points of it, bounded by
+/// `(5/384) h⁴ max |f''''|` with `h` the points' spacing: `(5/384) (2π /
+/// points)⁴ radius`.
+fn spline_error(radius: f64, points: u32) -> f64 {
+    5.0 / 384.0 * (std::f64::consts::TAU / f64::from(points)).powi(4) * radius
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(8))]
+
+    /// Cams drawn at random (the disc's radius and eccentricity, its
+    /// spline's points, its speed; a roller outside it or inside its rim,
+    /// of a radius and points drawn too, or a flat face), with either
+    /// method: the follower rises as the closed form says, within the two
+    /// splines' distance from their circles and the tolerance, over two
+    /// seconds, its point of contact crossing the knots as located
+    /// switches, the constraints' residuals below the tolerance.
+    #[test]
+    fn random_cams_lift_their_followers_as_the_closed_form(
+        radius in 0.03f64..0.08,
+        offset in 0.0f64..0.6,
+        roller_part in 0.1f64..0.5,
+        kind in 0usize..3,
+        cam_points in 40u32..120,
+        roller_points in 24u32..80,
+        turns in 0.3f64..2.0,
+        radau in proptest::bool::ANY,
+    ) {
+        let e = offset * radius;
+        let r = roller_part * radius;
+        let omega = std::f64::consts::TAU * turns;
+        let (follower, d, bound) = match kind {
+            0 | 1 => {
+                let d = if kind == 0 { radius + r } else { radius - r };
+                let curve = format!(
+                    "{}\nCURVE/2, CLOSED, CURVE_POINTS, MATRIX = 2",
+                    circle(2, roller_points, r, (0.0, 0.0))
+                );
+                (curve, Some(d), spline_error(radius, cam_points) + spline_error(r, roller_points))
+            }
+            _ => {
+                let curve = format!(
+                    "{}\nCURVE/2, OPEN, CURVE_POINTS, MATRIX = 2",
+                    segment(2, e + 0.02)
+                );
+                (curve, None, spline_error(radius, cam_points))
+            }
+        };
+        let height_at = |theta: f64| match d {
+            Some(d) => kept_at(d, e, theta),
+            None => e * theta.sin() + radius,
+        };
+        let text = cam((e, 0.0), height_at(0.0), &follower, HOLDER)
+            .replace(&circle(1, 72, R, (e, 0.0)), &circle(1, cam_points, radius, (e, 0.0)))
+            .replace("FUNCTION = 2 * PI * TIME", &format!("FUNCTION = {omega} * TIME"));
+        let rtol = 1e-9;
+        let mut settings = settings(2.0, 40, rtol);
+        settings.method = if radau { Method::Radau5 } else { Method::Dop853 };
+        let ran = run(&text, &settings).unwrap_or_else(|error| panic!("{error}"));
+        let worst = ran
+            .rows
+            .iter()
+            .map(|row| (outputs(row)[0] - height_at(omega * row[0])).abs())
+            .fold(0.0, f64::max);
+        let crossings = ran.events.iter().filter(|event| event.function == "CVCV").count();
+        let residuals = ran.summary.residuals;
+        println!(
+            "kind {kind}, R {radius:.3}, e {e:.3}, r {r:.4}, {cam_points}/{roller_points} points, {turns:.2} turns/s, radau {radau}: \
+             {worst:.1e} off (splines {bound:.1e}), {crossings} knots crossed, residuals {:.1e} {:.1e}",
+            residuals.position, residuals.velocity
+        );
+        proptest::prop_assert!(worst < 2.0 * bound + 1e-8, "{worst} against {bound}");
+        // Two seconds of at least 0.3 turns a second cross at least 0.6
+        // of the cam's pieces (the roller's besides).
+        proptest::prop_assert!(crossings as f64 >= 0.5 * f64::from(cam_points), "{crossings} knots crossed");
+        proptest::prop_assert!(residuals.position < 1e-9 && residuals.velocity < 1e-8, "{residuals:?}");
+    }
 }
