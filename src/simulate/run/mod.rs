@@ -1326,6 +1326,7 @@ impl Simulation<'_> {
             }
             stepper.dense(located.right, &mut dense);
             let step_end = stepper.t();
+            let h_before = stepper.h();
             let (right, state) = self.cut(
                 &mut system,
                 &mut stepper,
@@ -1407,11 +1408,23 @@ impl Simulation<'_> {
                 });
             }
             // A fresh start: the first step is chosen anew for the new
-            // branch (a step fit for free flight would cross a contact).
+            // branch (a step fit for free flight would cross a contact),
+            // but after a curve's knot alone, where the motion goes on as
+            // smoothly as before but for its third derivative, the step
+            // goes on as it was (the error control shrinks it if need be).
+            let switched = &summary.events[first_event..];
+            let knots_only = !switched.is_empty()
+                && switched
+                    .iter()
+                    .all(|event| matches!(event.function.as_str(), "PTCV" | "CVCV"));
             before = add(before, stepper.stats());
             stepper = stepper
                 .fresh_start(
-                    options(limit, before, delay_cap(&system)),
+                    Options {
+                        h_init: (knots_only && h_before.is_finite() && h_before > 0.0)
+                            .then_some(h_before),
+                        ..options(limit, before, delay_cap(&system))
+                    },
                     right,
                     &dense,
                     &mut system,
