@@ -581,7 +581,6 @@ impl<'m> Mechanics<'m> {
                 _ => 0.0,
             })
             .collect();
-        let mut fresh = false;
         let mut last_size = f64::INFINITY;
         let mut first_size = None;
         for iteration in 0..SETTLING_ITERATIONS {
@@ -620,11 +619,14 @@ impl<'m> Mechanics<'m> {
                 return Ok(given);
             }
             // A matrix that does not contract the residual tenfold is
-            // worked out again at this guess, once.
-            if self.settling_matrix.is_none() || (size > 0.1 * last_size && !fresh) {
+            // worked out again at this guess, at every guess where it does
+            // not: one worked out where a magnitude the forces read has its
+            // kink (a joint's reaction at 0, as the first state's guess
+            // is) has the wrong slope there, and kept, its iterations can
+            // diverge however small the gain.
+            if self.settling_matrix.is_none() || size > 0.1 * last_size {
                 self.settling_matrix =
                     Some(self.settling_matrix_at(t, y, held, &guess, &given, calls)?);
-                fresh = true;
             }
             last_size = size;
             let matrix = self.settling_matrix.as_ref().expect("worked out above");
