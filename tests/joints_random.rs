@@ -233,7 +233,10 @@ fn chain(draw: &mut Draw) -> Chain {
 
 /// Part `index`'s frame at a row: its origin, rotation, origin velocity
 /// and angular velocity (both in ground).
-fn frame(row: &[f64], index: usize) -> (Vector3<f64>, Matrix3<f64>, Vector3<f64>, Vector3<f64>) {
+pub(super) fn frame(
+    row: &[f64],
+    index: usize,
+) -> (Vector3<f64>, Matrix3<f64>, Vector3<f64>, Vector3<f64>) {
     let s = &row[1 + 13 * index..1 + 13 * (index + 1)];
     let rotation =
         UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(s[3], s[4], s[5], s[6]));
