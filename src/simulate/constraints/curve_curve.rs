@@ -192,15 +192,7 @@ pub(super) fn conformity<T: Number>(
     bodies: &[BodyMotion<T>],
 ) -> Option<f64> {
     let placement = Seen::new(model, joint, bodies).placement().plain();
-    let (mut alpha, mut beta) = nearest_samples(pair, &placement, [None; 2])?;
-    for _ in 0..50 {
-        match newton(pair, &placement, (alpha, beta), [None; 2]) {
-            Some((next_alpha, next_beta)) if next_alpha.is_finite() && next_beta.is_finite() => {
-                (alpha, beta) = (next_alpha, next_beta);
-            }
-            _ => break,
-        }
-    }
+    let ((alpha, beta), _) = iterated(pair, &placement, [None; 2])?;
     let i = pair.i.curve.at(&alpha);
     let j = pair.j.curve.at(&beta);
     let tangent = placement.direction(&j.tangent);
@@ -356,23 +348,52 @@ fn newton<T: Number>(
 /// contact's start.
 const SAMPLES_PER_PIECE: usize = 4;
 
-/// The contact's parameters `(α, β)` at `placement`, each curve on the
-/// piece `pieces` holds it on where it does: the nearest pair (in IRM's
-/// plane) of the curves' samples (of the held pieces), refined by
-/// Newton's iterations on `F`; `None` where they do not settle.
-fn parameters(pair: &CurvePair, placement: &Placement<f64>, pieces: Pieces) -> Option<(f64, f64)> {
+/// How Newton's iterations on `F` ended ([`iterated`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Ending {
+    /// The last step moved the parameters by rounding only.
+    Settled,
+    /// A singular matrix or a step to no number stopped them.
+    Stopped,
+    /// They ran out of iterations.
+    Unsettled,
+}
+
+/// Newton's iterations on `F` from the nearest pair (in IRM's plane) of
+/// the curves' samples (of the held pieces), each curve on the piece
+/// `pieces` holds it on where it does: their last finite iterate and how
+/// they ended; `None` where the curves have no samples.
+fn iterated(
+    pair: &CurvePair,
+    placement: &Placement<f64>,
+    pieces: Pieces,
+) -> Option<((f64, f64), Ending)> {
     let (mut alpha, mut beta) = nearest_samples(pair, placement, pieces)?;
     for _ in 0..50 {
-        let (next_alpha, next_beta) = newton(pair, placement, (alpha, beta), pieces)?;
+        let Some((next_alpha, next_beta)) = newton(pair, placement, (alpha, beta), pieces)
+            .filter(|(alpha, beta)| alpha.is_finite() && beta.is_finite())
+        else {
+            return Some(((alpha, beta), Ending::Stopped));
+        };
         let settled = (next_alpha - alpha).abs() <= 1e-13 * (1.0 + alpha.abs())
             && (next_beta - beta).abs() <= 1e-13 * (1.0 + beta.abs());
         (alpha, beta) = (next_alpha, next_beta);
-        if !(alpha.is_finite() && beta.is_finite()) {
-            return None;
-        }
         if settled {
-            return Some((alpha, beta));
+            return Some(((alpha, beta), Ending::Settled));
         }
+    }
+    Some(((alpha, beta), Ending::Unsettled))
+}
+
+/// The contact's parameters `(α, β)` at `placement`, each curve on the
+/// piece `pieces` holds it on where it does: [`iterated`]'s, where they
+/// settle or end with `F` within 1e-10 of 0; `None` otherwise.
+fn parameters(pair: &CurvePair, placement: &Placement<f64>, pieces: Pieces) -> Option<(f64, f64)> {
+    let ((alpha, beta), ending) = iterated(pair, placement, pieces)?;
+    match ending {
+        Ending::Settled => return Some((alpha, beta)),
+        Ending::Stopped => return None,
+        Ending::Unsettled => {}
     }
     let (f, _) = equations(
         &pair.i.curve.at_on(&alpha, pieces[0]),
@@ -408,7 +429,11 @@ fn nearest_samples(
     placement: &Placement<f64>,
     pieces: Pieces,
 ) -> Option<(f64, f64)> {
-    let held = |side: usize, piece: usize| pieces[side].is_none_or(|held| held == piece);
+    // The pieces looked at: the held one of a curve `pieces` holds, every
+    // piece of the other.
+    let looked_at = |side: usize, count: usize| -> Vec<usize> {
+        pieces[side].map_or_else(|| (0..count).collect(), |held| vec![held])
+    };
     // In IRM's plane (JCURVE's shadow on it is no larger than the curve).
     let planar =
         |a: &Vector3<f64>, b: &Vector3<f64>| ((a.x - b.x).powi(2) + (a.y - b.y).powi(2)).sqrt();
@@ -419,17 +444,16 @@ fn nearest_samples(
         .piece_balls()
         .map(|(centre, radius)| (placement.point(&centre), radius))
         .collect();
-    // The least and most each pair of balls' points can be apart (a pair
-    // of pieces not held: never looked at).
-    let bounds: Vec<(f64, f64)> = ours
+    let (our_pieces, their_pieces) = (looked_at(0, ours.len()), looked_at(1, theirs.len()));
+    // The least and most each pair of balls' points can be apart.
+    let (theirs_seen, their_pieces_seen) = (&theirs, &their_pieces);
+    let bounds: Vec<(f64, f64)> = our_pieces
         .iter()
-        .enumerate()
-        .flat_map(|(a, (centre, ra))| {
-            theirs.iter().enumerate().map(move |(b, (other, rb))| {
-                if !(held(0, a) && held(1, b)) {
-                    return (f64::INFINITY, f64::INFINITY);
-                }
-                let between = planar(centre, other);
+        .flat_map(|&a| {
+            let (centre, ra) = ours[a];
+            their_pieces_seen.iter().map(move |&b| {
+                let (other, rb) = theirs_seen[b];
+                let between = planar(&centre, &other);
                 (between - ra - rb, between + ra + rb)
             })
         })
@@ -463,9 +487,9 @@ fn nearest_samples(
     let mut our_points = vec![None; ours.len()];
     let mut their_points = vec![None; theirs.len()];
     let mut nearest: Option<(f64, usize, usize, f64, f64)> = None;
-    for a in 0..ours.len() {
-        for b in 0..theirs.len() {
-            if bounds[a * theirs.len() + b].0 > reach {
+    for (x, &a) in our_pieces.iter().enumerate() {
+        for (y, &b) in their_pieces.iter().enumerate() {
+            if bounds[x * their_pieces.len() + y].0 > reach {
                 continue;
             }
             let our_points: &Vec<_> = our_points[a]

@@ -815,7 +815,7 @@ pub(crate) fn joints_failed_in<T: crate::number::Number>(
     model: &super::Model,
     bodies: &[BodyMotion<T>],
 ) -> crate::eval::OutputError {
-    let off_end = model.joints.iter().find_map(|joint| {
+    let lost = model.joints.iter().find_map(|joint| {
         let point = joint.curve.as_ref().and_then(|on| {
             on_curve::past_an_end(model, joint, on, bodies).then(|| {
                 format!(
@@ -834,13 +834,13 @@ pub(crate) fn joints_failed_in<T: crate::number::Number>(
         });
         point.or(pair).map(|reason| (joint, reason))
     });
-    let off_end = off_end.or_else(|| {
+    let known = lost.or_else(|| {
         model
             .joints
             .iter()
             .find_map(|joint| conforming(model, joint, bodies))
     });
-    match off_end {
+    match known {
         Some((joint, reason)) => {
             let mut error = singular_because(&reason);
             if let crate::eval::EvalError::Law { span, .. } = &mut error.error {
