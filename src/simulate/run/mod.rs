@@ -494,9 +494,10 @@ fn contact_event(contact: &Contact, time: f64, from: Code, to: Code) -> Event {
 }
 
 /// The event of PTCV or CVCV `joint`'s point of contact crossing, on
-/// its curve of side `side` ([`CurveSite::side`](crate::simulate::constraints::CurveSite::side)), from piece `from` to
-/// piece `to` at `time` (a knot, where the curve's third derivative
-/// changes).
+/// its curve of side `side`
+/// ([`CurveSite::side`](crate::simulate::constraints::CurveSite::side)),
+/// from piece `from` to piece `to` at `time` (a knot, where the curve's
+/// third derivative changes).
 fn curve_event(
     joint: &crate::simulate::Joint,
     side: usize,
