@@ -423,12 +423,40 @@ fn what_a_curve_pair_refuses_names_its_place() {
         .map(|(name, text)| {
             let outcome = match run(text, &settings(1.0, 4, 1e-8)) {
                 Ok(ran) => format!("ran: {} rows", ran.rows.len()),
-                Err(errors) => errors.trim_end().replace('\n', "\n     "),
+                Err(errors) => rounded(errors.trim_end()).replace('\n', "\n     "),
             };
             format!("{name}\n  => {outcome}\n")
         })
         .collect();
     insta::assert_snapshot!(table);
+}
+
+/// `text` with each number of more than six digits (a time the run
+/// stopped at, a step size) rounded to two significant digits, so that
+/// the snapshot holds what the message says, not the last bits of where
+/// the integration went.
+fn rounded(text: &str) -> String {
+    let mut out = String::new();
+    let mut number = String::new();
+    let flush = |number: &mut String, out: &mut String| {
+        let digits = number.chars().filter(char::is_ascii_digit).count();
+        match number.parse::<f64>() {
+            Ok(value) if digits > 6 => out.push_str(&format!("{value:.1e}")),
+            _ => out.push_str(number),
+        }
+        number.clear();
+    };
+    for c in text.chars() {
+        let exponent_sign = (c == '-' || c == '+') && number.ends_with('e');
+        if c.is_ascii_digit() || c == '.' || (c == 'e' && !number.is_empty()) || exponent_sign {
+            number.push(c);
+        } else {
+            flush(&mut number, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut number, &mut out);
+    out
 }
 
 /// The height of a roller's centre kept `d` from the centre of a disc
