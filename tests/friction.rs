@@ -589,85 +589,96 @@ END
 /// the torque preload, `μ(v) = STEP(v, −vs, −μd, vs, μd)`): against RK4 of
 /// those, for both joints, with EFFECT = SLIDING and ALL (above the
 /// transition band they agree, the creeps `.creep1` and `.creep2` full),
-/// with both methods.
+/// with both methods; with I_YOKE the friction in I's pin alone (`b` stays),
+/// with J_YOKE in J's alone (`a` stays).
 #[test]
 fn each_pin_of_a_hooke_or_universal_joint_slows_at_its_own_friction() {
     let (m, inertia, mu, radius, bending_arm, arm, preload, vs) =
         (2.0, 0.2, 0.25, 0.04, 0.5, 0.03, 0.02, 0.01);
     let (a0, b0, end) = (-4.0, 5.0, 1.0);
     let mu_of = |v: f64| step(v, -vs, -mu, vs, mu);
-    let rates = |[a, b]: [f64; 2]| {
-        let bending = inertia * (a * b).abs() / bending_arm;
-        [
-            -mu_of(radius * a) * (preload + radius * (m * G + bending)) / inertia,
-            -mu_of(radius * b) * (preload + radius * bending + arm * m * G) / inertia,
-        ]
-    };
-    // RK4 in 20 000 steps.
-    let steps = 20_000;
-    let h = end / f64::from(steps);
-    let mut turns = [a0, b0];
-    let moved = |at: [f64; 2], by: [f64; 2], h: f64| [at[0] + h * by[0], at[1] + h * by[1]];
-    for _ in 0..steps {
-        let k1 = rates(turns);
-        let k2 = rates(moved(turns, k1, 0.5 * h));
-        let k3 = rates(moved(turns, k2, 0.5 * h));
-        let k4 = rates(moved(turns, k3, h));
-        for k in 0..2 {
-            turns[k] += h / 6.0 * (k1[k] + 2.0 * (k2[k] + k3[k]) + k4[k]);
+    // The turns at the end by RK4 in 20 000 steps, with friction in the
+    // pins `rubbing`.
+    let reference = |rubbing: [bool; 2]| {
+        let rates = |[a, b]: [f64; 2]| {
+            let bending = inertia * (a * b).abs() / bending_arm;
+            let [first, second] = rubbing.map(f64::from);
+            [
+                -first * mu_of(radius * a) * (preload + radius * (m * G + bending)) / inertia,
+                -second * mu_of(radius * b) * (preload + radius * bending + arm * m * G) / inertia,
+            ]
+        };
+        let steps = 20_000;
+        let h = end / f64::from(steps);
+        let mut turns = [a0, b0];
+        let moved = |at: [f64; 2], by: [f64; 2], h: f64| [at[0] + h * by[0], at[1] + h * by[1]];
+        for _ in 0..steps {
+            let k1 = rates(turns);
+            let k2 = rates(moved(turns, k1, 0.5 * h));
+            let k3 = rates(moved(turns, k2, 0.5 * h));
+            let k4 = rates(moved(turns, k3, h));
+            for k in 0..2 {
+                turns[k] += h / 6.0 * (k1[k] + 2.0 * (k2[k] + k3[k]) + k4[k]);
+            }
         }
-    }
+        turns
+    };
     // Each joint's pins in ground's axes as drawn: I's, then J's.
     let universal = (Vector3::new(0.0, -1.0, 0.0), Vector3::z());
     let hooke = (Vector3::x(), Vector3::y());
-    for (kind, reuler, (first, second)) in [
-        ("UNIVERSAL", "0, 90D, 0", universal),
-        ("HOOKE", "0, 0, 0", hooke),
+    for (yoke, rubbing) in [
+        ("", [true; 2]),
+        (", I_YOKE", [true, false]),
+        (", J_YOKE", [false, true]),
     ] {
-        for effect in ["SLIDING", "ALL"] {
-            let friction = format!(
-                "MU_STATIC = 0.35, MU_DYNAMIC = {mu}, EFFECT = {effect}, PIN_RADIUS = {radius}, BENDING_REACTION_ARM = {bending_arm}, FRICTION_ARM = {arm}, FRICTION_TORQUE_PRELOAD = {preload}, STICTION_TRANSITION_VELOCITY = {vs}"
-            );
-            let text = cross(
-                kind,
-                reuler,
-                a0 * first + b0 * second,
-                -G * second,
-                &friction,
-            );
-            for name in ["dop853", "radau"] {
-                let settings = Settings {
-                    method: method(name),
-                    ..settings(end, 4, 1e-10)
-                };
-                let run = run(&text, &settings)
-                    .unwrap_or_else(|error| panic!("{kind} {effect} {name}: {error}"));
-                let last = run.rows.last().expect("rows");
-                let [a, b] = [last[last.len() - 2], last[last.len() - 1]];
-                println!(
-                    "{kind} {effect} {name}: a {a:.12} against {:.12}, b {b:.12} against {:.12}",
-                    turns[0], turns[1]
+        let turns = reference(rubbing);
+        // The friction matters: without it the turns would stay a0 and b0.
+        for k in 0..2 {
+            assert_eq!((turns[k] - [a0, b0][k]).abs() > 0.5, rubbing[k]);
+        }
+        for (kind, reuler, (first, second)) in [
+            ("UNIVERSAL", "0, 90D, 0", universal),
+            ("HOOKE", "0, 0, 0", hooke),
+        ] {
+            for effect in ["SLIDING", "ALL"] {
+                let friction = format!(
+                    "MU_STATIC = 0.35, MU_DYNAMIC = {mu}, EFFECT = {effect}, PIN_RADIUS = {radius}, BENDING_REACTION_ARM = {bending_arm}, FRICTION_ARM = {arm}, FRICTION_TORQUE_PRELOAD = {preload}, STICTION_TRANSITION_VELOCITY = {vs}{yoke}"
                 );
-                // DOP853's stages, off the joint by a little, see the kink
-                // of I's pin's axial force `|F·z_I|`, 0 on the joint, and its
-                // error estimate misses it: 4e-8 off at rtol 1e-10 (3e-9 at
-                // 1e-12), Radau5 1e-11.
-                let within = if name == "dop853" { 1e-7 } else { 1e-9 };
-                assert!(
-                    (a - turns[0]).abs() < within,
-                    "{kind} {effect} {name}: a {a}"
+                let text = cross(
+                    kind,
+                    reuler,
+                    a0 * first + b0 * second,
+                    -G * second,
+                    &friction,
                 );
-                assert!(
-                    (b - turns[1]).abs() < within,
-                    "{kind} {effect} {name}: b {b}"
-                );
-                let creeps = if effect == "ALL" { 2 } else { 0 };
-                assert_eq!(last.len(), 1 + creeps + 13 + 2, "{kind} {effect}");
+                let case = format!("{kind} {effect}{yoke}");
+                for name in ["dop853", "radau"] {
+                    let settings = Settings {
+                        method: method(name),
+                        ..settings(end, 4, 1e-10)
+                    };
+                    let run = run(&text, &settings)
+                        .unwrap_or_else(|error| panic!("{case} {name}: {error}"));
+                    let last = run.rows.last().expect("rows");
+                    let [a, b] = [last[last.len() - 2], last[last.len() - 1]];
+                    println!(
+                        "{case} {name}: a {a:.12} against {:.12}, b {b:.12} against {:.12}",
+                        turns[0], turns[1]
+                    );
+                    // DOP853's stages, off the joint by a little, see the kink
+                    // of I's pin's axial force `|F·z_I|`, 0 on the joint, and
+                    // its error estimate misses it: 4e-8 off at rtol 1e-10
+                    // (3e-9 at 1e-12), Radau5 1e-11.
+                    let within = if name == "dop853" { 1e-7 } else { 1e-9 };
+                    assert!((a - turns[0]).abs() < within, "{case} {name}: a {a}");
+                    assert!((b - turns[1]).abs() < within, "{case} {name}: b {b}");
+                    let pins = rubbing.iter().filter(|&&pin| pin).count();
+                    let creeps = if effect == "ALL" { pins } else { 0 };
+                    assert_eq!(last.len(), 1 + creeps + 13 + 2, "{case}");
+                }
             }
         }
     }
-    // The friction matters: without it the turns would stay a0 and b0.
-    assert!((turns[0] - a0).abs() > 0.5 && (turns[1] - b0).abs() > 0.5);
 }
 
 /// A body 0.1 m off the axis of a cylindrical joint, sliding along it at
@@ -1194,6 +1205,8 @@ fn bad_friction_is_refused_at_its_place() {
         SPHERICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_TORQUE_PRELOAD = -2
         SPHERICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, INPUTS = (PRELOAD:BENDING_MOMENT)
         HOOKE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, I_YOKE = 20, J_YOKE = 1
+        HOOKE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, I_YOKE
+        UNIVERSAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, J_YOKE
         UNIVERSAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3
         UNIVERSAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, EFFECT = SLIDING, INPUTS = (PRELOAD:BENDING_MOMENT), FRICTION_TORQUE_PRELOAD = 1, MAX_FRICTION_TORQUE = 2
         HOOKE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, INPUTS = TORSIONAL_MOMENT

@@ -61,7 +61,11 @@
 //!   (`.creep1` I's pin, `.creep2` J's). The torque on I is the two pins'
 //!   frictions about their axes, I's axis turned into J's by
 //!   `ORIENT(29, ...)`: the cross, massless, passes each pin's friction on
-//!   through the other pin;
+//!   through the other pin. Adams' statement has `I_YOKE` and `J_YOKE`
+//!   (the interfaces that write it, NX's `FrictionYokeType` and
+//!   MotionView's `rot_constraint`, offer one yoke or the other): given
+//!   one, the friction acts in that yoke's pin alone (`.creep` its creep);
+//!   given neither, in both;
 //! - the slip speed `v` is `VZ(I, J, J, J)` for a translational joint and
 //!   `PIN_RADIUS·WZ(I, J, J)` on a revolute joint's pin; a cylindrical
 //!   joint's slip has two directions, `(VZ(I, J, J, J), PIN_RADIUS·WZ(I,
@@ -410,14 +414,22 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
     // groups.
     let groups: Vec<Vec<Slip>> = match kind {
         JointKind::Revolute => vec![vec![pin_of(2, j, Along::Component(5))?]],
-        JointKind::Universal => vec![
-            vec![pin_of(2, i, Along::AxisOfI(2))?],
-            vec![pin_of(2, j, Along::Component(5))?],
-        ],
-        JointKind::Hooke => vec![
-            vec![pin_of(0, i, Along::AxisOfI(0))?],
-            vec![pin_of(1, j, Along::Component(4))?],
-        ],
+        JointKind::Universal | JointKind::Hooke => {
+            let [i_yoke, j_yoke] = yokes(statement, kind)?;
+            let ([i_axis, j_axis], j_slot) = if kind == JointKind::Universal {
+                ([2, 2], 5)
+            } else {
+                ([0, 1], 4)
+            };
+            let mut pins = Vec::new();
+            if i_yoke {
+                pins.push(vec![pin_of(i_axis, i, Along::AxisOfI(i_axis))?]);
+            }
+            if j_yoke {
+                pins.push(vec![pin_of(j_axis, j, Along::Component(j_slot))?]);
+            }
+            pins
+        }
         JointKind::Cylindrical => {
             let pin = positive("PIN_RADIUS", 1.0)?;
             let overlap = positive("INITIAL_OVERLAP", 1000.0)?;
@@ -541,6 +553,30 @@ enum Along {
     /// A torque about axis 0, 1 or 2 of the I marker (a Hooke or universal
     /// joint's pin fixed in I's part), which turns in J's axes.
     AxisOfI(usize),
+}
+
+/// The pins of a Hooke or universal joint a FRICTION acts in, I's and
+/// J's: the one its `I_YOKE` or `J_YOKE` names (a bare keyword, or with a
+/// value, which is not read), both when it names neither, an error when it
+/// names both.
+fn yokes(statement: &Statement, kind: JointKind) -> Result<[bool; 2], SimulateError> {
+    let named = ["I_YOKE", "J_YOKE"].map(|keyword| statement.argument(keyword, 3).is_some());
+    match named {
+        [false, false] => Ok([true, true]),
+        [true, true] => Err(SimulateError::Model {
+            message: format!(
+                "{}: give one of I_YOKE and J_YOKE (the yoke whose pin the friction acts in), or neither for both pins of the {} joint",
+                statement.label(),
+                if kind == JointKind::Hooke {
+                    "HOOKE"
+                } else {
+                    "UNIVERSAL"
+                }
+            ),
+            span: statement.place_of("J_YOKE", 3),
+        }),
+        one => Ok(one),
+    }
 }
 
 /// The friction law of a FRICTION: its effects, coefficients, stiction
