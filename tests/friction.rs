@@ -268,9 +268,47 @@ fn pin_friction_never_adds_energy() {
 /// Radau5 locate 18 457 switches of it in 2 s (52 s of run time).
 #[test]
 fn a_pendulum_on_a_skewed_pin_swings_as_the_one_drawn_square() {
-    let friction = "MU_STATIC = 0.4, MU_DYNAMIC = 0.3, PIN_RADIUS = 0.05";
-    let square =
-        pendulum_with(2.0, 0.5, 0.03, friction).replace("END", "REQUEST/1, F2 = DY(20, 1)\nEND");
+    let friction = pendulum_with(
+        2.0,
+        0.5,
+        0.03,
+        "MU_STATIC = 0.4, MU_DYNAMIC = 0.3, PIN_RADIUS = 0.05",
+    );
+    let switches = drawn_square_and_skewed(&friction);
+    for (square, skewed) in switches {
+        assert!(square > 4, "it sticks and slips");
+        assert_eq!(square, skewed);
+    }
+}
+
+/// A kink a user writes of a value that is rounding noise is no switch:
+/// the pin friction written by hand as an SFORCE, its load's axial part
+/// `ABS(JOINT(1, 0, 4, 1))` (0 in the swing, rounding noise on the
+/// skewed pin). A crossing of a switching value that a move of the state
+/// changes only by rounding is not located (`PROBE` in
+/// `src/simulate/run/switch.rs`); before, Radau5 located 18 599 switches
+/// in 2 s (54 s of run time) and DOP853 470, where the pendulum drawn
+/// square has 5. Measured since (rtol 1e-9): 10 (DOP853) and 24
+/// (Radau5), a few noise crossings whose probe happened to grow.
+#[test]
+fn a_kink_of_a_value_that_is_rounding_noise_is_no_switch() {
+    let torque = "-0.015*(SQRT(JOINT(1,0,2,1)**2 + JOINT(1,0,3,1)**2) + ABS(JOINT(1,0,4,1)))*STEP(WZ(21,1,1), -0.2, -1, 0.2, 1)";
+    let by_hand = pendulum(2.0, 0.5, 0.03).replace(
+        "END",
+        &format!("SFORCE/1, ROTATION, I = 21, J = 1, FUNCTION = {torque}\nEND"),
+    );
+    for (square, skewed) in drawn_square_and_skewed(&by_hand) {
+        assert!(square >= 4, "it turns back");
+        assert!(skewed <= square + 40, "{skewed} switches");
+    }
+}
+
+/// Runs the pendulum `square` (pin along ground's z, bob 0.5 along x) and
+/// the same turned 30° about ground's y with both methods: the bob's
+/// heights agree to 1e-8 and the skewed one takes fewer than twice the
+/// steps; the located switches of each, square and skewed, per method.
+fn drawn_square_and_skewed(square: &str) -> Vec<(usize, usize)> {
+    let square = square.replace("END", "REQUEST/1, F2 = DY(20, 1)\nEND");
     let (sin, cos) = (0.5_f64, 0.75_f64.sqrt());
     let turned = "REULER = 90D, 30D, -90D";
     let skewed = square
@@ -287,6 +325,7 @@ fn a_pendulum_on_a_skewed_pin_swings_as_the_one_drawn_square() {
             &format!("QP = {}, 0, {}", 0.5 * cos, -0.5 * sin),
         );
     assert_ne!(square, skewed);
+    let mut switches = Vec::new();
     for name in ["dop853", "radau"] {
         let settings = Settings {
             method: method(name),
@@ -308,13 +347,13 @@ fn a_pendulum_on_a_skewed_pin_swings_as_the_one_drawn_square() {
             skewed.summary.stats.steps
         );
         assert!(apart < 1e-8, "{name}: {apart}");
-        assert!(square.events.len() > 4, "{name}: it sticks and slips");
-        assert_eq!(square.events.len(), skewed.events.len(), "{name}");
         assert!(
             skewed.summary.stats.steps < 2 * square.summary.stats.steps,
             "{name}"
         );
+        switches.push((square.events.len(), skewed.events.len()));
     }
+    switches
 }
 
 /// The block of [`block`] on a CYLINDRICAL joint: two creep states (along
