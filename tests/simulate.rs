@@ -1485,6 +1485,37 @@ fn a_switch_right_after_a_located_switch_is_not_read_from_rounding() {
     }
 }
 
+/// The probe that tells a crossing of rounding noise from a switch
+/// (`PROBE` in `src/simulate/run/switch.rs`) does not take a switch of a
+/// value driven by time for noise where the states hold it only through
+/// rounding: `SIGN(1, SIN(5*TIME) + ((1000 + 1e-9*DIF(2)) - 1000))` does
+/// not change when the states move (the move is lost in 1000's rounding,
+/// and a value that does not change is no noise), and its first negative
+/// look is far above any rounding of it (the probe's second check); each
+/// of its four crossings in 3 s is located at `kπ/5`, with both
+/// methods.
+#[test]
+fn a_switch_driven_by_time_with_a_weak_hold_of_the_states_is_located() {
+    let text = "time-driven switch
+DIFF/1, IC = 0, FUNCTION = SIGN(1, SIN(5*TIME) + ((1000 + 1e-9*DIF(2)) - 1000))
+DIFF/2, IC = 1, FUNCTION = 0
+END
+";
+    for method in [Method::Dop853, Method::Radau5] {
+        let settings = Settings {
+            method,
+            ..settings(3.0, 3, 1e-8)
+        };
+        let run = run(text, &settings).unwrap_or_else(|error| panic!("{method:?}: {error}"));
+        let times: Vec<f64> = run.events.iter().map(|event| event.time).collect();
+        assert_eq!(times.len(), 4, "{method:?}: {times:?}");
+        for (k, time) in times.iter().enumerate() {
+            let expected = (k + 1) as f64 * std::f64::consts::PI / 5.0;
+            assert!((time - expected).abs() < 1e-9, "{method:?}: {time}");
+        }
+    }
+}
+
 /// The largest |x - x_ref| of a run's first column against a study
 /// scene's reference at its 200 output times.
 fn error_against_reference(run: &Run, name: &str) -> f64 {

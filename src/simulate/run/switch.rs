@@ -52,7 +52,9 @@ const DIP_FLAT: f64 = 1e-9;
 /// rounding however the state moves. Rounding crossed such a value back
 /// and forth: 18 457 located switches in 2 s of a pendulum, 52 s of run
 /// time. A value that does not change at all (a function of time) is no
-/// noise.
+/// noise, nor is one larger than `LINEAR` times its change: the state's
+/// weak hold on a value driven by time (`SIN(TIME) + 1e-12*DX(2)`) is
+/// below rounding, but the value's first negative look is not.
 const PROBE: f64 = 1e-8;
 const LINEAR: f64 = 10.0;
 
@@ -350,7 +352,9 @@ impl Probe {
         crossed
             .iter()
             .zip(small.iter().zip(&large))
-            .filter(|&(_, (&small, &large))| large < LINEAR * small)
+            .filter(|&(&index, (&small, &large))| {
+                large < LINEAR * small && switching[index].abs() <= LINEAR * large
+            })
             .map(|(&index, _)| index)
             .collect()
     }
