@@ -496,8 +496,11 @@ proptest::proptest! {
         turns in 0.3f64..2.0,
         radau in proptest::bool::ANY,
     ) {
-        let e = offset * radius;
         let r = roller_part * radius;
+        // Inside the rim the roller's centre keeps `R − r` from the
+        // disc's, so the eccentricity is drawn below that (it was drawn
+        // below 0.6 R, and a roller of half the radius met no rim).
+        let e = if kind == 1 { offset * (radius - r) } else { offset * radius };
         let omega = std::f64::consts::TAU * turns;
         let (follower, d, bound) = match kind {
             0 | 1 => {
