@@ -318,10 +318,9 @@ impl Probe {
 
     /// Which of the switching values `crossed` (negative in `switching`,
     /// looked at `(time, state)`) are rounding noise ([`PROBE`],
-    /// [`LINEAR`]): each one's largest change when every state moves by
-    /// a part of its size (the tolerance at least), all one way, then every
-    /// other one the other way, at two sizes a hundredfold apart. A look
-    /// that fails at a moved state finds none.
+    /// [`LINEAR`]): each one's largest change ([`Probe::changes`]) at two
+    /// sizes of the move a hundredfold apart. A look that fails at a moved
+    /// state finds none.
     fn noise(
         &mut self,
         system: &mut Held<'_>,
@@ -330,33 +329,62 @@ impl Probe {
         switching: &[f64],
         crossed: &[usize],
     ) -> Vec<usize> {
-        let mut changes = [vec![0.0_f64; crossed.len()], vec![0.0_f64; crossed.len()]];
-        for (size, change) in [PROBE * 1e-2, PROBE].into_iter().zip(&mut changes) {
-            for alternate in [false, true] {
-                for (k, (moved, &value)) in self.moved.iter_mut().zip(state).enumerate() {
-                    let sign = if alternate && k % 2 == 1 { -1.0 } else { 1.0 };
-                    *moved = value + sign * size * value.abs().max(self.tolerance);
-                }
-                if system
-                    .look(time, &self.moved, &mut self.natural, &mut self.values)
-                    .is_err()
-                {
-                    return Vec::new();
-                }
-                for (largest, &index) in change.iter_mut().zip(crossed) {
-                    *largest = largest.max((self.values[index] - switching[index]).abs());
-                }
+        // The larger move first: a value larger than `LINEAR` times its
+        // change is no noise, whatever the smaller move shows (a genuine
+        // crossing's first negative look mostly is), and needs no more
+        // looks.
+        let Some(large) = self.changes(system, time, state, switching, crossed, PROBE) else {
+            return Vec::new();
+        };
+        let suspects: Vec<(usize, f64)> = crossed
+            .iter()
+            .zip(large)
+            .filter(|&(&index, large)| switching[index].abs() <= LINEAR * large)
+            .map(|(&index, large)| (index, large))
+            .collect();
+        if suspects.is_empty() {
+            return Vec::new();
+        }
+        let indices: Vec<usize> = suspects.iter().map(|&(index, _)| index).collect();
+        let Some(small) = self.changes(system, time, state, switching, &indices, PROBE * 1e-2)
+        else {
+            return Vec::new();
+        };
+        suspects
+            .into_iter()
+            .zip(small)
+            .filter(|&((_, large), small)| large < LINEAR * small)
+            .map(|((index, _), _)| index)
+            .collect()
+    }
+
+    /// The largest change of each switching value `indices` when every
+    /// state moves by `size` of its size (the tolerance at least), all one
+    /// way, then every other one the other way; `None` when a look fails
+    /// at a moved state.
+    fn changes(
+        &mut self,
+        system: &mut Held<'_>,
+        time: f64,
+        state: &[f64],
+        switching: &[f64],
+        indices: &[usize],
+        size: f64,
+    ) -> Option<Vec<f64>> {
+        let mut change = vec![0.0_f64; indices.len()];
+        for alternate in [false, true] {
+            for (k, (moved, &value)) in self.moved.iter_mut().zip(state).enumerate() {
+                let sign = if alternate && k % 2 == 1 { -1.0 } else { 1.0 };
+                *moved = value + sign * size * value.abs().max(self.tolerance);
+            }
+            system
+                .look(time, &self.moved, &mut self.natural, &mut self.values)
+                .ok()?;
+            for (largest, &index) in change.iter_mut().zip(indices) {
+                *largest = largest.max((self.values[index] - switching[index]).abs());
             }
         }
-        let [small, large] = changes;
-        crossed
-            .iter()
-            .zip(small.iter().zip(&large))
-            .filter(|&(&index, (&small, &large))| {
-                large < LINEAR * small && switching[index].abs() <= LINEAR * large
-            })
-            .map(|(&index, _)| index)
-            .collect()
+        Some(change)
     }
 }
 
