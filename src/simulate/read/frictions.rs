@@ -355,7 +355,7 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
     // axial force in a planar swing on a skewed axis) is rounding noise,
     // and ABS's kink, a located switch, was crossed back and forth by it
     // (a pendulum on a skewed revolute pin with friction: 18 457 switches
-    // and 52 s in 2 s with Radau5, against 24 and 0.1 s).
+    // and 52 s in 2 s with Radau5, against 24 and 0.4 s).
     let magnitude_of = |comps: &[u8], rm: u64| {
         let squares: Vec<String> = comps
             .iter()
@@ -415,7 +415,7 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
     let groups: Vec<Vec<Slip>> = match kind {
         JointKind::Revolute => vec![vec![pin_of(2, j, Along::Component(5))?]],
         JointKind::Universal | JointKind::Hooke => {
-            let [i_yoke, j_yoke] = yokes(statement, kind)?;
+            let [i_yoke, j_yoke] = yokes(statement, name)?;
             let ([i_axis, j_axis], j_slot) = if kind == JointKind::Universal {
                 ([2, 2], 5)
             } else {
@@ -559,19 +559,14 @@ enum Along {
 /// J's: the one its `I_YOKE` or `J_YOKE` names (a bare keyword, or with a
 /// value, which is not read), both when it names neither, an error when it
 /// names both.
-fn yokes(statement: &Statement, kind: JointKind) -> Result<[bool; 2], SimulateError> {
+fn yokes(statement: &Statement, name: &str) -> Result<[bool; 2], SimulateError> {
     let named = ["I_YOKE", "J_YOKE"].map(|keyword| statement.argument(keyword, 3).is_some());
     match named {
         [false, false] => Ok([true, true]),
         [true, true] => Err(SimulateError::Model {
             message: format!(
-                "{}: give one of I_YOKE and J_YOKE (the yoke whose pin the friction acts in), or neither for both pins of the {} joint",
+                "{}: give one of I_YOKE and J_YOKE (the yoke whose pin the friction acts in), or neither for both pins of the {name} joint",
                 statement.label(),
-                if kind == JointKind::Hooke {
-                    "HOOKE"
-                } else {
-                    "UNIVERSAL"
-                }
             ),
             span: statement.place_of("J_YOKE", 3),
         }),

@@ -199,13 +199,9 @@ pub(super) fn find_switch(
     let mut limit = f64::INFINITY;
     // While scanning the step (not while locating a crossing, where the
     // values are small by design), a crossing is first probed for noise.
+    // Its scratch room is made at the first crossing a step has.
     let probing = std::cell::Cell::new(true);
-    let mut probe = Probe::new(
-        state.len(),
-        natural.len(),
-        switching.len(),
-        system.tolerance,
-    );
+    let mut probe: Option<Probe> = None;
     // The step limit is worked out only at the step's end, the one place
     // it is read.
     let mut look = |time: f64, switching: &mut [f64]| -> Result<bool, (f64, OutputError)> {
@@ -220,15 +216,22 @@ pub(super) fn find_switch(
                 .look(time, &state, natural, switching)
                 .map_err(|error| (time, error))?;
         }
-        let crossed_now: Vec<usize> = crossed(&armed.borrow(), switching).collect();
-        if crossed_now.is_empty() {
-            return Ok(false);
-        }
         if probing.get() {
-            let noise = probe.noise(system, time, &state, switching, &crossed_now);
-            let mut armed = armed.borrow_mut();
-            for index in noise {
-                armed[index] = false;
+            let crossed_now: Vec<usize> = crossed(&armed.borrow(), switching).collect();
+            if !crossed_now.is_empty() {
+                let probe = probe.get_or_insert_with(|| {
+                    Probe::new(
+                        state.len(),
+                        natural.len(),
+                        switching.len(),
+                        system.tolerance,
+                    )
+                });
+                let noise = probe.noise(system, time, &state, switching, &crossed_now);
+                let mut armed = armed.borrow_mut();
+                for index in noise {
+                    armed[index] = false;
+                }
             }
         }
         Ok(crossed(&armed.borrow(), switching).next().is_some())
@@ -298,7 +301,7 @@ pub(super) fn find_switch(
 }
 
 /// The probe of switching values for rounding noise ([`PROBE`],
-/// [`NOISE`]): scratch room for the moved state and its looks.
+/// [`LINEAR`]): scratch room for the moved state and its looks.
 struct Probe {
     moved: Vec<f64>,
     natural: Vec<Option<Code>>,
