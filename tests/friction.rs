@@ -12,7 +12,10 @@
 //! universal joint slowing at its own friction as RK4 of the equations by
 //! hand says; a pendulum on a skewed pin swinging as the one drawn
 //! square; a friction that feeds its own load runs below a gain of 1 and
-//! is refused above; and every bad input refused at its place.
+//! is refused above; the LuGre model's bristles on a block pulled at a
+//! steady speed against their closed form and holding a block on a slope;
+//! a sliding joint's overlap growing and shrinking with its travel; and
+//! every bad input refused at its place.
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -1191,6 +1194,158 @@ fn hung(
     never_adds_energy(&body, &rubbing)
 }
 
+/// A 2 kg block on a translational joint along ground's z axis, gravity
+/// along −y, pulled along z at `speed` by a MOTION from the joint as
+/// drawn, with `friction`; its last column is the MOTION's force on the
+/// block along z (the friction it overcomes). `offset` puts the centre of
+/// mass that far along z from the joint's I marker (a bending moment
+/// `m g offset` on the joint), `drawn` the block that far along z.
+fn pulled(speed: f64, offset: f64, drawn: f64, friction: &str) -> String {
+    format!(
+        "block pulled along its joint
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 2, CM = 21, IP = 0.1, 0.1, 0.1, QG = 0, 0, {drawn}
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = 0, 0, {offset}
+JOINT/1, TRANSLATIONAL, I = 20, J = 1
+MOTION/1, JOINT = 1, TRANSLATION, FUNCTION = {drawn} + {speed}*TIME
+FRICTION/1, JOINT = 1, {friction}
+VARIABLE/1, FUNCTION = MOTION(1, 0, 4, 1)
+ACCGRAV/JGRAV = -{G}
+END
+"
+    )
+}
+
+/// The LuGre model on a block pulled at a steady speed `v` from rest with
+/// its bristles straight: the deflection `z = (g/σ0)(1 − e^(−σ0 v t/g))`
+/// (`g` the Stribeck curve at `v`), the friction `N (σ0 z + σ1 ż + σ2 v)`
+/// with `N = m g`, from `N σ1 v + N σ2 v` at the start to `N (g + σ2 v)`;
+/// the deflection is the creep column.
+#[test]
+fn a_block_pulled_on_lugre_friction_meets_the_closed_form() {
+    let (mu_static, mu_dynamic, vs) = (0.5, 0.3, 0.02);
+    let (sigma0, sigma1, sigma2) = (1000.0, 2.0, 0.1);
+    let load = 2.0 * G;
+    for speed in [0.005, 0.05] {
+        let text = pulled(
+            speed,
+            0.0,
+            0.0,
+            &format!(
+                "MU_STATIC = {mu_static}, MU_DYNAMIC = {mu_dynamic}, FRICTION_MODEL = LUGRE, \
+                 STIFFNESS_COEFFICIENT = {sigma0}, DAMPING_COEFFICIENT = {sigma1}, \
+                 VISCOUS_COEFFICIENT = {sigma2}, STICTION_TRANSITION_VELOCITY = {vs}"
+            ),
+        );
+        let stribeck = mu_dynamic + (mu_static - mu_dynamic) * (-(speed / vs).powi(2)).exp();
+        let rate = sigma0 * speed / stribeck;
+        for name in ["dop853", "radau"] {
+            let settings = Settings {
+                method: method(name),
+                ..settings(0.05, 25, 1e-10)
+            };
+            let run = run(&text, &settings).unwrap_or_else(|error| panic!("{name}: {error}"));
+            let mut worst = [0.0_f64; 2];
+            for row in &run.rows {
+                let t = row[0];
+                let deflection = stribeck / sigma0 * (1.0 - (-rate * t).exp());
+                let deflecting = speed * (-rate * t).exp();
+                let friction = load * (sigma0 * deflection + sigma1 * deflecting + sigma2 * speed);
+                worst[0] = worst[0].max((row[CREEP] - deflection).abs() / (stribeck / sigma0));
+                worst[1] = worst[1].max((row[row.len() - 1] - friction).abs() / load);
+            }
+            println!(
+                "v {speed}, {name}: deflection off by {:.2e}, friction by {:.2e}",
+                worst[0], worst[1]
+            );
+            assert!(
+                worst[0] < 1e-7 && worst[1] < 1e-7,
+                "v {speed}, {name}: {worst:?}"
+            );
+        }
+    }
+}
+
+/// The LuGre model holds a block on a slope below its static friction:
+/// at rest `dz/dt = 0`, the bristles deflected `tan θ/σ0` so that the
+/// friction `N σ0 z` carries `m g sin θ`; the block, let go on the slope,
+/// slips a little more than that while its bristles bend (they deflect as
+/// it moves less `σ0 |v| z/g`), and stops.
+#[test]
+fn a_block_on_lugre_friction_below_its_static_friction_rests_on_its_bristles() {
+    let slope = 15_f64.to_radians();
+    let text = block(
+        slope,
+        "MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE, STIFFNESS_COEFFICIENT = 1E4, DAMPING_COEFFICIENT = 30",
+    );
+    let deflection = slope.tan() / 1e4;
+    for name in ["dop853", "radau"] {
+        let settings = Settings {
+            method: method(name),
+            ..settings(2.0, 4, 1e-9)
+        };
+        let run = run(&text, &settings).unwrap_or_else(|error| panic!("{name}: {error}"));
+        let last = run.rows.last().expect("rows");
+        println!(
+            "{name}: deflection {:.6e} against {deflection:.6e}, travel {:.6e}, vz {:.2e}",
+            last[CREEP], last[Z], last[VZ]
+        );
+        assert!(
+            (last[CREEP] + deflection).abs() < 1e-6 * deflection,
+            "{name}: {last:?}"
+        );
+        assert!(
+            last[Z] < -deflection && last[Z] > -3.0 * deflection,
+            "{name}: {last:?}"
+        );
+        assert!(last[VZ].abs() < 1e-9, "{name}: {last:?}");
+    }
+}
+
+/// A sliding joint's overlap that grows (INCREASE) or shrinks (DECREASE)
+/// with the travel: a block pulled at 0.1 past `β·vs` (so `μ = μd`), its
+/// bending moment `m g a` over the overlap `X0 ± v t` (the travel counted
+/// from the block as drawn, 0.3 along), the friction `μd m g (1 + a/(X0 ±
+/// v t))`; where the overlap would fall below `X0/1000` it is held there.
+#[test]
+fn a_sliding_joints_overlap_grows_and_shrinks_with_its_travel() {
+    let (mu, speed, offset, drawn) = (0.3, 0.1, 0.2, 0.3);
+    let load = 2.0 * G;
+    for (delta, sign, overlap) in [
+        ("INCREASE", 1.0, 0.5),
+        ("DECREASE", -1.0, 0.5),
+        ("CONSTANT", 0.0, 0.5),
+        ("DECREASE", -1.0, 0.1),
+    ] {
+        let text = pulled(
+            speed,
+            offset,
+            drawn,
+            &format!(
+                "MU_STATIC = {mu}, MU_DYNAMIC = {mu}, EFFECT = SLIDING, STICTION_TRANSITION_VELOCITY = 0.01, \
+                 INITIAL_OVERLAP = {overlap}, OVERLAP_DELTA = {delta}"
+            ),
+        );
+        for name in ["dop853", "radau"] {
+            let settings = Settings {
+                method: method(name),
+                ..settings(2.0, 20, 1e-9)
+            };
+            let run = run(&text, &settings).unwrap_or_else(|error| panic!("{name}: {error}"));
+            let mut worst = 0.0_f64;
+            for row in &run.rows {
+                let now = (overlap + sign * speed * row[0]).max(overlap / 1000.0);
+                let friction = mu * load * (1.0 + offset / now);
+                worst = worst.max((row[row.len() - 1] / friction - 1.0).abs());
+            }
+            println!("{delta} from {overlap}, {name}: friction off by {worst:.2e}");
+            assert!(worst < 1e-8, "{delta} from {overlap}, {name}: {worst}");
+        }
+    }
+}
+
 /// What a model with this FRICTION (after `FRICTION/1,`) on a joint of
 /// each type reports: `kind | arguments`.
 fn check(case: &str) -> String {
@@ -1244,8 +1399,14 @@ fn bad_friction_is_refused_at_its_place() {
         TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, INPUTS = (PRELOAD:FORCE)
         TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, INACTIVE = DYNAMIC
         TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, OVERLAP_DELTA = INCREASE
+        CYLINDRICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, OVERLAP_DELTA = DECREASE, INITIAL_OVERLAP = 0.2
         TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, OVERLAP_DELTA = SIDEWAYS
         TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE
+        SPHERICAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE, STIFFNESS_COEFFICIENT = 1E4, DAMPING_COEFFICIENT = 0, VISCOUS_COEFFICIENT = 0.01
+        TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE, STIFFNESS_COEFFICIENT = 0
+        TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE, DAMPING_COEFFICIENT = -1
+        TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE, VISCOUS_COEFFICIENT = -0.1
+        REVOLUTE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE, EFFECT = SLIDING
         TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = OTHER
         REVOLUTE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, PIN_RADIUS = 0
         REVOLUTE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_ARM = -1

@@ -96,13 +96,28 @@
 //! - a static equilibrium keeps the creep at its value (no stiction in
 //!   statics, as `INACTIVE = STATIC` asks; sliding friction is 0 at rest).
 //!
-//! Refused at their place: the LuGre model,
-//! `OVERLAP_DELTA = INCREASE` or `DECREASE`; a joint of another type, a
-//! missing or unknown JOINT, an input the joint has not (a revolute or
-//! cylindrical joint's TORSIONAL_MOMENT, a spherical joint's
-//! BENDING_MOMENT) and every bad value are errors.
+//! - `FRICTION_MODEL = LUGRE`: the creep is the bristles' deflection `z`
+//!   of the LuGre model (Canudas de Wit, Olsson, Åström, Lischinsky,
+//!   1995), written per unit of the load as MotionSolve documents its
+//!   coefficients (`σ0` per length, `σ1` and `σ2` time per length):
+//!   `dz/dt = v − σ0·|v|·z/g(|v|)`, `g(s) = μd + (μs − μd)·e^(−(s/vs)²)`,
+//!   the coefficient `σ0·z + σ1·dz/dt + σ2·v` along each direction of the
+//!   slip (its speed smoothed as above where it has more than one); the
+//!   coefficients STIFFNESS_COEFFICIENT, DAMPING_COEFFICIENT and
+//!   VISCOUS_COEFFICIENT default to MotionSolve's 100, 0.316 and 0.0004
+//!   (Adams' were not found); EFFECT = STICTION or SLIDING, which the
+//!   model has no place for, is refused;
+//! - `OVERLAP_DELTA = INCREASE` (`DECREASE`): the overlap is
+//!   INITIAL_OVERLAP plus (less) the travel `DZ(I, J, J)` since the joint
+//!   as the dataset draws it, at least INITIAL_OVERLAP/1000.
+//!
+//! A joint of another type, a missing or unknown JOINT, an input the joint
+//! has not (a revolute or cylindrical joint's TORSIONAL_MOMENT, a
+//! spherical joint's BENDING_MOMENT) and every bad value are errors.
 
 use super::dataset::{linear_sum, literal};
+use nalgebra::{UnitQuaternion, Vector3};
+
 use crate::model::initial::number;
 use crate::model::{Dataset, Statement, Value, is_kind};
 use crate::scene::{Scene, Target};
@@ -175,14 +190,11 @@ pub(crate) fn frictions(
     frictions
 }
 
-/// A keyword of one word: the words simulated, those refused (with the
-/// reason) and what it can be.
+/// A keyword of one word: the words it can be, and how to say them.
 struct Switch {
     keyword: &'static str,
     shortest: usize,
     taken: &'static [&'static str],
-    refused: &'static [&'static str],
-    reason: &'static str,
     words: &'static str,
 }
 
@@ -191,25 +203,19 @@ const SWITCHES: [Switch; 3] = [
     Switch {
         keyword: "FRICTION_MODEL",
         shortest: 10,
-        taken: &["DEFAULT", "STICK_SLIP"],
-        refused: &["LUGRE"],
-        reason: "uses the LuGre model, which mbexpr does not simulate: it simulates the stick-slip model (FRICTION_MODEL = DEFAULT)",
-        words: "DEFAULT or LUGRE",
+        taken: &["DEFAULT", "STICK_SLIP", "LUGRE"],
+        words: "DEFAULT, STICK_SLIP or LUGRE",
     },
     Switch {
         keyword: "OVERLAP_DELTA",
         shortest: 7,
-        taken: &["CONSTANT"],
-        refused: &["INCREASE", "DECREASE"],
-        reason: "has an overlap that changes with the joint's travel, which mbexpr does not simulate: give OVERLAP_DELTA = CONSTANT",
+        taken: &["CONSTANT", "INCREASE", "DECREASE"],
         words: "CONSTANT, INCREASE or DECREASE",
     },
     Switch {
         keyword: "INACTIVE",
         shortest: 4,
         taken: &["STATIC"],
-        refused: &[],
-        reason: "",
         words: "STATIC",
     },
 ];
@@ -277,9 +283,6 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
         };
         match word(statement, switch.keyword, switch.shortest) {
             Some(word) if switch.taken.contains(&word.as_str()) => {}
-            Some(word) if switch.refused.contains(&word.as_str()) => {
-                return Err(unsupported(switch.reason.to_string(), argument.span));
-            }
             _ => {
                 let message = format!("{} is {}", switch.keyword, switch.words);
                 return Err(model(message, argument.span));
@@ -314,7 +317,8 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
     let beta = value("TRANSITION_VELOCITY_COEFFICIENT", 1.5, 1.0, false)?;
     let deformation = value("MAX_STICTION_DEFORMATION", 0.01, 0.0, false)?;
     let positive = |keyword: &str, default: f64| value(keyword, default, 0.0, false);
-    let or_more = |keyword: &str| value(keyword, 0.0, 0.0, true);
+    let or_more_than = |keyword: &str, default: f64| value(keyword, default, 0.0, true);
+    let or_more = |keyword: &str| or_more_than(keyword, 0.0);
     let largest = |keyword: &str| -> Result<Option<f64>, SimulateError> {
         match statement.argument(keyword, keyword.len()) {
             None => Ok(None),
@@ -325,6 +329,21 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
     let effect = effect(statement).map_err(listed(
         "EFFECT is ALL, STICTION, SLIDING or STICTION:SLIDING",
     ))?;
+    let lugre = if word(statement, "FRICTION_MODEL", 10).as_deref() == Some("LUGRE") {
+        if effect != Effect::All {
+            return Err(unsupported(
+                "takes EFFECT = STICTION or SLIDING with the LuGre model, which has both in its bristles: the effects apply to the stick-slip model (give EFFECT = ALL, or FRICTION_MODEL = DEFAULT)".to_string(),
+                statement.place_of("EFFECT", 6),
+            ));
+        }
+        Some(LuGre {
+            stiffness: positive("STIFFNESS_COEFFICIENT", LUGRE_DEFAULTS.stiffness)?,
+            damping: or_more_than("DAMPING_COEFFICIENT", LUGRE_DEFAULTS.damping)?,
+            viscous: or_more_than("VISCOUS_COEFFICIENT", LUGRE_DEFAULTS.viscous)?,
+        })
+    } else {
+        None
+    };
     let inputs = match inputs(statement).map_err(listed(
         "INPUTS is ALL, NONE or a list of PRELOAD, REACTION_FORCE, BENDING_MOMENT and TORSIONAL_MOMENT",
     ))? {
@@ -379,6 +398,31 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
     let turning =
         |axis: char, radius: f64, rm: u64| format!("{}*W{axis}({i},{j},{rm})", literal(radius));
     let sliding = format!("VZ({i},{j},{j},{j})");
+    // The bending moment's term of a sliding joint's load, the moment over
+    // the overlap: INITIAL_OVERLAP throughout, or that plus or less the
+    // travel along J's z axis since the joint as drawn (OVERLAP_DELTA =
+    // INCREASE or DECREASE), held at a thousandth of INITIAL_OVERLAP where
+    // the slider has all but left the joint (below it the term would grow
+    // without bound, then turn negative).
+    let over_overlap = |moment: String| -> Result<(f64, String), SimulateError> {
+        let overlap = positive("INITIAL_OVERLAP", 1000.0)?;
+        let sign = match word(statement, "OVERLAP_DELTA", 7).as_deref() {
+            Some("INCREASE") => 1.0,
+            Some("DECREASE") => -1.0,
+            _ => return Ok((1.0 / overlap, moment)),
+        };
+        let [i_target, j_target] = [joints[joint].i, joints[joint].j];
+        let at_start = overlap - sign * drawn_travel(scene, i_target, j_target);
+        let travel = if sign > 0.0 { " + " } else { " - " };
+        Ok((
+            1.0,
+            format!(
+                "{moment}/MAX({}{travel}DZ({i},{j},{j}), {})",
+                literal(at_start),
+                literal(overlap / 1000.0)
+            ),
+        ))
+    };
     // A revolute joint's pin turning about axis `axis` (0, 1, 2) of marker
     // `rm` (I or J): its torque load and its slip.
     let pin_of = |axis: usize, rm: u64, along: Along| -> Result<Slip, SimulateError> {
@@ -432,7 +476,7 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
         }
         JointKind::Cylindrical => {
             let pin = positive("PIN_RADIUS", 1.0)?;
-            let overlap = positive("INITIAL_OVERLAP", 1000.0)?;
+            let (per_bending, bending_term) = over_overlap(magnitude_of(&[6, 7], j))?;
             let load = taken(vec![
                 (
                     preload,
@@ -440,7 +484,7 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
                     String::new(),
                 ),
                 (force, 1.0, magnitude_of(&[2, 3], j)),
-                (bending, 1.0 / overlap, magnitude_of(&[6, 7], j)),
+                (bending, per_bending, bending_term),
             ]);
             vec![vec![
                 Slip {
@@ -473,12 +517,12 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
             vec![turns.into()]
         }
         _ => {
-            let overlap = positive("INITIAL_OVERLAP", 1000.0)?;
+            let (per_bending, bending_term) = over_overlap(magnitude_of(&[6, 7], j))?;
             let arm = positive("REACTION_ARM", 1.0)?;
             let load = taken(vec![
                 (preload, or_more("FRICTION_FORCE_PRELOAD")?, String::new()),
                 (force, 1.0, magnitude_of(&[2, 3], j)),
-                (bending, 1.0 / overlap, magnitude_of(&[6, 7], j)),
+                (bending, per_bending, bending_term),
                 (torsion, 1.0 / arm, magnitude_of(&[8], j)),
             ]);
             vec![vec![Slip {
@@ -496,6 +540,7 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
         vs,
         beta,
         deformation,
+        lugre,
     };
     let mut components: [Option<String>; 6] = Default::default();
     let mut creep_rates = Vec::new();
@@ -575,8 +620,8 @@ fn yokes(statement: &Statement, name: &str) -> Result<[bool; 2], SimulateError> 
 }
 
 /// The friction law of a FRICTION: its effects, coefficients, stiction
-/// transition velocity `vs`, transition velocity coefficient `β` and
-/// largest creep `δ`.
+/// transition velocity `vs`, transition velocity coefficient `β`, largest
+/// creep `δ`, and the LuGre model's coefficients when it takes that model.
 struct Law {
     effect: Effect,
     mu_static: f64,
@@ -584,6 +629,29 @@ struct Law {
     vs: f64,
     beta: f64,
     deformation: f64,
+    lugre: Option<LuGre>,
+}
+
+/// The LuGre coefficients a FRICTION leaves out: MotionSolve's documented
+/// defaults for its joint friction (`bristle_stiffness` 100,
+/// `damping_effects` 0.316, `viscous_effects` 0.0004: Canudas de Wit's
+/// example divided by a load of 1 000); Adams' own were not found.
+const LUGRE_DEFAULTS: LuGre = LuGre {
+    stiffness: 100.0,
+    damping: 0.316,
+    viscous: 0.0004,
+};
+
+/// The coefficients of the LuGre model (`FRICTION_MODEL = LUGRE`), each
+/// per unit of the load: the bristles' stiffness `σ0`
+/// (STIFFNESS_COEFFICIENT, per length), their damping `σ1`
+/// (DAMPING_COEFFICIENT, time per length) and the viscous coefficient `σ2`
+/// (VISCOUS_COEFFICIENT, time per length).
+#[derive(Clone, Copy)]
+struct LuGre {
+    stiffness: f64,
+    damping: f64,
+    viscous: f64,
 }
 
 impl Law {
@@ -634,6 +702,9 @@ impl Law {
                 .collect();
             (speed, sliding)
         };
+        if let Some(lugre) = self.lugre {
+            return self.lugre_coefficients(lugre, &v, &speed, first_creep);
+        }
         if self.effect == Effect::Sliding {
             return (sliding, Vec::new());
         }
@@ -646,6 +717,47 @@ impl Law {
                 "(1 - {weight})*({}*{creep} + {}*({rate})) + {weight}*({sliding})",
                 literal(self.mu_static / self.deformation),
                 literal(self.mu_static / vs)
+            ));
+            rates.push(rate);
+        }
+        (coefficients, rates)
+    }
+}
+
+impl Law {
+    /// The LuGre model's coefficient along each direction of the slip
+    /// (velocities `v`, speed `speed`) and its bristles' rates: the
+    /// deflection `z` along each direction (a creep state) moves as
+    /// `dz/dt = v − σ0·|v|·z/g(|v|)`, `g(s) = μd + (μs − μd)·e^(−(s/vs)²)`
+    /// (the Stribeck curve), and the coefficient is `σ0·z + σ1·dz/dt +
+    /// σ2·v` (Canudas de Wit et al., 1995, per unit of the load): at a
+    /// steady slip `g(|v|) + σ2·|v|` against it, at rest a spring of
+    /// stiffness `σ0` per unit of the load that gives way at `μs`.
+    fn lugre_coefficients(
+        &self,
+        lugre: LuGre,
+        v: &[String],
+        speed: &str,
+        first_creep: usize,
+    ) -> (Vec<String>, Vec<String>) {
+        let stribeck = format!(
+            "({} + {}*EXP(-({speed}/{})**2))",
+            literal(self.mu_dynamic),
+            literal(self.mu_static - self.mu_dynamic),
+            literal(self.vs)
+        );
+        let (mut coefficients, mut rates) = (Vec::new(), Vec::new());
+        for (k, each) in v.iter().enumerate() {
+            let deflection = creep(first_creep + k);
+            let rate = format!(
+                "{each} - {}*{speed}*{deflection}/{stribeck}",
+                literal(lugre.stiffness)
+            );
+            coefficients.push(format!(
+                "{}*{deflection} + {}*({rate}) + {}*{each}",
+                literal(lugre.stiffness),
+                literal(lugre.damping),
+                literal(lugre.viscous)
             ));
             rates.push(rate);
         }
@@ -781,6 +893,20 @@ fn inputs(statement: &Statement) -> Result<Named, Span> {
 }
 
 /// The id a joint's marker has in expressions (`0` for ground itself).
+/// `DZ(I, J, J)` with the parts where the dataset draws them: the travel
+/// of I's origin from J's along J's z axis.
+fn drawn_travel(scene: &Scene, i: Target, j: Target) -> f64 {
+    let z_of_j = match j {
+        Target::Ground => Vector3::z(),
+        Target::Marker(index) => {
+            let marker = &scene.markers[index];
+            let body = marker.body.map(|body| scene.bodies[body].orientation);
+            body.unwrap_or_else(UnitQuaternion::identity) * marker.orientation * Vector3::z()
+        }
+    };
+    (scene.origin(i) - scene.origin(j)).dot(&z_of_j)
+}
+
 fn marker_id(scene: &Scene, target: Target) -> u64 {
     match target {
         Target::Ground => 0,
