@@ -306,6 +306,7 @@ functions! {
     Field "FIELD" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a force component of FIELD id";
     Nforce "NFORCE" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "at_marker", "comp", "rm") "a force component of NFORCE id at marker at_marker (one of its I markers, or its J)";
     Contact "CONTACT" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a force component of CONTACT id";
+    Spdp "SPDP" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a force component of SPRINGDAMPER id";
     Ptcv "PTCV" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a reaction component of point-to-curve constraint id";
     Cvcv "CVCV" Solver [Object, Flag, Flag, Marker] Marker 4..=4 ("id", "jflag", "comp", "rm") "a reaction component of curve-to-curve constraint id";
     Delay "DELAY" Solver [Value, Value, Value, Flag] Flag 3..=4 ("e", "delay", "e_history", "id") "value e had a time `delay` ago in a run (a negative delay is 0); before time 0, e_history (a constant or a function of TIME) at that time; id, an ARRAY of Adams' interpolation settings, 0 or left out";
@@ -316,6 +317,7 @@ functions! {
     Pinval "PINVAL" ModelData [Object, Flag] Flag 2..=2 ("id", "i") "entry i of the inputs of PINPUT id";
     Pouval "POUVAL" ModelData [Object, Flag] Flag 2..=2 ("id", "i") "entry i of the outputs of POUTPUT id";
     Senval "SENVAL" ModelData [Object] Object 1..=1 ("id") "value of SENSOR id";
+    Friction "FRICTION" ModelData [Object, Flag] Flag 2..=2 ("id", "index") "output index of FRICTION id, along or about its joint's J axes: 1-6 the force and torque on I, 7-12 the coefficients, 13 the static coefficient (0 when sliding), 14-19 the joint's velocities, 20-22 the creep";
     Akispl "AKISPL" ModelData [Value, Value, Object, Flag] Flag 3..=4 ("x", "z", "id", "iord") "Akima spline of SPLINE id at x (z for a surface), or its derivative of order iord";
     Cubspl "CUBSPL" ModelData [Value, Value, Object, Flag] Flag 3..=4 ("x", "z", "id", "iord") "cubic spline of SPLINE id at x (z for a surface), or its derivative of order iord";
     Curve "CURVE" ModelData [Value, Flag, Flag, Object] Object 4..=4 ("alpha", "iord", "comp", "id") "a coordinate of CURVE id at parameter alpha";

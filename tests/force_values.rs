@@ -1,6 +1,7 @@
-//! Force elements' values during a run: `SFORCE(id, jflag, comp, rm)` and
-//! `BUSH(...)` read in REQUESTs, checked against closed forms (a spring's
-//! `−k (x − L)` on its I marker and Newton's third law on J; a bushing's
+//! Force elements' values during a run: `SFORCE(id, jflag, comp, rm)`,
+//! `SPDP(...)` and `BUSH(...)` read in REQUESTs, checked against closed
+//! forms (a spring's `−k (x − L)` on its I marker and Newton's third law
+//! on J, a spring-damper's `−k (x − L) − c ẋ`; a bushing's
 //! `−K d` and the moment arm `−(I − J) × F` of its reaction on J), and
 //! refused in a force.
 
@@ -37,6 +38,39 @@ END
         ([pull.abs(), pull, x, -pull, 0.0, 0.0, 0.0, -pull], 1.0)
     });
     println!("spring: largest difference {worst:.2e} N");
+    assert!(worst < 1e-8, "{worst}");
+}
+
+/// A SPRINGDAMPER's `SPDP(id, jflag, comp, rm)` is its pull on I, `−k (x
+/// − L) − c ẋ` along the line from J, and the opposite on J: the part of
+/// 1 kg released at x = 1.5 on a spring of stiffness 10, damping 0.4 and
+/// free length 1 moves as `x = 1 + e^(−0.2 t)(0.5 cos ω t + 0.1/ω sin ω
+/// t)`, `ω = √(10 − 0.04)`.
+#[test]
+fn a_springdampers_spdp_is_its_pull_and_j_takes_the_opposite() {
+    let text = "spring-damper
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 20, IP = 1, 1, 1, QG = 1.5, 0, 0
+MARKER/20, PART = 2
+SPRINGDAMPER/1, TRANSLATIONAL, I = 20, J = 1, K = 10, C = 0.4, LENGTH = 1
+REQUEST/1, F1 = SPDP(1,0,1,0), F2 = SPDP(1,0,2,0), F3 = DX(20, 1), F4 = SPDP(1,1,2,0)
+, F5 = SPDP(1,0,8,0), F6 = SPDP(1,1,8,0), F7 = SPDP(1,1,3,0), F8 = SPDP(1,1,2,20)
+END
+";
+    let run = run(text, &settings(2.0, 40, 1e-11)).expect("the spring-damper runs");
+    let omega = (10.0f64 - 0.04).sqrt();
+    let worst = worst(&run.rows, |row| {
+        let t = row[0];
+        let decay = (-0.2 * t).exp();
+        let (sin, cos) = (omega * t).sin_cos();
+        let x = 1.0 + decay * (0.5 * cos + 0.1 / omega * sin);
+        let v = decay
+            * (-0.2 * (0.5 * cos + 0.1 / omega * sin) + omega * (-0.5 * sin + 0.1 / omega * cos));
+        let pull = -10.0 * (x - 1.0) - 0.4 * v;
+        ([pull.abs(), pull, x, -pull, 0.0, 0.0, 0.0, -pull], 1.0)
+    });
+    println!("spring-damper: largest difference {worst:.2e} N");
     assert!(worst < 1e-8, "{worst}");
 }
 

@@ -1304,6 +1304,39 @@ fn a_block_on_lugre_friction_below_its_static_friction_rests_on_its_bristles() {
     }
 }
 
+/// `FRICTION(id, index)` during a run, on the pulled block of LuGre
+/// friction: 3 the force along J's z on the block (the MOTION's pull
+/// opposite), 1 and 2 none, 9 the coefficient (the force over the load
+/// `m g`), 13 the static coefficient (0: the block slides past `vs`), 16
+/// its speed, 22 the creep (the bristles' deflection, the state's
+/// column), 12 and 19 nothing about z.
+#[test]
+fn the_friction_function_gives_the_frictions_force_coefficient_speed_and_creep() {
+    let speed = 0.05;
+    let text = pulled(
+        speed,
+        0.0,
+        0.0,
+        "MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE, STIFFNESS_COEFFICIENT = 1000, \
+         DAMPING_COEFFICIENT = 2, VISCOUS_COEFFICIENT = 0.1, STICTION_TRANSITION_VELOCITY = 0.02
+REQUEST/1, F2 = FRICTION(1, 3), F3 = FRICTION(1, 9), F4 = FRICTION(1, 13), F5 = FRICTION(1, 16)
+, F6 = FRICTION(1, 22), F7 = FRICTION(1, 1) + FRICTION(1, 2) + FRICTION(1, 12), F8 = FRICTION(1, 19)",
+    );
+    let run = run(&text, &settings(0.05, 10, 1e-10)).expect("the block runs");
+    let load = 2.0 * G;
+    let mut worst = 0.0_f64;
+    for row in &run.rows {
+        // Time, the creep, 13 of the part, F2 ... F8, the MOTION's pull.
+        let (creep, pull, asked) = (row[CREEP], row[22], &row[15..22]);
+        let expected = [-pull, -pull / load, 0.0, speed, creep, 0.0, 0.0];
+        for (got, want) in asked.iter().zip(expected) {
+            worst = worst.max((got - want).abs());
+        }
+    }
+    println!("FRICTION(1, ...): largest difference {worst:.2e}");
+    assert!(worst < 1e-12, "{worst}");
+}
+
 /// A sliding joint's overlap that grows (INCREASE) or shrinks (DECREASE)
 /// with the travel: a block pulled at 0.1 past `β·vs` (so `μ = μd`), its
 /// bending moment `m g a` over the overlap `X0 ± v t` (the travel counted
@@ -1407,6 +1440,7 @@ fn bad_friction_is_refused_at_its_place() {
         TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE, DAMPING_COEFFICIENT = -1
         TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE, VISCOUS_COEFFICIENT = -0.1
         REVOLUTE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = LUGRE, EFFECT = SLIDING
+        REVOLUTE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0, FRICTION_MODEL = LUGRE
         TRANSLATIONAL | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_MODEL = OTHER
         REVOLUTE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, PIN_RADIUS = 0
         REVOLUTE | JOINT = 1, MU_STATIC = 0.5, MU_DYNAMIC = 0.3, FRICTION_ARM = -1

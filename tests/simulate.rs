@@ -2328,3 +2328,37 @@ REQUEST/1, F2 = DM(3, 1)
         "{error}"
     );
 }
+
+/// VARIABLEs that each nest the last deep, read by a DIFF: compiled in
+/// place they nest deeper than the compiler's limit, which is an error at
+/// the DIFF's VARVAL, not a stack overflow; the same chain one link
+/// shorter runs.
+#[test]
+fn a_chain_of_deeply_nested_variables_is_refused_at_the_call_that_reads_it() {
+    let chain = |links: usize| {
+        let mut text = String::from("chain of nested variables\n");
+        for id in 1..=links {
+            let inner = if id == 1 {
+                "TIME".to_string()
+            } else {
+                format!("VARVAL({})", id - 1)
+            };
+            let nested = format!("{}{inner}{}", "SIN(".repeat(400), ")".repeat(400));
+            text.push_str(&format!("VARIABLE/{id}, FUNCTION = {nested}\n"));
+        }
+        text.push_str(&format!(
+            "DIFF/1, IC = 0, FUNCTION = VARVAL({links})\nEND\n"
+        ));
+        text
+    };
+    let Err(refused) = run(&chain(3), &settings(0.1, 1, 1e-6)) else {
+        panic!("a chain nested too deep ran");
+    };
+    println!("{refused}");
+    assert!(
+        refused.contains("nests deeper than 1000 levels"),
+        "{refused}"
+    );
+    assert!(refused.starts_with(&format!("{}:28:", 5)), "{refused}");
+    run(&chain(2), &settings(0.1, 1, 1e-6)).expect("two links run");
+}

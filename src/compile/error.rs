@@ -125,6 +125,17 @@ pub enum CompileError {
         /// The call.
         span: Span,
     },
+    /// A tree that nests too deep once what it reads is compiled in place.
+    #[error(
+        "this expression, with the VARIABLEs, DIFFs and outputs it reads written in place, nests deeper than {limit} levels: read fewer of them through one another (a chain of VARIABLEs each nesting the last)"
+    )]
+    TooDeep {
+        /// The most levels.
+        limit: usize,
+        /// The expression, or its call of the outermost tree compiled in
+        /// place.
+        span: Span,
+    },
     /// VARIABLE (or DIFF) functions that read each other in a loop.
     #[error("VARVAL loops: {cycle}")]
     VariableLoop {
@@ -195,6 +206,7 @@ impl CompileError {
             | CompileError::NeedsSolverState { span, .. }
             | CompileError::Scene { span, .. }
             | CompileError::VariableLoop { span, .. }
+            | CompileError::TooDeep { span, .. }
             | CompileError::ArrayEntry { span, .. }
             | CompileError::SplineOrder { span, .. }
             | CompileError::NoAcceleration { span, .. }

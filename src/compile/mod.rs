@@ -138,6 +138,8 @@ fn compile_all<S: AsRef<str>>(
         loads: Vec::new(),
         load_of: HashMap::new(),
         errors: Vec::new(),
+        depth: 0,
+        inlined_at: None,
         variables_as_inputs,
     };
     for name in inputs {
@@ -235,7 +237,19 @@ struct Compiler<'s> {
     /// The slot of each input used, by its index.
     load_of: HashMap<usize, Slot>,
     errors: Vec<CompileError>,
+    /// How deep the tree being compiled nests here, the trees compiled in
+    /// place (VARIABLEs, DIFFs, outputs) counting with the tree that reads
+    /// them.
+    depth: usize,
+    /// The call in the tree being compiled that the outermost tree
+    /// compiled in place stands for (where an error inside it is shown).
+    inlined_at: Option<Span>,
 }
+
+/// How deep a tree may nest once the VARIABLEs, DIFFs and outputs it reads
+/// are compiled in place: twice the parser's limit for one expression, so
+/// that the compiler's recursion stays well inside a thread's stack.
+const MAX_INLINED_NESTING: usize = 2 * crate::syntax::MAX_NESTING;
 
 impl Compiler<'_> {
     fn new_slot(&mut self, constant: Option<f64>) -> Slot {
@@ -317,6 +331,27 @@ impl Compiler<'_> {
     }
 
     fn node(&mut self, node: &Node) -> Slot {
+        if self.depth >= MAX_INLINED_NESTING {
+            let span = self.inlined_at.unwrap_or(node.span);
+            if !self
+                .errors
+                .iter()
+                .any(|error| matches!(error, CompileError::TooDeep { .. }))
+            {
+                self.errors.push(CompileError::TooDeep {
+                    limit: MAX_INLINED_NESTING,
+                    span,
+                });
+            }
+            return self.constant(0.0);
+        }
+        self.depth += 1;
+        let slot = self.node_kind(node);
+        self.depth -= 1;
+        slot
+    }
+
+    fn node_kind(&mut self, node: &Node) -> Slot {
         let span = node.span;
         match &node.kind {
             NodeKind::Number(value) => self.constant(*value),
@@ -629,6 +664,12 @@ impl Compiler<'_> {
                 let list = &scene.statements.plant_inputs[&id];
                 self.listed_variable(scene, ("PINVAL", "PINPUT"), (id, list), args, span)
             }
+            (Function::Friction, Some(id))
+                if scene.statements.friction_outputs.contains_key(&id) =>
+            {
+                let list = &scene.statements.friction_outputs[&id];
+                self.listed_variable(scene, ("FRICTION", "FRICTION"), (id, list), args, span)
+            }
             (Function::Pouval, Some(id)) if scene.statements.plant_outputs.contains_key(&id) => {
                 let list = &scene.statements.plant_outputs[&id];
                 self.listed_variable(scene, ("POUVAL", "POUTPUT"), (id, list), args, span)
@@ -746,7 +787,14 @@ impl Compiler<'_> {
     /// place: its instructions take the span of the call, `span`.
     fn inline_tree(&mut self, root: &Node, span: Span) -> Slot {
         let spans_before = self.spans.len();
+        let outermost = self.inlined_at.is_none();
+        if outermost {
+            self.inlined_at = Some(span);
+        }
         let slot = self.node(root);
+        if outermost {
+            self.inlined_at = None;
+        }
         for instruction_span in &mut self.spans[spans_before..] {
             *instruction_span = span;
         }
@@ -1167,6 +1215,7 @@ fn model_data_error(
         Function::Pinval => Some("PINPUT"),
         Function::Pouval => Some("POUTPUT"),
         Function::Senval => Some("SENSOR"),
+        Function::Friction => Some("FRICTION"),
         _ => None,
     };
     if let Some(kind) = solver_state {

@@ -31,7 +31,7 @@ pub struct SolverCall {
 
 impl SolverCall {
     /// The functions whose calls become inputs.
-    pub const FUNCTIONS: [Function; 14] = [
+    pub const FUNCTIONS: [Function; 15] = [
         Function::Joint,
         Function::Jprim,
         Function::Ptcv,
@@ -46,6 +46,7 @@ impl SolverCall {
         Function::Field,
         Function::Nforce,
         Function::Contact,
+        Function::Spdp,
     ];
 
     /// The call of `function` with `args`, when it is one of

@@ -604,6 +604,8 @@ fn statement_kind(function: Function) -> Option<&'static str> {
         F::Contact => "CONTACT",
         F::Ptcv => "PTCV",
         F::Cvcv => "CVCV",
+        F::Spdp => "SPRINGDAMPER",
+        F::Friction => "FRICTION",
         _ => return None,
     })
 }

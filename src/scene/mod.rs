@@ -261,6 +261,10 @@ pub struct StatementData {
     /// POUTPUT id to its VARIABLES: `POUVAL(id, i)` is `VARVAL` of the
     /// `i`-th.
     pub plant_outputs: HashMap<u64, Vec<u64>>,
+    /// FRICTION id to the hidden VARIABLEs (ids past the model's) of its
+    /// outputs: `FRICTION(id, i)` is `VARVAL` of the `i`-th (a simulation
+    /// writes them; elsewhere FRICTION has no value).
+    pub friction_outputs: HashMap<u64, Vec<u64>>,
     /// SPLINE id to its points: `AKISPL(x, z, id)` and `CUBSPL(x, z, id)`
     /// interpolate them.
     pub splines: HashMap<u64, SplineData>,

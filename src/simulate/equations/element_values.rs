@@ -30,7 +30,7 @@ use crate::simulate::constraints::{component_and_rm, flags, pick};
 use crate::simulate::model::{Force, Model};
 
 /// The force elements' functions and the statements they read.
-pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 9] = [
+pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 10] = [
     (Function::Sforce, "SFORCE"),
     (Function::Vforce, "VFORCE"),
     (Function::Vtorq, "VTORQUE"),
@@ -40,6 +40,7 @@ pub(crate) const ELEMENT_FUNCTIONS: [(Function, &str); 9] = [
     (Function::Field, "FIELD"),
     (Function::Nforce, "NFORCE"),
     (Function::Contact, "CONTACT"),
+    (Function::Spdp, "SPRINGDAMPER"),
 ];
 
 /// A force element's component a model's expression asks for, found in

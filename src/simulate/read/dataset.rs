@@ -392,6 +392,13 @@ impl Reader<'_> {
             .keys()
             .max()
             .map_or(1, |id| id + 1);
+        let mut next_variable = self
+            .scene
+            .statements
+            .variables
+            .keys()
+            .max()
+            .map_or(1, |id| id + 1);
         'frictions: for friction in read {
             let directions = friction.creep_rates.len();
             let inputs: Vec<String> = (0..directions)
@@ -443,6 +450,33 @@ impl Reader<'_> {
                 };
                 written[slot] = Some(component);
             }
+            // FRICTION(id, index): each output a hidden VARIABLE.
+            let mut outputs = Vec::new();
+            for text in &friction.outputs {
+                let text = with_creep(text);
+                let Some(checked) = crate::parse(&text)
+                    .ok()
+                    .and_then(|tree| crate::check(&tree).ok())
+                else {
+                    let label = self.dataset.statements[friction.statement].label();
+                    let span = self.dataset.statements[friction.statement].span;
+                    self.refuse(
+                        format!("{label}: an output cannot be written as an expression ({text}): check its numbers"),
+                        span,
+                    );
+                    continue 'frictions;
+                };
+                self.scene
+                    .statements
+                    .variables
+                    .insert(next_variable, checked);
+                outputs.push(next_variable);
+                next_variable += 1;
+            }
+            self.scene
+                .statements
+                .friction_outputs
+                .insert(friction.id, outputs);
             let joint = &joints[friction.joint];
             forces.push(Force::Vector {
                 i: joint.i,

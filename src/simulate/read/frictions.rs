@@ -106,7 +106,8 @@
 //!   coefficients STIFFNESS_COEFFICIENT, DAMPING_COEFFICIENT and
 //!   VISCOUS_COEFFICIENT default to MotionSolve's 100, 0.316 and 0.0004
 //!   (Adams' were not found); EFFECT = STICTION or SLIDING, which the
-//!   model has no place for, is refused;
+//!   model has no place for, is refused, and so is a coefficient of 0
+//!   (the deflection's rate divides by `g`);
 //! - `OVERLAP_DELTA = INCREASE` (`DECREASE`): the overlap is
 //!   INITIAL_OVERLAP plus (less) the travel `DZ(I, J, J)` since the joint
 //!   as the dataset draws it, at least INITIAL_OVERLAP/1000.
@@ -142,6 +143,16 @@ pub(crate) struct JointFriction {
     /// stiction is on; [`creep`] stands for a state's input in them and in
     /// [`JointFriction::components`].
     pub creep_rates: Vec<String>,
+    /// What `FRICTION(id, index)` gives, indices 1 to 22 (Adams Solver's
+    /// FRICTION function), along or about the joint's J axes: 1–6 the
+    /// force and torque on I (the components), 7–12 the coefficients (the
+    /// friction over its load, signed as the friction), 13 the static
+    /// coefficient's size while the slip is below
+    /// STICTION_TRANSITION_VELOCITY (0 above it, and with EFFECT =
+    /// SLIDING), 14–16 `VX VY VZ(I, J, J, J)`, 17–19 `WX WY WZ(I, J, J)`,
+    /// 20–22 the creep along J's x, y and z axes (0 along an axis it has
+    /// none: a turning joint's creep is the state's column only).
+    pub outputs: Vec<String>,
 }
 
 /// What stands for the input of creep state `k` (from 0) in the written
@@ -164,7 +175,7 @@ pub(crate) fn frictions(
             continue;
         }
         match friction(statement, joints, scene) {
-            Ok((joint, _, _))
+            Ok((joint, _, _, _))
                 if let Some(first) = frictions.iter().find(|friction| friction.joint == joint) =>
             {
                 errors.push(SimulateError::Model {
@@ -177,12 +188,13 @@ pub(crate) fn frictions(
                     span: statement.place_of("JOINT", 5),
                 });
             }
-            Ok((joint, components, creep_rates)) => frictions.push(JointFriction {
+            Ok((joint, components, creep_rates, outputs)) => frictions.push(JointFriction {
                 id: statement.id.unwrap_or(0),
                 statement: index,
                 joint,
                 components,
                 creep_rates,
+                outputs,
             }),
             Err(error) => errors.push(error),
         }
@@ -220,8 +232,9 @@ const SWITCHES: [Switch; 3] = [
     },
 ];
 
-/// The joint, the components and the creep rates of one FRICTION.
-type Read = (usize, [Option<String>; 6], Vec<String>);
+/// The joint, the components, the creep rates and the outputs of one
+/// FRICTION.
+type Read = (usize, [Option<String>; 6], Vec<String>, Vec<String>);
 
 fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Read, SimulateError> {
     let label = statement.label();
@@ -334,6 +347,19 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
             return Err(unsupported(
                 "takes EFFECT = STICTION or SLIDING with the LuGre model, which has both in its bristles: the effects apply to the stick-slip model (give EFFECT = ALL, or FRICTION_MODEL = DEFAULT)".to_string(),
                 statement.place_of("EFFECT", 6),
+            ));
+        }
+        if mu_static <= 0.0 || mu_dynamic <= 0.0 {
+            let keyword = if mu_static <= 0.0 {
+                "MU_STATIC"
+            } else {
+                "MU_DYNAMIC"
+            };
+            return Err(model(
+                format!(
+                    "the LuGre model divides by the Stribeck curve μd + (μs − μd)·e^(−(v/vs)²): give {keyword} above 0"
+                ),
+                statement.place_of(keyword, keyword.len()),
             ));
         }
         Some(LuGre {
@@ -544,11 +570,36 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
     };
     let mut components: [Option<String>; 6] = Default::default();
     let mut creep_rates = Vec::new();
+    // For FRICTION(id, index): the coefficients along J's axes, their
+    // squares, the groups' speeds and the creep along each axis.
+    let mut along_axes: [Vec<String>; 6] = Default::default();
+    let (mut squares, mut speeds) = (Vec::new(), Vec::new());
+    let mut creep_along: [Option<usize>; 3] = [None; 3];
     for group in groups {
-        let speeds: Vec<String> = group.iter().map(|slip| slip.speed.clone()).collect();
-        let (coefficients, rates) = law.coefficients(&speeds, creep_rates.len());
-        creep_rates.extend(rates);
-        for (slip, coefficient) in group.into_iter().zip(coefficients) {
+        let slips: Vec<String> = group.iter().map(|slip| slip.speed.clone()).collect();
+        let first_creep = creep_rates.len();
+        let written = law.coefficients(&slips, first_creep);
+        let has_creep = !written.rates.is_empty();
+        creep_rates.extend(written.rates);
+        speeds.push(written.speed);
+        for (k, (slip, coefficient)) in group.into_iter().zip(written.along).enumerate() {
+            squares.push(format!("({coefficient})**2"));
+            match slip.along {
+                Along::Component(slot) => {
+                    along_axes[slot].push(format!("-({coefficient})"));
+                    if slot < 3 && has_creep {
+                        creep_along[slot] = Some(first_creep + k);
+                    }
+                }
+                Along::AxisOfI(axis) => {
+                    for row in 0..3 {
+                        along_axes[3 + row].push(format!(
+                            "-({coefficient})*ORIENT(29,{},{i},{j})",
+                            3 * axis + row + 1
+                        ));
+                    }
+                }
+            }
             let mut magnitude = format!("-({coefficient})*({})", linear_sum(&slip.load));
             if let Some(limit) = slip.limit {
                 magnitude = format!(
@@ -575,7 +626,30 @@ fn friction(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Re
             }
         }
     }
-    Ok((joint, components, creep_rates))
+    // FRICTION(id, index), indices 1 to 22 (Adams Solver's FRICTION
+    // function).
+    let speed = speeds
+        .into_iter()
+        .reduce(|one, other| format!("MAX({one}, {other})"))
+        .unwrap_or_else(|| "0".to_string());
+    let static_coefficient = match effect {
+        Effect::Sliding => "0".to_string(),
+        _ => format!(
+            "IF({speed} - {}: SQRT({}), 0, 0)",
+            literal(vs),
+            squares.join(" + ")
+        ),
+    };
+    let mut outputs: Vec<String> = components
+        .iter()
+        .map(|component| component.clone().unwrap_or_else(|| "0".to_string()))
+        .collect();
+    outputs.extend(along_axes.iter().map(|terms| sum(terms)));
+    outputs.push(static_coefficient);
+    outputs.extend(['X', 'Y', 'Z'].map(|axis| format!("V{axis}({i},{j},{j},{j})")));
+    outputs.extend(['X', 'Y', 'Z'].map(|axis| format!("W{axis}({i},{j},{j})")));
+    outputs.extend(creep_along.map(|k| k.map_or_else(|| "0".to_string(), creep)));
+    Ok((joint, components, creep_rates, outputs))
 }
 
 /// One direction of a joint's slip: its speed on the surface of contact
@@ -663,7 +737,7 @@ impl Law {
     /// sliding coefficient `μ(|v|)·vₖ/√(|v|² + ε²)`, so that the friction
     /// opposes the slip and is 0 (no NaN) at rest. The creep states are
     /// numbered from `first_creep` (a joint's earlier groups have theirs).
-    fn coefficients(&self, slips: &[String], first_creep: usize) -> (Vec<String>, Vec<String>) {
+    fn coefficients(&self, slips: &[String], first_creep: usize) -> Coefficients {
         let (vs, beta) = (self.vs, self.beta);
         let (peak, end) = match self.effect {
             Effect::All => (self.mu_static, self.mu_dynamic),
@@ -703,10 +777,19 @@ impl Law {
             (speed, sliding)
         };
         if let Some(lugre) = self.lugre {
-            return self.lugre_coefficients(lugre, &v, &speed, first_creep);
+            let (along, rates) = self.lugre_coefficients(lugre, &v, &speed, first_creep);
+            return Coefficients {
+                along,
+                rates,
+                speed,
+            };
         }
         if self.effect == Effect::Sliding {
-            return (sliding, Vec::new());
+            return Coefficients {
+                along: sliding,
+                rates: Vec::new(),
+                speed,
+            };
         }
         let weight = format!("STEP({speed}, 0, 0, {}, 1)", literal(vs));
         let (mut coefficients, mut rates) = (Vec::new(), Vec::new());
@@ -720,8 +803,23 @@ impl Law {
             ));
             rates.push(rate);
         }
-        (coefficients, rates)
+        Coefficients {
+            along: coefficients,
+            rates,
+            speed,
+        }
     }
+}
+
+/// What [`Law::coefficients`] writes for one group of slip directions.
+struct Coefficients {
+    /// The coefficient along each direction (the friction is
+    /// `−coefficient·N`).
+    along: Vec<String>,
+    /// The creep states' rates, none without stiction.
+    rates: Vec<String>,
+    /// The slip's speed.
+    speed: String,
 }
 
 impl Law {
