@@ -132,6 +132,10 @@ fn constants_that_always_fail() {
         IF(1/0: 1, 2, 3)
         STEP(x, LOG(1), 0, EXP(0), 1)
         STEP(x, 1 - 1, 0, 2 - 2, 1)
+        x/0
+        2*x/(1 - 1)*3
+        IF(x: x/0, 1, 2)
+        x/0.5
         "
     ));
 }

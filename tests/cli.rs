@@ -817,6 +817,10 @@ fn simulate_refuses_what_it_cannot_run() {
                 BALL_DATASET
             )
             + &check_run(
+                &["simulate", "-", "--end", "1e-323", "--steps", "4"],
+                BALL_DATASET
+            )
+            + &check_run(
                 &[
                     "simulate",
                     "/no/such/model.adm",
@@ -854,6 +858,20 @@ fn simulate_reads_scene_files_and_plots() {
     assert_eq!(stdout.lines().count(), 4, "{stdout}");
     let drawing = std::fs::read_to_string(svg).expect("the plot is written");
     assert!(drawing.starts_with("<svg") && drawing.contains("DIF(1)"));
+    // A run where no state changes draws its states flat, and succeeds.
+    let flat = folder.join("flat.svg");
+    let flat = flat.to_str().expect("a UTF-8 path");
+    let still = "still\nDIFF/1, IC = 1, FUNCTION = 0\nEND\n";
+    let (stdout, stderr, code) = mbexpr(
+        &[
+            "simulate", "-", "--end", "1", "--steps", "2", "--plot", flat,
+        ],
+        still,
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(stdout.matches("time,").count(), 1, "{stdout}");
+    let drawing = std::fs::read_to_string(flat).expect("the flat plot is written");
+    assert!(drawing.contains("DIF(1)"));
     std::fs::remove_dir_all(&folder).ok();
 }
 

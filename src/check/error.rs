@@ -127,6 +127,9 @@ pub enum ConstantFailure {
     /// A function or operator outside its domain, or a broken argument rule.
     #[error("{0}")]
     Law(LawError),
+    /// A division whose divisor is a constant 0.
+    #[error("`/` divides by a constant 0, which fails at every evaluation")]
+    DivisorZero,
     /// The value is not a finite number (an overflow).
     #[error("{operation} gives {}: the value is beyond the range of a double", Shown(*value))]
     NotFinite {

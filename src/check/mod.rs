@@ -200,6 +200,17 @@ impl Checker {
                 (Some(a), Some(b)) => {
                     self.fold(binary_op(*op), &[a, b], first.span.to(operand.span))
                 }
+                // A division by a constant 0 fails at every evaluation,
+                // whatever it divides.
+                (None, Some(b)) if *op == BinaryOp::Div && b == 0.0 => {
+                    if self.unsure == 0 {
+                        self.errors.push(CheckError::ConstantFails {
+                            failure: ConstantFailure::DivisorZero,
+                            span: first.span.to(operand.span),
+                        });
+                    }
+                    None
+                }
                 _ => None,
             };
             operands.push((*op, node));

@@ -450,7 +450,7 @@ impl<W: Write> Sink for Written<'_, W> {
         if self.keep {
             self.kept.push([&[time], values].concat());
         }
-        self.written = if time == 0.0 {
+        self.written = if self.count == 0 {
             self.rows.header(self.out)
         } else {
             Ok(())
@@ -774,19 +774,25 @@ impl<'c> Rows<'c> {
 const MAX_DOTTED_ROWS: usize = 250;
 
 /// The states that change over the run (or the part of it that ran), one
-/// panel each, with the switches at `marks` marked.
+/// panel each, with the switches at `marks` marked; where none changes,
+/// the first of them, flat.
 fn plot_states(
     path: &str,
     columns: &[String],
     rows: &[Vec<f64>],
     marks: &[f64],
 ) -> Result<(), String> {
-    let curves: Vec<Curve> = (1..columns.len())
-        .filter(|&column| {
-            let first = rows.first().map(|row| row[column]);
-            rows.iter().any(|row| Some(row[column]) != first)
-        })
+    let changes = |column: usize| {
+        let first = rows.first().map(|row| row[column]);
+        rows.iter().any(|row| Some(row[column]) != first)
+    };
+    let drawn: Vec<usize> = (1..columns.len())
         .filter(|&column| !columns[column].contains(".q"))
+        .collect();
+    let changing: Vec<usize> = drawn.iter().copied().filter(|&c| changes(c)).collect();
+    let chosen = if changing.is_empty() { drawn } else { changing };
+    let curves: Vec<Curve> = chosen
+        .into_iter()
         .take(8)
         .map(|column| Curve {
             label: columns[column].clone(),
@@ -794,7 +800,7 @@ fn plot_states(
         })
         .collect();
     if curves.is_empty() {
-        return Err("no state changes over the run".to_string());
+        return Err("the run has no state to draw".to_string());
     }
     let mut marks = marks.to_vec();
     marks.dedup();

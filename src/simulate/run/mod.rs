@@ -233,6 +233,13 @@ impl Settings {
                 "the end time must be a positive number, not {}",
                 Shown(self.end)
             ))
+        } else if self.steps > 0 && self.end / (self.steps as f64) < f64::MIN_POSITIVE {
+            Some(format!(
+                "the time between rows, the end time over the steps ({} / {}), is below the least normal number of a double ({}): the rows' times would round together; give a later end time or fewer steps",
+                Shown(self.end),
+                self.steps,
+                Shown(f64::MIN_POSITIVE)
+            ))
         } else {
             self.problem_but_end()
         };
