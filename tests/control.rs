@@ -148,6 +148,10 @@ fn what_control_elements_refuse() {
         "LSE/1, X = 2, A = 7",
         "TFSISO/1, U = 1, X = 2, Y = 3, NUMERATOR = 1, 1, 1, DENOMINATOR = 1, 1, 1\nVARIABLE/2, FUNCTION = ARYVAL(3, 2) + ARYVAL(2, 3)",
         "TFSISO/1, U = 5, X = 2, Y = 3, NUMERATOR = 1, 1, 1, DENOMINATOR = 1, 1, 1\nARRAY/5, U, VARIABLES = 2\nVARIABLE/2, FUNCTION = ARYVAL(3, 1)",
+        "ARRAY/5, IC, SIZE = -1, NUMBERS = 1, 2",
+        "ARRAY/5, IC, SIZE = 2.5, NUMBERS = 1, 2",
+        "ARRAY/5, IC, SIZE = 1, NUMBERS = 1, 2, 3",
+        "ARRAY/5, IC, SIZE = 4, NUMBERS = 1, 2, 3",
     ];
     let table: String = cases
         .iter()

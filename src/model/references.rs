@@ -493,8 +493,44 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
                 findings.push(ModelError::Configuration { error }, Some(index), None);
             }
         }
+        if is_statement(statement, "ARRAY")
+            && let Some(error) = array_size(statement)
+        {
+            findings.push(ModelError::Configuration { error }, Some(index), None);
+        }
     }
     check_grounds(dataset, findings);
+}
+
+/// What is wrong with an ARRAY's SIZE: not a whole number of at least 1,
+/// or fewer than the NUMBERS it lists.
+fn array_size(statement: &Statement) -> Option<ConfigurationError> {
+    let argument = statement.argument("SIZE", 2)?;
+    let Value::List(items) = &argument.value else {
+        return None;
+    };
+    let text = items.first()?.text.trim();
+    let reason = match text.parse::<f64>() {
+        Ok(size) if size >= 1.0 && size.fract() == 0.0 && size <= 1e9 => {
+            let listed =
+                statement
+                    .argument("NUMBERS", 2)
+                    .and_then(|numbers| match &numbers.value {
+                        Value::List(items) => Some(items.len()),
+                        _ => None,
+                    })?;
+            if listed as f64 <= size {
+                return None;
+            }
+            format!("it lists {listed} NUMBERS, more than its SIZE = {text}")
+        }
+        _ => format!("SIZE must be a whole number from 1 to 10^9, not {text}"),
+    };
+    Some(ConfigurationError::Control {
+        statement: statement.label(),
+        reason,
+        span: argument.span,
+    })
 }
 
 /// The longest name a message repeats whole.
