@@ -471,7 +471,7 @@ fn matrix_points(statement: &Statement) -> Result<Vec<Vector3<f64>>, SimulateErr
             .map(|count| count as usize)
             .ok_or_else(|| {
                 wrong(
-                    format!("{keyword} must be a whole number above zero"),
+                    format!("{keyword} must be a whole number from 1 to 1000000"),
                     statement.place_of(keyword, 3),
                 )
             })
