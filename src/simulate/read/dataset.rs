@@ -453,17 +453,8 @@ impl Reader<'_> {
             // FRICTION(id, index): each output a hidden VARIABLE.
             let mut outputs = Vec::new();
             for text in &friction.outputs {
-                let text = with_creep(text);
-                let Some(checked) = crate::parse(&text)
-                    .ok()
-                    .and_then(|tree| crate::check(&tree).ok())
+                let Some(checked) = self.checked(friction.statement, "output", &with_creep(text))
                 else {
-                    let label = self.dataset.statements[friction.statement].label();
-                    let span = self.dataset.statements[friction.statement].span;
-                    self.refuse(
-                        format!("{label}: an output cannot be written as an expression ({text}): check its numbers"),
-                        span,
-                    );
                     continue 'frictions;
                 };
                 self.scene
@@ -1335,15 +1326,15 @@ impl Reader<'_> {
         None
     }
 
-    /// An expression mbexpr writes for statement `index` (`what`: `FX`,
-    /// `force`), added to the model's expressions with every place in it at
-    /// the statement.
-    fn written(&mut self, index: usize, what: &str, text: &str) -> Option<usize> {
-        let statement = &self.dataset.statements[index];
+    /// `text`, written for statement `index`'s `what`, parsed and checked;
+    /// `None`, with the statement refused, when its numbers make no
+    /// expression.
+    fn checked(&mut self, index: usize, what: &str, text: &str) -> Option<crate::Checked> {
         let checked = crate::parse(text)
             .ok()
             .and_then(|tree| crate::check(&tree).ok());
-        let Some(checked) = checked else {
+        if checked.is_none() {
+            let statement = &self.dataset.statements[index];
             self.refuse(
                 format!(
                     "{}: its {what} cannot be written as an expression ({text}): check its numbers",
@@ -1351,8 +1342,16 @@ impl Reader<'_> {
                 ),
                 statement.span,
             );
-            return None;
-        };
+        }
+        checked
+    }
+
+    /// An expression mbexpr writes for statement `index` (`what`: `FX`,
+    /// `force`), added to the model's expressions with every place in it at
+    /// the statement.
+    fn written(&mut self, index: usize, what: &str, text: &str) -> Option<usize> {
+        let statement = &self.dataset.statements[index];
+        let checked = self.checked(index, what, text)?;
         self.expressions.push(Expression {
             label: format!("{} {what}", statement.label()),
             checked,
