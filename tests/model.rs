@@ -424,6 +424,19 @@ DIFF/1, IC = 0, FUNCTION = DIF(FOO) + DX(BAR, 1)
     insta::assert_snapshot!(check(adm, FileKind::Adm));
 }
 
+/// A command file's keyword given twice (the run would read the first) and
+/// a dataset's statements after its END (which ends it: Adams reads none
+/// of them) are errors at their place; comments after END are not.
+#[test]
+fn command_keywords_twice_and_statements_after_end() {
+    let acf = "model\nresults\nsimulate/dynamic, end = 1, END = 2, steps = 10, steps = 20\nstop\n";
+    insta::assert_snapshot!(check(acf, FileKind::Acf));
+    let adm = "after end\nDIFF/1, IC = 0, FUNCTION = 1\nEND\n! a note\nDIFF/2, IC = 0, FUNCTION = 2\nEND\n";
+    insta::assert_snapshot!(check(adm, FileKind::Adm));
+    let clean = "clean\nDIFF/1, IC = 0, FUNCTION = 1\nEND\n! notes after END are comments\n";
+    insta::assert_snapshot!(check(clean, FileKind::Adm));
+}
+
 /// What `eval --model` and the simulator refuse in the statements' data is
 /// an error of `check` too, at its statement.
 #[test]

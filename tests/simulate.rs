@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 48] = [
+    let cases: [(&str, &str, Settings); 52] = [
         (
             "a torque near the largest double: the steps shrink to nothing, and the part it spins is named",
             "huge torque
@@ -640,7 +640,73 @@ MARKER/4, PART = 1, FLOATING
 VFORCE/1, I = 3, JFLOAT = 4.7, RM = 1, FX = 0, FY = 0, FZ = 1
 BUSHING/1, I = 3, J = 1, K = 100, 100, 100, C = -1e6, 1, 1
 ",
-            short,
+            short.clone(),
+        ),
+        (
+            "a translational force between coincident markers, which pushes along no line",
+            "coincident
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 2, IP = 1, 1, 1
+MARKER/2, PART = 2
+SFORCE/1, TRANSLATIONAL, I = 2, J = 1, FUNCTION = 10
+",
+            short.clone(),
+        ),
+        (
+            "a second motion on a crank-slider's one freedom, on another joint",
+            "two motions
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/2, PART = 1, QP = 0.9, 0, 0, REULER = 90D, 90D, 0
+PART/2, MASS = 1, CM = 20, IP = 0.001, 0.004, 0.004
+MARKER/20, PART = 2, QP = 0.1, 0, 0
+MARKER/21, PART = 2
+MARKER/22, PART = 2, QP = 0.2, 0, 0
+PART/3, MASS = 2, CM = 30, IP = 0.002, 0.08, 0.08
+MARKER/30, PART = 3, QP = 0.55, 0, 0
+MARKER/31, PART = 3, QP = 0.2, 0, 0
+MARKER/32, PART = 3, QP = 0.9, 0, 0
+PART/4, MASS = 3, CM = 40, IP = 0.01, 0.01, 0.01
+MARKER/40, PART = 4, QP = 0.9, 0, 0
+MARKER/41, PART = 4, QP = 0.9, 0, 0, REULER = 90D, 90D, 0
+JOINT/1, REVOLUTE, I = 21, J = 1
+MOTION/1, JOINT = 1, ROTATION, FUNCTION = 2 * PI * TIME
+JOINT/2, REVOLUTE, I = 31, J = 22
+JOINT/3, REVOLUTE, I = 40, J = 32
+JOINT/4, TRANSLATIONAL, I = 41, J = 2
+MOTION/2, JOINT = 4, ACCELERATION, FUNCTION = STEP(TIME, 0, 0, 0.01, 100)
+",
+            short.clone(),
+        ),
+        (
+            "a pendulum spun faster than its joint's reaction can be held in a double",
+            "spun
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 20, IP = 0.1, 0.1, 0.1, WZ = 1e200
+MARKER/20, PART = 2, QP = 2, 0, 0
+MARKER/21, PART = 2
+JOINT/1, REVOLUTE, I = 21, J = 1
+",
+            short.clone(),
+        ),
+        (
+            "Radau5's Newton iterations that fail name the state that changes fastest",
+            "ball in a box
+PART/1, GROUND
+MARKER/10, PART = 1
+GRAPHICS/1, BOX, CORNER = 10, X = 1, Y = 1, Z = 1
+PART/2, MASS = 1, CM = 20, IP = 0.01, 0.01, 0.01, QG = 0.5, 0.5, 0.5, VX = 1, WZ = 10
+MARKER/20, PART = 2
+GRAPHICS/2, ELLIPSOID, CM = 20, XSCALE = 0.2, YSCALE = 0.2, ZSCALE = 0.2
+CONTACT/1, IGEOM = 2, JGEOM = 1, IMPACT, STIFFNESS = 1E6, DAMPING = 100, DMAX = 1E-4, EXPONENT = 1.5
+ACCGRAV/KGRAV = -9.81
+",
+            Settings {
+                method: Method::Radau5,
+                ..short
+            },
         ),
     ];
     let table: String = cases

@@ -133,6 +133,19 @@ pub enum ModelError {
         /// The second keyword in the file.
         span: Span,
     },
+    /// A statement after the dataset's `END`, which ends it: Adams Solver
+    /// reads nothing after END.
+    #[error(
+        "{label} comes after END (line {end_line}), which ends the dataset: move END to the end of the file, or delete what follows it"
+    )]
+    AfterEnd {
+        /// `DIFF/2`, the first statement after END.
+        label: String,
+        /// The line of END.
+        end_line: usize,
+        /// The statement's name.
+        span: Span,
+    },
     /// A statement named, not numbered, in a solver dataset's expression.
     #[error(
         "{name} is not an id: a solver dataset refers to a {kind} by its number, as {function}(3) does"
@@ -216,6 +229,7 @@ impl ModelError {
             | ModelError::UnknownKeyword { span, .. }
             | ModelError::Duplicate { span, .. }
             | ModelError::KeywordTwice { span, .. }
+            | ModelError::AfterEnd { span, .. }
             | ModelError::Run { span, .. }
             | ModelError::NamedReference { span, .. }
             | ModelError::SecondGround { span, .. }
@@ -424,7 +438,27 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
         FileKind::Acf => (vocabulary::COMMANDS, "command file"),
         _ => (vocabulary::DATASET_STATEMENTS.as_slice(), "dataset"),
     };
+    let mut end_line = None;
     for (index, statement) in dataset.statements.iter().enumerate() {
+        if dataset.kind == FileKind::Adm {
+            if let Some(end_line) = end_line {
+                let span = name_span(findings.text, statement.span, &statement.name)
+                    .unwrap_or(statement.span);
+                findings.push(
+                    ModelError::AfterEnd {
+                        label: statement.label(),
+                        end_line,
+                        span,
+                    },
+                    Some(index),
+                    None,
+                );
+                break;
+            }
+            if is_statement(statement, "END") {
+                end_line = Some(findings.lines().location(statement.span.start).line);
+            }
+        }
         // A command file starts with the names of its dataset and output
         // files, one word a line.
         let file_name = dataset.kind == FileKind::Acf
@@ -448,6 +482,9 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
                 None,
             );
             continue;
+        }
+        if dataset.kind == FileKind::Acf {
+            command_keywords_once(statement, index, findings);
         }
         if dataset.kind != FileKind::Adm {
             continue;
@@ -500,6 +537,29 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
         }
     }
     check_grounds(dataset, findings);
+}
+
+/// A keyword a command gives twice (`SIMULATE/DYNAMIC, END = 1, END = 2`),
+/// as written: the commands' keywords are not listed, so an abbreviation
+/// and its full form are not matched.
+fn command_keywords_once(statement: &Statement, index: usize, findings: &mut Findings<'_>) {
+    let mut given: HashMap<String, Span> = HashMap::new();
+    for argument in &statement.arguments {
+        let keyword = argument.keyword.to_string();
+        if let Some(first) = given.insert(keyword.clone(), argument.keyword_span) {
+            let first_line = findings.lines().location(first.start).line;
+            findings.push(
+                ModelError::KeywordTwice {
+                    keyword,
+                    statement: statement.label(),
+                    first_line,
+                    span: argument.keyword_span,
+                },
+                Some(index),
+                None,
+            );
+        }
+    }
 }
 
 /// What is wrong with an ARRAY's SIZE: not a whole number of at least 1,

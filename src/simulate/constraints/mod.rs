@@ -41,8 +41,8 @@ pub(crate) use reactions::{Component, Reactions, component_and_rm, flags, pick};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
 pub(crate) use solve::{
-    Tolerance, Unassembled, acceleration_residual, constraint_loads, disagreeing_redundant,
-    find_redundant, held_equations, multiplier_loads, project,
+    Tolerance, Unassembled, Unheld, acceleration_residual, constraint_loads, disagreeing_redundant,
+    find_redundant, first_repeated, held_equations, multiplier_loads, project,
 };
 
 use nalgebra::Vector3;
@@ -850,6 +850,20 @@ pub(crate) fn joints_failed_in<T: crate::number::Number>(
         }
         None => joints_singular_in(model),
     }
+}
+
+/// The error of joints whose held equation `row` asks for an acceleration
+/// beyond a double's range at a state (`ω² r` of a part spun at 1e200), at
+/// the statement that holds it.
+pub(crate) fn joints_overflow_in(model: &super::Model, row: usize) -> crate::eval::OutputError {
+    let (owner, span) = owner_of_row(model, row);
+    let mut error = singular_because(&format!(
+        "the accelerations that hold {owner} are beyond the range of a double at this state: a part's speed, or a mass, force or gravity, is too large (give smaller initial velocities or loads)"
+    ));
+    if let (crate::eval::EvalError::Law { span: at, .. }, Some(span)) = (&mut error.error, span) {
+        *at = span;
+    }
+    error
 }
 
 /// The joints' error for `reason`. Its span is empty, or the place in the

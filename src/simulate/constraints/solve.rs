@@ -14,6 +14,26 @@ use crate::simulate::Model;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Singular;
 
+/// Why the joints' reactions cannot be found at a state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Unheld {
+    /// The equations are singular there.
+    Singular,
+    /// Held equation `row` ([`active_rows`]' order) asks for an
+    /// acceleration beyond a double's range: the parts' speeds, masses or
+    /// loads are too large for it.
+    Overflow {
+        /// The equation's index among the held equations.
+        row: usize,
+    },
+}
+
+impl From<Singular> for Unheld {
+    fn from(_: Singular) -> Unheld {
+        Unheld::Singular
+    }
+}
+
 /// A body's inverse mass: of its centre of mass, and its inverse inertia
 /// in ground axes.
 struct Inverse<T: Number> {
@@ -271,7 +291,7 @@ pub(crate) fn constraint_loads<T: Number>(
     inverse_inertia: &[Matrix3<f64>],
     force: &mut [Vector3<T>],
     torque: &mut [Vector3<T>],
-) -> Result<Held<T>, Singular> {
+) -> Result<Held<T>, Unheld> {
     let rows = active_rows(model, bodies, imposed);
     if rows.is_empty() {
         return Ok(Held {
@@ -310,6 +330,9 @@ pub(crate) fn constraint_loads<T: Number>(
         rows.len(),
         rows.iter().map(|row| acceleration_residual(row, &free)),
     );
+    if let Some(row) = rhs.iter().position(|value| !value.value().is_finite()) {
+        return Err(Unheld::Overflow { row });
+    }
     let mut massless: Vec<usize> = rows
         .iter()
         .flat_map(|row| row.coefficients.iter().map(|(body, _)| *body))
@@ -1017,20 +1040,43 @@ pub(crate) fn find_redundant(model: &Model, y: &[f64], offsets: &[usize]) -> Vec
     }
     // An equation that cannot be evaluated here (a GCON's FUNCTION out of
     // its domain) is no repetition: the assembly names it.
-    let finite = |row: &Row<f64>| {
-        row.value.is_finite()
-            && row
-                .coefficients
-                .iter()
-                .all(|(_, entries)| entries.iter().all(|entry| entry.is_finite()))
-    };
     independent(&[], &rows)
         .into_iter()
         .zip(labels)
         .zip(&rows)
-        .filter(|((independent, _), row)| !independent && finite(row))
+        .filter(|((independent, _), row)| !independent && is_finite(row))
         .map(|((_, label), _)| label)
         .collect()
+}
+
+/// The first held equation ([`active_rows`]' order) that repeats those
+/// before it at state `y` with the motions as `imposed` gives them, once
+/// the joints' redundant equations are left out: a motion, coupler or
+/// GCON that sets a freedom the joints and the equations before it set
+/// already (a joint's own repetitions were left out by
+/// [`find_redundant`]). Equations that cannot be evaluated here are
+/// passed over: the assembly names them.
+pub(crate) fn first_repeated(
+    model: &Model,
+    y: &[f64],
+    offsets: &[usize],
+    imposed: &Imposed<'_>,
+) -> Option<usize> {
+    let bodies = motions(y, offsets);
+    let rows = active_rows(model, &bodies, imposed);
+    independent(&[], &rows)
+        .into_iter()
+        .zip(&rows)
+        .position(|(independent, row)| !independent && is_finite(row))
+}
+
+/// Whether an equation's value and coefficients are finite numbers.
+fn is_finite(row: &Row<f64>) -> bool {
+    row.value.is_finite()
+        && row
+            .coefficients
+            .iter()
+            .all(|(_, entries)| entries.iter().all(|entry| entry.is_finite()))
 }
 
 /// The left-out equation (see [`find_redundant`]) furthest from zero at

@@ -99,6 +99,29 @@ pub(super) fn apply<T: Number>(
     }
 }
 
+/// The magnitude's expression of a translational force between its I and
+/// J markers that pushes or pulls while they coincide, where its line of
+/// action is not defined (a force of zero there is none, and is let be).
+pub(super) fn pushes_without_line<T: Number>(
+    model: &Model,
+    force: &Force,
+    kinematics: &[Kinematics<T>],
+    value: &impl Fn(Option<usize>) -> T,
+) -> Option<usize> {
+    let Force::Translational {
+        i,
+        j,
+        magnitude,
+        action_only: false,
+    } = force
+    else {
+        return None;
+    };
+    let line = place(model, i, kinematics).origin - place(model, j, kinematics).origin;
+    let coincide = line.iter().all(|component| component.value() == 0.0);
+    (coincide && value(Some(*magnitude)).value() != 0.0).then_some(*magnitude)
+}
+
 /// What `force` applies on its I marker's side and on its other side (J's
 /// body, or the floating marker's; ground's too, which takes nothing),
 /// `None` where it applies nothing (an action-only element's other side, a

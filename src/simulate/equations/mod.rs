@@ -42,9 +42,9 @@ use crate::laws::contact::ContactBranch;
 use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, is_run_state_input, parse_sensor_input};
 use crate::simulate::constraints::{
-    BodyMotion, Component, CurveSite, Drives, Holder, Reactions, acceleration_residual,
-    constraint_loads, curve_contacts, curve_sites, holders, joints_failed_in, joints_singular_in,
-    multiplier_loads,
+    BodyMotion, Component, CurveSite, Drives, Holder, Reactions, Unheld, acceleration_residual,
+    constraint_loads, curve_contacts, curve_sites, holders, joints_failed_in, joints_overflow_in,
+    joints_singular_in, multiplier_loads,
 };
 use crate::simulate::model::{Contact, Force, Model};
 use accelerations::{Accelerations, Measure};
@@ -1385,6 +1385,24 @@ impl Equations<'_> {
         }
     }
 
+    /// A run stopped at a translational force of `size` whose markers
+    /// coincide, at its FUNCTION (`magnitude`).
+    fn no_line_of_action(&self, magnitude: usize, size: f64) -> OutputError {
+        OutputError {
+            output: self.output_of[magnitude].unwrap_or_default(),
+            error: EvalError::Law {
+                error: crate::laws::LawError::Domain {
+                    operation: "a translational force",
+                    reason: format!(
+                        "its I and J markers coincide while it is {}: it acts along the line from J to I, which is not defined here (place the markers apart, or make the force 0 where they meet)",
+                        crate::shown::Shown(size)
+                    ),
+                },
+                span: crate::Span::default(),
+            },
+        }
+    }
+
     /// The value of `expression` among the program's `outputs` (zero for
     /// no expression).
     fn value_of<T: Number>(&self, outputs: &[T], expression: Option<usize>) -> T {
@@ -1621,6 +1639,10 @@ impl Equations<'_> {
                 }
                 _ => None,
             };
+            if let Some(magnitude) = forces::pushes_without_line(model, force, &kinematics, &value)
+            {
+                return Err(self.no_line_of_action(magnitude, value(Some(magnitude)).value()));
+            }
             forces::apply(model, force, &kinematics, (&value, branch), &mut loads);
         }
         Ok((kinematics, loads))
@@ -1657,7 +1679,10 @@ impl Equations<'_> {
                 &mut loads.force,
                 &mut loads.torque,
             )
-            .map_err(|_| joints_failed_in(model, &motions))?;
+            .map_err(|unheld| match unheld {
+                Unheld::Overflow { row } => joints_overflow_in(model, row),
+                Unheld::Singular => joints_failed_in(model, &motions),
+            })?;
             multipliers = Some(held.multipliers);
             massless = held.massless;
         }

@@ -18,7 +18,7 @@ pub use statics::Equilibrium;
 
 use super::constraints::{
     Drives, JOINTS, MOTIONS, Residuals, Tolerance, Unassembled, disagreeing_redundant,
-    owner_of_row, project, why_unmet,
+    first_repeated, owner_of_row, project, why_unmet,
 };
 use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
 use super::error::{Place, SimulateError};
@@ -924,6 +924,19 @@ impl Simulation<'_> {
                     place: Place::File(joint.span),
                 });
             }
+            let at = drives
+                .at(0.0, None)
+                .map_err(|error| self.failure(0.0, error))?;
+            if let Some(row) = first_repeated(model, &y0, &offsets, &at) {
+                let (owner, span) = owner_of_row(model, row);
+                return Err(SimulateError::Integration {
+                    time: 0.0,
+                    message: format!(
+                        "{owner} sets a freedom the joints and the equations before it set already (its equation repeats theirs at the start): the mechanism has more motions and constraints than freedoms, and only a joint's repeated equations are left out (remove one of them, or free a joint)"
+                    ),
+                    place: span.map_or(Place::None, Place::File),
+                });
+            }
             found
         };
         let equilibrium = if settings.statics {
@@ -1114,20 +1127,10 @@ impl Simulation<'_> {
                     target = time;
                 }
             }
-            stepper.step_to(&mut system, target).map_err(|error| {
+            if let Err(error) = stepper.step_to(&mut system, target) {
                 let stiff_from = summary.stiff_from.or(stepper.stiff_from());
-                let stalled = matches!(
-                    error,
-                    IntegrateError::StepSizeTooSmall {
-                        cause: Rejection::Tolerance | Rejection::NonFinite,
-                        ..
-                    } | IntegrateError::Stalled { .. }
-                );
-                let fastest = stalled
-                    .then(|| Self::fastest_state(&mut system, (stepper.t(), stepper.y()), settings))
-                    .flatten();
-                self.step_error(error, settings, stiff_from, fastest)
-            })?;
+                return Err(self.stuck(error, (&mut system, &stepper), settings, stiff_from));
+            }
             summary.stiff_from = summary.stiff_from.or(stepper.stiff_from());
             if stepper.method() != method {
                 let change = MethodChange {
@@ -1473,9 +1476,9 @@ impl Simulation<'_> {
         for _ in 0..4 {
             stepper.restart(t0, y0);
             while stepper.t() < time {
-                stepper
-                    .step_to(system, time)
-                    .map_err(|error| self.step_error(error, settings, None, None))?;
+                if let Err(error) = stepper.step_to(system, time) {
+                    return Err(self.stuck(error, (system, stepper), settings, None));
+                }
             }
             let state = stepper.y().to_vec();
             system
@@ -1593,6 +1596,32 @@ impl Simulation<'_> {
         }
     }
 
+    /// The error for a step that fails: [`Self::step_error`], with the
+    /// state that changes fastest at the last state reached where the steps
+    /// shrank to nothing (or why the rates fail there).
+    fn stuck(
+        &self,
+        error: IntegrateError<OutputError>,
+        (system, stepper): (&mut Held<'_>, &Stepper),
+        settings: &Settings,
+        stiff_from: Option<f64>,
+    ) -> SimulateError {
+        let stalled = matches!(
+            error,
+            IntegrateError::StepSizeTooSmall {
+                cause: Rejection::Tolerance
+                    | Rejection::NonFinite
+                    | Rejection::Newton
+                    | Rejection::Singular,
+                ..
+            } | IntegrateError::Stalled { .. }
+        );
+        let fastest = stalled
+            .then(|| self.fastest_state(system, (stepper.t(), stepper.y()), settings))
+            .flatten();
+        self.step_error(error, settings, stiff_from, fastest)
+    }
+
     /// The error for an integration that cannot go on.
     /// [`Self::integration_error`], but the step budget named as the
     /// settings' and, when DOP853 found the run stiff, the method to take.
@@ -1601,7 +1630,7 @@ impl Simulation<'_> {
         error: IntegrateError<OutputError>,
         settings: &Settings,
         stiff_from: Option<f64>,
-        fastest: Option<(usize, f64)>,
+        fastest: Option<Result<(usize, f64), SimulateError>>,
     ) -> SimulateError {
         let stiff = stiff_from.map_or(String::new(), |from| {
             format!(
@@ -1635,13 +1664,25 @@ impl Simulation<'_> {
                 other => return other,
             },
         };
-        if let Some((state, rate)) = fastest {
-            let owner;
-            (owner, place) = self.state_owner(state);
-            message = format!(
-                "{message}; the state that changes fastest for its tolerance is {owner} (its rate of change {}): check the initial conditions and forces that drive it",
-                Shown(rate)
-            );
+        match fastest {
+            Some(Ok((state, rate))) => {
+                let owner;
+                (owner, place) = self.state_owner(state);
+                message = format!(
+                    "{message}; the state that changes fastest for its tolerance is {owner} (its rate of change {}): check the initial conditions and forces that drive it",
+                    Shown(rate)
+                );
+            }
+            Some(Err(failure)) => {
+                place = failure.place();
+                let why = match failure {
+                    SimulateError::Evaluation { error, .. } => error.to_string(),
+                    SimulateError::Integration { message, .. } => message,
+                    other => other.to_string(),
+                };
+                message = format!("{message}; at the last state it reached, {why}");
+            }
+            None => {}
         }
         SimulateError::Integration {
             time,
@@ -1803,17 +1844,18 @@ impl Simulation<'_> {
     /// The state that changes fastest for the error it may have, at `(t,
     /// y)`: the largest `|dy/dt| / (atol + rtol |y|)` (where a run whose
     /// steps shrink to nothing without a failing expression is stuck), with
-    /// its rate of change; `None` where the rates cannot be evaluated.
+    /// its rate of change; where the rates cannot be evaluated there, why;
+    /// `None` for a run without states.
     fn fastest_state(
+        &self,
         system: &mut Held<'_>,
         (t, y): (f64, &[f64]),
         settings: &Settings,
-    ) -> Option<(usize, f64)> {
+    ) -> Option<Result<(usize, f64), SimulateError>> {
         let mut rates = vec![0.0; y.len()];
-        system
-            .mechanics
-            .rates(t, y, Some(&system.held), &mut rates)
-            .ok()?;
+        if let Err(error) = system.mechanics.rates(t, y, Some(&system.held), &mut rates) {
+            return Some(Err(self.failure(t, error)));
+        }
         let scaled = |i: usize| {
             let scale = settings.atol + settings.rtol * y[i].abs();
             let value = rates[i].abs() / scale;
@@ -1821,7 +1863,7 @@ impl Simulation<'_> {
         };
         (0..y.len())
             .max_by(|&a, &b| scaled(a).total_cmp(&scaled(b)))
-            .map(|state| (state, rates[state]))
+            .map(|state| Ok((state, rates[state])))
     }
 
     /// An error, at the statement of the part or DIFF it names, when the
