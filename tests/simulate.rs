@@ -2428,3 +2428,99 @@ fn a_chain_of_deeply_nested_variables_is_refused_at_the_call_that_reads_it() {
     assert!(refused.starts_with(&format!("{}:28:", 5)), "{refused}");
     run(&chain(2), &settings(0.1, 1, 1e-6)).expect("two links run");
 }
+
+/// What the refusals of a repeated motion and of a force along no line
+/// let be: a four-bar driven away from near its toggle runs at any unit of
+/// length (its motion repeats no joint's equation; the test once measured
+/// turns against lengths and refused it in millimetres), and the same
+/// place at every scale; a spring of length 0 across a joint (`-k DM`,
+/// zero up to rounding where its markers meet), a constant force within
+/// one part, and a second END change nothing.
+#[test]
+fn a_four_bar_near_its_toggle_and_a_spring_of_length_0_run_at_any_scale() {
+    let four_bar = |scale: f64| {
+        let p = |x: f64| x * scale;
+        let inertia = |a: f64, b: f64| {
+            format!(
+                "{}, {}, {}",
+                a * scale * scale,
+                a * scale * scale,
+                b * scale * scale
+            )
+        };
+        format!(
+            "four-bar near its toggle
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/2, PART = 1, QP = {}, 0, 0
+PART/2, MASS = 1, CM = 20, IP = {}
+MARKER/20, PART = 2, QP = {}, {}, 0
+MARKER/21, PART = 2
+MARKER/22, PART = 2, QP = {}, {}, 0
+PART/3, MASS = 1, CM = 30, IP = {}
+MARKER/30, PART = 3, QP = {}, {}, 0
+MARKER/31, PART = 3, QP = {}, {}, 0
+MARKER/32, PART = 3, QP = {}, {}, 0
+PART/4, MASS = 1, CM = 40, IP = {}
+MARKER/40, PART = 4, QP = {}, {}, 0
+MARKER/41, PART = 4, QP = {}, {}, 0
+MARKER/42, PART = 4, QP = {}, 0, 0
+JOINT/1, REVOLUTE, I = 21, J = 1
+JOINT/2, REVOLUTE, I = 31, J = 22
+JOINT/3, REVOLUTE, I = 41, J = 32
+JOINT/4, REVOLUTE, I = 42, J = 2
+MOTION/1, JOINT = 1, ROTATION, FUNCTION = -0.5*TIME**2
+ACCGRAV/JGRAV = {}
+END
+",
+            p(1.2),
+            inertia(0.02093333333333333, 0.02103333333333333),
+            p(-0.18124982781269305),
+            p(0.17218739767436267),
+            p(-0.3624996556253861),
+            p(0.34437479534872534),
+            inertia(0.06760000000000001, 0.06770000000000001),
+            p(0.07700192304790904),
+            p(0.24773959294462528),
+            p(-0.3624996556253861),
+            p(0.34437479534872534),
+            p(0.5165035017212042),
+            p(0.15110439054052524),
+            inertia(0.04093333333333333, 0.041033333333333324),
+            p(0.858251750860602),
+            p(0.07555219527026262),
+            p(0.5165035017212042),
+            p(0.15110439054052524),
+            p(1.2),
+            p(-9.80665),
+        )
+    };
+    let settings = settings(0.3, 6, 1e-8);
+    let place = |scale: f64| {
+        let run = run(&four_bar(scale), &settings).unwrap_or_else(|error| panic!("{error}"));
+        run.rows.last().expect("rows")[1 + 2 * 13] / scale
+    };
+    let metres = place(1.0);
+    for scale in [1e3, 1e4, 1e6] {
+        let scaled = place(scale);
+        println!("scale {scale:e}: PART/3.x {scaled} (in metres {metres})");
+        assert!((scaled - metres).abs() < 1e-6 * metres.abs().max(1.0));
+    }
+    let pendulum = include_str!("../examples/simulate/c_pendulum.adm");
+    let with = |extra: &str| pendulum.replace("END\n", &format!("{extra}END\n"));
+    let plain = run(pendulum, &settings).expect("the pendulum runs");
+    for extra in [
+        "SFORCE/9, TRANSLATIONAL, I = 21, J = 1, FUNCTION = -100*DM(21, 1)\n",
+        "MARKER/23, PART = 2\nSFORCE/9, TRANSLATIONAL, I = 21, J = 23, FUNCTION = 5\n",
+        "END\n",
+    ] {
+        let other = run(&with(extra), &settings).unwrap_or_else(|error| panic!("{extra}: {error}"));
+        let last = |run: &Run| run.rows.last().expect("rows").clone();
+        for (a, b) in last(&other).iter().zip(last(&plain)) {
+            assert!(
+                (a - b).abs() < 1e-9 * (1.0 + b.abs()),
+                "{extra}: {a} against {b}"
+            );
+        }
+    }
+}

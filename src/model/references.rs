@@ -441,7 +441,8 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
     let mut end_line = None;
     for (index, statement) in dataset.statements.iter().enumerate() {
         if dataset.kind == FileKind::Adm {
-            if let Some(end_line) = end_line {
+            // A second END ends nothing more.
+            if let Some(end_line) = end_line.filter(|_| !is_statement(statement, "END")) {
                 let span = name_span(findings.text, statement.span, &statement.name)
                     .unwrap_or(statement.span);
                 findings.push(

@@ -1063,11 +1063,53 @@ pub(crate) fn first_repeated(
     imposed: &Imposed<'_>,
 ) -> Option<usize> {
     let bodies = motions(y, offsets);
-    let rows = active_rows(model, &bodies, imposed);
-    independent(&[], &rows)
+    let mut rows = active_rows(model, &bodies, imposed);
+    // Turns are measured as the motions they give at the model's length,
+    // so that the test does not depend on the unit of length (a crank of
+    // 5 000 mm is the crank of 5 m); only a repetition to rounding counts.
+    let length = model_length(model);
+    for row in &mut rows {
+        for (_, coefficients) in &mut row.coefficients {
+            for turn in &mut coefficients[3..] {
+                *turn /= length;
+            }
+        }
+    }
+    // The banded factorisation finds the candidates; Gram-Schmidt on the
+    // dense rows, whose bound is a thousand times tighter than its own,
+    // confirms one (a repetition to rounding, not a mechanism near a
+    // toggle), only where there is one to confirm.
+    let suspect = independent(&[], &rows)
         .into_iter()
         .zip(&rows)
-        .position(|(independent, row)| !independent && is_finite(row))
+        .any(|(independent, row)| !independent && is_finite(row));
+    if !suspect {
+        return None;
+    }
+    match dependence(&rows, bodies.len()) {
+        Unassembled::Singular { row: Some(row) } if is_finite(&rows[row]) => Some(row),
+        _ => None,
+    }
+}
+
+/// The model's length: the farthest a marker stands from its part's centre
+/// of mass (1 where every marker is at one).
+fn model_length(model: &Model) -> f64 {
+    let farthest = model
+        .scene
+        .markers
+        .iter()
+        .filter_map(|marker| {
+            marker
+                .body
+                .map(|body| (marker.position - model.masses[body].centre).norm())
+        })
+        .fold(0.0_f64, f64::max);
+    if farthest.is_finite() && farthest > 0.0 {
+        farthest
+    } else {
+        1.0
+    }
 }
 
 /// Whether an equation's value and coefficients are finite numbers.

@@ -78,18 +78,34 @@ pub(super) struct Action<T: Number> {
 }
 
 /// Adds what `force` applies to the bodies (a contact's normal force on
-/// the branch `branch` of its law, the natural one when `None`).
+/// the branch `branch` of its law, the natural one when `None`). A
+/// translational force between I and J markers on two bodies that pushes
+/// or pulls while they coincide, where its line of action is not defined,
+/// applies nothing and gives its magnitude's expression as the error (a
+/// force of zero there is none, and one within a body does nothing).
 pub(super) fn apply<T: Number>(
     model: &Model,
     force: &Force,
     kinematics: &[Kinematics<T>],
     (value, branch): (&impl Fn(Option<usize>) -> T, Option<ContactBranch>),
     loads: &mut Loads<T>,
-) {
-    for action in actions(model, force, kinematics, value, branch)
-        .into_iter()
-        .flatten()
+) -> Result<(), usize> {
+    let sides = actions(model, force, kinematics, value, branch);
+    if let (
+        [None, None],
+        Force::Translational {
+            i,
+            j,
+            magnitude,
+            action_only: false,
+        },
+    ) = (&sides, force)
+        && body_of(model, i) != body_of(model, j)
+        && value(Some(*magnitude)).value() != 0.0
     {
+        return Err(*magnitude);
+    }
+    for action in sides.into_iter().flatten() {
         if let Some(push) = &action.force {
             loads.push(action.body, &action.point, push, kinematics);
         }
@@ -97,29 +113,7 @@ pub(super) fn apply<T: Number>(
             loads.turn(action.body, turn);
         }
     }
-}
-
-/// The magnitude's expression of a translational force between its I and
-/// J markers that pushes or pulls while they coincide, where its line of
-/// action is not defined (a force of zero there is none, and is let be).
-pub(super) fn pushes_without_line<T: Number>(
-    model: &Model,
-    force: &Force,
-    kinematics: &[Kinematics<T>],
-    value: &impl Fn(Option<usize>) -> T,
-) -> Option<usize> {
-    let Force::Translational {
-        i,
-        j,
-        magnitude,
-        action_only: false,
-    } = force
-    else {
-        return None;
-    };
-    let line = place(model, i, kinematics).origin - place(model, j, kinematics).origin;
-    let coincide = line.iter().all(|component| component.value() == 0.0);
-    (coincide && value(Some(*magnitude)).value() != 0.0).then_some(*magnitude)
+    Ok(())
 }
 
 /// What `force` applies on its I marker's side and on its other side (J's

@@ -213,6 +213,18 @@ impl<'m> Mechanics<'m> {
             .iter()
             .map(|diff| output_of[diff.function])
             .collect();
+        let state_free = program
+            .inputs_of_outputs()
+            .iter()
+            .map(|inputs| {
+                inputs.iter().all(|&input| {
+                    matches!(
+                        sources[input],
+                        Source::Time | Source::Constant(_) | Source::Sensor(_)
+                    )
+                })
+            })
+            .collect();
         let implicit_rates = model
             .diffs
             .iter()
@@ -245,6 +257,7 @@ impl<'m> Mechanics<'m> {
                 model,
                 program,
                 sources,
+                state_free,
                 diff_outputs,
                 implicit_rates,
                 rate_scales: vec![None; model.diffs.len()],
@@ -1303,6 +1316,10 @@ struct Equations<'m> {
     model: &'m Model,
     program: &'m Program,
     sources: Vec<Source>,
+    /// Whether each output of the program reads no state of the model
+    /// (only TIME, constants and the sensors' values): its value is exact,
+    /// not a state's rounding.
+    state_free: Vec<bool>,
     /// The output of the program that is each DIFF's function (`None` in
     /// a program that computes only output columns).
     diff_outputs: Vec<Option<usize>>,
@@ -1639,11 +1656,17 @@ impl Equations<'_> {
                 }
                 _ => None,
             };
-            if let Some(magnitude) = forces::pushes_without_line(model, force, &kinematics, &value)
+            if let Err(magnitude) =
+                forces::apply(model, force, &kinematics, (&value, branch), &mut loads)
             {
-                return Err(self.no_line_of_action(magnitude, value(Some(magnitude)).value()));
+                // A force read from the states (a spring of length 0,
+                // `-k*DM(i, j)`) is 0 at the meeting up to rounding; one of
+                // TIME alone pushes along no line.
+                let exact = self.output_of[magnitude].is_some_and(|output| self.state_free[output]);
+                if exact {
+                    return Err(self.no_line_of_action(magnitude, value(Some(magnitude)).value()));
+                }
             }
-            forces::apply(model, force, &kinematics, (&value, branch), &mut loads);
         }
         Ok((kinematics, loads))
     }
