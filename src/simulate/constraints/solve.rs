@@ -8,6 +8,7 @@ use super::rows::{BodyMotion, Row};
 use super::{Imposed, active_rows, given_velocities, initial_rows, joint_rows};
 use crate::number::Number;
 use crate::simulate::Model;
+use crate::simulate::model::Joint;
 
 /// The joints' equations are singular at a state (the mechanism is at a
 /// singular configuration, or its equations are dependent there).
@@ -672,6 +673,13 @@ impl From<Singular> for Unassembled {
 /// Cholesky factorisation subtracts (its bound of 1e-6 squares to 1e-12,
 /// well above it).
 fn dependence(rows: &[Row<f64>], bodies: usize) -> Unassembled {
+    dependence_from(rows, bodies, 0)
+}
+
+/// [`dependence`], with the rows before `from` that repeat those before
+/// them passed over (left out of the span, not reported): the first row
+/// from `from` on that repeats the rows kept before it.
+fn dependence_from(rows: &[Row<f64>], bodies: usize, from: usize) -> Unassembled {
     let mut basis: Vec<DVector<f64>> = Vec::new();
     for (index, row) in rows.iter().enumerate() {
         let mut left = DVector::zeros(6 * bodies);
@@ -691,6 +699,9 @@ fn dependence(rows: &[Row<f64>], bodies: usize) -> Unassembled {
         let remaining = left.norm();
         // A row of NaN (an equation out of its domain) counts as dependent.
         if remaining.is_nan() || remaining <= DEPENDENT * size {
+            if index < from {
+                continue;
+            }
             return Unassembled::Singular { row: Some(index) };
         }
         basis.push(left / remaining);
@@ -1079,14 +1090,20 @@ pub(crate) fn first_repeated(
     // dense rows, whose bound is a thousand times tighter than its own,
     // confirms one (a repetition to rounding, not a mechanism near a
     // toggle), only where there is one to confirm.
+    // The joints' equations come first: a repetition among them is
+    // find_redundant's to leave out (its test, in the joints' own lengths,
+    // may keep one that repeats here to rounding: it agrees with the
+    // others, and the run holds it).
+    let joint_rows: usize = model.joints.iter().map(Joint::held_equations).sum();
     let suspect = independent(&[], &rows)
         .into_iter()
         .zip(&rows)
+        .skip(joint_rows)
         .any(|(independent, row)| !independent && is_finite(row));
     if !suspect {
         return None;
     }
-    match dependence(&rows, bodies.len()) {
+    match dependence_from(&rows, bodies.len(), joint_rows) {
         Unassembled::Singular { row: Some(row) } if is_finite(&rows[row]) => Some(row),
         _ => None,
     }
