@@ -441,8 +441,9 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
     let mut end_line = None;
     for (index, statement) in dataset.statements.iter().enumerate() {
         if dataset.kind == FileKind::Adm {
+            let end = is_statement(statement, "END");
             // A second END ends nothing more.
-            if let Some(end_line) = end_line.filter(|_| !is_statement(statement, "END")) {
+            if let Some(end_line) = end_line.filter(|_| !end) {
                 let span = name_span(findings.text, statement.span, &statement.name)
                     .unwrap_or(statement.span);
                 findings.push(
@@ -456,7 +457,7 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
                 );
                 break;
             }
-            if is_statement(statement, "END") {
+            if end {
                 end_line = Some(findings.lines().location(statement.span.start).line);
             }
         }
@@ -485,7 +486,11 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
             continue;
         }
         if dataset.kind == FileKind::Acf {
-            command_keywords_once(statement, index, findings);
+            // The commands' keywords are not listed: a keyword counts as
+            // written, so an abbreviation and its full form are not matched.
+            keywords_once(statement, index, findings, |argument| {
+                Some(argument.keyword.to_string())
+            });
         }
         if dataset.kind != FileKind::Adm {
             continue;
@@ -493,7 +498,15 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
         let Some(keywords) = vocabulary::keywords_of(&statement.name) else {
             continue;
         };
-        let mut given: HashMap<&str, Span> = HashMap::new();
+        // A 3-D SPLINE gives one Y list for each value of its second
+        // variable.
+        let spline = is_statement(statement, "SPLINE");
+        keywords_once(statement, index, findings, |argument| {
+            let repeats = spline && argument.keyword.as_str() == "Y";
+            full_keyword(&argument.keyword, keywords)
+                .filter(|_| !repeats)
+                .map(str::to_string)
+        });
         for argument in &statement.arguments {
             if !vocabulary::is_keyword(&argument.keyword, keywords) {
                 findings.push(
@@ -508,25 +521,6 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
                 );
                 continue;
             }
-            // A 3-D SPLINE gives one Y list for each value of its second
-            // variable.
-            let repeats = is_statement(statement, "SPLINE") && argument.keyword.as_str() == "Y";
-            if let Some(keyword) = full_keyword(&argument.keyword, keywords)
-                && !repeats
-                && let Some(first) = given.insert(keyword, argument.keyword_span)
-            {
-                let first_line = findings.lines().location(first.start).line;
-                findings.push(
-                    ModelError::KeywordTwice {
-                        keyword: keyword.to_string(),
-                        statement: statement.label(),
-                        first_line,
-                        span: argument.keyword_span,
-                    },
-                    Some(index),
-                    None,
-                );
-            }
             if let Some(error) = not_finite(statement, argument) {
                 findings.push(ModelError::Configuration { error }, Some(index), None);
             }
@@ -540,13 +534,20 @@ fn check_words(dataset: &Dataset, findings: &mut Findings<'_>) {
     check_grounds(dataset, findings);
 }
 
-/// A keyword a command gives twice (`SIMULATE/DYNAMIC, END = 1, END = 2`),
-/// as written: the commands' keywords are not listed, so an abbreviation
-/// and its full form are not matched.
-fn command_keywords_once(statement: &Statement, index: usize, findings: &mut Findings<'_>) {
+/// A keyword statement `index` gives twice (`SIMULATE/DYNAMIC, END = 1,
+/// END = 2`), each argument's keyword named by `name` (`None`: not
+/// counted), reported at its second place.
+fn keywords_once(
+    statement: &Statement,
+    index: usize,
+    findings: &mut Findings<'_>,
+    name: impl Fn(&super::Argument) -> Option<String>,
+) {
     let mut given: HashMap<String, Span> = HashMap::new();
     for argument in &statement.arguments {
-        let keyword = argument.keyword.to_string();
+        let Some(keyword) = name(argument) else {
+            continue;
+        };
         if let Some(first) = given.insert(keyword.clone(), argument.keyword_span) {
             let first_line = findings.lines().location(first.start).line;
             findings.push(

@@ -841,13 +841,7 @@ pub(crate) fn joints_failed_in<T: crate::number::Number>(
             .find_map(|joint| conforming(model, joint, bodies))
     });
     match known {
-        Some((joint, reason)) => {
-            let mut error = singular_because(&reason);
-            if let crate::eval::EvalError::Law { span, .. } = &mut error.error {
-                *span = joint.span;
-            }
-            error
-        }
+        Some((joint, reason)) => singular_at(&reason, Some(joint.span)),
         None => joints_singular_in(model),
     }
 }
@@ -857,9 +851,17 @@ pub(crate) fn joints_failed_in<T: crate::number::Number>(
 /// the statement that holds it.
 pub(crate) fn joints_overflow_in(model: &super::Model, row: usize) -> crate::eval::OutputError {
     let (owner, span) = owner_of_row(model, row);
-    let mut error = singular_because(&format!(
-        "the accelerations that hold {owner} are beyond the range of a double at this state: a part's speed, or a mass, force or gravity, is too large (give smaller initial velocities or loads)"
-    ));
+    singular_at(
+        &format!(
+            "the accelerations that hold {owner} are beyond the range of a double at this state: a part's speed, or a mass, force or gravity, is too large (give smaller initial velocities or loads)"
+        ),
+        span,
+    )
+}
+
+/// [`singular_because`], placed at the statement `span` (where known).
+fn singular_at(reason: &str, span: Option<crate::span::Span>) -> crate::eval::OutputError {
+    let mut error = singular_because(reason);
     if let (crate::eval::EvalError::Law { span: at, .. }, Some(span)) = (&mut error.error, span) {
         *at = span;
     }

@@ -1086,14 +1086,14 @@ pub(crate) fn first_repeated(
             }
         }
     }
-    // The banded factorisation finds the candidates; Gram-Schmidt on the
-    // dense rows, whose bound is a thousand times tighter than its own,
-    // confirms one (a repetition to rounding, not a mechanism near a
-    // toggle), only where there is one to confirm.
-    // The joints' equations come first: a repetition among them is
+    // The joints' equations come first, and a repetition among them is
     // find_redundant's to leave out (its test, in the joints' own lengths,
     // may keep one that repeats here to rounding: it agrees with the
-    // others, and the run holds it).
+    // others, and the run holds it). Of the rows after them, the banded
+    // factorisation finds the candidates; Gram-Schmidt on the dense rows,
+    // whose bound is a thousand times tighter than its own, confirms one
+    // (a repetition to rounding, not a mechanism near a toggle), only
+    // where there is one to confirm.
     let joint_rows: usize = model.joints.iter().map(Joint::held_equations).sum();
     let suspect = independent(&[], &rows)
         .into_iter()

@@ -1310,6 +1310,24 @@ fn reorient<T: Number, U: Number>(evaluator: &mut Evaluator<'_, U>, kinematics: 
     evaluator.reorient(|body| kinematics[body].rotation.map(|entry| entry.value()));
 }
 
+/// A run stopped at a translational force of `size` whose markers
+/// coincide, at its FUNCTION, the program's output `output`.
+fn no_line_of_action(output: usize, size: f64) -> OutputError {
+    OutputError {
+        output,
+        error: EvalError::Law {
+            error: crate::laws::LawError::Domain {
+                operation: "a translational force",
+                reason: format!(
+                    "its I and J markers coincide while it is {}: it acts along the line from J to I, which is not defined here (place the markers apart, or make the force 0 where they meet)",
+                    crate::shown::Shown(size)
+                ),
+            },
+            span: crate::Span::default(),
+        },
+    }
+}
+
 /// The equations: the model, where each program input comes from, and
 /// what the program's outputs are.
 struct Equations<'m> {
@@ -1396,24 +1414,6 @@ impl Equations<'_> {
                 error: crate::laws::LawError::Domain {
                     operation,
                     reason: reason.to_string(),
-                },
-                span: crate::Span::default(),
-            },
-        }
-    }
-
-    /// A run stopped at a translational force of `size` whose markers
-    /// coincide, at its FUNCTION (`magnitude`).
-    fn no_line_of_action(&self, magnitude: usize, size: f64) -> OutputError {
-        OutputError {
-            output: self.output_of[magnitude].unwrap_or_default(),
-            error: EvalError::Law {
-                error: crate::laws::LawError::Domain {
-                    operation: "a translational force",
-                    reason: format!(
-                        "its I and J markers coincide while it is {}: it acts along the line from J to I, which is not defined here (place the markers apart, or make the force 0 where they meet)",
-                        crate::shown::Shown(size)
-                    ),
                 },
                 span: crate::Span::default(),
             },
@@ -1662,9 +1662,10 @@ impl Equations<'_> {
                 // A force read from the states (a spring of length 0,
                 // `-k*DM(i, j)`) is 0 at the meeting up to rounding; one of
                 // TIME alone pushes along no line.
-                let exact = self.output_of[magnitude].is_some_and(|output| self.state_free[output]);
-                if exact {
-                    return Err(self.no_line_of_action(magnitude, value(Some(magnitude)).value()));
+                if let Some(output) =
+                    self.output_of[magnitude].filter(|&output| self.state_free[output])
+                {
+                    return Err(no_line_of_action(output, value(Some(magnitude)).value()));
                 }
             }
         }

@@ -900,6 +900,11 @@ impl Simulation<'_> {
             rtol: settings.rtol,
             atol: settings.atol,
         };
+        // The motions at the start, for the repeated-equation test and the
+        // static equilibrium.
+        let at = drives
+            .at(0.0, None)
+            .map_err(|error| self.failure(0.0, error))?;
         let initial_residuals = if !model.is_constrained() {
             Residuals::default()
         } else {
@@ -924,9 +929,6 @@ impl Simulation<'_> {
                     place: Place::File(joint.span),
                 });
             }
-            let at = drives
-                .at(0.0, None)
-                .map_err(|error| self.failure(0.0, error))?;
             if let Some(row) = first_repeated(model, &y0, &offsets, &at) {
                 let (owner, span) = owner_of_row(model, row);
                 return Err(SimulateError::Integration {
@@ -940,9 +942,6 @@ impl Simulation<'_> {
             found
         };
         let equilibrium = if settings.statics {
-            let at = drives
-                .at(0.0, None)
-                .map_err(|error| self.failure(0.0, error))?;
             let mut put_back = |y: &mut [f64]| {
                 if model.is_constrained() {
                     assemble(
