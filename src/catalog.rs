@@ -275,9 +275,9 @@ functions! {
     Wdty "WDTY" Measure [] Marker 1..=4 ("i", "j", "k", "l") "y angular acceleration of i relative to j, derivative in l, along y of k";
     Wdtz "WDTZ" Measure [] Marker 1..=4 ("i", "j", "k", "l") "z angular acceleration of i relative to j, derivative in l, along z of k";
     Wdtm "WDTM" Measure [] Marker 1..=3 ("i", "j", "l") "magnitude of the angular acceleration of i relative to j in frame l";
-    Ax "AX" Measure [] Marker 1..=2 ("i", "j") "rotation of i about the x axis of j";
-    Ay "AY" Measure [] Marker 1..=2 ("i", "j") "rotation of i about the y axis of j";
-    Az "AZ" Measure [] Marker 1..=2 ("i", "j") "rotation of i about the z axis of j";
+    Ax "AX" Measure [] Marker 1..=2 ("i", "j") "rotation of i about the x axis of j: i's z axis in j's y-z plane, ATAN2(-zi.yj, zi.zj), continuous over a run";
+    Ay "AY" Measure [] Marker 1..=2 ("i", "j") "rotation of i about the y axis of j: i's z axis in j's z-x plane, ATAN2(zi.xj, zi.zj), continuous over a run";
+    Az "AZ" Measure [] Marker 1..=2 ("i", "j") "rotation of i about the z axis of j: i's x axis in j's x-y plane, ATAN2(xi.yj, xi.xj), continuous over a run";
     Psi "PSI" Measure [] Marker 1..=2 ("i", "j") "first body-fixed 3-1-3 Euler angle of i relative to j";
     Theta "THETA" Measure [] Marker 1..=2 ("i", "j") "second body-fixed 3-1-3 Euler angle of i relative to j";
     Phi "PHI" Measure [] Marker 1..=2 ("i", "j") "third body-fixed 3-1-3 Euler angle of i relative to j";

@@ -262,15 +262,19 @@ pub fn measure<T: Number>(
         }
         F::Wdtm => length(&omega_rate_in(frames[2])),
         F::Ax | F::Ay | F::Az => {
-            // The rotation of i about one axis of j: the next axis of i,
-            // seen in the plane of j's other two axes.
-            let (next, after) = match function {
-                F::Ax => (1, 2),
-                F::Ay => (2, 0),
-                _ => (0, 1),
+            // The rotation of i about one axis of j, as Adams computes it:
+            // an axis of i seen in the plane of j's other two axes. AX
+            // follows i's z axis in j's y-z plane (from z towards -y), AY
+            // i's z axis in j's z-x plane, AZ i's x axis in j's x-y plane.
+            let (moved, sine, cosine) = match function {
+                F::Ax => (2, 1, 2),
+                F::Ay => (2, 0, 2),
+                _ => (0, 1, 0),
             };
-            let moved = i.axis(next);
-            atan2(&moved.dot(&j.axis(after)), &moved.dot(&j.axis(next)))
+            let moved = i.axis(moved);
+            let sine = moved.dot(&j.axis(sine));
+            let sine = if function == F::Ax { -sine } else { sine };
+            atan2(&sine, &moved.dot(&j.axis(cosine)))
         }
         F::Psi | F::Theta | F::Phi | F::Yaw | F::Pitch | F::Roll => {
             let relative = j.axes.transpose() * &i.axes;

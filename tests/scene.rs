@@ -230,6 +230,21 @@ fn angle_conventions() {
     close("AX(3)", 0.6);
     close("AY(4)", -0.6);
     close("AX(1, 1) + AY(2, 2) + AZ(3, 3)", 0.0);
+    // Turned about several axes, each is Adams' projection (its AX, AY and
+    // AZ pages): AX = ATAN2(-zi.yj, zi.zj), AY = ATAN2(zi.xj, zi.zj),
+    // AZ = ATAN2(xi.yj, xi.xj), with zi = (sin psi sin theta, -cos psi sin
+    // theta, cos theta) and xi = (cos psi cos phi - sin psi cos theta sin
+    // phi, sin psi cos phi + cos psi cos theta sin phi, ...) for 3-1-3 angles.
+    let (zx, zy, zz) = (
+        psi.sin() * theta.sin(),
+        -psi.cos() * theta.sin(),
+        theta.cos(),
+    );
+    let xx = psi.cos() * phi.cos() - psi.sin() * theta.cos() * phi.sin();
+    let xy = psi.sin() * phi.cos() + psi.cos() * theta.cos() * phi.sin();
+    close("AX(1)", (-zy).atan2(zz));
+    close("AY(1)", zx.atan2(zz));
+    close("AZ(1)", xy.atan2(xx));
 }
 
 /// A body on an analytic trajectory: position, a rotation about a fixed axis,

@@ -448,9 +448,9 @@ MARKER/3, PART = 2
             short.clone(),
         ),
         (
-            "a system of units mbexpr does not read",
+            "a system of units Adams does not define",
             "system
-UNITS/SYSTEM = IPS
+UNITS/SYSTEM = SI
 PART/1, GROUND
 PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
@@ -2005,13 +2005,17 @@ BUSHING/1, I = 4, J = 7, K = 300, 200, 100, C = 1, 2, 3, KT = 40, 50, 60, CT = 0
 /// One part on a bushing to ground under gravity, written in SI and again
 /// in other units (`UNITS` with the numbers converted by hand): the motion
 /// is the same once converted back, which holds only if Newton's and
-/// Euler's laws carry the units consistency factor.
+/// Euler's laws carry the units consistency factor, in Adams' sense when
+/// it is given (`F UCF = m a`: 386.09 for pound force, pound mass, inch).
 #[test]
 fn units_change_the_numbers_not_the_motion() {
-    // Newton, kilogram, metre, second in the units of each system.
+    let (pound_force, pound_mass, inch) = (4.448_221_615_260_5, 0.453_592_37, 0.0254);
+    let ips_ucf = format!("UCF = {}", pound_force / (pound_mass * inch));
+    // Newton, kilogram, metre and second in the units of each system.
     let systems = [
         (
-            "FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER",
+            "FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND",
+            1.0,
             1.0,
             1.0,
             1.0,
@@ -2021,26 +2025,46 @@ fn units_change_the_numbers_not_the_motion() {
             1.0,
             1.0,
             1e-3,
+            1.0,
         ),
         (
             "FORCE = POUND_FORCE, MASS = POUND_MASS, LENGTH = INCH",
-            4.448_221_615_260_5,
-            0.453_592_37,
-            0.0254,
+            pound_force,
+            pound_mass,
+            inch,
+            1.0,
         ),
+        ("SYSTEM = IPS", pound_force, pound_mass, inch, 1.0),
+        (ips_ucf.as_str(), pound_force, pound_mass, inch, 1.0),
+        ("SYSTEM = FPS", pound_force, pound_mass, 0.3048, 1.0),
         (
             "FORCE = KILOGRAM_FORCE, MASS = SLUG, LENGTH = FOOT",
             9.806_65,
             14.593_902_937_206_364,
             0.3048,
+            1.0,
+        ),
+        (
+            "FORCE = POUNDAL, MASS = TONNE, LENGTH = MICROMETER, TIME = MILLISECONDS",
+            0.138_254_954_376,
+            1e3,
+            1e-6,
+            1e-3,
+        ),
+        (
+            "FORCE = MICRONEWTON, MASS = SLINCH, LENGTH = YARD, TIME = MINUTE",
+            1e-6,
+            pound_force / inch,
+            0.9144,
+            60.0,
         ),
     ];
-    let motion = |(units, force, mass, length): (&str, f64, f64, f64)| {
+    let motion = |(units, force, mass, length, time): (&str, f64, f64, f64, f64)| {
         let text = format!(
-            "units\nUNITS/{units}, TIME = SECOND\nACCGRAV/JGRAV = {}\nPART/1, GROUND\nMARKER/1, PART = 1\n\
+            "units\nUNITS/{units}\nACCGRAV/JGRAV = {}\nPART/1, GROUND\nMARKER/1, PART = 1\n\
              PART/2, MASS = {}, CM = 3, IP = {}, {}, {}, QG = {}, {}, 0, REULER = 0.3, 0.2, 0.1\n\
              MARKER/3, PART = 2\nBUSHING/1, I = 3, J = 1, K = {}, {}, {}, C = {}, {}, {}, KT = {}, {}, {}\n",
-            -9.806_65 / length,
+            -9.806_65 * time * time / length,
             3.0 / mass,
             0.2 / (mass * length * length),
             0.3 / (mass * length * length),
@@ -2050,14 +2074,15 @@ fn units_change_the_numbers_not_the_motion() {
             400.0 * length / force,
             300.0 * length / force,
             200.0 * length / force,
-            2.0 * length / force,
-            1.0 * length / force,
-            3.0 * length / force,
+            2.0 * length / (force * time),
+            1.0 * length / (force * time),
+            3.0 * length / (force * time),
             50.0 / (force * length),
             40.0 / (force * length),
             30.0 / (force * length),
         );
-        let run = run(&text, &settings(1.5, 30, 1e-10)).unwrap_or_else(|error| panic!("{error}"));
+        let run =
+            run(&text, &settings(1.5 / time, 30, 1e-10)).unwrap_or_else(|error| panic!("{error}"));
         // Positions back in metres; the quaternion has no unit.
         run.rows
             .iter()

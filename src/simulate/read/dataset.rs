@@ -156,8 +156,8 @@ pub fn from_dataset(dataset: &Dataset, report: &ModelCheck) -> Result<Model, Vec
     match units {
         Ok((factor, note)) => {
             for mass in &mut model.masses {
-                mass.mass *= factor;
-                mass.inertia *= factor;
+                mass.mass /= factor;
+                mass.inertia /= factor;
             }
             if let Some(note) = note {
                 let span = dataset
