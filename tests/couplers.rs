@@ -50,6 +50,21 @@ END
     )
 }
 
+/// Adams' short form of SCALES, the first scale left out (it is 1),
+/// couples the wheels as the full form does.
+#[test]
+fn scales_without_the_first_take_it_as_1() {
+    let full = geared_wheels((0.5, 0.2, 2.7, 3.0), "F1 = AZ(20, 1), F2 = AZ(30, 2)");
+    let short = full.replace("SCALES = 1, 2.7", "SCALES = 2.7");
+    assert_ne!(full, short);
+    let settings = settings(1.0, 10, 1e-9);
+    let (full, short) = (run(&full, &settings), run(&short, &settings));
+    assert_eq!(
+        full.expect("the full form runs").rows,
+        short.expect("the short form runs").rows
+    );
+}
+
 /// Two wheels (Izz `i1`, `i2`) turning about ground's z at their own
 /// pivots, `AZ1 + ratio·AZ2 = 0`, a torque `torque` on the first:
 /// `AZ1 = ½ τ/(I1 + I2/ratio²) t²`.
@@ -203,7 +218,7 @@ fn couplers_that_cannot_be_held_are_refused_at_their_place() {
         COUPLER/1, JOINTS = 1, 2, SCALES = 1, 1
         COUPLER/1, JOINTS = 1, 3, SCALES = 1, 1
         COUPLER/1, JOINTS = 1, SCALES = 1
-        COUPLER/1, JOINTS = 1, 2, SCALES = 1
+        COUPLER/1, JOINTS = 1, 2, SCALES = 1, 2, 3
         COUPLER/1, JOINTS = 1, 2
         COUPLER/1, FUNCTION = USER(1, 2)
         COUPLER/1, JOINTS = 1, 1, SCALES = 1, -1

@@ -37,7 +37,10 @@ END
 
 /// An oscillator `x = cos t` (two DIFFs) with a PRINT sensor `x ≥ 0.5`
 /// (ERROR 1e-6): active from the start, then again each time `x` climbs
-/// back through 0.5 − 1e-6, at `2πk − acos(0.5 − 1e-6)`; the run goes on.
+/// back through 0.5 − 1e-6, at `2πk − acos(0.5 − 1e-6)`; the run goes on,
+/// and each trip after the start writes a row of its own (Adams writes
+/// its output files when a PRINT sensor becomes active), `x` there
+/// 0.5 − 1e-6, between the rows of the output grid.
 #[test]
 fn a_print_sensor_reports_each_time_it_becomes_active() {
     let text = "oscillator
@@ -71,7 +74,17 @@ END
     for (time, expected) in times.iter().zip(expected) {
         assert!((time - expected).abs() < 1e-8, "{time} {expected}");
     }
-    assert!(!run.summary.stopped && run.rows.len() == 14);
+    assert!(!run.summary.stopped && run.rows.len() == 14 + 2);
+    let times: Vec<f64> = run.rows.iter().map(|row| row[0]).collect();
+    assert!(times.windows(2).all(|pair| pair[0] < pair[1]), "{times:?}");
+    for expected in &expected[1..] {
+        let row = run
+            .rows
+            .iter()
+            .find(|row| (row[0] - expected).abs() < 1e-8)
+            .unwrap_or_else(|| panic!("no row at {expected}: {times:?}"));
+        assert!((row[1] - (0.5 - 1e-6)).abs() < 1e-8, "{row:?}");
+    }
 }
 
 /// What a sensor statement that cannot be watched reports.

@@ -97,12 +97,18 @@ fn coupler(statement: &Statement, joints: &[Joint]) -> Result<Coupler, (String, 
         "SCALES",
         "one number for each joint (s1 q1 + s2 q2 = 0)",
     )?;
-    let scales = number_list(statement, scaled).unwrap_or_default();
+    let mut scales = number_list(statement, scaled).unwrap_or_default();
+    // Adams' short form: one number fewer than the joints gives r2 (and
+    // r3), r1 being 1.
+    if scales.len() + 1 == ids.len() {
+        scales.insert(0, 1.0);
+    }
     if scales.len() != ids.len() || scales.iter().any(|scale| !scale.is_finite()) {
         return Err((
             format!(
-                "{label}: SCALES needs {} numbers, one for each joint",
-                ids.len()
+                "{label}: SCALES needs {} numbers, one for each joint (or {}, the first being 1)",
+                ids.len(),
+                ids.len() - 1
             ),
             scaled.span,
         ));

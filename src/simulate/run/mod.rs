@@ -23,7 +23,7 @@ use super::constraints::{
 use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
 use super::error::{Place, SimulateError};
 use super::initial::initial_state;
-use super::model::{Contact, Sensor};
+use super::model::{Contact, Sensor, SensorAction};
 use super::{Model, Simulation};
 use crate::Shown;
 use crate::compile::{Program, SiteKind};
@@ -156,6 +156,12 @@ impl OutputTimes {
     /// The time of the last row written.
     fn last(&self) -> f64 {
         self.last
+    }
+
+    /// Whether `time` is after the last row written and not the next
+    /// row's: where a row of its own (a PRINT sensor's) goes.
+    fn between_rows(&self, time: f64) -> bool {
+        self.last < time && self.next() != Some(time)
     }
 
     /// After a trip at `from`, rows `step` apart on the grid from the last
@@ -446,34 +452,59 @@ fn note_trip(
 /// (`active`, updated) as trips there, in order. Each EVALUATE stores its
 /// SENVAL, and the sensors that the new value makes active trip at the
 /// same time (each sensor at most once at one instant, so that sensors
-/// reading one another's SENVAL cannot loop). Returns whether a trip ends
-/// the run (the trips after it are not recorded) and whether a SENVAL
-/// changed.
+/// reading one another's SENVAL cannot loop). Says whether a trip ends
+/// the run (the trips after it are not recorded), whether a SENVAL
+/// changed and whether a PRINT sensor asks for a row there.
 fn trips_at(
     model: &Model,
     (rows, mechanics): (&mut Rows<'_>, &mut Mechanics<'_>),
     (time, state): (f64, &[f64]),
     active: &mut [bool],
     (trips, outputs): (&mut Vec<SensorTrip>, &mut OutputTimes),
-) -> Result<(bool, bool), Failed> {
+) -> Result<TripsAt, Failed> {
     let mut pending: VecDeque<usize> = rows.tripped(time, state, active)?.into();
     let mut tripped = vec![false; model.sensors.len()];
-    let mut evaluated = false;
+    let mut found = TripsAt::default();
     while let Some(sensor) = pending.pop_front() {
         if std::mem::replace(&mut tripped[sensor], true) {
             continue;
         }
         let watched = &model.sensors[sensor];
         if note_trip(watched, time, trips, outputs) {
-            return Ok((true, evaluated));
+            found.halted = true;
+            return Ok(found);
         }
+        found.printed |= watched.action == SensorAction::Print;
         if watched.evaluate.is_some() {
             rows.store(sensor, (time, state), mechanics)?;
-            evaluated = true;
+            found.evaluated = true;
             pending.extend(rows.tripped(time, state, active)?);
         }
     }
-    Ok((false, evaluated))
+    Ok(found)
+}
+
+/// The state at `time` inside the stepper's last step: its end state
+/// there, else its continuous output (written into `dense` either way).
+fn state_at<'a>(stepper: &'a Stepper, time: f64, dense: &'a mut [f64]) -> &'a [f64] {
+    stepper.dense(time, dense);
+    if time == stepper.t() {
+        stepper.y()
+    } else {
+        dense
+    }
+}
+
+/// What the sensors that trip at one time ask of the run.
+#[derive(Default)]
+struct TripsAt {
+    /// A HALT or RETURN ends the run there.
+    halted: bool,
+    /// An EVALUATE changed a SENVAL.
+    evaluated: bool,
+    /// A PRINT writes a row there (Adams writes its output files at the
+    /// trip).
+    printed: bool,
 }
 
 /// The event of `contact`'s law switching from `from` to `to` at `time`.
@@ -1078,7 +1109,7 @@ impl Simulation<'_> {
         // The sensors active at the start trip there, before any step (and
         // an EQ sensor's last value is then the start's, so that a crossing
         // inside the first step is seen).
-        let (halted, evaluated) = trips_at(
+        let at_start = trips_at(
             model,
             (&mut rows, &mut system.mechanics),
             (0.0, &y0),
@@ -1086,8 +1117,8 @@ impl Simulation<'_> {
             (&mut summary.sensor_trips, &mut outputs),
         )
         .map_err(|error| self.failure(0.0, error))?;
-        summary.stopped |= halted;
-        if evaluated {
+        summary.stopped |= at_start.halted;
+        if at_start.evaluated {
             // SENVAL takes its value before the first step, which
             // evaluates the rates again.
             stepper.restart(0.0, &y0);
@@ -1206,15 +1237,17 @@ impl Simulation<'_> {
                 let watched = &model.sensors[sensor];
                 if note_trip(watched, time, &mut summary.sensor_trips, &mut outputs) {
                     // The run ends at the sensor: its last row is there.
-                    stepper.dense(time, &mut dense);
-                    let state = if time == stepper.t() {
-                        stepper.y()
-                    } else {
-                        &*dense
-                    };
+                    let state = state_at(&stepper, time, &mut dense);
                     self.last_row(&outputs, time, state, &mut rows, sink)?;
                     summary.stopped = true;
                     break;
+                }
+                if watched.action == SensorAction::Print && outputs.between_rows(time) {
+                    let state = state_at(&stepper, time, &mut dense);
+                    if self.row_at(time, state, &mut rows, sink)? {
+                        summary.stopped = true;
+                        break;
+                    }
                 }
                 if watched.evaluate.is_some() {
                     evaluated.push(sensor);
@@ -1266,7 +1299,7 @@ impl Simulation<'_> {
                 }
                 // The sensors' states at the trip, not at the look after
                 // it: those the new values make active trip there too.
-                let (halted, _) = trips_at(
+                let trips = trips_at(
                     model,
                     (&mut rows, &mut system.mechanics),
                     (time, &dense),
@@ -1274,10 +1307,13 @@ impl Simulation<'_> {
                     (&mut summary.sensor_trips, &mut outputs),
                 )
                 .map_err(at)?;
-                if halted {
+                if trips.halted {
                     self.last_row(&outputs, time, &dense, &mut rows, sink)?;
                     summary.stopped = true;
                     break;
+                }
+                if trips.printed && outputs.between_rows(time) {
+                    summary.stopped |= self.row_at(time, &dense, &mut rows, sink)?;
                 }
                 accept(&mut system, &mut rows, time, &dense, Some(0)).map_err(at)?;
                 let limit = system
@@ -1380,7 +1416,7 @@ impl Simulation<'_> {
                 .map_err(|error| self.failure(right, error))?;
             // SENVAL takes its EVALUATE's value; the fresh start below
             // begins with it.
-            let (halted, _) = trips_at(
+            let trips = trips_at(
                 model,
                 (&mut rows, &mut system.mechanics),
                 (right, &dense),
@@ -1388,10 +1424,13 @@ impl Simulation<'_> {
                 (&mut summary.sensor_trips, &mut outputs),
             )
             .map_err(|error| self.failure(right, error))?;
-            if halted {
+            if trips.halted {
                 self.last_row(&outputs, right, &dense, &mut rows, sink)?;
                 summary.stopped = true;
                 break;
+            }
+            if trips.printed && outputs.between_rows(right) {
+                summary.stopped |= self.row_at(right, &dense, &mut rows, sink)?;
             }
             let values = rows
                 .at(right, &dense)
@@ -1701,22 +1740,30 @@ impl Simulation<'_> {
         dense: &mut [f64],
     ) -> Result<bool, SimulateError> {
         while let Some(time) = outputs.next().filter(|&time| time <= limit) {
-            stepper.dense(time, dense);
-            let state = if time == stepper.t() {
-                stepper.y()
-            } else {
-                &*dense
-            };
-            self.finite_row(time, state)?;
-            let values = rows
-                .at(time, state)
-                .map_err(|error| self.failure(time, error))?;
+            let state = state_at(stepper, time, dense);
+            let stop = self.row_at(time, state, rows, sink)?;
             outputs.written(time);
-            if sink.row(time, values).is_break() {
+            if stop {
                 return Ok(true);
             }
         }
         Ok(false)
+    }
+
+    /// Writes the row at `time`, the state there `state`; says whether the
+    /// sink asks the run to stop.
+    fn row_at(
+        &self,
+        time: f64,
+        state: &[f64],
+        rows: &mut Rows<'_>,
+        sink: &mut impl Sink,
+    ) -> Result<bool, SimulateError> {
+        self.finite_row(time, state)?;
+        let values = rows
+            .at(time, state)
+            .map_err(|error| self.failure(time, error))?;
+        Ok(sink.row(time, values).is_break())
     }
 
     /// The last row of a run a sensor halts at `time`, the state there
@@ -1731,11 +1778,8 @@ impl Simulation<'_> {
         sink: &mut impl Sink,
     ) -> Result<(), SimulateError> {
         if outputs.last() < time {
-            self.finite_row(time, state)?;
-            let values = rows
-                .at(time, state)
-                .map_err(|error| self.failure(time, error))?;
-            let _ = sink.row(time, values);
+            // The run ends here whatever the sink says.
+            let _ = self.row_at(time, state, rows, sink)?;
         }
         Ok(())
     }
