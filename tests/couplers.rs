@@ -232,7 +232,10 @@ fn couplers_that_cannot_be_held_are_refused_at_their_place() {
 /// `r1 AZ1 = −r2 AZ2`, as the COUPLER with scales `r1, r2` does, so under
 /// a torque on the first `AZ1 = ½ τ/(I1 + I2 (r1/r2)²) t²`. The second
 /// joint is written both ways round (its I marker on the wheel, or on
-/// ground), and CV's z both ways: the same motion.
+/// ground), and CV's z both ways: the same motion. The teeth push along
+/// ground's y at the contact, as Adams' GEAR does, `F = I2 α2 / r2` on the
+/// second wheel, so each joint holds that force and no torque (a coupler
+/// would put a torque on each wheel, and no force on its joint).
 #[test]
 fn a_gear_turns_its_wheels_as_their_pitch_radii_say() {
     let (i1, i2, torque) = (0.5, 0.2, 3.0);
@@ -256,7 +259,8 @@ JOINT/1, REVOLUTE, I = 20, J = 1
 JOINT/2, REVOLUTE, {second}
 GEAR/1, JOINTS = 1, 2, CV = 3
 SFORCE/1, ROTATIONAL, I = 20, J = 1, FUNCTION = {torque}
-REQUEST/1, F1 = AZ(20, 1), F2 = AZ(30, 2)
+REQUEST/1, F1 = AZ(20, 1), F2 = AZ(30, 2), F3 = JOINT(1, 0, 3, 0), F4 = JOINT(2, 0, 3, 0)
+REQUEST/2, F1 = JOINT(1, 0, 8, 0), F2 = JOINT(2, 0, 8, 0), F3 = JOINT(2, 1, 3, 0)
 END
 ",
                 centre = r1 + r2
@@ -265,6 +269,30 @@ END
                 .unwrap_or_else(|error| panic!("{second} {cv}: {error}"));
             let ratio = r1 / r2;
             let reflected = i1 + i2 * ratio * ratio;
+            // The tooth's push along y on the second wheel, and the second
+            // joint's on the wheel (on its I marker, or its J).
+            let push = i2 * ratio * (torque / reflected) / r2;
+            let on_wheel = if second.starts_with("I = 30") {
+                [FIRST + 3, FIRST + 6]
+            } else {
+                [FIRST + 6, FIRST + 3]
+            };
+            for row in &run.rows {
+                let expected = [
+                    (FIRST + 2, push),
+                    (on_wheel[0], -push),
+                    (on_wheel[1], push),
+                    (FIRST + 4, 0.0),
+                    (FIRST + 5, 0.0),
+                ];
+                for (column, value) in expected {
+                    assert!(
+                        (row[column] - value).abs() < 1e-8,
+                        "{second} {cv}: column {column} {} against {value}",
+                        row[column]
+                    );
+                }
+            }
             let worst = geared_difference(&run.rows, torque / reflected, ratio);
             println!(
                 "GEAR r {r1} {r2}, {second}, CV {cv}: largest relative difference {worst:.2e}"

@@ -778,6 +778,10 @@ pub struct Coupler {
     /// rotation (about J's z) or its translation (along J's z) is coupled,
     /// and its scale.
     pub joints: Vec<(usize, bool, f64)>,
+    /// A GEAR's CV marker, on the carrier at the teeth's contact, its z
+    /// axis along their motion: the teeth push each other there, along
+    /// it (`None` for a COUPLER).
+    pub contact: Option<Target>,
     /// The statement's place in the file.
     pub span: Span,
 }

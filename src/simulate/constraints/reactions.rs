@@ -196,17 +196,26 @@ fn add_loads(
             return;
         };
         for (body, c) in &row.coefficients {
-            let index = match loads.iter().position(|(held, _)| held == body) {
-                Some(index) => index,
-                None => {
-                    loads.push((*body, [0.0; 6]));
-                    loads.len() - 1
-                }
-            };
-            for (load, c) in loads[index].1.iter_mut().zip(c) {
-                *load -= c * lambda;
+            let mut load = [0.0; 6];
+            for (load, c) in load.iter_mut().zip(c) {
+                *load = -c * lambda;
             }
+            add_load(loads, *body, load);
         }
+    }
+}
+
+/// Adds `load` on `body` to `loads`.
+fn add_load(loads: &mut BodyLoads, body: usize, load: [f64; 6]) {
+    let index = match loads.iter().position(|(held, _)| *held == body) {
+        Some(index) => index,
+        None => {
+            loads.push((body, [0.0; 6]));
+            loads.len() - 1
+        }
+    };
+    for (sum, load) in loads[index].1.iter_mut().zip(load) {
+        *sum += load;
     }
 }
 
@@ -236,12 +245,14 @@ impl Reactions {
         // A coupler's equation `Σ s q = 0` puts on each joint's bodies the
         // load of its own term `s q` (the equation's whole load is their
         // sum).
+        let mut coupler_multipliers = Vec::new();
         let couplers = model
             .couplers
             .iter()
             .map(|coupler| {
                 let whole = rows.next();
                 let lambda = multipliers.next().filter(|_| whole.is_some());
+                coupler_multipliers.push(lambda);
                 coupler
                     .joints
                     .iter()
@@ -271,7 +282,7 @@ impl Reactions {
             .iter()
             .map(|_| take_loads(&mut rows, &mut multipliers, 1))
             .collect();
-        Reactions {
+        let mut reactions = Reactions {
             joints,
             motions,
             marker_motions,
@@ -289,6 +300,69 @@ impl Reactions {
                     super::curve_curve::contact_point(model, joint, pair, bodies)
                 })
                 .collect(),
+        };
+        for (index, lambda) in coupler_multipliers.into_iter().enumerate() {
+            if let Some(lambda) = lambda {
+                reactions.gear_teeth(model, index, lambda);
+            }
+        }
+        reactions
+    }
+
+    /// A GEAR's loads as Adams applies them: the teeth push each other at
+    /// the contact (CV's origin) along CV's z, so each gear's joint holds
+    /// the tooth force, not a torque. The coupler's equation `Σ s q̇ = 0`
+    /// is the contact's velocities along CV's z, first gear's less the
+    /// second's, up to the joints' rows: with its multiplier `λ` the teeth
+    /// put `−λ z` at the contact on the first gear and `λ z` on the second.
+    /// Each gear's whole load (its joint's and the coupler's) is the same
+    /// either way, so its joint's becomes that less the tooth's, and the
+    /// carrier's side the opposite; the coupler's own terms are then
+    /// nothing.
+    fn gear_teeth(&mut self, model: &Model, index: usize, lambda: f64) {
+        let coupler = &model.couplers[index];
+        let Some(cv) = &coupler.contact else {
+            return;
+        };
+        let (contact, axes) = self.place(model, cv);
+        let along = axes.column(2).into_owned();
+        let carrier = body_of(model, cv);
+        let mut geared: Vec<usize> = coupler.joints.iter().map(|&(joint, _, _)| joint).collect();
+        geared.dedup();
+        for (k, &joint_index) in geared.iter().enumerate() {
+            let joint = &model.joints[joint_index];
+            let (i, j) = (body_of(model, &joint.i), body_of(model, &joint.j));
+            let gear = if i == carrier { j } else { i };
+            // The coupler's loads through this joint, on each body.
+            let mut through = BodyLoads::new();
+            for (term, &(coupled, _, _)) in coupler.joints.iter().enumerate() {
+                if coupled == joint_index {
+                    for &(body, load) in &self.couplers[index][term] {
+                        add_load(&mut through, body, load);
+                    }
+                    self.couplers[index][term].clear();
+                }
+            }
+            let tooth = along * if k == 0 { -lambda } else { lambda };
+            let tooth_on = |body: usize| {
+                let arm = contact - self.bodies[body].0;
+                let torque = arm.cross(&tooth);
+                [tooth.x, tooth.y, tooth.z, torque.x, torque.y, torque.z]
+            };
+            let loads = &mut self.joints[joint_index];
+            for (body, load) in through {
+                let mut moved = load;
+                if Some(body) == gear {
+                    for (moved, tooth) in moved.iter_mut().zip(tooth_on(body)) {
+                        *moved -= tooth;
+                    }
+                } else {
+                    for (moved, tooth) in moved.iter_mut().zip(tooth_on(body)) {
+                        *moved += tooth;
+                    }
+                }
+                add_load(loads, body, moved);
+            }
         }
     }
 

@@ -159,6 +159,7 @@ fn coupler(statement: &Statement, joints: &[Joint]) -> Result<Coupler, (String, 
         statement: "COUPLER",
         id: statement.id.unwrap_or(0),
         joints: coupled,
+        contact: None,
         span: statement.span,
     })
 }
@@ -302,6 +303,7 @@ fn gear(statement: &Statement, joints: &[Joint], scene: &Scene) -> Result<Couple
         statement: "GEAR",
         id: statement.id.unwrap_or(0),
         joints: coupled,
+        contact: Some(cv),
         span: statement.span,
     })
 }
