@@ -228,7 +228,7 @@ functions! {
     Asin "ASIN" Intrinsic [] Value 1..=1 ("a") "arc sine, for -1 <= a <= 1";
     Acos "ACOS" Intrinsic [] Value 1..=1 ("a") "arc cosine, for -1 <= a <= 1";
     Atan "ATAN" Intrinsic [] Value 1..=1 ("a") "arc tangent";
-    Atan2 "ATAN2" Intrinsic [] Value 2..=2 ("y", "x") "angle of the point (x, y), in (-pi, pi]; ATAN2(0, 0) = 0";
+    Atan2 "ATAN2" Intrinsic [] Value 2..=2 ("y", "x") "angle of the point (x, y), in (-pi, pi] (-pi for y = -0 and x < 0, as C's atan2 that Adams calls); ATAN2(0, 0) = 0";
     Sinh "SINH" Intrinsic [] Value 1..=1 ("a") "hyperbolic sine";
     Cosh "COSH" Intrinsic [] Value 1..=1 ("a") "hyperbolic cosine";
     Tanh "TANH" Intrinsic [] Value 1..=1 ("a") "hyperbolic tangent";

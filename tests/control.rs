@@ -152,6 +152,8 @@ fn what_control_elements_refuse() {
         "ARRAY/5, IC, SIZE = 2.5, NUMBERS = 1, 2",
         "ARRAY/5, IC, SIZE = 1, NUMBERS = 1, 2, 3",
         "ARRAY/5, IC, SIZE = 4, NUMBERS = 1, 2, 3",
+        "TFSISO/1, U = 1, X = 2, Y = 3, NUMERATOR = 1, DENOMINATOR = 1, 1, 1\nTFSISO/2, U = 1, X = 2, NUMERATOR = 1, DENOMINATOR = 1, 2, 1",
+        "TFSISO/1, U = 1, X = 2, Y = 3, NUMERATOR = 1, DENOMINATOR = 1, 1, 1\nARRAY/5, X, SIZE = 2\nTFSISO/2, U = 1, X = 5, Y = 3, NUMERATOR = 1, DENOMINATOR = 1, 2, 1",
     ];
     let table: String = cases
         .iter()

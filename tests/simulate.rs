@@ -103,7 +103,7 @@ DIFF/2, IC = 5, FUNCTION = BISTOP(DIF(1), DIF(2), -1, 1, 1e5, 1.5, 50, 0.01)
 #[test]
 fn every_refusal_and_error_names_its_place() {
     let short = settings(1.0, 10, 1e-6);
-    let cases: [(&str, &str, Settings); 52] = [
+    let cases: [(&str, &str, Settings); 53] = [
         (
             "a torque near the largest double: the steps shrink to nothing, and the part it spins is named",
             "huge torque
@@ -454,6 +454,23 @@ UNITS/SYSTEM = SI
 PART/1, GROUND
 PART/2, MASS = 1, CM = 3, IP = 1, 1, 1
 MARKER/3, PART = 2
+",
+            short.clone(),
+        ),
+        (
+            "a crank of 1e300 kg jointed to a rod of 1 kg: masses no double holds together",
+            "masses apart
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1e300, CM = 20, IP = 0.01, 0.01, 0.01
+MARKER/20, PART = 2, QP = 0.1, 0, 0
+MARKER/21, PART = 2
+MARKER/22, PART = 2, QP = 0.2, 0, 0
+PART/3, MASS = 1, CM = 30, IP = 0.05, 0.05, 0.05
+MARKER/30, PART = 3, QP = 0.55, 0, 0
+MARKER/31, PART = 3, QP = 0.2, 0, 0
+JOINT/1, REVOLUTE, I = 21, J = 1
+JOINT/2, REVOLUTE, I = 31, J = 22
 ",
             short.clone(),
         ),

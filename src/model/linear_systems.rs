@@ -28,12 +28,43 @@ pub(crate) fn linear_systems(dataset: &Dataset) -> (Vec<LinearSystem>, Vec<Confi
         } else {
             continue;
         };
-        match read {
+        match read.and_then(|system| arrays_unshared(statement, &system, &systems).map(|()| system))
+        {
             Ok(system) => systems.push(system),
             Err(error) => errors.push(error),
         }
     }
     (systems, errors)
+}
+
+/// Refuses a system whose X or Y array an earlier one has: an array of
+/// states or outputs belongs to one LSE, GSE or TFSISO (Adams' ARRAY
+/// page), else one system's states would be read as another's.
+fn arrays_unshared(
+    statement: &Statement,
+    system: &LinearSystem,
+    earlier: &[LinearSystem],
+) -> Result<(), ConfigurationError> {
+    for other in earlier {
+        let shared = if other.states == system.states {
+            Some(("X", system.states))
+        } else {
+            system
+                .outputs
+                .filter(|&y| other.outputs == Some(y))
+                .map(|y| ("Y", y))
+        };
+        if let Some((keyword, id)) = shared {
+            return Err(refused(
+                statement,
+                format!(
+                    "{keyword} = {id} is {}'s already: an ARRAY of states or outputs belongs to one LSE, GSE or TFSISO (give this one its own ARRAY)",
+                    other.statement
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The error `statement: reason` at the statement.

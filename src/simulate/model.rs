@@ -883,3 +883,30 @@ impl Sensor {
             && (before - self.value).signum() * (value - self.value).signum() < 0.0
     }
 }
+
+/// The groups of two or more of `count` items that `links` join, directly
+/// or through other items (union-find), each in increasing order.
+pub(crate) fn linked_groups(
+    count: usize,
+    links: impl IntoIterator<Item = (usize, usize)>,
+) -> Vec<Vec<usize>> {
+    let mut root: Vec<usize> = (0..count).collect();
+    fn find(root: &mut [usize], mut item: usize) -> usize {
+        while root[item] != item {
+            root[item] = root[root[item]];
+            item = root[item];
+        }
+        item
+    }
+    for (a, b) in links {
+        let (a, b) = (find(&mut root, a), find(&mut root, b));
+        root[a] = b;
+    }
+    let mut groups: Vec<Vec<usize>> = vec![Vec::new(); count];
+    for item in 0..count {
+        let top = find(&mut root, item);
+        groups[top].push(item);
+    }
+    groups.retain(|group| group.len() > 1);
+    groups
+}

@@ -350,26 +350,12 @@ fn colouring(reads: &[Vec<usize>], kind_of: impl Fn(usize) -> Kind) -> Vec<usize
 /// other bodies (ground joins nothing: a body held to ground moves on its
 /// own).
 fn joined(model: &Model) -> Vec<Vec<usize>> {
-    let bodies = model.scene.bodies.len();
-    let mut root: Vec<usize> = (0..bodies).collect();
-    fn find(root: &mut [usize], mut body: usize) -> usize {
-        while root[body] != body {
-            root[body] = root[root[body]];
-            body = root[body];
-        }
-        body
-    }
-    for holder in holders(model) {
-        for pair in holder.bodies.windows(2) {
-            let (a, b) = (find(&mut root, pair[0]), find(&mut root, pair[1]));
-            root[a] = b;
-        }
-    }
-    let mut components: Vec<Vec<usize>> = vec![Vec::new(); bodies];
-    for body in 0..bodies {
-        let top = find(&mut root, body);
-        components[top].push(body);
-    }
-    components.retain(|component| component.len() > 1);
-    components
+    let links = holders(model).into_iter().flat_map(|holder| {
+        holder
+            .bodies
+            .windows(2)
+            .map(|pair| (pair[0], pair[1]))
+            .collect::<Vec<_>>()
+    });
+    crate::simulate::model::linked_groups(model.scene.bodies.len(), links)
 }
