@@ -605,7 +605,7 @@ impl LoadedModel {
             .map_err(|message| vec![Located::nowhere(message)])?;
         let text = read_text(path).map_err(|error| vec![error])?;
         let mut loaded = LoadedModel::read(text, format, kind)?;
-        if format == ModelFormat::Dataset {
+        if format == ModelFormat::Dataset && kind != FileKind::Cmd {
             match simulate::run_settings_beside(path) {
                 Ok(run) => {
                     loaded.model.run = run.map(|run| (run.end, run.steps));

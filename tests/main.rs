@@ -51,6 +51,7 @@ mod span;
 mod spline;
 mod statics;
 mod turns;
+mod view_files;
 
 /// `case\n  => check(case)\n` for every non-blank line of `cases`: the
 /// snapshot form of a data-driven test.

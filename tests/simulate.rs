@@ -57,7 +57,7 @@ pub(super) fn run(text: &str, settings: &Settings) -> Result<Run, String> {
     })
 }
 
-fn render(text: &str, model: Option<&Model>, errors: &[SimulateError]) -> String {
+pub(super) fn render(text: &str, model: Option<&Model>, errors: &[SimulateError]) -> String {
     errors
         .iter()
         .map(|error| {

@@ -120,9 +120,15 @@ fn parameter(pair: Pair<'_, Rule>, base: usize) -> Argument {
             let piece = span_of(value, base);
             expression_span = Some(expression_span.map_or(piece, |known| known.to(piece)));
         }
+        let span = expression_span.unwrap_or(span);
+        if embedded.text.is_empty() {
+            // `function = ""`: View's "no function yet"; a message about
+            // it points inside the quotes.
+            embedded = Embedded::empty_at((span.start + 1).min(span.end));
+        }
         Value::Expression {
             text: embedded,
-            span: expression_span.unwrap_or(span),
+            span,
         }
     } else {
         Value::List(

@@ -34,6 +34,51 @@ impl Embedded {
         embedded
     }
 
+    /// An empty expression written at byte `file_offset` of the file (a
+    /// View command's `function = ""`), so that a message about it points
+    /// there.
+    pub fn empty_at(file_offset: usize) -> Embedded {
+        Embedded {
+            text: String::new(),
+            pieces: vec![(0, file_offset)],
+        }
+    }
+
+    /// This text with each `(span, replacement)` (spans in the joined
+    /// text, in order, not overlapping) put in place of what it covers; a
+    /// replacement maps to the file where the text it replaces starts, the
+    /// rest of the text where it did.
+    pub fn replaced(&self, replacements: &[(Span, String)]) -> Embedded {
+        let mut result = Embedded::default();
+        let mut copied = 0;
+        for (span, replacement) in replacements {
+            self.copy_into(&mut result, copied, span.start);
+            result.push(replacement, self.file_offset(span.start));
+            copied = span.end;
+        }
+        self.copy_into(&mut result, copied, self.text.len());
+        if result.pieces.is_empty() {
+            result.pieces.push((0, self.file_offset(0)));
+        }
+        result
+    }
+
+    /// Appends bytes `start..end` of this text to `result`, piece by piece.
+    fn copy_into(&self, result: &mut Embedded, start: usize, end: usize) {
+        let mut at = start;
+        while at < end {
+            let next_piece = self
+                .pieces
+                .iter()
+                .map(|&(piece_start, _)| piece_start)
+                .find(|&piece_start| piece_start > at)
+                .unwrap_or(self.text.len())
+                .min(end);
+            result.push(&self.text[at..next_piece], self.file_offset(at));
+            at = next_piece;
+        }
+    }
+
     /// The file offset of byte `offset` of the joined text (the end of the
     /// text maps to just after its last byte).
     pub fn file_offset(&self, offset: usize) -> usize {

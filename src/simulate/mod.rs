@@ -93,7 +93,9 @@ pub fn from_dataset(
 }
 
 /// The model of `text`: a scene file, or a solver dataset read as `kind`
-/// that checks.
+/// that checks; an Adams View command file (`kind` [`FileKind::Cmd`](crate::model::FileKind::Cmd))
+/// is read as the dataset it stands for, with the run of its last
+/// transient simulation.
 pub fn from_text(
     text: &str,
     format: ModelFormat,
@@ -101,6 +103,25 @@ pub fn from_text(
 ) -> Result<Model, Unread> {
     match format {
         ModelFormat::Scene => read::from_scene(text).map_err(Unread::Refused),
+        ModelFormat::Dataset if kind == crate::model::FileKind::Cmd => {
+            let view = crate::model::read(text, kind);
+            let report = crate::model::check_model(text, &view);
+            if !report.problems.is_empty() {
+                return Err(Unread::Unchecked(report.problems));
+            }
+            let read = read::solver_dataset(&view, &report).map_err(Unread::Refused)?;
+            let report = crate::model::check_model(text, &read.dataset);
+            if !report.problems.is_empty() {
+                return Err(Unread::Unchecked(report.problems));
+            }
+            let mut model = from_dataset(&read.dataset, &report).map_err(Unread::Refused)?;
+            model.notes.extend(read.notes);
+            if let Some(run) = read.run {
+                model.run = Some((run.end, run.steps));
+                model.statics = run.statics;
+            }
+            Ok(model)
+        }
         ModelFormat::Dataset => {
             let dataset = crate::model::read(text, kind);
             let report = crate::model::check_model(text, &dataset);

@@ -57,9 +57,10 @@ pub enum ModelKind {
 /// The arguments of `mbexpr simulate`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// A solver dataset (.adm; an .acf beside it may give END and STEPS) or
-    /// a scene file (.toml); `-` reads standard input (a dataset unless
-    /// --kind scene).
+    /// A solver dataset (.adm; an .acf beside it may give END and STEPS),
+    /// an Adams View command file (.cmd; its last transient simulation
+    /// gives END and STEPS) or a scene file (.toml); `-` reads standard
+    /// input (a dataset unless --kind scene).
     file: String,
     /// What the file is (by default its extension says).
     #[arg(long, value_enum)]
@@ -196,7 +197,7 @@ fn read_model(
     };
     // Why the .acf gives no run: an error only for a run that needs it.
     let mut run_problem = None;
-    if format == ModelFormat::Dataset {
+    if format == ModelFormat::Dataset && file_kind != mbexpr::model::FileKind::Cmd {
         match simulate::run_settings_beside(path) {
             Ok(run) => {
                 model.run = run.map(|run| (run.end, run.steps));

@@ -17,10 +17,12 @@ mod nforce;
 mod scene;
 mod sensors;
 mod units;
+mod view;
 
 pub use commands::{MOST_OUTPUT_STEPS, RunCommands, run_settings};
 pub use dataset::from_dataset;
 pub use scene::from_scene;
+pub(crate) use view::solver_dataset;
 
 use std::path::Path;
 
@@ -53,8 +55,7 @@ pub fn is_scene_path(path: &str) -> bool {
 
 /// How the file at `path` is read: as `format` when given, else a scene
 /// file for `.toml` and a solver dataset otherwise; a dataset is read as
-/// a command file for `.acf`. An Adams View command file is refused with
-/// what to give instead.
+/// a command file for `.acf`, and as an Adams View command file for `.cmd`.
 pub fn format_of_path(
     path: &str,
     format: Option<ModelFormat>,
@@ -69,9 +70,7 @@ pub fn format_of_path(
     }
     match FileKind::of_path(path) {
         Some(FileKind::Acf) => Ok((format, FileKind::Acf)),
-        Some(FileKind::Cmd) => Err(format!(
-            "{path}: an Adams View command file is not simulated: give a solver dataset (.adm) or a scene file (.toml)"
-        )),
+        Some(FileKind::Cmd) => Ok((format, FileKind::Cmd)),
         _ => Ok((format, FileKind::Adm)),
     }
 }
