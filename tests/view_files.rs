@@ -41,12 +41,34 @@ fn rows(model: &Model, end: f64, steps: usize) -> Vec<Vec<f64>> {
     rows
 }
 
+/// Runs the View file `view` and the dataset `dataset` over the View
+/// file's run: the same columns, and rows that agree to `tolerance`
+/// (relative to values above 1). The View file's rows.
+fn same_motion(view: &str, dataset: &str, tolerance: f64) -> Vec<Vec<f64>> {
+    let from_view = view_model(view).unwrap_or_else(|errors| panic!("{errors}"));
+    let by_hand = super::simulate::model_of(dataset).unwrap_or_else(|errors| panic!("{errors}"));
+    let (end, steps) = from_view.run.expect("the View file gives its run");
+    assert_eq!(simulate::columns(&from_view), simulate::columns(&by_hand));
+    let (a, b) = (rows(&from_view, end, steps), rows(&by_hand, end, steps));
+    assert_eq!(a.len(), steps + 1);
+    let mut largest = 0.0_f64;
+    for (x, y) in a.iter().flatten().zip(b.iter().flatten()) {
+        largest = largest.max((x - y).abs() / y.abs().max(1.0));
+    }
+    assert!(
+        largest < tolerance,
+        "the View file and the dataset differ by {largest:e}"
+    );
+    a
+}
+
 /// A double pendulum (the second link hung from the first's end, placed
 /// relative to that marker), a crank turned by a motion, a
 /// translational and a rotational spring-damper (stiffness per degree), a
-/// bushing, a torque written empty and given later by `modify`, a
-/// variable, a differential equation and a request, and a force left
-/// inactive.
+/// bushing, a torque written empty and given later by `modify` (its
+/// coefficient a design variable), a variable, a spline, a differential
+/// equation and a request (a column a function measure), a force left
+/// inactive, and View's expression definitions restating values.
 const VIEW_MODEL: &str = r#"!
 !-------------------------- Default Units for Model ---------------------------!
 defaults units  &
@@ -289,17 +311,56 @@ part create equation differential_equation  &
    function = "VARVAL(.m.TIP_X)"  &
    initial_condition = 0.5
 !
+variable create  &
+   variable_name = .m.drag_coefficient  &
+   units = "no_units"  &
+   real_value = 0.1
+!
+measure create function  &
+   measure_name = .m.HINGE_ANGLE  &
+   function = ""  &
+   units = "angle"
+!
+data_element create spline  &
+   spline_name = .m.CURVE  &
+   x = 0.0, 1.0, 2.0, 3.0  &
+   y = 0.0, 1.0, 4.0, 9.0  &
+   linear_extrapolate = no
+!
+data_element create variable  &
+   variable_name = .m.FROM_CURVE  &
+   function = "AKISPL(time, 0, .m.CURVE, 0)"
+!
 output_control create request  &
    request_name = .m.REQUEST_1  &
    adams_id = 1  &
-   f2 = "AZ(.m.link2.TOP, .m.link1.END)"  &
+   f2 = ".m.HINGE_ANGLE"  &
    f3 = "SFORCE(.m.DRAG, 0, 6, 0)"  &
    f4 = "JOINT(J3, 0, 6, .m.ground.G4)"
 !
 !------------------------------ Function definitions ---------------------------!
 force modify direct single_component_force  &
    single_component_force_name = .m.DRAG  &
-   function = "-0.1*WZ(.m.link1.PIN, .m.ground.G1)"
+   function = "-.m.drag_coefficient*WZ(.m.link1.PIN, .m.ground.G1)"
+!
+measure modify function  &
+   measure_name = .m.HINGE_ANGLE  &
+   function = "AZ(.m.link2.TOP, .m.link1.END)"
+!
+!----------------------------- Expression definitions --------------------------!
+! View states again, as its own expressions, values written evaluated above.
+marker modify  &
+   marker_name = .m.link2.TIP  &
+   location = (LOC_RELATIVE_TO({800mm, 0, 0}, .m.link2))  &
+   relative_to = .m.link2
+!
+part modify rigid_body mass_properties  &
+   part_name = .m.link1  &
+   mass = (2kg)
+!
+force modify element_like bushing  &
+   bushing_name = .m.BUSH  &
+   torque_preload = 0.0, 0.0, (.m.drag_coefficient)
 !
 constraint modify motion_generator  &
    motion_name = .m.MOTION_1  &
@@ -338,11 +399,13 @@ MOTION/1, JOINT = 3, ROTATION, DISPLACEMENT, FUNCTION = 30D*TIME
 SPRINGDAMPER/1, TRANSLATION, I = 12, J = 2, K = 100, C = 1, FORCE = 5, LENGTH = 0.8
 SPRINGDAMPER/2, ROTATION, I = 20, J = 12, KT = 2.8647889756541161, CT = 0.057295779513082323, TORQUE = 0.2, ANGLE = 10D
 BUSHING/1, I = 22, J = 3, K = 10, 20, 30, C = 0.1, 0.2, 0.3, KT = 0.57295779513082323, 1.1459155902616465, 1.7188733853924696, CT = 0.057295779513082323, 0.057295779513082323, 0.057295779513082323, FORCE = 0, 0.5, 0, TORQUE = 0, 0, 0.1
-SFORCE/1, ROTATION, I = 10, J = 1, FUNCTION = -0.1*WZ(10, 1)
+SFORCE/1, ROTATION, I = 10, J = 1, FUNCTION = -(0.1)*WZ(10, 1)
 ACCGRAV/JGRAV = -9.80665
 VARIABLE/1, FUNCTION = DX(22)
+SPLINE/1, X = 0, 1, 2, 3, Y = 0, 1, 4, 9
+VARIABLE/2, FUNCTION = AKISPL(TIME, 0, 1, 0)
 DIFF/1, FUNCTION = VARVAL(1), IC = 0.5
-REQUEST/1, F2 = AZ(20, 12), F3 = SFORCE(1, 0, 6, 0), F4 = JOINT(3, 0, 6, 4)
+REQUEST/1, F2 = (AZ(20, 12)), F3 = SFORCE(1, 0, 6, 0), F4 = JOINT(3, 0, 6, 4)
 END
 ";
 
@@ -351,27 +414,11 @@ END
 /// script's (1.5 s, 30 steps).
 #[test]
 fn a_view_file_moves_as_the_dataset_it_stands_for() {
-    let view = view_model(VIEW_MODEL).unwrap_or_else(|errors| panic!("{errors}"));
-    let dataset =
-        super::simulate::model_of(DATASET_MODEL).unwrap_or_else(|errors| panic!("{errors}"));
-    assert_eq!(view.run, Some((1.5, 30)));
-    assert_eq!(simulate::columns(&view), simulate::columns(&dataset));
-    let (from_view, by_hand) = (rows(&view, 1.5, 30), rows(&dataset, 1.5, 30));
-    assert_eq!(from_view.len(), 31);
-    let mut largest = 0.0_f64;
-    for (a, b) in from_view.iter().zip(&by_hand) {
-        for (x, y) in a.iter().zip(b) {
-            largest = largest.max((x - y).abs() / y.abs().max(1.0));
-        }
-    }
-    assert!(
-        largest < 1e-7,
-        "the View file and the dataset differ by {largest:e}"
-    );
+    let rows = same_motion(VIEW_MODEL, DATASET_MODEL, 1e-7);
+    assert_eq!(rows.len(), 31);
+    assert_eq!(rows.last().map(|row| row[0]), Some(1.5));
     // The run moved: the crank turned 45 degrees, the link swung.
-    let last = by_hand.last().expect("rows");
-    assert!(last.iter().all(|value| value.is_finite()));
-    assert!(from_view[0] != *last);
+    assert!(rows[0] != rows[30]);
 }
 
 /// A part of `density` with the solids `geometry` (commands placed on its
@@ -631,7 +678,13 @@ fn what_is_refused_is_refused_at_its_place() {
     let cases = [
         // The whole file reads: one body.
         part.to_string(),
-        format!("{part}\ncontact create contact_name = .m.C"),
+        format!("{part}\nforce create element_like field field_name = .m.FIELD"),
+        format!(
+            "{part}\ngeometry create shape ellipsoid ellipsoid_name = .m.P.S center_marker = .m.P.A x_scale_factor = 1 y_scale_factor = 1 z_scale_factor = 1\ncontact create contact_name = .m.C i_geometry_name = .m.P.S j_geometry_name = .m.P.S penalty = 1e5 restitution_coefficient = 0.5"
+        ),
+        format!(
+            "{part}\ngeometry create shape torus torus_name = .m.P.T center_marker = .m.P.A major_radius = 1 minor_radius = 0.1\ncontact create contact_name = .m.C i_geometry_name = .m.P.T j_geometry_name = .m.ground.NONE stiffness = 1e5 damping = 10 exponent = 2.2 dmax = 0.1"
+        ),
         format!(
             "{part}\nforce create direct single_component_force single_component_force_name = .m.F i_marker_name = .m.P.A j_marker_name = .m.ground.X function = \"1\""
         ),
@@ -648,7 +701,7 @@ fn what_is_refused_is_refused_at_its_place() {
         format!("{part}\nmarker create marker_name = .m.P.B location = (.m.DV_2), 0, 0"),
         format!("{part}\ndefaults units length = furlong"),
         format!(
-            "{part}\nsimulation single_run statics\nforce attributes force_name = .m.NOTHING active = off"
+            "{part}\nsimulation single_run statics\nmarker attributes marker_name = .m.P.A active = off"
         ),
         format!(
             "{part}\nmaterial create material_name = .m.steel density = 7.8e-6\ngeometry create shape extrusion extrusion_name = .m.P.E\npart modify rigid_body mass_properties part_name = .m.P material_type = .m.steel"
@@ -665,4 +718,136 @@ fn what_is_refused_is_refused_at_its_place() {
         })
         .collect();
     insta::assert_snapshot!(report);
+}
+
+/// A steel ball (its mass from its sphere) dropped on a block of ground
+/// through a contact with friction, written as View commands, and the
+/// same written by hand as a dataset: the same rows.
+#[test]
+fn a_contact_between_view_solids_acts_as_the_datasets() {
+    let view = r#"defaults units length = mm angle = deg force = newton mass = kg time = sec
+model create model_name = drop
+material create material_name = .drop.steel density = 7.801E-06
+defaults coordinate_system default_coordinate_system = .drop.ground
+marker create marker_name = .drop.ground.CORNER adams_id = 1 location = -100, -20, -100 orientation = 0d, 0d, 0d
+geometry create shape block block_name = .drop.ground.TABLE adams_id = 7 corner_marker = .drop.ground.CORNER diag_corner_coords = 200, 20, 200
+part create rigid_body name_and_position part_name = .drop.ball adams_id = 2 location = 0, 30, 0 orientation = 0d, 0d, 0d
+part create rigid_body initial_velocity part_name = .drop.ball vx = 50
+defaults coordinate_system default_coordinate_system = .drop.ball
+marker create marker_name = .drop.ball.CENTRE adams_id = 2 location = 0, 0, 0 orientation = 0d, 0d, 0d
+part create rigid_body mass_properties part_name = .drop.ball material_type = .drop.steel
+geometry create shape ellipsoid ellipsoid_name = .drop.ball.SPHERE center_marker = .drop.ball.CENTRE x_scale_factor = 20 y_scale_factor = 20 z_scale_factor = 20
+contact create contact_name = .drop.CONTACT_1 adams_id = 1 i_geometry_name = .drop.ball.SPHERE j_geometry_name = .drop.ground.TABLE stiffness = 1.0E+05 damping = 10.0 exponent = 2.2 dmax = 0.1 coulomb_friction = on mu_static = 0.3 mu_dynamic = 0.1 stiction_transition_velocity = 100 friction_transition_velocity = 1000
+force create body gravitational gravity_field_name = gravity x_component_gravity = 0 y_component_gravity = -9806.65 z_component_gravity = 0
+simulation single_run transient end_time = 0.3 number_of_steps = 30
+"#;
+    let pi = std::f64::consts::PI;
+    let mass = 7.801e-6 * 4.0 / 3.0 * pi * 1000.0;
+    let moment = 0.4 * mass * 100.0;
+    let dataset = format!(
+        "the dropped ball, by hand
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = MILLIMETER, TIME = SECOND
+PART/1, GROUND
+MARKER/1, PART = 1, QP = -100, -20, -100
+GRAPHICS/7, BOX, CORNER = 1, X = 200, Y = 20, Z = 200
+PART/2, QG = 0, 30, 0, MASS = {mass}, CM = 2, IP = {moment}, {moment}, {moment}, VX = 50
+MARKER/2, PART = 2
+GRAPHICS/1, ELLIPSOID, CM = 2, XSCALE = 20, YSCALE = 20, ZSCALE = 20
+CONTACT/1, IGEOM = 1, JGEOM = 7, IMPACT, STIFFNESS = 1E5, DAMPING = 10, EXPONENT = 2.2, DMAX = 0.1, COULOMB_FRICTION = ON, MU_STATIC = 0.3, MU_DYNAMIC = 0.1, STICTION_TRANSITION_VELOCITY = 100, FRICTION_TRANSITION_VELOCITY = 1000
+ACCGRAV/JGRAV = -9806.65
+END
+"
+    );
+    let a = same_motion(view, &dataset, 1e-6);
+    assert_eq!(a.len(), 31);
+    // The ball landed and rests on the table (its centre 10 mm above it),
+    // sliding on with friction slowing it.
+    let last = a.last().expect("rows");
+    assert!(
+        (last[2] - 10.0).abs() < 0.1,
+        "the ball's height {}",
+        last[2]
+    );
+    assert!(last[8] < 50.0 && last[8] > 0.0, "its speed {}", last[8]);
+}
+
+/// A cantilever BEAM in View's words (its section's area, moments and
+/// moduli) bends a tip mass as the dataset's BEAM does.
+#[test]
+fn a_view_beam_is_the_datasets_beam() {
+    let view = "defaults units length = meter angle = rad force = newton mass = kg time = sec
+model create model_name = b
+marker create marker_name = .b.ground.ROOT adams_id = 1 location = 0, 0, 0 orientation = 0, 0, 0
+part create rigid_body name_and_position part_name = .b.tip adams_id = 2 location = 1, 0, 0 orientation = 0, 0, 0
+part create rigid_body initial_velocity part_name = .b.tip vy = 0.3 wx = 2
+marker create marker_name = .b.tip.END adams_id = 2 location = 1, 0, 0 orientation = 0, 0, 0 relative_to = .b.ground
+part create rigid_body mass_properties part_name = .b.tip mass = 2 center_of_mass_marker = .b.tip.END ixx = 0.01 iyy = 0.01 izz = 0.01
+force create element_like beam beam_name = .b.BEAM_1 adams_id = 3 i_marker_name = .b.tip.END j_marker_name = .b.ground.ROOT length = 1 area_of_cross_section = 1e-4 y_shear_area_ratio = 1.2 z_shear_area_ratio = 1.2 youngs_modulus = 2e9 shear_modulus = 8e8 ixx = 2e-9 iyy = 1e-9 izz = 1e-9 damping_ratio = 0.01
+simulation single_run transient end_time = 0.5 number_of_steps = 25
+";
+    let dataset = "the cantilever, by hand
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, QG = 1, 0, 0, MASS = 2, CM = 2, IP = 0.01, 0.01, 0.01, VY = 0.3, WX = 2
+MARKER/2, PART = 2
+BEAM/3, I = 2, J = 1, LENGTH = 1, AREA = 1e-4, ASY = 1.2, ASZ = 1.2, EMODULUS = 2e9, GMODULUS = 8e8, IXX = 2e-9, IYY = 1e-9, IZZ = 1e-9, CRATIO = 0.01
+END
+";
+    let rows = same_motion(view, dataset, 1e-7);
+    // The tip swings: it moved across.
+    assert!(rows.iter().any(|row| row[2].abs() > 1e-3));
+}
+
+/// Two wheels geared by a View coupler (`constraint create complex_joint
+/// coupler`, its motion multipliers Adams' SCALES), and a third part made
+/// inactive with the joint and force on it: as the dataset without them.
+#[test]
+fn a_view_coupler_and_an_inactive_part() {
+    let view = "defaults units length = meter angle = deg force = newton mass = kg time = sec
+model create model_name = g
+marker create marker_name = .g.ground.A adams_id = 1 location = 0, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .g.ground.B adams_id = 2 location = 1, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .g.ground.C adams_id = 3 location = 2, 0, 0 orientation = 0d, 0d, 0d
+part create rigid_body name_and_position part_name = .g.wheel_1 adams_id = 2 location = 0, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .g.wheel_1.M adams_id = 20 location = 0, 0, 0 orientation = 0d, 0d, 0d
+part create rigid_body mass_properties part_name = .g.wheel_1 mass = 1 center_of_mass_marker = .g.wheel_1.M ixx = 1 iyy = 1 izz = 0.5
+part create rigid_body name_and_position part_name = .g.wheel_2 adams_id = 3 location = 1, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .g.wheel_2.M adams_id = 30 location = 1, 0, 0 orientation = 0d, 0d, 0d relative_to = .g.ground
+part create rigid_body mass_properties part_name = .g.wheel_2 mass = 1 center_of_mass_marker = .g.wheel_2.M ixx = 1 iyy = 1 izz = 0.2
+part create rigid_body name_and_position part_name = .g.spare adams_id = 4 location = 2, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .g.spare.M adams_id = 40 location = 2, 0, 0 orientation = 0d, 0d, 0d relative_to = .g.ground
+part create rigid_body mass_properties part_name = .g.spare mass = 1 center_of_mass_marker = .g.spare.M ixx = 1 iyy = 1 izz = 1
+constraint create joint revolute joint_name = .g.J1 adams_id = 1 i_marker_name = .g.wheel_1.M j_marker_name = .g.ground.A
+constraint create joint revolute joint_name = .g.J2 adams_id = 2 i_marker_name = .g.wheel_2.M j_marker_name = .g.ground.B
+constraint create joint fixed joint_name = .g.J3 adams_id = 3 i_marker_name = .g.spare.M j_marker_name = .g.ground.C
+constraint create complex_joint coupler coupler_name = .g.COUPLER_1 adams_id = 1 joint_name = .g.J1, .g.J2 type_of_freedom = rot_rot motion_multipliers = 1.0, 2.7
+force create direct single_component_force single_component_force_name = .g.TORQUE adams_id = 1 type_of_freedom = rotational action_only = on i_marker_name = .g.wheel_1.M j_marker_name = .g.ground.A function = \"3.0\"
+force create direct single_component_force single_component_force_name = .g.PUSH adams_id = 2 type_of_freedom = translational action_only = on i_marker_name = .g.spare.M j_marker_name = .g.ground.A function = \"1E6\"
+part attributes part_name = .g.spare active = off
+simulation single_run transient end_time = 1 number_of_steps = 10
+";
+    let dataset = "the geared wheels, by hand
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/2, PART = 1, QP = 1, 0, 0
+MARKER/3, PART = 1, QP = 2, 0, 0
+PART/2, MASS = 1, CM = 20, IP = 1, 1, 0.5
+MARKER/20, PART = 2
+PART/3, QG = 1, 0, 0, MASS = 1, CM = 30, IP = 1, 1, 0.2
+MARKER/30, PART = 3
+JOINT/1, REVOLUTE, I = 20, J = 1
+JOINT/2, REVOLUTE, I = 30, J = 2
+COUPLER/1, JOINTS = 1, 2, TYPE = R:R, SCALES = 1, 2.7
+SFORCE/1, ROTATION, ACTIONONLY, I = 20, J = 1, FUNCTION = 3.0
+END
+";
+    let rows = same_motion(view, dataset, 1e-8);
+    // The first wheel turns under the torque: AZ1 + 2.7 AZ2 = 0, so its
+    // reflected inertia is 0.5 + 0.2 / 2.7².
+    let alpha = 3.0 / (0.5 + 0.2 / (2.7 * 2.7));
+    let last = rows.last().expect("rows");
+    let turn = 2.0 * (last[7] / last[4]).atan();
+    assert!((turn - 0.5 * alpha).abs() < 1e-6, "the wheel turned {turn}");
 }

@@ -23,6 +23,10 @@
 //! - **Later commands.** `modify` commands change what a `create` made
 //!   (View writes every function after the objects it reads), and
 //!   `attributes ... active = off` leaves an element out.
+//! - **Elements.** Joints and primitives, motions, single-component
+//!   forces, force and torque vectors, general forces, spring-dampers,
+//!   bushings, beams, contacts (their solids written as GRAPHICS), gravity,
+//!   variables, differential equations, function requests and sensors.
 //! - **The run.** The last `simulation single_run transient` (alone or in
 //!   a `simulation script`) gives the end time and output steps.
 //!
@@ -56,7 +60,11 @@ pub struct ViewDataset {
 }
 
 /// Commands that only draw, arrange or describe: passed over.
-const PASSED_OVER: [&str; 28] = [
+const PASSED_OVER: [&str; 32] = [
+    "IF",
+    "ELSE",
+    "END",
+    "MEASURE_DISPLAY",
     "DEFAULTS",
     "MODEL",
     "DATA_ELEMENT PLANT",
@@ -111,9 +119,6 @@ const WIRES: [&str; 10] = [
     "PLANE",
 ];
 
-/// The solids whose mass properties are read from their shape.
-const SOLIDS: [&str; 6] = ["BLOCK", "CYLINDER", "FRUSTUM", "ELLIPSOID", "TORUS", "LINK"];
-
 /// What a View parameter becomes in the solver statement.
 #[derive(Clone, Copy)]
 enum Becomes {
@@ -135,6 +140,14 @@ enum Becomes {
     Function(&'static str),
     /// One of several words, each a keyword of the statement.
     Choice(&'static [(&'static str, &'static str)]),
+    /// A word, the value of the keyword (`COULOMB_FRICTION = ON`).
+    Word(&'static str),
+    /// Solids (geometry names): the ids of the GRAPHICS written for them.
+    Solids(&'static str),
+    /// Joints (names): their ids.
+    Joints(&'static str),
+    /// A coupler's freedoms (`rot_rot`, `trans_rot`): its TYPE (`R:R`, `T:R`).
+    Freedoms(&'static str),
     /// `on` or `yes` gives the keyword; `off` or `no`, nothing.
     Switch(&'static str),
     /// An angle or a number, as the element turns or moves.
@@ -199,7 +212,95 @@ const JOINT_PARAMETERS: &[(&str, Becomes)] = &[
     ("FRICTION_ENABLED", Becomes::Nothing),
 ];
 
-const ELEMENTS: [ElementKind; 13] = [
+const ELEMENTS: [ElementKind; 18] = [
+    ElementKind {
+        words: "CONSTRAINT COMPLEX_JOINT COUPLER",
+        statement: "COUPLER",
+        flags: &[],
+        name: "COUPLER_NAME",
+        parameters: &[
+            ("JOINT_NAME", Becomes::Joints("JOINTS")),
+            ("TYPE_OF_FREEDOM", Becomes::Freedoms("TYPE")),
+            ("MOTION_MULTIPLIERS", Becomes::Numbers("SCALES")),
+        ],
+    },
+    ElementKind {
+        words: "DATA_ELEMENT SPLINE",
+        statement: "SPLINE",
+        flags: &[],
+        name: "SPLINE_NAME",
+        parameters: &[
+            ("X", Becomes::Numbers("X")),
+            ("Y", Becomes::Numbers("Y")),
+            ("LINEAR_EXTRAPOLATE", Becomes::Switch("LINEAR_EXTRAPOLATE")),
+            ("UNITS", Becomes::Nothing),
+        ],
+    },
+    // A function measure is its function: a function that names it reads
+    // it in brackets; nothing is written for it.
+    ElementKind {
+        words: "MEASURE FUNCTION",
+        statement: MEASURE,
+        flags: &[],
+        name: "MEASURE_NAME",
+        parameters: &[
+            ("FUNCTION", Becomes::Function("FUNCTION")),
+            ("UNITS", Becomes::Nothing),
+            ("CREATE_MEASURE_DISPLAY", Becomes::Nothing),
+        ],
+    },
+    ElementKind {
+        words: "FORCE ELEMENT_LIKE BEAM",
+        statement: "BEAM",
+        flags: &[],
+        name: "BEAM_NAME",
+        parameters: &[
+            TWO_MARKERS[0],
+            TWO_MARKERS[1],
+            ("LENGTH", Becomes::Numbers("LENGTH")),
+            ("AREA_OF_CROSS_SECTION", Becomes::Numbers("AREA")),
+            ("Y_SHEAR_AREA_RATIO", Becomes::Numbers("ASY")),
+            ("Z_SHEAR_AREA_RATIO", Becomes::Numbers("ASZ")),
+            ("YOUNGS_MODULUS", Becomes::Numbers("EMODULUS")),
+            ("SHEAR_MODULUS", Becomes::Numbers("GMODULUS")),
+            ("IXX", Becomes::Numbers("IXX")),
+            ("IYY", Becomes::Numbers("IYY")),
+            ("IZZ", Becomes::Numbers("IZZ")),
+            ("DAMPING_RATIO", Becomes::Numbers("CRATIO")),
+        ],
+    },
+    ElementKind {
+        words: "CONTACT",
+        statement: "CONTACT",
+        flags: &["IMPACT"],
+        name: "CONTACT_NAME",
+        parameters: &[
+            ("I_GEOMETRY_NAME", Becomes::Solids("IGEOM")),
+            ("J_GEOMETRY_NAME", Becomes::Solids("JGEOM")),
+            ("STIFFNESS", Becomes::Numbers("STIFFNESS")),
+            ("DAMPING", Becomes::Numbers("DAMPING")),
+            ("DMAX", Becomes::Numbers("DMAX")),
+            ("EXPONENT", Becomes::Numbers("EXPONENT")),
+            ("COULOMB_FRICTION", Becomes::Word("COULOMB_FRICTION")),
+            ("MU_STATIC", Becomes::Numbers("MU_STATIC")),
+            ("MU_DYNAMIC", Becomes::Numbers("MU_DYNAMIC")),
+            (
+                "STICTION_TRANSITION_VELOCITY",
+                Becomes::Numbers("STICTION_TRANSITION_VELOCITY"),
+            ),
+            (
+                "FRICTION_TRANSITION_VELOCITY",
+                Becomes::Numbers("FRICTION_TRANSITION_VELOCITY"),
+            ),
+            ("TYPE", Becomes::Word("TYPE")),
+            ("NO_FRICTION", Becomes::Nothing),
+            ("AUGMENTED_LAGRANGIAN_FORMULATION", Becomes::Nothing),
+            // View writes the restitution law's numbers beside the impact
+            // law's; they count only without STIFFNESS (refused then).
+            ("PENALTY", Becomes::Nothing),
+            ("RESTITUTION_COEFFICIENT", Becomes::Nothing),
+        ],
+    },
     ElementKind {
         words: "CONSTRAINT MOTION_GENERATOR",
         statement: "MOTION",
@@ -414,6 +515,9 @@ const ELEMENTS: [ElementKind; 13] = [
     },
 ];
 
+/// The kind of a function measure's element, which is not written.
+const MEASURE: &str = "MEASURE";
+
 /// The joint and primitive commands: their kind by the last word.
 fn constraint_kind(words: &str) -> Option<(&'static str, &'static str)> {
     if let Some(kind) = words.strip_prefix("CONSTRAINT JOINT ") {
@@ -466,7 +570,19 @@ enum Entity {
     Marker(usize),
     Element(usize),
     Material(usize),
+    Geometry(usize),
+    /// A design variable's value (`variable create ... real_value = v`).
+    Design(usize),
     Model,
+}
+
+/// A geometry (`geometry create shape ...`): its command and shape, its
+/// id, and whether a contact meets it (then a GRAPHICS is written for it).
+struct Geometry {
+    command: usize,
+    shape: String,
+    id: Option<u64>,
+    met: bool,
 }
 
 /// A rigid part.
@@ -482,6 +598,8 @@ struct Part {
     velocity: Option<usize>,
     /// The solids (`geometry create shape` commands) on it.
     solids: Vec<usize>,
+    /// Not made inactive (`part attributes ... active = off`).
+    active: bool,
 }
 
 /// A marker (or floating marker) on a part.
@@ -517,7 +635,14 @@ struct Reader<'d> {
     parts: Vec<Part>,
     markers: Vec<Marker>,
     elements: Vec<Element>,
+    geometries: Vec<Geometry>,
     densities: Vec<f64>,
+    designs: Vec<f64>,
+    /// The function measures being read into a function (against loops).
+    reading: Vec<usize>,
+    /// The user-defined force instances (`ude create instance` of a
+    /// force): refused unless made inactive.
+    user_forces: Vec<(String, usize, bool)>,
     /// The frame locations are given in by default.
     coordinates: Frame,
     degrees: bool,
@@ -630,7 +755,11 @@ pub fn solver_dataset(
         parts: Vec::new(),
         markers: Vec::new(),
         elements: Vec::new(),
+        geometries: Vec::new(),
         densities: Vec::new(),
+        designs: Vec::new(),
+        reading: Vec::new(),
+        user_forces: Vec::new(),
         coordinates: Frame::GROUND,
         degrees: true,
         units: [
@@ -726,6 +855,7 @@ impl<'d> Reader<'d> {
             mass: None,
             velocity: None,
             solids: Vec::new(),
+            active: true,
         });
         self.name(name, Entity::Part(self.parts.len() - 1));
     }
@@ -843,6 +973,65 @@ impl<'d> Reader<'d> {
         })
     }
 
+    /// Whether a modify command `index` places its object anew: it gives
+    /// a location or orientation, and none of its placing arguments is a
+    /// View expression (those restate the place the create command wrote:
+    /// `(LOC_RELATIVE_TO({0, 0, 0}, .model.ground.A))`).
+    fn moves(&self, index: usize) -> bool {
+        let placing = ["LOCATION", "ORIENTATION", "RELATIVE_TO"]
+            .map(|keyword| self.argument(index, keyword).map(|(_, argument)| argument));
+        placing[..2].iter().any(Option::is_some)
+            && !placing
+                .iter()
+                .flatten()
+                .any(|argument| view_expression(argument))
+    }
+
+    /// A design variable: its single real value, which functions read.
+    fn design_variable(&mut self, index: usize) {
+        let Some(name) = self.word(index, "VARIABLE_NAME") else {
+            return;
+        };
+        let Some((_, argument)) = self.argument(index, "REAL_VALUE") else {
+            return;
+        };
+        if view_expression(argument) {
+            return;
+        }
+        let Some([value]) = self
+            .numbers(index, "REAL_VALUE", false)
+            .as_deref()
+            .map(|values| match values {
+                [value] => [*value],
+                _ => [f64::NAN],
+            })
+        else {
+            return;
+        };
+        match self.find(&name) {
+            Some(Entity::Design(design)) => self.designs[design] = value,
+            _ => {
+                self.designs.push(value);
+                let full = self.full(&name);
+                self.name(full, Entity::Design(self.designs.len() - 1));
+            }
+        }
+    }
+
+    /// A user-defined element's instance: a force's is refused (unless
+    /// made inactive later); other instances (a controls plant's
+    /// inputs and outputs) are passed over.
+    fn user_defined(&mut self, index: usize) {
+        let definition = self.word(index, "DEFINITION_NAME").unwrap_or_default();
+        let Some(name) = self.word(index, "INSTANCE_NAME") else {
+            return;
+        };
+        if definition.contains(".FORCES.") && self.view.statements[index].name.contains(" CREATE ")
+        {
+            self.user_forces.push((self.full(&name), index, true));
+        }
+    }
+
     /// The frame of the model, part or marker argument `keyword` names.
     fn frame_of(&self, index: usize, keyword: &str) -> Option<Frame> {
         let name = self.word(index, keyword)?;
@@ -900,6 +1089,23 @@ impl<'d> Reader<'d> {
                     }
                 }
             }
+            ("VARIABLE", Some(_)) => self.design_variable(index),
+            ("UDE INSTANCE", Some(_)) => self.user_defined(index),
+            ("MATERIAL", Some("MODIFY")) => {
+                // A density given again as a View expression keeps the
+                // value the create command wrote (see `view_expression`).
+                if let Some(name) = self.word(index, "MATERIAL_NAME")
+                    && let Some(Entity::Material(material)) = self.find(&name)
+                    && self
+                        .argument(index, "DENSITY")
+                        .is_some_and(|(_, argument)| !view_expression(argument))
+                    && let Some(density) = self
+                        .numbers(index, "DENSITY", false)
+                        .and_then(|values| values.first().copied())
+                {
+                    self.densities[material] = density;
+                }
+            }
             ("MATERIAL", Some("CREATE")) => {
                 if let Some(name) = self.word(index, "MATERIAL_NAME") {
                     let density = self
@@ -912,9 +1118,16 @@ impl<'d> Reader<'d> {
                 }
             }
             ("PART RIGID_BODY NAME_AND_POSITION", Some(verb)) => self.part(index, verb),
-            ("PART RIGID_BODY MASS_PROPERTIES", Some(_)) => {
+            ("PART RIGID_BODY MASS_PROPERTIES", Some(verb)) => {
                 if let Some(part) = self.part_named(index, "PART_NAME") {
-                    self.parts[part].mass = Some(index);
+                    // View's expression definitions state again, as View
+                    // expressions, what the create command wrote evaluated.
+                    let restated = verb == "MODIFY"
+                        && self.parts[part].mass.is_some()
+                        && statement.arguments.iter().any(view_expression);
+                    if !restated {
+                        self.parts[part].mass = Some(index);
+                    }
                 }
             }
             ("PART RIGID_BODY INITIAL_VELOCITY", Some(_)) => {
@@ -1053,6 +1266,7 @@ impl<'d> Reader<'d> {
                 mass: None,
                 velocity: None,
                 solids: Vec::new(),
+                active: true,
             });
             let part = self.parts.len() - 1;
             self.name(name, Entity::Part(part));
@@ -1076,10 +1290,7 @@ impl<'d> Reader<'d> {
             };
             self.rename_part(part, new);
         }
-        let placed = ["LOCATION", "ORIENTATION"]
-            .iter()
-            .any(|keyword| self.argument(index, keyword).is_some());
-        if placed {
+        if verb == "CREATE" || self.moves(index) {
             if self.parts[part].ground {
                 self.refuse(
                     statement,
@@ -1122,17 +1333,18 @@ impl<'d> Reader<'d> {
             }
         }
         let id = self.id(index, "ADAMS_ID");
-        let frame = self.placed(index);
+        let frame = if modify && !self.moves(index) {
+            Frame::GROUND
+        } else {
+            self.placed(index)
+        };
         if modify {
             match self.find(&name) {
                 Some(Entity::Marker(marker)) => {
                     if id.is_some() {
                         self.markers[marker].id = id;
                     }
-                    if ["LOCATION", "ORIENTATION"]
-                        .iter()
-                        .any(|keyword| self.argument(index, keyword).is_some())
-                    {
+                    if self.moves(index) {
                         self.markers[marker].frame = frame;
                     }
                 }
@@ -1234,37 +1446,43 @@ impl<'d> Reader<'d> {
     }
 
     fn solid(&mut self, index: usize, shape: &str) {
+        let statement = &self.view.statements[index];
+        let Some(name) = statement
+            .arguments
+            .iter()
+            .find(|argument| argument.keyword.ends_with("_NAME"))
+            .and_then(|argument| match &argument.value {
+                Value::List(items) => items.first().map(|item| self.full(&item.text)),
+                _ => None,
+            })
+        else {
+            return;
+        };
+        let restated = statement
+            .arguments
+            .iter()
+            .filter(|argument| !argument.keyword.ends_with("_NAME"))
+            .all(view_expression);
+        if statement.name.contains(" MODIFY ") && restated {
+            return;
+        }
+        if statement.name.contains(" CREATE ") {
+            let id = self.id(index, "ADAMS_ID");
+            self.geometries.push(Geometry {
+                command: index,
+                shape: shape.to_string(),
+                id,
+                met: false,
+            });
+            self.name(name.clone(), Entity::Geometry(self.geometries.len() - 1));
+        }
+        // Shapes without volume add no mass; every other is a solid of its
+        // part (refused where the part's mass comes from its geometry and
+        // mbexpr does not compute the shape's: see `solid_moments`).
         if WIRES.contains(&shape) {
             return;
         }
-        if !SOLIDS.contains(&shape) {
-            // Other shapes add no mass View mbexpr computes: refused where
-            // a part's mass comes from its geometry (see `mass_from_solids`).
-            let statement = &self.view.statements[index];
-            let Some(name) = statement
-                .arguments
-                .iter()
-                .find(|argument| argument.keyword.ends_with("_NAME"))
-                .and_then(|argument| match &argument.value {
-                    Value::List(items) => items.first().map(|item| self.full(&item.text)),
-                    _ => None,
-                })
-            else {
-                return;
-            };
-            if let Some((owner, _)) = name.rsplit_once('.')
-                && let Some(Entity::Part(part)) = self.find(owner)
-            {
-                self.parts[part].solids.push(index);
-            }
-            return;
-        }
-        let keyword = format!("{shape}_NAME");
-        let Some(name) = self.word(index, &keyword) else {
-            return;
-        };
-        let full = self.full(&name);
-        if let Some((owner, _)) = full.rsplit_once('.')
+        if let Some((owner, _)) = name.rsplit_once('.')
             && let Some(Entity::Part(part)) = self.find(owner)
         {
             self.parts[part].solids.push(index);
@@ -1298,28 +1516,53 @@ impl<'d> Reader<'d> {
                     statement.span,
                 ));
             }
-            Some(_) => self.refuse(
+            Some(Entity::Part(part)) => {
+                if self.parts[part].ground {
+                    self.refuse(
+                        statement,
+                        "deactivates the ground part".into(),
+                        statement.span,
+                    );
+                } else {
+                    self.parts[part].active = false;
+                    self.notes.push((
+                        format!(
+                            "{} is inactive (active = off): left out, with its markers and the elements on them",
+                            name.trim_matches('"')
+                        ),
+                        statement.span,
+                    ));
+                }
+            }
+            Some(Entity::Marker(_)) => self.refuse(
                 statement,
-                "deactivates a part or marker: mbexpr leaves out inactive elements only".into(),
+                "deactivates a marker, which mbexpr does not: make the elements on it inactive"
+                    .into(),
                 statement.span,
             ),
-            None => self.wrong(
-                format!(
-                    "{} names nothing the file creates before",
-                    name.trim_matches('"')
-                ),
-                statement.span,
-            ),
+            // What the reading passes over (a measure, a graphic, a solid
+            // from a file) stays out; a user-defined force made inactive
+            // is not refused.
+            _ => {
+                let name = key(&name);
+                for (force, _, active) in &mut self.user_forces {
+                    if *force == name {
+                        *active = false;
+                    }
+                }
+            }
         }
     }
 
     fn element(&mut self, index: usize, words: &str, verb: Option<&str>) {
         let statement = &self.view.statements[index];
+        let read =
+            ELEMENTS.iter().any(|kind| kind.words == words) || constraint_kind(words).is_some();
         let passed_over = PASSED_OVER.iter().any(|over| {
             let spaced = format!("{over} ");
             words == *over || words.starts_with(&spaced) || statement.name.starts_with(&spaced)
         });
-        if passed_over {
+        if passed_over && !read {
             return;
         }
         if let Some((_, note)) = NOTED
@@ -1357,7 +1600,7 @@ impl<'d> Reader<'d> {
         let Some((solver, flags, name_keyword, parameters)) = found else {
             self.refuse(
                 statement,
-                "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, gravity, variables, differential equations, function requests and sensors".into(),
+                "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, beams, contacts, gravity, variables, differential equations, function requests and sensors".into(),
                 statement.span,
             );
             return;
@@ -1426,6 +1669,24 @@ impl<'d> Reader<'d> {
                 );
                 continue;
             }
+            let known = self.elements[element]
+                .given
+                .iter()
+                .any(|(name, _, _)| name == keyword);
+            if view_expression(argument) {
+                // A View expression restates the value the create command
+                // wrote evaluated; one with nothing before cannot be read.
+                if !known {
+                    self.wrong(
+                        format!(
+                            "{}: a View expression mbexpr does not evaluate, and no command before gives the value: give the number",
+                            keyword.to_ascii_lowercase()
+                        ),
+                        argument.span,
+                    );
+                }
+                continue;
+            }
             let given = &mut self.elements[element].given;
             given.retain(|(name, _, _)| name != keyword);
             given.push((argument.keyword.clone(), index, position));
@@ -1446,6 +1707,9 @@ impl<'d> Reader<'d> {
                 .entry(element.statement)
                 .or_default()
                 .extend(element.id);
+        }
+        for geometry in &self.geometries {
+            taken.entry("GRAPHICS").or_default().extend(geometry.id);
         }
         let mut next = |kind: &'static str| {
             let ids = taken.entry(kind).or_default();
@@ -1471,6 +1735,66 @@ impl<'d> Reader<'d> {
                 element.id = Some(next(element.statement));
             }
         }
+        for geometry in &mut self.geometries {
+            if geometry.id.is_none() {
+                geometry.id = Some(next("GRAPHICS"));
+            }
+        }
+    }
+
+    /// Makes inactive every element that names a marker or solid on an
+    /// inactive part, or a joint made inactive so (in file order), as View
+    /// does with what depends on an inactive part.
+    fn leave_out_on_inactive_parts(&mut self) {
+        if self.parts.iter().all(|part| part.active) {
+            return;
+        }
+        for element in 0..self.elements.len() {
+            if !self.elements[element].active {
+                continue;
+            }
+            let parameters = self.elements[element].parameters;
+            let mut on_inactive = false;
+            for (keyword, index, _) in &self.elements[element].given {
+                let Some(&(_, becomes)) = parameters.iter().find(|(view, _)| view == keyword)
+                else {
+                    continue;
+                };
+                let names: Vec<String> = self
+                    .items(*index, keyword)
+                    .unwrap_or_default()
+                    .iter()
+                    .map(|item| item.text.to_string())
+                    .collect();
+                for name in names {
+                    on_inactive |= match (becomes, self.find(&name)) {
+                        (
+                            Becomes::Marker(_) | Becomes::Floating(_),
+                            Some(Entity::Marker(marker)),
+                        ) => !self.parts[self.markers[marker].part].active,
+                        (Becomes::FloatingOn(_), Some(Entity::Part(part))) => {
+                            !self.parts[part].active
+                        }
+                        (Becomes::Solids(_), Some(Entity::Geometry(geometry))) => {
+                            let owner = self.full(&name);
+                            owner.rsplit_once('.').is_some_and(|(owner, _)| {
+                                matches!(self.find(owner), Some(Entity::Part(part)) if !self.parts[part].active)
+                            }) && geometry < self.geometries.len()
+                        }
+                        (Becomes::Object(_) | Becomes::Joints(_), Some(Entity::Element(joint))) => {
+                            !self.elements[joint].active
+                        }
+                        _ => false,
+                    };
+                }
+            }
+            if on_inactive {
+                self.elements[element].active = false;
+                let span = self.elements[element].span;
+                self.notes
+                    .push(("left out: it acts on an inactive part".into(), span));
+            }
+        }
     }
 
     /// A new marker on `part` at `frame`, with the next free id.
@@ -1494,6 +1818,16 @@ impl<'d> Reader<'d> {
 
     /// The solver statements.
     fn write(&mut self) -> Vec<Statement> {
+        for (_, index, active) in self.user_forces.clone() {
+            if active {
+                let command = &self.view.statements[index];
+                self.refuse(
+                    command,
+                    "is a user-defined force (a View library element), which mbexpr does not read: write it as a force element".into(),
+                    command.span,
+                );
+            }
+        }
         self.assign_ids();
         let mut statements = Vec::new();
         let mut units = new_statement("UNITS", None, self.units_span);
@@ -1501,8 +1835,12 @@ impl<'d> Reader<'d> {
             words_argument(&mut units, kind, &[unit], self.units_span);
         }
         statements.push(units);
+        self.leave_out_on_inactive_parts();
         let mut parts = Vec::new();
         for part in 0..self.parts.len() {
+            if !self.parts[part].active {
+                continue;
+            }
             if let Some(statement) = self.write_part(part) {
                 parts.push(statement);
             }
@@ -1511,7 +1849,15 @@ impl<'d> Reader<'d> {
         let mut elements = Vec::new();
         for element in 0..self.elements.len() {
             if self.elements[element].active
+                && self.elements[element].statement != MEASURE
                 && let Some(statement) = self.write_element(element)
+            {
+                elements.push(statement);
+            }
+        }
+        for geometry in 0..self.geometries.len() {
+            if self.geometries[geometry].met
+                && let Some(statement) = self.write_graphic(geometry)
             {
                 elements.push(statement);
             }
@@ -1519,6 +1865,9 @@ impl<'d> Reader<'d> {
         // Markers last: writing the parts and elements makes some.
         for marker in &self.markers {
             let part = &self.parts[marker.part];
+            if !part.active {
+                continue;
+            }
             let mut statement = new_statement("MARKER", marker.id, marker.span);
             ids_argument(&mut statement, "PART", part.id.unwrap_or(0), marker.span);
             if marker.floating {
@@ -1870,6 +2219,20 @@ impl<'d> Reader<'d> {
                         Some("ROTATIONAL" | "B1" | "B2" | "B3")
                     )
             });
+        let given = |name: &str| {
+            self.elements[element]
+                .given
+                .iter()
+                .any(|(keyword, _, _)| keyword == name)
+        };
+        if solver == "CONTACT" && !given("STIFFNESS") && given("RESTITUTION_COEFFICIENT") {
+            self.refuse(
+                &self.view.statements[self.elements[element].given[0].1],
+                "is a restitution (POISSON) contact, which mbexpr does not simulate: give the impact law's stiffness, damping, exponent and dmax".into(),
+                span,
+            );
+            return None;
+        }
         let parameters = self.elements[element].parameters;
         for (keyword, index, position) in self.elements[element].given.clone() {
             let argument = &self.view.statements[index].arguments[position];
@@ -1964,6 +2327,89 @@ impl<'d> Reader<'d> {
                         ),
                     }
                 }
+                Becomes::Word(solver_keyword) => {
+                    let word = self.word(index, &keyword).unwrap_or_default();
+                    words_argument(&mut statement, solver_keyword, &[&word], argument_span);
+                }
+                Becomes::Solids(solver_keyword) => {
+                    let names: Vec<String> = self
+                        .items(index, &keyword)
+                        .unwrap_or_default()
+                        .iter()
+                        .map(|item| item.text.to_string())
+                        .collect();
+                    let mut ids = Vec::new();
+                    for name in names {
+                        match self.find(&name) {
+                            Some(Entity::Geometry(geometry)) => {
+                                self.geometries[geometry].met = true;
+                                ids.push(self.geometries[geometry].id.unwrap_or(0).to_string());
+                            }
+                            _ => self.refuse(
+                                &self.view.statements[index],
+                                format!(
+                                    "meets {name}, which is no solid this file creates (solids read from a file by `file parasolid read` are not read)"
+                                ),
+                                argument_span,
+                            ),
+                        }
+                    }
+                    let ids: Vec<&str> = ids.iter().map(String::as_str).collect();
+                    words_argument(&mut statement, solver_keyword, &ids, argument_span);
+                }
+                Becomes::Joints(solver_keyword) => {
+                    let names: Vec<String> = self
+                        .items(index, &keyword)
+                        .unwrap_or_default()
+                        .iter()
+                        .map(|item| item.text.to_string())
+                        .collect();
+                    let mut ids = Vec::new();
+                    for name in names {
+                        match self.find(&name) {
+                            Some(Entity::Element(joint))
+                                if self.elements[joint].statement == "JOINT" =>
+                            {
+                                ids.push(self.elements[joint].id.unwrap_or(0).to_string());
+                            }
+                            _ => self.wrong(
+                                format!("{name} is no joint the file creates"),
+                                argument_span,
+                            ),
+                        }
+                    }
+                    let ids: Vec<&str> = ids.iter().map(String::as_str).collect();
+                    words_argument(&mut statement, solver_keyword, &ids, argument_span);
+                }
+                Becomes::Freedoms(solver_keyword) => {
+                    let word = self.word(index, &keyword).unwrap_or_default();
+                    let freedoms: Option<Vec<&str>> = word
+                        .split('_')
+                        .map(|freedom| match freedom {
+                            "TRANS" | "TRANSLATIONAL" => Some("T"),
+                            "ROT" | "ROTATIONAL" => Some("R"),
+                            _ => None,
+                        })
+                        .collect();
+                    match freedoms {
+                        Some(freedoms) => {
+                            let value = freedoms.join(":");
+                            words_argument(
+                                &mut statement,
+                                solver_keyword,
+                                &[&value],
+                                argument_span,
+                            );
+                        }
+                        None => self.wrong(
+                            format!(
+                                "{} is the joints' freedoms joined by _ (rot_rot, trans_rot ...)",
+                                keyword.to_ascii_lowercase()
+                            ),
+                            argument_span,
+                        ),
+                    }
+                }
                 Becomes::Switch(solver_keyword) => {
                     let word = self.word(index, &keyword).unwrap_or_default();
                     match word.as_str() {
@@ -1978,6 +2424,82 @@ impl<'d> Reader<'d> {
                     }
                 }
                 Becomes::Nothing => {}
+            }
+        }
+        Some(statement)
+    }
+
+    /// The GRAPHICS statement of a geometry a contact meets: the solids a
+    /// CONTACT reads (a sphere, a block, a cylinder, a frustum, a plane);
+    /// another shape is refused at its command.
+    fn write_graphic(&mut self, geometry: usize) -> Option<Statement> {
+        let index = self.geometries[geometry].command;
+        let shape = self.geometries[geometry].shape.clone();
+        let span = self.view.statements[index].span;
+        let mut statement = new_statement("GRAPHICS", self.geometries[geometry].id, span);
+        let marker = |reader: &mut Self, view: &str, solver: &str, statement: &mut Statement| {
+            if let Some(id) = reader.marker_id(index, view) {
+                ids_argument(statement, solver, id, span);
+            }
+        };
+        let numbers = |reader: &mut Self, view: &str, solver: &str, statement: &mut Statement| {
+            if let Some(values) = reader.numbers(index, view, false) {
+                numbers_argument(statement, solver, &values, span);
+            }
+        };
+        match shape.as_str() {
+            "ELLIPSOID" => {
+                flag_argument(&mut statement, "ELLIPSOID", span);
+                marker(self, "CENTER_MARKER", "CM", &mut statement);
+                for (view, solver) in [
+                    ("X_SCALE_FACTOR", "XSCALE"),
+                    ("Y_SCALE_FACTOR", "YSCALE"),
+                    ("Z_SCALE_FACTOR", "ZSCALE"),
+                ] {
+                    numbers(self, view, solver, &mut statement);
+                }
+            }
+            "BLOCK" => {
+                flag_argument(&mut statement, "BOX", span);
+                marker(self, "CORNER_MARKER", "CORNER", &mut statement);
+                if let Some(corner) = self.numbers(index, "DIAG_CORNER_COORDS", false)
+                    && let [x, y, z] = corner[..]
+                {
+                    for (keyword, value) in [("X", x), ("Y", y), ("Z", z)] {
+                        numbers_argument(&mut statement, keyword, &[value], span);
+                    }
+                }
+            }
+            "CYLINDER" | "FRUSTUM" => {
+                flag_argument(&mut statement, &shape, span);
+                marker(self, "CENTER_MARKER", "CM", &mut statement);
+                numbers(self, "LENGTH", "LENGTH", &mut statement);
+                if shape == "CYLINDER" {
+                    numbers(self, "RADIUS", "RADIUS", &mut statement);
+                } else {
+                    numbers(self, "TOP_RADIUS", "TOP", &mut statement);
+                    numbers(self, "BOTTOM_RADIUS", "BOTTOM", &mut statement);
+                }
+                let extent = self
+                    .numbers(index, "ANGLE_EXTENT", true)
+                    .and_then(|values| values.first().copied())
+                    .unwrap_or(2.0 * PI);
+                if (extent.abs() - 2.0 * PI).abs() > 1e-9 {
+                    numbers_argument(&mut statement, "RANGLE", &[extent], span);
+                }
+            }
+            "PLANE" => {
+                flag_argument(&mut statement, "PLANE", span);
+                marker(self, "REF_MARKER", "RM", &mut statement);
+            }
+            _ => {
+                let command = &self.view.statements[index];
+                self.refuse(
+                    command,
+                    "is a solid a contact meets that mbexpr does not: it meets spheres (ellipsoids of equal scales), blocks, cylinders, frustums and planes".into(),
+                    span,
+                );
+                return None;
             }
         }
         Some(statement)
@@ -2019,15 +2541,41 @@ impl<'d> Reader<'d> {
             }
             _ => {}
         });
-        for (name, at) in unknown {
-            self.wrong(
-                format!(
-                    "{name} is a View design variable or object, which mbexpr does not evaluate in a function: give its value"
-                ),
-                text.file_span(at),
-            );
-        }
         let mut ids = Vec::new();
+        for (name, at) in unknown {
+            match self.find(&name) {
+                Some(Entity::Design(design)) => {
+                    ids.push((at, format!("({:?})", self.designs[design])));
+                }
+                Some(Entity::Element(measure))
+                    if self.elements[measure].statement == MEASURE
+                        && !self.reading.contains(&measure) =>
+                {
+                    let function = self.elements[measure]
+                        .given
+                        .iter()
+                        .find(|(keyword, _, _)| keyword == "FUNCTION")
+                        .map(|&(_, command, position)| (command, position));
+                    self.reading.push(measure);
+                    let measured =
+                        function.and_then(|(command, position)| self.function(command, position));
+                    self.reading.pop();
+                    match measured {
+                        Some(measured) => ids.push((at, format!("({})", measured.text))),
+                        None => self.wrong(
+                            format!("{name}: the measure has no function mbexpr reads"),
+                            text.file_span(at),
+                        ),
+                    }
+                }
+                _ => self.wrong(
+                    format!(
+                        "{name} is a View object mbexpr does not evaluate in a function (it reads design variables and function measures): give its value"
+                    ),
+                    text.file_span(at),
+                ),
+            }
+        }
         for (at, name) in replacements {
             let id = match self.find(&name) {
                 Some(Entity::Marker(marker)) => self.markers[marker].id,
@@ -2167,6 +2715,18 @@ impl Moments {
             first: Vector3::new(volume * length / 2.0, 0.0, 0.0),
             second: Matrix3::from_diagonal(&Vector3::new(xx, yy, zz)),
         }
+    }
+}
+
+/// Whether an argument holds a View expression: a value in brackets
+/// (`(20g)`, `(.model.DV_1)`, `(LOC_RELATIVE_TO({0, 0, 0}, .model.ground))`),
+/// which View evaluates and mbexpr does not.
+fn view_expression(argument: &Argument) -> bool {
+    match &argument.value {
+        Value::List(items) => items
+            .iter()
+            .any(|item| item.text.trim_start().starts_with('(')),
+        Value::Flag | Value::Expression { .. } => false,
     }
 }
 
