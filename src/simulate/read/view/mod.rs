@@ -1,0 +1,1374 @@
+//! An Adams View command file (`.cmd`) read as the solver dataset Adams
+//! View writes for it (File > Export > Adams Solver Dataset), so that the
+//! dataset reader simulates it: parts, markers, joints, motions, forces and
+//! data elements become the statements they stand for, each at the place of
+//! its command in the `.cmd`.
+//!
+//! What View does on the way is done here too:
+//! - **Places.** A `location` and `orientation` (body 3-1-3 angles) are
+//!   relative to `relative_to`, else to the `defaults coordinate_system`
+//!   in force (a part, a marker or the model); a marker is then placed on
+//!   its part by its origin and axes (`QP`, `ZP`, `XP`).
+//! - **Units.** `defaults units` become `UNITS`. Angles are in the angle
+//!   unit (degrees unless `angle = rad`; a `d` suffix is always degrees)
+//!   and so are the angular parts of stiffness, damping and velocities.
+//! - **Names.** A name is full (`.model.PART_2.MARKER_1`) or any tail of
+//!   one (`PART_2.MARKER_1`); each object takes its `adams_id`, or the next
+//!   free id of its kind. Function expressions name markers and objects:
+//!   each name becomes its id.
+//! - **Mass from geometry.** A part whose mass properties are a
+//!   `material_type` or a `density` takes its mass, centre of mass and
+//!   inertia from its solids (block, cylinder, frustum, ellipsoid, torus,
+//!   link) at that density.
+//! - **Later commands.** `modify` commands change what a `create` made
+//!   (View writes every function after the objects it reads), and
+//!   `attributes ... active = off` leaves an element out.
+//! - **Elements.** Joints and primitives, motions, single-component
+//!   forces, force and torque vectors, general forces, spring-dampers,
+//!   bushings, beams, contacts (their solids written as GRAPHICS), gravity,
+//!   variables, differential equations, function requests and sensors.
+//! - **The run.** The last `simulation single_run transient` (alone or in
+//!   a `simulation script`) gives the end time and output steps.
+//!
+//! A command that would change the motion and is not read is refused at its
+//! place; commands that only draw or arrange (colours, icons, views,
+//! groups, points) are passed over.
+
+use std::collections::{HashMap, HashSet};
+use std::f64::consts::PI;
+
+use compact_str::CompactString;
+use nalgebra::{Matrix3, Vector3};
+
+use super::commands::RunCommands;
+use crate::check::Checked;
+use crate::model::{Argument, Dataset, FileKind, ModelCheck, Statement, Value, ValueItem};
+use crate::scene::euler_313;
+use crate::simulate::error::SimulateError;
+use crate::span::Span;
+
+/// A View command file as a solver dataset, with its run.
+pub struct ViewDataset {
+    /// The statements, each at the place of the command it comes from.
+    pub dataset: Dataset,
+    /// The end time and output steps of its last transient simulation.
+    pub run: Option<RunCommands>,
+    /// What the reading passed over that a user may want to know.
+    pub notes: Vec<(String, Span)>,
+}
+
+mod elements;
+mod solids;
+mod write;
+
+use elements::{
+    Becomes, ELEMENTS, JOINT_PARAMETERS, NOTED, PASSED_OVER, TWO_MARKERS, WIRES, becomes,
+    constraint_kind,
+};
+
+/// A frame: its origin and axes (columns) in the ground's.
+#[derive(Clone, Copy, Debug)]
+struct Frame {
+    origin: Vector3<f64>,
+    axes: Matrix3<f64>,
+}
+
+impl Frame {
+    const GROUND: Frame = Frame {
+        origin: Vector3::new(0.0, 0.0, 0.0),
+        axes: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+    };
+
+    /// The frame `local` gives in this one.
+    fn then(&self, local: &Frame) -> Frame {
+        Frame {
+            origin: self.origin + self.axes * local.origin,
+            axes: self.axes * local.axes,
+        }
+    }
+
+    /// `global` seen from this frame.
+    fn seen(&self, global: &Frame) -> Frame {
+        Frame {
+            origin: self.axes.transpose() * (global.origin - self.origin),
+            axes: self.axes.transpose() * global.axes,
+        }
+    }
+}
+
+/// What a name stands for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Entity {
+    Part(usize),
+    Marker(usize),
+    Element(usize),
+    Material(usize),
+    Geometry(usize),
+    /// A design variable's value (`variable create ... real_value = v`).
+    Design(usize),
+    Model,
+}
+
+/// A geometry (`geometry create shape ...`): its command and shape, its
+/// id, and whether a contact meets it (then a GRAPHICS is written for it).
+struct Geometry {
+    command: usize,
+    shape: String,
+    id: Option<u64>,
+    met: bool,
+}
+
+/// A rigid part.
+struct Part {
+    name: String,
+    id: Option<u64>,
+    span: Span,
+    frame: Frame,
+    ground: bool,
+    /// The `mass_properties` command.
+    mass: Option<usize>,
+    /// The `initial_velocity` command.
+    velocity: Option<usize>,
+    /// The solids (`geometry create shape` commands) on it.
+    solids: Vec<usize>,
+    /// Not made inactive (`part attributes ... active = off`).
+    active: bool,
+}
+
+/// A marker (or floating marker) on a part.
+struct Marker {
+    id: Option<u64>,
+    span: Span,
+    part: usize,
+    frame: Frame,
+    floating: bool,
+}
+
+/// An element: its kind, the commands that made and changed it.
+struct Element {
+    /// The solver statement, and the keywords its words give.
+    statement: &'static str,
+    flags: Vec<&'static str>,
+    parameters: &'static [&'static [(&'static str, Becomes)]],
+    id: Option<u64>,
+    span: Span,
+    /// `(command, argument)` of each parameter given, the last for each.
+    given: Vec<(CompactString, usize, usize)>,
+    active: bool,
+}
+
+/// The reader's state.
+struct Reader<'d> {
+    view: &'d Dataset,
+    trees: HashMap<(usize, CompactString), &'d Checked>,
+    names: HashMap<String, Entity>,
+    /// Every tail of every full name, with what it stands for.
+    tails: HashMap<String, Vec<Entity>>,
+    model: Option<String>,
+    parts: Vec<Part>,
+    markers: Vec<Marker>,
+    elements: Vec<Element>,
+    geometries: Vec<Geometry>,
+    densities: Vec<f64>,
+    designs: Vec<f64>,
+    /// The function measures being read into a function (against loops).
+    reading: Vec<usize>,
+    /// The user-defined force instances (`ude create instance` of a
+    /// force): refused unless made inactive.
+    user_forces: Vec<(String, usize, bool)>,
+    /// The frame locations are given in by default.
+    coordinates: Frame,
+    degrees: bool,
+    units: [(&'static str, &'static str); 4],
+    units_span: Span,
+    run: Option<RunCommands>,
+    errors: Vec<SimulateError>,
+    notes: Vec<(String, Span)>,
+}
+
+/// A name as the reader keys it: upper case, without the leading dot and
+/// quotes.
+fn key(name: &str) -> String {
+    name.trim()
+        .trim_matches('"')
+        .trim_start_matches('.')
+        .to_ascii_uppercase()
+}
+
+/// The words of `statement` without its verb (`CREATE`, `MODIFY`), and the verb.
+fn words_and_verb(statement: &Statement) -> (String, Option<&str>) {
+    let words: Vec<&str> = statement.name.split(' ').collect();
+    match words
+        .iter()
+        .position(|word| matches!(*word, "CREATE" | "MODIFY"))
+    {
+        Some(at) => {
+            let mut rest = words[..at].to_vec();
+            rest.extend(&words[at + 1..]);
+            (rest.join(" "), Some(words[at]))
+        }
+        None => (words.join(" "), None),
+    }
+}
+
+/// The label of a View command for messages: its words, lower case.
+fn label(statement: &Statement) -> String {
+    statement.name.to_ascii_lowercase().to_string()
+}
+
+/// A View unit name, or the solver's, as the solver's.
+fn solver_unit(kind: &str, name: &str) -> Option<&'static str> {
+    let name = name.trim_matches('"').to_ascii_uppercase();
+    let table: &[(&[&str], &str)] = match kind {
+        "LENGTH" => &[
+            (&["MM", "MILLIMETER", "MILLIMETERS"], "MILLIMETER"),
+            (&["CM", "CENTIMETER", "CENTIMETERS"], "CENTIMETER"),
+            (&["METER", "METERS", "M"], "METER"),
+            (&["KM", "KILOMETER", "KILOMETERS"], "KILOMETER"),
+            (&["INCH", "INCHES", "IN"], "INCH"),
+            (&["FOOT", "FEET", "FT"], "FOOT"),
+            (&["MILE", "MILES"], "MILE"),
+            (&["MICRON", "MICROMETER"], "MICROMETER"),
+        ],
+        "MASS" => &[
+            (&["KG", "KILOGRAM", "KILOGRAMS"], "KILOGRAM"),
+            (&["GRAM", "GRAMS", "G"], "GRAM"),
+            (&["POUND_MASS", "LBM"], "POUND_MASS"),
+            (&["KPOUND_MASS"], "KPOUND_MASS"),
+            (&["SLUG", "SLUGS"], "SLUG"),
+            (&["OUNCE_MASS"], "OUNCE_MASS"),
+            (&["TONNE", "MEGAGRAM"], "TONNE"),
+        ],
+        "FORCE" => &[
+            (&["NEWTON", "NEWTONS", "N"], "NEWTON"),
+            (&["KNEWTON", "KILONEWTON"], "KNEWTON"),
+            (&["MILLINEWTON"], "MILLINEWTON"),
+            (&["MEGANEWTON"], "MEGANEWTON"),
+            (&["DYNE", "DYNES"], "DYNE"),
+            (&["POUND_FORCE", "LBF"], "POUND_FORCE"),
+            (&["KPOUND_FORCE"], "KPOUND_FORCE"),
+            (&["KG_FORCE", "KILOGRAM_FORCE"], "KILOGRAM_FORCE"),
+            (&["OUNCE_FORCE"], "OUNCE_FORCE"),
+        ],
+        _ => &[
+            (&["SEC", "SECOND", "SECONDS", "S"], "SECOND"),
+            (
+                &["MILLISEC", "MILLISECOND", "MILLISECONDS", "MS"],
+                "MILLISECOND",
+            ),
+            (&["MINUTE", "MINUTES", "MIN"], "MINUTE"),
+            (&["HOUR", "HOURS", "HR"], "HOUR"),
+        ],
+    };
+    table
+        .iter()
+        .find(|(names, _)| names.contains(&name.as_str()))
+        .map(|&(_, solver)| solver)
+}
+
+/// Reads the View command file `view` (checked: `check`) as a solver
+/// dataset. Every command that would change the motion and is not read is
+/// refused at its place.
+pub fn solver_dataset(
+    view: &Dataset,
+    check: &ModelCheck,
+) -> Result<ViewDataset, Vec<SimulateError>> {
+    let mut trees = HashMap::new();
+    for found in &check.expressions {
+        if let Some(tree) = &found.checked {
+            trees.insert((found.statement, found.keyword.clone()), tree);
+        }
+    }
+    let mut reader = Reader {
+        view,
+        trees,
+        names: HashMap::new(),
+        tails: HashMap::new(),
+        model: None,
+        parts: Vec::new(),
+        markers: Vec::new(),
+        elements: Vec::new(),
+        geometries: Vec::new(),
+        densities: Vec::new(),
+        designs: Vec::new(),
+        reading: Vec::new(),
+        user_forces: Vec::new(),
+        coordinates: Frame::GROUND,
+        degrees: true,
+        units: [
+            ("FORCE", "NEWTON"),
+            ("MASS", "KILOGRAM"),
+            ("LENGTH", "MILLIMETER"),
+            ("TIME", "SECOND"),
+        ],
+        units_span: Span::at(0),
+        run: None,
+        errors: Vec::new(),
+        notes: Vec::new(),
+    };
+    reader.ground(None, Span::at(0));
+    for index in 0..view.statements.len() {
+        reader.command(index);
+    }
+    let statements = reader.write();
+    if !reader.errors.is_empty() {
+        return Err(SimulateError::grouped(reader.errors));
+    }
+    Ok(ViewDataset {
+        dataset: Dataset {
+            kind: FileKind::Adm,
+            title: None,
+            statements,
+            problems: Vec::new(),
+        },
+        run: reader.run,
+        notes: reader.notes,
+    })
+}
+
+impl<'d> Reader<'d> {
+    fn refuse(&mut self, statement: &Statement, reason: String, span: Span) {
+        self.errors.push(SimulateError::Unsupported {
+            statement: format!("`{}`", label(statement)),
+            reason,
+            span,
+        });
+    }
+
+    fn wrong(&mut self, message: String, span: Span) {
+        self.errors.push(SimulateError::Model { message, span });
+    }
+
+    /// Enters `name` (full, upper case) for `entity`, with its tails.
+    fn name(&mut self, name: String, entity: Entity) {
+        let mut rest = name.as_str();
+        while let Some((_, tail)) = rest.split_once('.') {
+            self.tails.entry(tail.to_string()).or_default().push(entity);
+            rest = tail;
+        }
+        self.names.insert(name, entity);
+    }
+
+    /// What `name` (full or a tail) stands for.
+    fn find(&self, name: &str) -> Option<Entity> {
+        let name = key(name);
+        if let Some(entity) = self.names.get(&name) {
+            return Some(*entity);
+        }
+        match self.tails.get(&name).map(Vec::as_slice) {
+            Some([entity]) => Some(*entity),
+            _ => None,
+        }
+    }
+
+    /// The full name of a new object named `name` in the model.
+    fn full(&self, name: &str) -> String {
+        let name = key(name);
+        match &self.model {
+            Some(model) if !name.contains('.') => format!("{model}.{name}"),
+            _ => name,
+        }
+    }
+
+    /// The ground part, created with the model.
+    fn ground(&mut self, model: Option<&str>, span: Span) {
+        let name = match model {
+            Some(model) => format!("{model}.GROUND"),
+            None => "GROUND".to_string(),
+        };
+        if self.find(&name).is_some() {
+            return;
+        }
+        self.parts.push(Part {
+            name: name.clone(),
+            id: None,
+            span,
+            frame: Frame::GROUND,
+            ground: true,
+            mass: None,
+            velocity: None,
+            solids: Vec::new(),
+            active: true,
+        });
+        self.name(name, Entity::Part(self.parts.len() - 1));
+    }
+
+    /// Gives `part` the full name `new`; the names under its old one (its
+    /// markers') are entered under the new one too.
+    fn rename_part(&mut self, part: usize, new: String) {
+        let old = self.parts[part].name.clone();
+        self.names.remove(&old);
+        for tails in self.tails.values_mut() {
+            tails.retain(|entity| *entity != Entity::Part(part));
+        }
+        let renamed: Vec<(String, Entity)> = self
+            .names
+            .iter()
+            .filter(|(name, _)| name.starts_with(&format!("{old}.")))
+            .map(|(name, entity)| (format!("{new}{}", &name[old.len()..]), *entity))
+            .collect();
+        for (name, entity) in renamed {
+            self.name(name, entity);
+        }
+        self.parts[part].name = new.clone();
+        self.name(new, Entity::Part(part));
+    }
+
+    /// The argument `keyword` of command `index`, with its index.
+    fn argument(&self, index: usize, keyword: &str) -> Option<(usize, &'d Argument)> {
+        self.view.statements[index]
+            .arguments
+            .iter()
+            .enumerate()
+            .find(|(_, argument)| argument.keyword == keyword)
+    }
+
+    /// The items of a list argument.
+    fn items(&self, index: usize, keyword: &str) -> Option<&'d [ValueItem]> {
+        match &self.argument(index, keyword)?.1.value {
+            Value::List(items) => Some(items),
+            _ => None,
+        }
+    }
+
+    /// The items of a list argument as written (names).
+    fn names(&self, index: usize, keyword: &str) -> Vec<String> {
+        self.items(index, keyword)
+            .unwrap_or_default()
+            .iter()
+            .map(|item| item.text.to_string())
+            .collect()
+    }
+
+    /// Refuses `argument` of `statement`: a parameter the reading does not
+    /// know.
+    fn refuse_unread(&mut self, statement: &Statement, argument: &Argument) {
+        let reason = format!(
+            "sets {}, which mbexpr does not read",
+            argument.keyword.to_ascii_lowercase()
+        );
+        self.refuse(statement, reason, argument.span);
+    }
+
+    /// The single word of a list argument, upper case.
+    fn word(&self, index: usize, keyword: &str) -> Option<String> {
+        self.items(index, keyword)
+            .and_then(|items| items.first())
+            .map(|item| key(&item.text))
+    }
+
+    /// The numbers of a list argument; angles (`angle`) in radians.
+    fn numbers(&mut self, index: usize, keyword: &str, angle: bool) -> Option<Vec<f64>> {
+        let (_, argument) = self.argument(index, keyword)?;
+        let Value::List(items) = &argument.value else {
+            return None;
+        };
+        let mut values = Vec::new();
+        for item in items {
+            let degrees = item.text.trim().ends_with(['d', 'D']);
+            match item.number() {
+                Some(value) if angle && !degrees && self.degrees => values.push(value * PI / 180.0),
+                Some(value) => values.push(value),
+                None => {
+                    self.wrong(
+                        format!(
+                            "{}: `{}` is not a number mbexpr reads (a View expression in parentheses, or a value with its unit, is evaluated by View: give the number)",
+                            keyword.to_ascii_lowercase(),
+                            item.text
+                        ),
+                        item.span,
+                    );
+                    return None;
+                }
+            }
+        }
+        Some(values)
+    }
+
+    /// `location` and `orientation` of command `index`, relative to
+    /// `relative_to` or the default coordinate system.
+    fn placed(&mut self, index: usize) -> Frame {
+        let statement = &self.view.statements[index];
+        let reference = match self.argument(index, "RELATIVE_TO") {
+            Some((_, argument)) => match self.frame_of(index, "RELATIVE_TO") {
+                Some(frame) => frame,
+                None => {
+                    self.wrong(
+                        "relative_to names no model, part or marker the file creates before".into(),
+                        argument.span,
+                    );
+                    Frame::GROUND
+                }
+            },
+            None => self.coordinates,
+        };
+        let location = self.numbers(index, "LOCATION", false).unwrap_or_default();
+        let orientation = self.numbers(index, "ORIENTATION", true).unwrap_or_default();
+        for (keyword, values) in [("LOCATION", &location), ("ORIENTATION", &orientation)] {
+            if !values.is_empty() && values.len() != 3 {
+                let span = statement.place_of(keyword, keyword.len());
+                self.wrong(
+                    format!("{} takes three numbers", keyword.to_ascii_lowercase()),
+                    span,
+                );
+            }
+        }
+        let three = |values: &[f64]| match values {
+            [a, b, c] => [*a, *b, *c],
+            _ => [0.0; 3],
+        };
+        let [x, y, z] = three(&location);
+        let [psi, theta, phi] = three(&orientation);
+        reference.then(&Frame {
+            origin: Vector3::new(x, y, z),
+            axes: euler_313(psi, theta, phi).to_rotation_matrix().into_inner(),
+        })
+    }
+
+    /// Whether a modify command `index` places its object anew: it gives
+    /// a location or orientation, and none of its placing arguments is a
+    /// View expression (those restate the place the create command wrote:
+    /// `(LOC_RELATIVE_TO({0, 0, 0}, .model.ground.A))`).
+    fn moves(&self, index: usize) -> bool {
+        let placing = ["LOCATION", "ORIENTATION", "RELATIVE_TO"]
+            .map(|keyword| self.argument(index, keyword).map(|(_, argument)| argument));
+        placing[..2].iter().any(Option::is_some)
+            && !placing
+                .iter()
+                .flatten()
+                .any(|argument| view_expression(argument))
+    }
+
+    /// A design variable: its single real value, which functions read.
+    fn design_variable(&mut self, index: usize) {
+        let Some(name) = self.word(index, "VARIABLE_NAME") else {
+            return;
+        };
+        let Some((_, argument)) = self.argument(index, "REAL_VALUE") else {
+            return;
+        };
+        if view_expression(argument) {
+            return;
+        }
+        let Some([value]) = self
+            .numbers(index, "REAL_VALUE", false)
+            .as_deref()
+            .map(|values| match values {
+                [value] => [*value],
+                _ => [f64::NAN],
+            })
+        else {
+            return;
+        };
+        match self.find(&name) {
+            Some(Entity::Design(design)) => self.designs[design] = value,
+            _ => {
+                self.designs.push(value);
+                let full = self.full(&name);
+                self.name(full, Entity::Design(self.designs.len() - 1));
+            }
+        }
+    }
+
+    /// A user-defined element's instance: a force's is refused (unless
+    /// made inactive later); other instances (a controls plant's
+    /// inputs and outputs) are passed over.
+    fn user_defined(&mut self, index: usize) {
+        let definition = self.word(index, "DEFINITION_NAME").unwrap_or_default();
+        let Some(name) = self.word(index, "INSTANCE_NAME") else {
+            return;
+        };
+        if definition.contains(".FORCES.") && self.view.statements[index].name.contains(" CREATE ")
+        {
+            self.user_forces.push((self.full(&name), index, true));
+        }
+    }
+
+    /// The frame of the model, part or marker argument `keyword` names.
+    fn frame_of(&self, index: usize, keyword: &str) -> Option<Frame> {
+        let name = self.word(index, keyword)?;
+        match self.find(&name)? {
+            Entity::Model => Some(Frame::GROUND),
+            Entity::Part(part) => Some(self.parts[part].frame),
+            Entity::Marker(marker) => Some(self.markers[marker].frame),
+            _ => None,
+        }
+    }
+
+    /// The id of argument `keyword` when it is a whole number.
+    fn id(&mut self, index: usize, keyword: &str) -> Option<u64> {
+        let items = self.items(index, keyword)?;
+        let item = items.first()?;
+        match item.text.trim().parse::<u64>() {
+            Ok(id) if id > 0 && id <= crate::model::LARGEST_ID => Some(id),
+            _ => {
+                self.wrong("adams_id must be a positive whole number".into(), item.span);
+                None
+            }
+        }
+    }
+
+    fn command(&mut self, index: usize) {
+        let statement = &self.view.statements[index];
+        let (words, verb) = words_and_verb(statement);
+        let words = words.as_str();
+        match (words, verb) {
+            ("MODEL", Some("CREATE")) => {
+                if let Some(name) = self.word(index, "MODEL_NAME") {
+                    let name = key(&name);
+                    self.model = Some(name.clone());
+                    self.name(name.clone(), Entity::Model);
+                    // The ground made before any model takes the model's name.
+                    match self.names.get("GROUND") {
+                        Some(&Entity::Part(ground)) => {
+                            self.rename_part(ground, format!("{name}.GROUND"));
+                            self.parts[ground].span = statement.span;
+                        }
+                        _ => self.ground(Some(&name), statement.span),
+                    }
+                }
+            }
+            ("DEFAULTS UNITS", None) => self.default_units(index),
+            ("DEFAULTS COORDINATE_SYSTEM", None) => {
+                match self.frame_of(index, "DEFAULT_COORDINATE_SYSTEM") {
+                    Some(frame) => self.coordinates = frame,
+                    None => {
+                        let span = statement.place_of("DEFAULT_COORDINATE_SYSTEM", 7);
+                        self.wrong(
+                            "default_coordinate_system names no model, part or marker the file creates before".into(),
+                            span,
+                        );
+                    }
+                }
+            }
+            ("VARIABLE", Some(_)) => self.design_variable(index),
+            ("UDE INSTANCE", Some(_)) => self.user_defined(index),
+            ("MATERIAL", Some("MODIFY")) => {
+                // A density given again as a View expression keeps the
+                // value the create command wrote (see `view_expression`).
+                if let Some(name) = self.word(index, "MATERIAL_NAME")
+                    && let Some(Entity::Material(material)) = self.find(&name)
+                    && self
+                        .argument(index, "DENSITY")
+                        .is_some_and(|(_, argument)| !view_expression(argument))
+                    && let Some(density) = self
+                        .numbers(index, "DENSITY", false)
+                        .and_then(|values| values.first().copied())
+                {
+                    self.densities[material] = density;
+                }
+            }
+            ("MATERIAL", Some("CREATE")) => {
+                if let Some(name) = self.word(index, "MATERIAL_NAME") {
+                    let density = self
+                        .numbers(index, "DENSITY", false)
+                        .and_then(|values| values.first().copied());
+                    self.densities.push(density.unwrap_or(f64::NAN));
+                    let entity = Entity::Material(self.densities.len() - 1);
+                    let name = self.full(&name);
+                    self.name(name, entity);
+                }
+            }
+            ("PART RIGID_BODY NAME_AND_POSITION", Some(verb)) => self.part(index, verb),
+            ("PART RIGID_BODY MASS_PROPERTIES", Some(verb)) => {
+                if let Some(part) = self.part_named(index, "PART_NAME") {
+                    // View's expression definitions state again, as View
+                    // expressions, what the create command wrote evaluated.
+                    let restated = verb == "MODIFY"
+                        && self.parts[part].mass.is_some()
+                        && statement.arguments.iter().any(view_expression);
+                    if !restated {
+                        self.parts[part].mass = Some(index);
+                    }
+                }
+            }
+            ("PART RIGID_BODY INITIAL_VELOCITY", Some(_)) => {
+                if let Some(part) = self.part_named(index, "PART_NAME") {
+                    self.parts[part].velocity = Some(index);
+                }
+            }
+            ("MARKER", Some(verb)) => self.marker(index, verb == "MODIFY", false),
+            ("FLOATING_MARKER", Some("CREATE")) => self.marker(index, false, true),
+            ("SIMULATION SINGLE_RUN TRANSIENT", None) => {
+                let parameters: Vec<(String, String)> = statement
+                    .arguments
+                    .iter()
+                    .filter_map(|argument| match &argument.value {
+                        Value::List(items) => items
+                            .first()
+                            .map(|item| (argument.keyword.to_string(), key(&item.text))),
+                        _ => None,
+                    })
+                    .collect();
+                self.transient(&parameters, statement.span);
+            }
+            ("SIMULATION SCRIPT", Some(_)) => self.script(index),
+            _ if words.starts_with("GEOMETRY SHAPE ") => self.solid(index, &words[15..]),
+            _ if words.split(' ').nth(1) == Some("ATTRIBUTES") => self.attributes(index),
+            _ => self.element(index, words, verb),
+        }
+    }
+
+    fn default_units(&mut self, index: usize) {
+        let statement = &self.view.statements[index];
+        for argument in &statement.arguments {
+            let Value::List(items) = &argument.value else {
+                continue;
+            };
+            let Some(item) = items.first() else { continue };
+            let value = key(&item.text);
+            match argument.keyword.as_str() {
+                "ANGLE" => match value.as_str() {
+                    "DEG" | "DEGREE" | "DEGREES" => self.degrees = true,
+                    "RAD" | "RADIAN" | "RADIANS" => self.degrees = false,
+                    _ => self.wrong(
+                        format!("angle = {}: mbexpr reads deg and rad", item.text),
+                        item.span,
+                    ),
+                },
+                kind @ ("LENGTH" | "MASS" | "FORCE" | "TIME") => match solver_unit(kind, &value) {
+                    Some(unit) => {
+                        for slot in &mut self.units {
+                            if slot.0 == kind {
+                                slot.1 = unit;
+                            }
+                        }
+                        self.units_span = statement.span;
+                    }
+                    None => self.wrong(
+                        format!(
+                            "{} = {}: not a unit of {} mbexpr knows",
+                            kind.to_ascii_lowercase(),
+                            item.text,
+                            kind.to_ascii_lowercase()
+                        ),
+                        item.span,
+                    ),
+                },
+                "ORIENTATION_TYPE" if value != "BODY313" => self.refuse(
+                    statement,
+                    format!(
+                        "orients by {}: mbexpr reads body313 angles, View's default",
+                        item.text
+                    ),
+                    argument.span,
+                ),
+                "COORDINATE_SYSTEM_TYPE" if value != "CARTESIAN" => self.refuse(
+                    statement,
+                    format!(
+                        "places by {} coordinates: mbexpr reads cartesian ones, View's default",
+                        item.text
+                    ),
+                    argument.span,
+                ),
+                _ => {}
+            }
+        }
+    }
+
+    /// The part argument `keyword` of command `index` names.
+    fn part_named(&mut self, index: usize, keyword: &str) -> Option<usize> {
+        let name = self.word(index, keyword)?;
+        match self.find(&name) {
+            Some(Entity::Part(part)) => Some(part),
+            _ => {
+                let span = self.view.statements[index].place_of(keyword, keyword.len());
+                self.wrong(
+                    format!(
+                        "{} names no part the file creates before",
+                        keyword.to_ascii_lowercase()
+                    ),
+                    span,
+                );
+                None
+            }
+        }
+    }
+
+    fn part(&mut self, index: usize, verb: &str) {
+        let statement = &self.view.statements[index];
+        let Some(name) = self.word(index, "PART_NAME") else {
+            return;
+        };
+        for argument in &statement.arguments {
+            match argument.keyword.as_str() {
+                "PART_NAME" | "NEW_PART_NAME" | "ADAMS_ID" | "LOCATION" | "ORIENTATION"
+                | "RELATIVE_TO" | "COMMENTS" | "GROUND_PART" => {}
+                "PLANAR" if self.word(index, "PLANAR").as_deref() == Some("NO") => {}
+                "PLANAR_AXES" => {}
+                _ => self.refuse_unread(statement, argument),
+            }
+        }
+        let id = self.id(index, "ADAMS_ID");
+        let part = if verb == "CREATE" {
+            let name = self.full(&name);
+            self.parts.push(Part {
+                name: name.clone(),
+                id: None,
+                span: statement.span,
+                frame: Frame::GROUND,
+                ground: false,
+                mass: None,
+                velocity: None,
+                solids: Vec::new(),
+                active: true,
+            });
+            let part = self.parts.len() - 1;
+            self.name(name, Entity::Part(part));
+            part
+        } else {
+            match self.part_named(index, "PART_NAME") {
+                Some(part) => part,
+                None => return,
+            }
+        };
+        if let Some(id) = id {
+            self.parts[part].id = Some(id);
+        }
+        if let Some(new_name) = self.word(index, "NEW_PART_NAME") {
+            // The markers keep their part: their names are re-entered under
+            // the new one.
+            let old = self.parts[part].name.clone();
+            let new = match old.rsplit_once('.') {
+                Some((model, _)) if !new_name.contains('.') => format!("{model}.{new_name}"),
+                _ => key(&new_name),
+            };
+            self.rename_part(part, new);
+        }
+        if verb == "CREATE" || self.moves(index) {
+            if self.parts[part].ground {
+                self.refuse(
+                    statement,
+                    "moves the ground part, which stays at the origin".into(),
+                    statement.span,
+                );
+            } else {
+                self.parts[part].frame = self.placed(index);
+            }
+        }
+    }
+
+    fn marker(&mut self, index: usize, modify: bool, floating: bool) {
+        let statement = &self.view.statements[index];
+        let keyword = if floating {
+            "FLOATING_MARKER_NAME"
+        } else {
+            "MARKER_NAME"
+        };
+        let Some(name) = self.word(index, keyword) else {
+            return;
+        };
+        for argument in &statement.arguments {
+            match argument.keyword.as_str() {
+                "MARKER_NAME"
+                | "FLOATING_MARKER_NAME"
+                | "ADAMS_ID"
+                | "LOCATION"
+                | "ORIENTATION"
+                | "RELATIVE_TO"
+                | "COMMENTS" => {}
+                _ => self.refuse_unread(statement, argument),
+            }
+        }
+        let id = self.id(index, "ADAMS_ID");
+        let frame = if modify && !self.moves(index) {
+            Frame::GROUND
+        } else {
+            self.placed(index)
+        };
+        if modify {
+            match self.find(&name) {
+                Some(Entity::Marker(marker)) => {
+                    if id.is_some() {
+                        self.markers[marker].id = id;
+                    }
+                    if self.moves(index) {
+                        self.markers[marker].frame = frame;
+                    }
+                }
+                _ => {
+                    let span = statement.place_of(keyword, keyword.len());
+                    self.wrong(
+                        "marker_name names no marker the file creates before".into(),
+                        span,
+                    );
+                }
+            }
+            return;
+        }
+        let full = self.full(&name);
+        let Some((owner, _)) = full.rsplit_once('.') else {
+            let span = statement.place_of(keyword, keyword.len());
+            self.wrong(
+                "a marker's name starts with its part's: .model.part.marker".into(),
+                span,
+            );
+            return;
+        };
+        let part = match self.find(owner) {
+            Some(Entity::Part(part)) => part,
+            _ => {
+                let span = statement.place_of(keyword, keyword.len());
+                self.wrong(
+                    format!("the marker's part {owner} is not created before it"),
+                    span,
+                );
+                return;
+            }
+        };
+        self.markers.push(Marker {
+            id,
+            span: statement.span,
+            part,
+            frame,
+            floating,
+        });
+        self.name(full, Entity::Marker(self.markers.len() - 1));
+    }
+
+    fn transient(&mut self, parameters: &[(String, String)], span: Span) {
+        let value = |name: &str| {
+            parameters
+                .iter()
+                .find(|(keyword, _)| keyword.eq_ignore_ascii_case(name))
+                .map(|(_, value)| value.as_str())
+        };
+        let number = |name: &str| value(name).and_then(|text| text.parse::<f64>().ok());
+        let end = number("END_TIME").or_else(|| number("DURATION"));
+        let steps = number("NUMBER_OF_STEPS")
+            .or_else(|| Some(end? / number("STEP_SIZE")?))
+            .filter(|steps| steps.is_finite() && *steps >= 1.0);
+        match (end, steps) {
+            (Some(end), Some(steps)) if end > 0.0 => {
+                self.run = Some(RunCommands {
+                    end,
+                    steps: steps.round() as usize,
+                    statics: value("INITIAL_STATIC").is_some_and(|value| value == "YES"),
+                    land_on_outputs: false,
+                    span,
+                });
+            }
+            _ => self.notes.push((
+                "this simulation gives no end time and steps mbexpr reads (end_time and number_of_steps or step_size): give --end and --steps".into(),
+                span,
+            )),
+        }
+    }
+
+    /// A `simulation script`'s transient commands, as if given alone.
+    fn script(&mut self, index: usize) {
+        let Some(items) = self.items(index, "COMMANDS") else {
+            return;
+        };
+        for item in items {
+            let text = item.text.replace(" =", "=").replace("= ", "=");
+            let mut tokens = text.split_whitespace();
+            let words: Vec<String> = tokens
+                .by_ref()
+                .take(3)
+                .map(str::to_ascii_uppercase)
+                .collect();
+            let transient = ["SIMULATION", "SINGLE_RUN", "TRANSIENT"]
+                .iter()
+                .zip(&words)
+                .all(|(full, word)| word.len() >= 3 && full.starts_with(word.as_str()));
+            if words.len() < 3 || !transient {
+                continue;
+            }
+            let parameters: Vec<(String, String)> = tokens
+                .filter_map(|token| token.split_once('='))
+                .map(|(name, value)| (name.to_ascii_uppercase(), key(value)))
+                .collect();
+            self.transient(&parameters, item.span);
+        }
+    }
+
+    fn solid(&mut self, index: usize, shape: &str) {
+        let statement = &self.view.statements[index];
+        let Some(name) = statement
+            .arguments
+            .iter()
+            .find(|argument| argument.keyword.ends_with("_NAME"))
+            .and_then(|argument| match &argument.value {
+                Value::List(items) => items.first().map(|item| self.full(&item.text)),
+                _ => None,
+            })
+        else {
+            return;
+        };
+        let restated = statement
+            .arguments
+            .iter()
+            .filter(|argument| !argument.keyword.ends_with("_NAME"))
+            .all(view_expression);
+        if statement.name.contains(" MODIFY ") && restated {
+            return;
+        }
+        if statement.name.contains(" CREATE ") {
+            let id = self.id(index, "ADAMS_ID");
+            self.geometries.push(Geometry {
+                command: index,
+                shape: shape.to_string(),
+                id,
+                met: false,
+            });
+            self.name(name.clone(), Entity::Geometry(self.geometries.len() - 1));
+        }
+        // Shapes without volume add no mass; every other is a solid of its
+        // part (refused where the part's mass comes from its geometry and
+        // mbexpr does not compute the shape's: see `solid_moments`).
+        if WIRES.contains(&shape) {
+            return;
+        }
+        if let Some((owner, _)) = name.rsplit_once('.')
+            && let Some(Entity::Part(part)) = self.find(owner)
+        {
+            self.parts[part].solids.push(index);
+        }
+    }
+
+    fn attributes(&mut self, index: usize) {
+        let statement = &self.view.statements[index];
+        let Some(active) = self.word(index, "ACTIVE") else {
+            return;
+        };
+        if !matches!(active.as_str(), "OFF" | "NO") {
+            return;
+        }
+        let Some(name) = statement
+            .arguments
+            .iter()
+            .find(|argument| argument.keyword.ends_with("_NAME"))
+            .and_then(|argument| match &argument.value {
+                Value::List(items) => items.first().map(|item| item.text.clone()),
+                _ => None,
+            })
+        else {
+            return;
+        };
+        match self.find(&name) {
+            Some(Entity::Element(element)) => {
+                self.elements[element].active = false;
+                self.notes.push((
+                    format!("{} is inactive (active = off): left out", key(&name)),
+                    statement.span,
+                ));
+            }
+            Some(Entity::Part(part)) => {
+                if self.parts[part].ground {
+                    self.refuse(
+                        statement,
+                        "deactivates the ground part".into(),
+                        statement.span,
+                    );
+                } else {
+                    self.parts[part].active = false;
+                    self.notes.push((
+                        format!(
+                            "{} is inactive (active = off): left out, with its markers and the elements on them",
+                            name.trim_matches('"')
+                        ),
+                        statement.span,
+                    ));
+                }
+            }
+            Some(Entity::Marker(_)) => self.refuse(
+                statement,
+                "deactivates a marker, which mbexpr does not: make the elements on it inactive"
+                    .into(),
+                statement.span,
+            ),
+            // What the reading passes over (a measure, a graphic, a solid
+            // from a file) stays out; a user-defined force made inactive
+            // is not refused.
+            _ => {
+                let name = key(&name);
+                for (force, _, active) in &mut self.user_forces {
+                    if *force == name {
+                        *active = false;
+                    }
+                }
+            }
+        }
+    }
+
+    fn element(&mut self, index: usize, words: &str, verb: Option<&str>) {
+        let statement = &self.view.statements[index];
+        let read =
+            ELEMENTS.iter().any(|kind| kind.words == words) || constraint_kind(words).is_some();
+        let passed_over = PASSED_OVER.iter().any(|over| {
+            let spaced = format!("{over} ");
+            words == *over || words.starts_with(&spaced) || statement.name.starts_with(&spaced)
+        });
+        if passed_over && !read {
+            return;
+        }
+        if let Some((_, note)) = NOTED
+            .iter()
+            .find(|(over, _)| words == *over || words.starts_with(&format!("{over} ")))
+        {
+            self.notes.push((note.to_string(), statement.span));
+            return;
+        }
+        let found = ELEMENTS
+            .iter()
+            .find(|kind| kind.words == words)
+            .map(|kind| {
+                (
+                    kind.statement,
+                    kind.flags.to_vec(),
+                    kind.name,
+                    kind.parameters,
+                )
+            })
+            .or_else(|| {
+                let (statement, flag) = constraint_kind(words)?;
+                let name = if statement == "JOINT" {
+                    "JOINT_NAME"
+                } else {
+                    "JPRIM_NAME"
+                };
+                let parameters: &'static [&'static [(&'static str, Becomes)]] =
+                    if statement == "JOINT" {
+                        JOINT_PARAMETERS
+                    } else {
+                        &[&TWO_MARKERS]
+                    };
+                Some((statement, vec![flag], name, parameters))
+            });
+        let Some((solver, flags, name_keyword, parameters)) = found else {
+            self.refuse(
+                statement,
+                "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, beams, contacts, gravity, variables, differential equations, function requests and sensors".into(),
+                statement.span,
+            );
+            return;
+        };
+        let Some(verb) = verb else {
+            self.refuse(statement, "is not read".into(), statement.span);
+            return;
+        };
+        let Some(name) = self.word(index, name_keyword) else {
+            let span = statement.span;
+            self.wrong(
+                format!("{} is missing", name_keyword.to_ascii_lowercase()),
+                span,
+            );
+            return;
+        };
+        let element = if verb == "CREATE" {
+            self.elements.push(Element {
+                statement: solver,
+                flags,
+                parameters,
+                id: None,
+                span: statement.span,
+                given: Vec::new(),
+                active: true,
+            });
+            let element = self.elements.len() - 1;
+            let full = self.full(&name);
+            self.name(full, Entity::Element(element));
+            element
+        } else {
+            match self.find(&name) {
+                Some(Entity::Element(element)) if self.elements[element].statement == solver => {
+                    element
+                }
+                _ => {
+                    let span = statement.place_of(name_keyword, name_keyword.len());
+                    self.wrong(
+                        format!(
+                            "{} names no {} the file creates before",
+                            name_keyword.to_ascii_lowercase(),
+                            words.to_ascii_lowercase()
+                        ),
+                        span,
+                    );
+                    return;
+                }
+            }
+        };
+        if let Some(id) = self.id(index, "ADAMS_ID") {
+            self.elements[element].id = Some(id);
+        }
+        for (position, argument) in statement.arguments.iter().enumerate() {
+            let keyword = argument.keyword.as_str();
+            if keyword == name_keyword || matches!(keyword, "ADAMS_ID" | "COMMENTS" | "NEW_NAME") {
+                continue;
+            }
+            if becomes(parameters, keyword).is_none() {
+                self.refuse_unread(statement, argument);
+                continue;
+            }
+            let known = self.elements[element]
+                .given
+                .iter()
+                .any(|(name, _, _)| name == keyword);
+            if view_expression(argument) {
+                // A View expression restates the value the create command
+                // wrote evaluated; one with nothing before cannot be read.
+                if !known {
+                    self.wrong(
+                        format!(
+                            "{}: a View expression mbexpr does not evaluate, and no command before gives the value: give the number",
+                            keyword.to_ascii_lowercase()
+                        ),
+                        argument.span,
+                    );
+                }
+                continue;
+            }
+            let given = &mut self.elements[element].given;
+            given.retain(|(name, _, _)| name != keyword);
+            given.push((argument.keyword.clone(), index, position));
+        }
+    }
+
+    /// The ids of every object, given or the next free of its kind.
+    fn assign_ids(&mut self) {
+        let mut taken: HashMap<&'static str, HashSet<u64>> = HashMap::new();
+        for part in &self.parts {
+            taken.entry("PART").or_default().extend(part.id);
+        }
+        for marker in &self.markers {
+            taken.entry("MARKER").or_default().extend(marker.id);
+        }
+        for element in &self.elements {
+            taken
+                .entry(element.statement)
+                .or_default()
+                .extend(element.id);
+        }
+        for geometry in &self.geometries {
+            taken.entry("GRAPHICS").or_default().extend(geometry.id);
+        }
+        let mut next = |kind: &'static str| {
+            let ids = taken.entry(kind).or_default();
+            let id = (1..).find(|id| !ids.contains(id)).unwrap_or(1);
+            ids.insert(id);
+            id
+        };
+        // The ground first, so that it takes 1 when it is free.
+        let mut order: Vec<usize> = (0..self.parts.len()).collect();
+        order.sort_by_key(|&part| !self.parts[part].ground);
+        for part in order {
+            if self.parts[part].id.is_none() {
+                self.parts[part].id = Some(next("PART"));
+            }
+        }
+        for marker in &mut self.markers {
+            if marker.id.is_none() {
+                marker.id = Some(next("MARKER"));
+            }
+        }
+        for element in &mut self.elements {
+            if element.id.is_none() {
+                element.id = Some(next(element.statement));
+            }
+        }
+        for geometry in &mut self.geometries {
+            if geometry.id.is_none() {
+                geometry.id = Some(next("GRAPHICS"));
+            }
+        }
+    }
+
+    /// Makes inactive every element that names a marker or solid on an
+    /// inactive part, or a joint made inactive so (in file order), as View
+    /// does with what depends on an inactive part.
+    fn leave_out_on_inactive_parts(&mut self) {
+        if self.parts.iter().all(|part| part.active) {
+            return;
+        }
+        for element in 0..self.elements.len() {
+            if !self.elements[element].active {
+                continue;
+            }
+            let parameters = self.elements[element].parameters;
+            let mut on_inactive = false;
+            for (keyword, index, _) in &self.elements[element].given {
+                let Some(becomes) = becomes(parameters, keyword) else {
+                    continue;
+                };
+                let names = self.names(*index, keyword);
+                for name in names {
+                    on_inactive |= match (becomes, self.find(&name)) {
+                        (
+                            Becomes::Marker(_) | Becomes::Floating(_),
+                            Some(Entity::Marker(marker)),
+                        ) => !self.parts[self.markers[marker].part].active,
+                        (Becomes::FloatingOn(_), Some(Entity::Part(part))) => {
+                            !self.parts[part].active
+                        }
+                        (Becomes::Solids(_), Some(Entity::Geometry(geometry))) => {
+                            let owner = self.full(&name);
+                            owner.rsplit_once('.').is_some_and(|(owner, _)| {
+                                matches!(self.find(owner), Some(Entity::Part(part)) if !self.parts[part].active)
+                            }) && geometry < self.geometries.len()
+                        }
+                        (Becomes::Object(_) | Becomes::Joints(_), Some(Entity::Element(joint))) => {
+                            !self.elements[joint].active
+                        }
+                        _ => false,
+                    };
+                }
+            }
+            if on_inactive {
+                self.elements[element].active = false;
+                let span = self.elements[element].span;
+                self.notes
+                    .push(("left out: it acts on an inactive part".into(), span));
+            }
+        }
+    }
+
+    /// A new marker on `part` at `frame`, with the next free id.
+    fn new_marker(&mut self, part: usize, frame: Frame, floating: bool, span: Span) -> u64 {
+        let id = self
+            .markers
+            .iter()
+            .filter_map(|marker| marker.id)
+            .max()
+            .unwrap_or(0)
+            + 1;
+        self.markers.push(Marker {
+            id: Some(id),
+            span,
+            part,
+            frame,
+            floating,
+        });
+        id
+    }
+
+    fn marker_id(&mut self, index: usize, keyword: &str) -> Option<u64> {
+        let name = self.word(index, keyword)?;
+        match self.find(&name) {
+            Some(Entity::Marker(marker)) => self.markers[marker].id,
+            _ => {
+                let span = self.view.statements[index].place_of(keyword, keyword.len());
+                self.wrong(
+                    format!(
+                        "{} names no marker the file creates",
+                        keyword.to_ascii_lowercase()
+                    ),
+                    span,
+                );
+                None
+            }
+        }
+    }
+}
+
+/// Whether an argument holds a View expression: a value in brackets
+/// (`(20g)`, `(.model.DV_1)`, `(LOC_RELATIVE_TO({0, 0, 0}, .model.ground))`),
+/// which View evaluates and mbexpr does not.
+fn view_expression(argument: &Argument) -> bool {
+    match &argument.value {
+        Value::List(items) => items
+            .iter()
+            .any(|item| item.text.trim_start().starts_with('(')),
+        Value::Flag | Value::Expression { .. } => false,
+    }
+}

@@ -1,0 +1,583 @@
+//! The solver statements the reader writes: parts, markers, elements
+//! and the GRAPHICS of contacts' solids, and functions with their names
+//! turned into ids.
+
+use std::f64::consts::PI;
+
+use super::elements::{Becomes, MEASURE, becomes};
+use super::{Entity, Frame, Reader};
+use crate::check::{Argument as TreeArgument, NodeKind, Reference, visit};
+use crate::model::{Argument, Embedded, Statement, Value, ValueItem};
+use crate::span::Span;
+
+impl Reader<'_> {
+    /// The solver statements.
+    pub(super) fn write(&mut self) -> Vec<Statement> {
+        for (_, index, active) in self.user_forces.clone() {
+            if active {
+                let command = &self.view.statements[index];
+                self.refuse(
+                    command,
+                    "is a user-defined force (a View library element), which mbexpr does not read: write it as a force element".into(),
+                    command.span,
+                );
+            }
+        }
+        self.assign_ids();
+        let mut statements = Vec::new();
+        let mut units = new_statement("UNITS", None, self.units_span);
+        for (kind, unit) in self.units {
+            words_argument(&mut units, kind, &[unit], self.units_span);
+        }
+        statements.push(units);
+        self.leave_out_on_inactive_parts();
+        let mut parts = Vec::new();
+        for part in 0..self.parts.len() {
+            if !self.parts[part].active {
+                continue;
+            }
+            if let Some(statement) = self.write_part(part) {
+                parts.push(statement);
+            }
+        }
+        statements.extend(parts);
+        let mut elements = Vec::new();
+        for element in 0..self.elements.len() {
+            if self.elements[element].active
+                && self.elements[element].statement != MEASURE
+                && let Some(statement) = self.write_element(element)
+            {
+                elements.push(statement);
+            }
+        }
+        for geometry in 0..self.geometries.len() {
+            if self.geometries[geometry].met
+                && let Some(statement) = self.write_graphic(geometry)
+            {
+                elements.push(statement);
+            }
+        }
+        // Markers last: writing the parts and elements makes some.
+        for marker in &self.markers {
+            let part = &self.parts[marker.part];
+            if !part.active {
+                continue;
+            }
+            let mut statement = new_statement("MARKER", marker.id, marker.span);
+            ids_argument(&mut statement, "PART", part.id.unwrap_or(0), marker.span);
+            if marker.floating {
+                flag_argument(&mut statement, "FLOATING", marker.span);
+            } else {
+                let local = part.frame.seen(&marker.frame);
+                place_arguments(&mut statement, ["QP", "ZP", "XP"], &local, marker.span);
+            }
+            statements.push(statement);
+        }
+        statements.extend(elements);
+        statements
+    }
+
+    fn write_part(&mut self, part: usize) -> Option<Statement> {
+        let span = self.parts[part].span;
+        let mut statement = new_statement("PART", self.parts[part].id, span);
+        if self.parts[part].ground {
+            flag_argument(&mut statement, "GROUND", span);
+            return Some(statement);
+        }
+        let frame = self.parts[part].frame;
+        place_arguments(&mut statement, ["QG", "ZG", "XG"], &frame, span);
+        if let Some(index) = self.parts[part].mass {
+            self.mass_properties(part, index, &mut statement);
+        }
+        if let Some(index) = self.parts[part].velocity {
+            self.velocities(index, &mut statement);
+        }
+        Some(statement)
+    }
+
+    fn velocities(&mut self, index: usize, statement: &mut Statement) {
+        let command = &self.view.statements[index];
+        for argument in &command.arguments {
+            let keyword = argument.keyword.as_str();
+            match keyword {
+                "PART_NAME" => {}
+                "VX" | "VY" | "VZ" | "WX" | "WY" | "WZ" => {
+                    let angular = keyword.starts_with('W');
+                    if let Some(values) = self.numbers(index, keyword, angular) {
+                        numbers_argument(statement, keyword, &values, argument.span);
+                    }
+                }
+                "VM" | "WM" => {
+                    if let Some(id) = self.marker_id(index, keyword) {
+                        ids_argument(statement, keyword, id, argument.span);
+                    }
+                }
+                "GROUND" | "VX_GROUND" => {}
+                _ => self.refuse_unread(command, argument),
+            }
+        }
+    }
+
+    fn write_element(&mut self, element: usize) -> Option<Statement> {
+        let (solver, span, id) = {
+            let element = &self.elements[element];
+            (element.statement, element.span, element.id)
+        };
+        let id = if solver == "ACCGRAV" { None } else { id };
+        let mut statement = new_statement(solver, id, span);
+        for flag in self.elements[element].flags.clone() {
+            flag_argument(&mut statement, flag, span);
+        }
+        let rotational = self.elements[element]
+            .given
+            .iter()
+            .any(|(keyword, index, _)| {
+                matches!(keyword.as_str(), "TYPE_OF_FREEDOM" | "AXIS")
+                    && matches!(
+                        self.word(*index, keyword).as_deref(),
+                        Some("ROTATIONAL" | "B1" | "B2" | "B3")
+                    )
+            });
+        let given = |name: &str| {
+            self.elements[element]
+                .given
+                .iter()
+                .any(|(keyword, _, _)| keyword == name)
+        };
+        if solver == "CONTACT" && !given("STIFFNESS") && given("RESTITUTION_COEFFICIENT") {
+            self.refuse(
+                &self.view.statements[self.elements[element].given[0].1],
+                "is a restitution (POISSON) contact, which mbexpr does not simulate: give the impact law's stiffness, damping, exponent and dmax".into(),
+                span,
+            );
+            return None;
+        }
+        let parameters = self.elements[element].parameters;
+        for (keyword, index, position) in self.elements[element].given.clone() {
+            let argument = &self.view.statements[index].arguments[position];
+            let Some(becomes) = becomes(parameters, &keyword) else {
+                continue;
+            };
+            let argument_span = argument.span;
+            match becomes {
+                Becomes::Marker(solver_keyword) | Becomes::Floating(solver_keyword) => {
+                    if let Some(id) = self.marker_id(index, &keyword) {
+                        ids_argument(&mut statement, solver_keyword, id, argument_span);
+                    }
+                }
+                Becomes::FloatingOn(solver_keyword) => {
+                    if let Some(part) = self.part_named(index, &keyword) {
+                        let frame = self.parts[part].frame;
+                        let id = self.new_marker(part, frame, true, argument_span);
+                        ids_argument(&mut statement, solver_keyword, id, argument_span);
+                    }
+                }
+                Becomes::Object(solver_keyword) => {
+                    let name = self.word(index, &keyword).unwrap_or_default();
+                    match self.find(&name) {
+                        Some(Entity::Element(target))
+                            if self.elements[target].statement == solver_keyword =>
+                        {
+                            let target_id = self.elements[target].id.unwrap_or(0);
+                            ids_argument(&mut statement, solver_keyword, target_id, argument_span);
+                        }
+                        _ => self.wrong(
+                            format!(
+                                "{} names no {} the file creates",
+                                keyword.to_ascii_lowercase(),
+                                solver_keyword.to_ascii_lowercase()
+                            ),
+                            argument_span,
+                        ),
+                    }
+                }
+                Becomes::Numbers(solver_keyword) => {
+                    if let Some(values) = self.numbers(index, &keyword, false) {
+                        numbers_argument(&mut statement, solver_keyword, &values, argument_span);
+                    }
+                }
+                Becomes::Angles(solver_keyword) => {
+                    if let Some(values) = self.numbers(index, &keyword, true) {
+                        numbers_argument(&mut statement, solver_keyword, &values, argument_span);
+                    }
+                }
+                Becomes::Initial(solver_keyword) => {
+                    if let Some(values) = self.numbers(index, &keyword, rotational) {
+                        numbers_argument(&mut statement, solver_keyword, &values, argument_span);
+                    }
+                }
+                Becomes::PerAngle(solver_keyword) => {
+                    if let Some(values) = self.numbers(index, &keyword, false) {
+                        let scale = if self.degrees { 180.0 / PI } else { 1.0 };
+                        let values: Vec<f64> = values.iter().map(|value| value * scale).collect();
+                        numbers_argument(&mut statement, solver_keyword, &values, argument_span);
+                    }
+                }
+                Becomes::Function(solver_keyword) => {
+                    if let Some(text) = self.function(index, position) {
+                        statement.arguments.push(Argument {
+                            keyword: solver_keyword.into(),
+                            keyword_span: argument.keyword_span,
+                            span: argument_span,
+                            value: Value::Expression {
+                                text,
+                                span: argument_span,
+                            },
+                        });
+                    }
+                }
+                Becomes::Choice(choices) => {
+                    let word = self.word(index, &keyword).unwrap_or_default();
+                    match choices.iter().find(|(view, _)| *view == word) {
+                        Some(&(_, solver_keyword)) => {
+                            flag_argument(&mut statement, solver_keyword, argument_span);
+                        }
+                        None => self.wrong(
+                            format!(
+                                "{} is one of {}",
+                                keyword.to_ascii_lowercase(),
+                                choices
+                                    .iter()
+                                    .map(|(view, _)| view.to_ascii_lowercase())
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
+                            ),
+                            argument_span,
+                        ),
+                    }
+                }
+                Becomes::Word(solver_keyword) => {
+                    let word = self.word(index, &keyword).unwrap_or_default();
+                    words_argument(&mut statement, solver_keyword, &[&word], argument_span);
+                }
+                Becomes::Solids(solver_keyword) => {
+                    let names = self.names(index, &keyword);
+                    let mut ids = Vec::new();
+                    for name in names {
+                        match self.find(&name) {
+                            Some(Entity::Geometry(geometry)) => {
+                                self.geometries[geometry].met = true;
+                                ids.push(self.geometries[geometry].id.unwrap_or(0).to_string());
+                            }
+                            _ => self.refuse(
+                                &self.view.statements[index],
+                                format!(
+                                    "meets {name}, which is no solid this file creates (solids read from a file by `file parasolid read` are not read)"
+                                ),
+                                argument_span,
+                            ),
+                        }
+                    }
+                    let ids: Vec<&str> = ids.iter().map(String::as_str).collect();
+                    words_argument(&mut statement, solver_keyword, &ids, argument_span);
+                }
+                Becomes::Joints(solver_keyword) => {
+                    let names = self.names(index, &keyword);
+                    let mut ids = Vec::new();
+                    for name in names {
+                        match self.find(&name) {
+                            Some(Entity::Element(joint))
+                                if self.elements[joint].statement == "JOINT" =>
+                            {
+                                ids.push(self.elements[joint].id.unwrap_or(0).to_string());
+                            }
+                            _ => self.wrong(
+                                format!("{name} is no joint the file creates"),
+                                argument_span,
+                            ),
+                        }
+                    }
+                    let ids: Vec<&str> = ids.iter().map(String::as_str).collect();
+                    words_argument(&mut statement, solver_keyword, &ids, argument_span);
+                }
+                Becomes::Freedoms(solver_keyword) => {
+                    let word = self.word(index, &keyword).unwrap_or_default();
+                    let freedoms: Option<Vec<&str>> = word
+                        .split('_')
+                        .map(|freedom| match freedom {
+                            "TRANS" | "TRANSLATIONAL" => Some("T"),
+                            "ROT" | "ROTATIONAL" => Some("R"),
+                            _ => None,
+                        })
+                        .collect();
+                    match freedoms {
+                        Some(freedoms) => {
+                            let value = freedoms.join(":");
+                            words_argument(
+                                &mut statement,
+                                solver_keyword,
+                                &[&value],
+                                argument_span,
+                            );
+                        }
+                        None => self.wrong(
+                            format!(
+                                "{} is the joints' freedoms joined by _ (rot_rot, trans_rot ...)",
+                                keyword.to_ascii_lowercase()
+                            ),
+                            argument_span,
+                        ),
+                    }
+                }
+                Becomes::Switch(solver_keyword) => {
+                    let word = self.word(index, &keyword).unwrap_or_default();
+                    match word.as_str() {
+                        "ON" | "YES" | "TRUE" => {
+                            flag_argument(&mut statement, solver_keyword, argument_span);
+                        }
+                        "OFF" | "NO" | "FALSE" => {}
+                        _ => self.wrong(
+                            format!("{} is on or off", keyword.to_ascii_lowercase()),
+                            argument_span,
+                        ),
+                    }
+                }
+                Becomes::Nothing => {}
+            }
+        }
+        Some(statement)
+    }
+
+    /// The GRAPHICS statement of a geometry a contact meets: the solids a
+    /// CONTACT reads (a sphere, a block, a cylinder, a frustum, a plane);
+    /// another shape is refused at its command.
+    fn write_graphic(&mut self, geometry: usize) -> Option<Statement> {
+        let index = self.geometries[geometry].command;
+        let shape = self.geometries[geometry].shape.clone();
+        let span = self.view.statements[index].span;
+        let mut statement = new_statement("GRAPHICS", self.geometries[geometry].id, span);
+        let marker = |reader: &mut Self, view: &str, solver: &str, statement: &mut Statement| {
+            if let Some(id) = reader.marker_id(index, view) {
+                ids_argument(statement, solver, id, span);
+            }
+        };
+        let numbers = |reader: &mut Self, view: &str, solver: &str, statement: &mut Statement| {
+            if let Some(values) = reader.numbers(index, view, false) {
+                numbers_argument(statement, solver, &values, span);
+            }
+        };
+        match shape.as_str() {
+            "ELLIPSOID" => {
+                flag_argument(&mut statement, "ELLIPSOID", span);
+                marker(self, "CENTER_MARKER", "CM", &mut statement);
+                for (view, solver) in [
+                    ("X_SCALE_FACTOR", "XSCALE"),
+                    ("Y_SCALE_FACTOR", "YSCALE"),
+                    ("Z_SCALE_FACTOR", "ZSCALE"),
+                ] {
+                    numbers(self, view, solver, &mut statement);
+                }
+            }
+            "BLOCK" => {
+                flag_argument(&mut statement, "BOX", span);
+                marker(self, "CORNER_MARKER", "CORNER", &mut statement);
+                if let Some(corner) = self.numbers(index, "DIAG_CORNER_COORDS", false)
+                    && let [x, y, z] = corner[..]
+                {
+                    for (keyword, value) in [("X", x), ("Y", y), ("Z", z)] {
+                        numbers_argument(&mut statement, keyword, &[value], span);
+                    }
+                }
+            }
+            "CYLINDER" | "FRUSTUM" => {
+                flag_argument(&mut statement, &shape, span);
+                marker(self, "CENTER_MARKER", "CM", &mut statement);
+                numbers(self, "LENGTH", "LENGTH", &mut statement);
+                if shape == "CYLINDER" {
+                    numbers(self, "RADIUS", "RADIUS", &mut statement);
+                } else {
+                    numbers(self, "TOP_RADIUS", "TOP", &mut statement);
+                    numbers(self, "BOTTOM_RADIUS", "BOTTOM", &mut statement);
+                }
+                let extent = self
+                    .numbers(index, "ANGLE_EXTENT", true)
+                    .and_then(|values| values.first().copied())
+                    .unwrap_or(2.0 * PI);
+                if (extent.abs() - 2.0 * PI).abs() > 1e-9 {
+                    numbers_argument(&mut statement, "RANGLE", &[extent], span);
+                }
+            }
+            "PLANE" => {
+                flag_argument(&mut statement, "PLANE", span);
+                marker(self, "REF_MARKER", "RM", &mut statement);
+            }
+            _ => {
+                let command = &self.view.statements[index];
+                self.refuse(
+                    command,
+                    "is a solid a contact meets that mbexpr does not: it meets spheres (ellipsoids of equal scales), blocks, cylinders, frustums and planes".into(),
+                    span,
+                );
+                return None;
+            }
+        }
+        Some(statement)
+    }
+
+    /// The function of argument `position` of command `index`, its names
+    /// turned into ids; `None` (with the reason) when it cannot be.
+    fn function(&mut self, index: usize, position: usize) -> Option<Embedded> {
+        let statement = &self.view.statements[index];
+        let argument = &statement.arguments[position];
+        let Value::Expression { text, span } = &argument.value else {
+            return None;
+        };
+        if text.text.trim().is_empty() {
+            // View's "no function yet": the element is refused if no later
+            // command gives one.
+            self.wrong(
+                format!(
+                    "{} is empty, and no later command gives it: an element needs its function",
+                    argument.keyword.to_ascii_lowercase()
+                ),
+                *span,
+            );
+            return None;
+        }
+        let tree = *self.trees.get(&(index, argument.keyword.clone()))?;
+        let mut replacements = Vec::new();
+        let mut unknown = Vec::new();
+        visit(&tree.root, &mut |node| match &node.kind {
+            NodeKind::Variable(name) => unknown.push((name.to_string(), node.span)),
+            NodeKind::Call(_, arguments) => {
+                for argument in arguments {
+                    if let TreeArgument::Marker(Reference::Name(name), span)
+                    | TreeArgument::Object(Reference::Name(name), span) = argument
+                    {
+                        replacements.push((*span, name.clone()));
+                    }
+                }
+            }
+            _ => {}
+        });
+        let mut ids = Vec::new();
+        for (name, at) in unknown {
+            match self.find(&name) {
+                Some(Entity::Design(design)) => {
+                    ids.push((at, format!("({:?})", self.designs[design])));
+                }
+                Some(Entity::Element(measure))
+                    if self.elements[measure].statement == MEASURE
+                        && !self.reading.contains(&measure) =>
+                {
+                    let function = self.elements[measure]
+                        .given
+                        .iter()
+                        .find(|(keyword, _, _)| keyword == "FUNCTION")
+                        .map(|&(_, command, position)| (command, position));
+                    self.reading.push(measure);
+                    let measured =
+                        function.and_then(|(command, position)| self.function(command, position));
+                    self.reading.pop();
+                    match measured {
+                        Some(measured) => ids.push((at, format!("({})", measured.text))),
+                        None => self.wrong(
+                            format!("{name}: the measure has no function mbexpr reads"),
+                            text.file_span(at),
+                        ),
+                    }
+                }
+                _ => self.wrong(
+                    format!(
+                        "{name} is a View object mbexpr does not evaluate in a function (it reads design variables and function measures): give its value"
+                    ),
+                    text.file_span(at),
+                ),
+            }
+        }
+        for (at, name) in replacements {
+            let id = match self.find(&name) {
+                Some(Entity::Marker(marker)) => self.markers[marker].id,
+                Some(Entity::Part(part)) => self.parts[part].id,
+                Some(Entity::Element(element)) => self.elements[element].id,
+                _ => None,
+            };
+            match id {
+                Some(id) => ids.push((at, id.to_string())),
+                None => self.wrong(
+                    format!("{name} is no marker, part or element the file creates"),
+                    text.file_span(at),
+                ),
+            }
+        }
+        ids.sort_by_key(|(at, _)| at.start);
+        Some(text.replaced(&ids))
+    }
+}
+
+pub(super) fn new_statement(name: &str, id: Option<u64>, span: Span) -> Statement {
+    Statement {
+        name: name.into(),
+        id,
+        span,
+        arguments: Vec::new(),
+    }
+}
+
+pub(super) fn list_argument(
+    statement: &mut Statement,
+    keyword: &str,
+    texts: Vec<String>,
+    span: Span,
+) {
+    statement.arguments.push(Argument {
+        keyword: keyword.into(),
+        keyword_span: span,
+        span,
+        value: Value::List(
+            texts
+                .into_iter()
+                .map(|text| ValueItem {
+                    text: text.into(),
+                    span,
+                })
+                .collect(),
+        ),
+    });
+}
+
+pub(super) fn numbers_argument(
+    statement: &mut Statement,
+    keyword: &str,
+    values: &[f64],
+    span: Span,
+) {
+    let texts = values.iter().map(|value| format!("{value:?}")).collect();
+    list_argument(statement, keyword, texts, span);
+}
+
+pub(super) fn ids_argument(statement: &mut Statement, keyword: &str, id: u64, span: Span) {
+    list_argument(statement, keyword, vec![id.to_string()], span);
+}
+
+pub(super) fn words_argument(statement: &mut Statement, keyword: &str, words: &[&str], span: Span) {
+    let texts = words.iter().map(|word| word.to_string()).collect();
+    list_argument(statement, keyword, texts, span);
+}
+
+pub(super) fn flag_argument(statement: &mut Statement, keyword: &str, span: Span) {
+    statement.arguments.push(Argument {
+        keyword: keyword.into(),
+        keyword_span: span,
+        span,
+        value: Value::Flag,
+    });
+}
+
+/// `origin`, a point on the z axis and one on the x axis of `frame`.
+pub(super) fn place_arguments(
+    statement: &mut Statement,
+    keywords: [&str; 3],
+    frame: &Frame,
+    span: Span,
+) {
+    let origin = frame.origin;
+    let points = [
+        origin,
+        origin + frame.axes.column(2),
+        origin + frame.axes.column(0),
+    ];
+    for (keyword, point) in keywords.into_iter().zip(points) {
+        numbers_argument(statement, keyword, &[point.x, point.y, point.z], span);
+    }
+}
