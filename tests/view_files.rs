@@ -851,3 +851,79 @@ END
     let turn = 2.0 * (last[7] / last[4]).atan();
     assert!((turn - 0.5 * alpha).abs() < 1e-6, "the wheel turned {turn}");
 }
+
+/// `examples/simulate/n_view_four_bar.cmd`, a four-bar linkage as View
+/// exports it (links whose mass View computes from their geometry, four
+/// revolute joints, a motion turning the crank once a second): its run
+/// is the script's, and the rocker's angle (REQUEST F2, in degrees)
+/// follows the linkage's closed-form position at every row.
+#[test]
+fn the_view_four_bar_follows_its_closed_form() {
+    let text = include_str!("../examples/simulate/n_view_four_bar.cmd");
+    let model = view_model(text).unwrap_or_else(|errors| panic!("{errors}"));
+    assert_eq!(model.run, Some((1.0, 20)));
+    let columns = simulate::columns(&model);
+    let angle = columns
+        .iter()
+        .position(|column| column == "REQUEST/1.F2")
+        .expect("the request's column");
+    let (a, d): (Vector3<f64>, Vector3<f64>) = (Vector3::zeros(), Vector3::new(400.0, 0.0, 0.0));
+    let (b0, c0) = (
+        Vector3::new(0.0, 100.0, 0.0),
+        Vector3::new(300.0, 250.0, 0.0),
+    );
+    let (coupler, rocker) = ((c0 - b0).norm(), (c0 - d).norm());
+    let start = (c0.y - d.y).atan2(c0.x - d.x);
+    let mut c = c0;
+    let mut largest = 0.0_f64;
+    for row in rows(&model, 1.0, 20) {
+        let crank = std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * row[0];
+        let b = a + Vector3::new(crank.cos(), crank.sin(), 0.0) * 100.0;
+        // C on the circles about B and D: of the two, the one nearer the
+        // last (the linkage does not pass a toggle).
+        let (between, distance) = (d - b, (d - b).norm());
+        let along = (coupler * coupler - rocker * rocker + distance * distance) / (2.0 * distance);
+        let across = (coupler * coupler - along * along).sqrt();
+        let unit = between / distance;
+        let normal = Vector3::new(-unit.y, unit.x, 0.0);
+        let candidates = [
+            b + unit * along + normal * across,
+            b + unit * along - normal * across,
+        ];
+        c = if (candidates[0] - c).norm() < (candidates[1] - c).norm() {
+            candidates[0]
+        } else {
+            candidates[1]
+        };
+        let turned = ((c.y - d.y).atan2(c.x - d.x) - start).to_degrees();
+        let wrapped = (turned + 180.0).rem_euclid(360.0) - 180.0;
+        largest = largest.max((row[angle] - wrapped).abs());
+    }
+    assert!(
+        largest < 1e-4,
+        "the rocker is off its closed form by {largest:e} degrees"
+    );
+}
+
+/// Function measures that read one another in a loop, or a chain of
+/// thousands, stop with a message, not a stack overflow.
+#[test]
+fn measures_in_a_loop_or_a_long_chain_stop_with_a_message() {
+    let mut text = String::from("model create model_name = m\n");
+    text.push_str("measure create function measure_name = .m.A function = \".m.B + 1\"\n");
+    text.push_str("measure create function measure_name = .m.B function = \".m.A + 1\"\n");
+    text.push_str("data_element create variable variable_name = .m.V function = \".m.A\"\n");
+    let looped = view_model(&text).expect_err("a loop is refused");
+    assert!(looped.contains("read one another in a loop"), "{looped}");
+    let mut chain = String::from("model create model_name = m\n");
+    for k in 0..5000 {
+        chain.push_str(&format!(
+            "measure create function measure_name = .m.M{k} function = \".m.M{} + 1\"\n",
+            k + 1
+        ));
+    }
+    chain.push_str("measure create function measure_name = .m.M5000 function = \"1\"\n");
+    chain.push_str("data_element create variable variable_name = .m.V function = \".m.M0\"\n");
+    let long = view_model(&chain).expect_err("a chain of 5000 is refused");
+    assert!(long.contains("32 deep"), "{long}");
+}

@@ -10,6 +10,10 @@ use crate::check::{Argument as TreeArgument, NodeKind, Reference, visit};
 use crate::model::{Argument, Embedded, Statement, Value, ValueItem};
 use crate::span::Span;
 
+/// How deep function measures may read one another (each level a
+/// recursion of the reader).
+const MEASURE_DEPTH: usize = 32;
+
 impl Reader<'_> {
     /// The solver statements.
     pub(super) fn write(&mut self) -> Vec<Statement> {
@@ -458,7 +462,8 @@ impl Reader<'_> {
                 }
                 Some(Entity::Element(measure))
                     if self.elements[measure].statement == MEASURE
-                        && !self.reading.contains(&measure) =>
+                        && !self.reading.contains(&measure)
+                        && self.reading.len() < MEASURE_DEPTH =>
                 {
                     let function = self.elements[measure]
                         .given
@@ -476,6 +481,14 @@ impl Reader<'_> {
                             text.file_span(at),
                         ),
                     }
+                }
+                Some(Entity::Element(measure)) if self.elements[measure].statement == MEASURE => {
+                    self.wrong(
+                        format!(
+                            "{name}: function measures read one another in a loop, or {MEASURE_DEPTH} deep"
+                        ),
+                        text.file_span(at),
+                    );
                 }
                 _ => self.wrong(
                     format!(
