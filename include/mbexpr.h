@@ -150,7 +150,9 @@ int mbexpr_check_model(const char *path, mbexpr_diagnostics **diagnostics,
                        mbexpr_error *error);
 
 /* A model ready to simulate: a solver dataset (with END and STEPS of a
- * SIMULATE/DYNAMIC command in an .acf beside it) or a scene file. A model
+ * SIMULATE/DYNAMIC command in an .acf beside it), an Adams View command
+ * file (.cmd, with those of its last transient simulation) or a scene
+ * file. A model
  * that does not check, or holds what the simulator does not run
  * (constraints), is an error at its first problem (with how many more
  * there are); the _all forms list every problem as mbexpr_compile_all

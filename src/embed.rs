@@ -598,8 +598,10 @@ pub struct Ran {
 }
 
 impl LoadedModel {
-    /// Reads the model of the file at `path`: a scene file (`.toml`) or a
-    /// solver dataset, with the END and STEPS of an `.acf` beside it.
+    /// Reads the model of the file at `path`: a scene file (`.toml`), a
+    /// solver dataset, with the END and STEPS of an `.acf` beside it, or an
+    /// Adams View command file (`.cmd`), with those of its last transient
+    /// simulation.
     pub fn from_path(path: &str) -> Result<LoadedModel, Vec<Located>> {
         let (format, kind) = simulate::format_of_path(path, None)
             .map_err(|message| vec![Located::nowhere(message)])?;

@@ -873,7 +873,9 @@ unsafe fn hand_over(model: LoadedModel, out: *mut *mut CModel) -> Result<(), Vec
 
 /// `int mbexpr_model_load(const char *path, mbexpr_model **model,
 /// mbexpr_error *error)`: reads a solver dataset (with the END and STEPS
-/// of an `.acf` beside it) or a scene file (`.toml`) for simulation. A
+/// of an `.acf` beside it), an Adams View command file (`.cmd`, with those
+/// of its last transient simulation) or a scene file (`.toml`) for
+/// simulation. A
 /// model that does not check, or holds what the simulator does not run,
 /// is an error at its first problem's line and column, with how many more
 /// there are ([`mbexpr_model_load_all`] lists every one).
