@@ -101,19 +101,22 @@ pub fn from_text(
     format: ModelFormat,
     kind: crate::model::FileKind,
 ) -> Result<Model, Unread> {
+    // The dataset's check, its problems the error when it has any.
+    let checked = |dataset: &crate::model::Dataset| {
+        let report = crate::model::check_model(text, dataset);
+        if report.problems.is_empty() {
+            Ok(report)
+        } else {
+            Err(Unread::Unchecked(report.problems))
+        }
+    };
     match format {
         ModelFormat::Scene => read::from_scene(text).map_err(Unread::Refused),
         ModelFormat::Dataset if kind == crate::model::FileKind::Cmd => {
             let view = crate::model::read(text, kind);
-            let report = crate::model::check_model(text, &view);
-            if !report.problems.is_empty() {
-                return Err(Unread::Unchecked(report.problems));
-            }
+            let report = checked(&view)?;
             let read = read::solver_dataset(&view, &report).map_err(Unread::Refused)?;
-            let report = crate::model::check_model(text, &read.dataset);
-            if !report.problems.is_empty() {
-                return Err(Unread::Unchecked(report.problems));
-            }
+            let report = checked(&read.dataset)?;
             let mut model = from_dataset(&read.dataset, &report).map_err(Unread::Refused)?;
             model.notes.extend(read.notes);
             if let Some(run) = read.run {
@@ -124,10 +127,7 @@ pub fn from_text(
         }
         ModelFormat::Dataset => {
             let dataset = crate::model::read(text, kind);
-            let report = crate::model::check_model(text, &dataset);
-            if !report.problems.is_empty() {
-                return Err(Unread::Unchecked(report.problems));
-            }
+            let report = checked(&dataset)?;
             from_dataset(&dataset, &report).map_err(Unread::Refused)
         }
     }

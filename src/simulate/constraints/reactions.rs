@@ -351,15 +351,12 @@ impl Reactions {
             };
             let loads = &mut self.joints[joint_index];
             for (body, load) in through {
+                // The gear loses the tooth force the joint no longer carries;
+                // the carrier takes it back.
+                let sign = if Some(body) == gear { -1.0 } else { 1.0 };
                 let mut moved = load;
-                if Some(body) == gear {
-                    for (moved, tooth) in moved.iter_mut().zip(tooth_on(body)) {
-                        *moved -= tooth;
-                    }
-                } else {
-                    for (moved, tooth) in moved.iter_mut().zip(tooth_on(body)) {
-                        *moved += tooth;
-                    }
+                for (moved, tooth) in moved.iter_mut().zip(tooth_on(body)) {
+                    *moved += sign * tooth;
                 }
                 add_load(loads, body, moved);
             }

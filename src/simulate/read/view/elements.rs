@@ -66,8 +66,6 @@ pub(super) const WIRES: [&str; 10] = [
 pub(super) enum Becomes {
     /// A marker's id.
     Marker(&'static str),
-    /// A floating marker's id.
-    Floating(&'static str),
     /// A part, held by a floating marker made on it.
     FloatingOn(&'static str),
     /// An element's id (a motion's joint).
@@ -123,7 +121,7 @@ pub(super) const TWO_MARKERS: [(&str, Becomes); 2] = [
 /// part) and the marker its components are in.
 const ON_FLOATING_J: [(&str, Becomes); 4] = [
     ("I_MARKER_NAME", Becomes::Marker("I")),
-    ("J_FLOATING_MARKER_NAME", Becomes::Floating("JFLOAT")),
+    ("J_FLOATING_MARKER_NAME", Becomes::Marker("JFLOAT")),
     ("J_PART_NAME", Becomes::FloatingOn("JFLOAT")),
     ("REF_MARKER_NAME", Becomes::Marker("RM")),
 ];

@@ -115,6 +115,8 @@ struct Geometry {
     command: usize,
     shape: String,
     id: Option<u64>,
+    /// The part it is on, by its name's path.
+    part: Option<usize>,
     met: bool,
 }
 
@@ -429,6 +431,19 @@ impl<'d> Reader<'d> {
             Value::List(items) => Some(items),
             _ => None,
         }
+    }
+
+    /// The object command `index` is about: the value of its first
+    /// `*_name` parameter, as written.
+    fn object_name(&self, index: usize) -> Option<String> {
+        self.view.statements[index]
+            .arguments
+            .iter()
+            .find(|argument| argument.keyword.ends_with("_NAME"))
+            .and_then(|argument| match &argument.value {
+                Value::List(items) => items.first().map(|item| item.text.to_string()),
+                _ => None,
+            })
     }
 
     /// The items of a list argument as written (names).
@@ -985,15 +1000,7 @@ impl<'d> Reader<'d> {
 
     fn solid(&mut self, index: usize, shape: &str) {
         let statement = &self.view.statements[index];
-        let Some(name) = statement
-            .arguments
-            .iter()
-            .find(|argument| argument.keyword.ends_with("_NAME"))
-            .and_then(|argument| match &argument.value {
-                Value::List(items) => items.first().map(|item| self.full(&item.text)),
-                _ => None,
-            })
-        else {
+        let Some(name) = self.object_name(index).map(|name| self.full(&name)) else {
             return;
         };
         let restated = statement
@@ -1004,24 +1011,29 @@ impl<'d> Reader<'d> {
         if statement.name.contains(" MODIFY ") && restated {
             return;
         }
+        let part = match name
+            .rsplit_once('.')
+            .and_then(|(owner, _)| self.find(owner))
+        {
+            Some(Entity::Part(part)) => Some(part),
+            _ => None,
+        };
         if statement.name.contains(" CREATE ") {
             let id = self.id(index, "ADAMS_ID");
             self.geometries.push(Geometry {
                 command: index,
                 shape: shape.to_string(),
                 id,
+                part,
                 met: false,
             });
-            self.name(name.clone(), Entity::Geometry(self.geometries.len() - 1));
+            self.name(name, Entity::Geometry(self.geometries.len() - 1));
         }
         // Shapes without volume add no mass; every other is a solid of its
         // part (refused where the part's mass comes from its geometry and
         // mbexpr does not compute the shape's: see `solid_moments`).
-        if WIRES.contains(&shape) {
-            return;
-        }
-        if let Some((owner, _)) = name.rsplit_once('.')
-            && let Some(Entity::Part(part)) = self.find(owner)
+        if let Some(part) = part
+            && !WIRES.contains(&shape)
         {
             self.parts[part].solids.push(index);
         }
@@ -1035,15 +1047,7 @@ impl<'d> Reader<'d> {
         if !matches!(active.as_str(), "OFF" | "NO") {
             return;
         }
-        let Some(name) = statement
-            .arguments
-            .iter()
-            .find(|argument| argument.keyword.ends_with("_NAME"))
-            .and_then(|argument| match &argument.value {
-                Value::List(items) => items.first().map(|item| item.text.clone()),
-                _ => None,
-            })
-        else {
+        let Some(name) = self.object_name(index) else {
             return;
         };
         match self.find(&name) {
@@ -1294,19 +1298,16 @@ impl<'d> Reader<'d> {
                 let names = self.names(*index, keyword);
                 for name in names {
                     on_inactive |= match (becomes, self.find(&name)) {
-                        (
-                            Becomes::Marker(_) | Becomes::Floating(_),
-                            Some(Entity::Marker(marker)),
-                        ) => !self.parts[self.markers[marker].part].active,
+                        (Becomes::Marker(_), Some(Entity::Marker(marker))) => {
+                            !self.parts[self.markers[marker].part].active
+                        }
                         (Becomes::FloatingOn(_), Some(Entity::Part(part))) => {
                             !self.parts[part].active
                         }
-                        (Becomes::Solids(_), Some(Entity::Geometry(geometry))) => {
-                            let owner = self.full(&name);
-                            owner.rsplit_once('.').is_some_and(|(owner, _)| {
-                                matches!(self.find(owner), Some(Entity::Part(part)) if !self.parts[part].active)
-                            }) && geometry < self.geometries.len()
-                        }
+                        (Becomes::Solids(_), Some(Entity::Geometry(geometry))) => self.geometries
+                            [geometry]
+                            .part
+                            .is_some_and(|part| !self.parts[part].active),
                         (Becomes::Object(_) | Becomes::Joints(_), Some(Entity::Element(joint))) => {
                             !self.elements[joint].active
                         }

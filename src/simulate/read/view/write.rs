@@ -164,7 +164,7 @@ impl Reader<'_> {
             };
             let argument_span = argument.span;
             match becomes {
-                Becomes::Marker(solver_keyword) | Becomes::Floating(solver_keyword) => {
+                Becomes::Marker(solver_keyword) => {
                     if let Some(id) = self.marker_id(index, &keyword) {
                         ids_argument(&mut statement, solver_keyword, id, argument_span);
                     }
