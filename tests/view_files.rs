@@ -927,3 +927,104 @@ fn measures_in_a_loop_or_a_long_chain_stop_with_a_message() {
     let long = view_model(&chain).expect_err("a chain of 5000 is refused");
     assert!(long.contains("32 deep"), "{long}");
 }
+
+/// A joint's friction (`force create element_like friction`) and its
+/// initial conditions in View's words: a wheel on a revolute pin, set at
+/// 30° and turning at 180°/s (`rotational_ic`, `angular_velocity_ic`),
+/// braked by a friction of its torque preload alone (the reaction force
+/// and bending moment turned off), moves as the dataset by hand and as
+/// the closed form θ = θ0 + ω0 t − ½ μd T0 / Izz t².
+#[test]
+fn a_view_friction_and_a_joints_initial_conditions_are_the_datasets() {
+    let view = r#"defaults units length = meter angle = deg force = newton mass = kg time = sec
+model create model_name = w
+marker create marker_name = .w.ground.PIN adams_id = 1 location = 0, 0, 0 orientation = 0d, 0d, 0d
+part create rigid_body name_and_position part_name = .w.wheel adams_id = 2 location = 0, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .w.wheel.HUB adams_id = 2 location = 0, 0, 0 orientation = 0d, 0d, 0d
+part create rigid_body mass_properties part_name = .w.wheel mass = 3 center_of_mass_marker = .w.wheel.HUB ixx = 0.2 iyy = 0.2 izz = 0.4
+constraint create joint revolute joint_name = .w.PIN_JOINT adams_id = 1 i_marker_name = .w.wheel.HUB j_marker_name = .w.ground.PIN rotational_ic = 30 angular_velocity_ic = 180
+force create element_like friction friction_name = .w.FRICTION_1 adams_id = 1 joint_name = .w.PIN_JOINT mu_static = 0.3 mu_dynamic = 0.2 friction_arm = 1.0 bending_reaction_arm = 1.0 pin_radius = 0.05 stiction_transition_velocity = 1.0E-03 max_stiction_deformation = 1.0E-04 friction_torque_preload = 2 effect = all preload = on reaction_force = off bending_moment = off inactive_during_static = on
+output_control create request request_name = .w.ANGLE adams_id = 1 f2 = "AZ(.w.wheel.HUB, .w.ground.PIN)" f3 = "WZ(.w.wheel.HUB, .w.ground.PIN, .w.ground.PIN)"
+simulation single_run transient end_time = 0.9 number_of_steps = 9
+"#;
+    let dataset = "the braked wheel, by hand
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 3, CM = 2, IP = 0.2, 0.2, 0.4
+MARKER/2, PART = 2
+JOINT/1, REVOLUTE, I = 2, J = 1, IC = 0.5235987755982988, 3.141592653589793
+FRICTION/1, JOINT = 1, MU_STATIC = 0.3, MU_DYNAMIC = 0.2, FRICTION_ARM = 1, BENDING_REACTION_ARM = 1, PIN_RADIUS = 0.05, STICTION_TRANSITION_VELOCITY = 1E-3, MAX_STICTION_DEFORMATION = 1E-4, FRICTION_TORQUE_PRELOAD = 2, EFFECT = ALL, INPUTS = PRELOAD, INACTIVE = STATIC
+REQUEST/1, F2 = AZ(2, 1)\\F3 = WZ(2, 1, 1)
+END
+";
+    let rows = same_motion(view, dataset, 1e-7);
+    let columns = simulate::columns(&view_model(view).expect("the model"));
+    let [angle, speed] = ["REQUEST/1.F2", "REQUEST/1.F3"].map(|name| {
+        columns
+            .iter()
+            .position(|column| column == name)
+            .expect("the request's columns")
+    });
+    // The brake's torque μd T0 on Izz: the wheel stops at 1 s, after the run.
+    let alpha = 0.2 * 2.0 / 0.4;
+    let (start, spin) = (30_f64.to_radians(), 180_f64.to_radians());
+    for row in &rows {
+        let t = row[0];
+        let (theta, omega) = (start + spin * t - 0.5 * alpha * t * t, spin - alpha * t);
+        assert!(
+            (row[angle] - theta).abs() < 1e-6 && (row[speed] - omega).abs() < 1e-6,
+            "at {t}: the wheel at {} turning {}, the closed form {theta}, {omega}",
+            row[angle],
+            row[speed]
+        );
+    }
+}
+
+/// A crate on a slope of 20° (a translational joint along it) launched up
+/// it by its joint's velocity alone (`velocity_ic`, the displacement left
+/// to the assembly), slowed by its friction on the joint's reaction: it
+/// slides up as s = v0 t − ½ g (sin α + μd cos α) t², stops, and stays
+/// (μs above tan α).
+#[test]
+fn a_crate_launched_by_its_joints_velocity_slides_up_and_stays() {
+    let view = r#"defaults units length = meter angle = deg force = newton mass = kg time = sec
+model create model_name = c
+marker create marker_name = .c.ground.RAIL adams_id = 1 location = 0, 0, 0 orientation = 110d, 90d, 0d
+part create rigid_body name_and_position part_name = .c.crate adams_id = 2 location = 0, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .c.crate.SHOE adams_id = 2 location = 0, 0, 0 orientation = 110d, 90d, 0d
+part create rigid_body mass_properties part_name = .c.crate mass = 5 center_of_mass_marker = .c.crate.SHOE ixx = 1 iyy = 1 izz = 1
+constraint create joint translational joint_name = .c.SLIDE adams_id = 1 i_marker_name = .c.crate.SHOE j_marker_name = .c.ground.RAIL velocity_ic = 2.0
+force create element_like friction friction_name = .c.FRICTION_1 adams_id = 1 joint_name = .c.SLIDE mu_static = 0.5 mu_dynamic = 0.3 reaction_arm = 1.0 initial_overlap = 1000.0 formulation = original stiction_transition_velocity = 1.0E-03 transition_velocity_coefficient = 1.5 max_stiction_deformation = 1.0E-05 friction_force_preload = 0.0 overlap_delta = constant effect = all preload = on reaction_force = on torsional_moment = off bending_moment = off inactive_during_static = off
+force create body gravitational gravity_field_name = gravity x_component_gravity = 0 y_component_gravity = -9.80665 z_component_gravity = 0
+output_control create request request_name = .c.SLIDING adams_id = 1 f2 = "DZ(.c.crate.SHOE, .c.ground.RAIL, .c.ground.RAIL)" f3 = "VZ(.c.crate.SHOE, .c.ground.RAIL, .c.ground.RAIL, .c.ground.RAIL)"
+simulation single_run transient end_time = 1.0 number_of_steps = 20
+"#;
+    let model = view_model(view).unwrap_or_else(|errors| panic!("{errors}"));
+    let columns = simulate::columns(&model);
+    let [along, speed] = ["REQUEST/1.F2", "REQUEST/1.F3"].map(|name| {
+        columns
+            .iter()
+            .position(|column| column == name)
+            .expect("the request's columns")
+    });
+    let slope = 20_f64.to_radians();
+    let braking = 9.80665 * (slope.sin() + 0.3 * slope.cos());
+    let stop = 2.0 / braking;
+    let top = 2.0 * stop - 0.5 * braking * stop * stop;
+    for row in rows(&model, 1.0, 20) {
+        let t = row[0];
+        let (s, v) = if t < stop {
+            (2.0 * t - 0.5 * braking * t * t, 2.0 - braking * t)
+        } else {
+            (top, 0.0)
+        };
+        // Within the stiction's creep (1e-5 m) once stopped.
+        assert!(
+            (row[along] - s).abs() < 1e-4 && (row[speed] - v).abs() < 2e-3,
+            "at {t}: the crate at {} moving {}, the closed form {s}, {v}",
+            row[along],
+            row[speed]
+        );
+    }
+}

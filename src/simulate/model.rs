@@ -712,8 +712,9 @@ pub struct MarkerMotion {
 /// A joint's initial conditions: `IC` of a REVOLUTE (its rotation) or a
 /// TRANSLATIONAL joint (its translation), `ICROT` or `ICTRAN` of a
 /// CYLINDRICAL one. The initial-conditions analysis puts the joint at the
-/// displacement (and gives it the velocity, when one is given); the run
-/// then leaves the joint free.
+/// displacement, when one is given, and gives it the velocity, when one is
+/// given (an Adams View file may give the velocity alone); the run then
+/// leaves the joint free.
 #[derive(Clone, Debug, PartialEq)]
 pub struct JointInitial {
     /// The joint, an index into [`Model::joints`].
@@ -721,8 +722,8 @@ pub struct JointInitial {
     /// The rotation about J's z axis rather than the translation along it
     /// (measured as a MOTION on the joint measures it).
     pub rotation: bool,
-    /// The displacement at time 0.
-    pub displacement: f64,
+    /// The displacement at time 0, when given.
+    pub displacement: Option<f64>,
     /// The velocity at time 0, when given.
     pub velocity: Option<f64>,
     /// The argument's place in the file.

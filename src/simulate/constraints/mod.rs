@@ -48,7 +48,7 @@ pub(crate) use solve::{
 use nalgebra::Vector3;
 
 use crate::scene::Target;
-use crate::simulate::model::{Along, Joint, JointKind};
+use crate::simulate::model::{Along, Joint, JointInitial, JointKind};
 use rows::{Moving, Row};
 
 /// A marker's frame in motion: its origin and its three axes.
@@ -197,6 +197,15 @@ fn joint_displacement<T: crate::number::Number>(
     }
 }
 
+/// The joints' initial conditions that give a displacement: those with a
+/// row in the analysis of the positions, in its order.
+pub(super) fn positioned_initials(model: &super::Model) -> impl Iterator<Item = &JointInitial> {
+    model
+        .joint_initials
+        .iter()
+        .filter(|initial| initial.displacement.is_some())
+}
+
 /// The initial conditions as equations at `bodies`: with `velocities`
 /// false, each joint's displacement and each PART's EXACT coordinate (to
 /// hold in the analysis of the positions) and each PTCV's DISP; with
@@ -222,7 +231,10 @@ fn initial_rows(
             row.value = 0.0;
             row.rate -= velocity;
         } else {
-            row.value -= initial.displacement;
+            let Some(displacement) = initial.displacement else {
+                continue;
+            };
+            row.value -= displacement;
             if initial.rotation {
                 row.wrap(std::f64::consts::TAU);
             }
@@ -694,7 +706,7 @@ pub(crate) fn owner_of_row(
                 .iter()
                 .map(|constraint| (format!("GCON/{}", constraint.id), constraint.span)),
         )
-        .chain(model.joint_initials.iter().map(|initial| {
+        .chain(positioned_initials(model).map(|initial| {
             let joint = &model.joints[initial.joint];
             let which = if initial.rotation {
                 "rotation"

@@ -908,7 +908,7 @@ pub(crate) fn project(
         // A joint's initial displacement the other equations fix must
         // agree with them.
         let active = rows.len() - free_positions.iter().filter(|free| **free).count();
-        let joint_rows = model.joint_initials.len();
+        let joint_rows = super::positioned_initials(model).count();
         if let Some((index, row)) = initial_rows(model, &bodies, false)
             .iter()
             .enumerate()

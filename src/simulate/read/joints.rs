@@ -1,7 +1,7 @@
 //! `JOINT` and `JPRIM` statements of a dataset.
 
 use crate::model::initial::{number, number_list};
-use crate::model::{Dataset, Statement, is_kind};
+use crate::model::{Argument, Dataset, Statement, Value, is_kind};
 use crate::scene::{Scene, Target};
 use crate::simulate::SimulateError;
 use crate::simulate::model::{Joint, JointInitial, JointKind, Motion};
@@ -270,8 +270,7 @@ pub(crate) fn initials(
                     continue;
                 }
             };
-            let values = number_list(statement, argument).unwrap_or_default();
-            if !(1..=2).contains(&values.len()) || values.iter().any(|value| !value.is_finite()) {
+            let Some((displacement, velocity)) = initial_values(statement, argument) else {
                 errors.push(SimulateError::Model {
                     message: format!(
                         "{label}: {keyword} = the initial displacement [, the initial velocity]: one or two numbers"
@@ -279,7 +278,7 @@ pub(crate) fn initials(
                     span: argument.span,
                 });
                 continue;
-            }
+            };
             if let Some(motion) = motions
                 .iter()
                 .find(|motion| motion.joint == joint && motion.rotation == rotation)
@@ -296,11 +295,32 @@ pub(crate) fn initials(
             initials.push(JointInitial {
                 joint,
                 rotation,
-                displacement: values[0],
-                velocity: values.get(1).copied(),
+                displacement,
+                velocity,
                 span: argument.span,
             });
         }
     }
     initials
+}
+
+/// An initial condition's displacement and velocity, each when given: one
+/// or two finite numbers, the first left empty (only an Adams View file's
+/// statements, written by mbexpr, can) when the velocity alone is given.
+fn initial_values(
+    statement: &Statement,
+    argument: &Argument,
+) -> Option<(Option<f64>, Option<f64>)> {
+    if let Value::List(items) = &argument.value
+        && let [first, second] = items.as_slice()
+        && first.text.is_empty()
+    {
+        let velocity = second.number().filter(|value| value.is_finite())?;
+        return Some((None, Some(velocity)));
+    }
+    let values = number_list(statement, argument).ok()?;
+    if !(1..=2).contains(&values.len()) || values.iter().any(|value| !value.is_finite()) {
+        return None;
+    }
+    Some((Some(values[0]), values.get(1).copied()))
 }

@@ -92,6 +92,23 @@ pub(super) enum Becomes {
     Switch(&'static str),
     /// An angle or a number, as the element turns or moves.
     Initial(&'static str),
+    /// A joint's initial condition: of its rotation (else its
+    /// translation), its velocity (else its displacement); a joint's IC,
+    /// ICROT or ICTRAN.
+    JointInitial {
+        /// The rotation's, in the angle unit.
+        rotation: bool,
+        /// The velocity's.
+        velocity: bool,
+    },
+    /// A word, the value of the keyword it is among those listed (View's
+    /// word, the solver's).
+    Named(&'static str, &'static [(&'static str, &'static str)]),
+    /// `on` or `yes` gives the keyword with the value; `off` or `no`,
+    /// nothing.
+    SwitchTo(&'static str, &'static str),
+    /// A load a joint's friction reads, `on` or `off`: one of INPUTS.
+    Input(&'static str),
     /// Read elsewhere, or without effect on the motion.
     Nothing,
 }
@@ -172,10 +189,123 @@ pub(super) const JOINT_PARAMETERS: &[&[(&str, Becomes)]] = &[
         ("DIAMETER_OF_PITCH", Becomes::Numbers("PD")),
         ("PITCH", Becomes::Numbers("PITCH")),
         ("FRICTION_ENABLED", Becomes::Nothing),
+        (
+            "TRANSLATIONAL_IC",
+            Becomes::JointInitial {
+                rotation: false,
+                velocity: false,
+            },
+        ),
+        (
+            "VELOCITY_IC",
+            Becomes::JointInitial {
+                rotation: false,
+                velocity: true,
+            },
+        ),
+        (
+            "ROTATIONAL_IC",
+            Becomes::JointInitial {
+                rotation: true,
+                velocity: false,
+            },
+        ),
+        (
+            "ANGULAR_VELOCITY_IC",
+            Becomes::JointInitial {
+                rotation: true,
+                velocity: true,
+            },
+        ),
     ],
 ];
 
-pub(super) const ELEMENTS: [ElementKind; 18] = [
+/// A joint's friction: the FRICTION statement's numbers, words and inputs.
+const FRICTION_PARAMETERS: [(&str, Becomes); 26] = [
+    ("JOINT_NAME", Becomes::Object("JOINT")),
+    (
+        "YOKE",
+        Becomes::Choice(&[("I_YOKE", "I_YOKE"), ("J_YOKE", "J_YOKE")]),
+    ),
+    (
+        "FORMULATION",
+        Becomes::Named(
+            "FRICTION_MODEL",
+            &[("ORIGINAL", "DEFAULT"), ("LUGRE", "LUGRE")],
+        ),
+    ),
+    ("MU_STATIC", Becomes::Numbers("MU_STATIC")),
+    ("MU_DYNAMIC", Becomes::Numbers("MU_DYNAMIC")),
+    ("REACTION_ARM", Becomes::Numbers("REACTION_ARM")),
+    ("FRICTION_ARM", Becomes::Numbers("FRICTION_ARM")),
+    (
+        "BENDING_REACTION_ARM",
+        Becomes::Numbers("BENDING_REACTION_ARM"),
+    ),
+    ("INITIAL_OVERLAP", Becomes::Numbers("INITIAL_OVERLAP")),
+    ("PIN_RADIUS", Becomes::Numbers("PIN_RADIUS")),
+    ("BALL_RADIUS", Becomes::Numbers("BALL_RADIUS")),
+    (
+        "STICTION_TRANSITION_VELOCITY",
+        Becomes::Numbers("STICTION_TRANSITION_VELOCITY"),
+    ),
+    (
+        "TRANSITION_VELOCITY_COEFFICIENT",
+        Becomes::Numbers("TRANSITION_VELOCITY_COEFFICIENT"),
+    ),
+    (
+        "MAX_STICTION_DEFORMATION",
+        Becomes::Numbers("MAX_STICTION_DEFORMATION"),
+    ),
+    (
+        "FRICTION_FORCE_PRELOAD",
+        Becomes::Numbers("FRICTION_FORCE_PRELOAD"),
+    ),
+    (
+        "FRICTION_TORQUE_PRELOAD",
+        Becomes::Numbers("FRICTION_TORQUE_PRELOAD"),
+    ),
+    ("MAX_FRICTION_FORCE", Becomes::Numbers("MAX_FRICTION_FORCE")),
+    (
+        "MAX_FRICTION_TORQUE",
+        Becomes::Numbers("MAX_FRICTION_TORQUE"),
+    ),
+    ("OVERLAP_DELTA", Becomes::Word("OVERLAP_DELTA")),
+    ("EFFECT", Becomes::Word("EFFECT")),
+    (
+        "BRISTLE_STIFFNESS_COEFFICIENT",
+        Becomes::Numbers("STIFFNESS_COEFFICIENT"),
+    ),
+    (
+        "DAMPING_COEFFICIENT",
+        Becomes::Numbers("DAMPING_COEFFICIENT"),
+    ),
+    (
+        "VISCOUS_FRICTION_COEFFICIENT",
+        Becomes::Numbers("VISCOUS_COEFFICIENT"),
+    ),
+    (
+        "INACTIVE_DURING_STATIC",
+        Becomes::SwitchTo("INACTIVE", "STATIC"),
+    ),
+    ("PRELOAD", Becomes::Input("PRELOAD")),
+    ("REACTION_FORCE", Becomes::Input("REACTION_FORCE")),
+];
+
+/// The loads a friction reads beside the preload and the reaction force.
+const FRICTION_MOMENTS: [(&str, Becomes); 2] = [
+    ("BENDING_MOMENT", Becomes::Input("BENDING_MOMENT")),
+    ("TORSIONAL_MOMENT", Becomes::Input("TORSIONAL_MOMENT")),
+];
+
+pub(super) const ELEMENTS: [ElementKind; 19] = [
+    ElementKind {
+        words: "FORCE ELEMENT_LIKE FRICTION",
+        statement: "FRICTION",
+        flags: &[],
+        name: "FRICTION_NAME",
+        parameters: &[&FRICTION_PARAMETERS, &FRICTION_MOMENTS],
+    },
     ElementKind {
         words: "CONSTRAINT COMPLEX_JOINT COUPLER",
         statement: "COUPLER",

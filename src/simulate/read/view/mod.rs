@@ -472,6 +472,22 @@ impl<'d> Reader<'d> {
             .map(|item| key(&item.text))
     }
 
+    /// A switch: `on`, `yes` or `true`, or `off`, `no` or `false`; another
+    /// word is wrong at `span`.
+    fn switch(&mut self, index: usize, keyword: &str, span: Span) -> Option<bool> {
+        match self.word(index, keyword).unwrap_or_default().as_str() {
+            "ON" | "YES" | "TRUE" => Some(true),
+            "OFF" | "NO" | "FALSE" => Some(false),
+            _ => {
+                self.wrong(
+                    format!("{} is on or off", keyword.to_ascii_lowercase()),
+                    span,
+                );
+                None
+            }
+        }
+    }
+
     /// The numbers of a list argument; angles (`angle`) in radians.
     fn numbers(&mut self, index: usize, keyword: &str, angle: bool) -> Option<Vec<f64>> {
         let (_, argument) = self.argument(index, keyword)?;
@@ -1143,7 +1159,7 @@ impl<'d> Reader<'d> {
         let Some((solver, flags, name_keyword, parameters)) = found else {
             self.refuse(
                 statement,
-                "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, beams, contacts, gravity, variables, differential equations, function requests and sensors".into(),
+                "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, beams, contacts, joint frictions, gravity, variables, differential equations, function requests and sensors".into(),
                 statement.span,
             );
             return;

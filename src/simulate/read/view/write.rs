@@ -157,6 +157,14 @@ impl Reader<'_> {
             return None;
         }
         let parameters = self.elements[element].parameters;
+        // A joint's initial conditions, [translation, rotation] ×
+        // [displacement, velocity], with the place of the first given.
+        let mut initials = [[None; 2]; 2];
+        let mut initials_span = [None; 2];
+        // A friction's inputs, each on or off, with the place of the first.
+        let mut inputs: Vec<&str> = Vec::new();
+        let mut inputs_off = false;
+        let mut inputs_span = None;
         for (keyword, index, position) in self.elements[element].given.clone() {
             let argument = &self.view.statements[index].arguments[position];
             let Some(becomes) = becomes(parameters, &keyword) else {
@@ -208,6 +216,66 @@ impl Reader<'_> {
                 Becomes::Initial(solver_keyword) => {
                     if let Some(values) = self.numbers(index, &keyword, rotational) {
                         numbers_argument(&mut statement, solver_keyword, &values, argument_span);
+                    }
+                }
+                Becomes::JointInitial { rotation, velocity } => {
+                    if let Some(values) = self.numbers(index, &keyword, rotation) {
+                        match values.as_slice() {
+                            [value] => {
+                                initials[usize::from(rotation)][usize::from(velocity)] =
+                                    Some(*value);
+                                initials_span[usize::from(rotation)].get_or_insert(argument_span);
+                            }
+                            _ => self.wrong(
+                                format!("{} is one number", keyword.to_ascii_lowercase()),
+                                argument_span,
+                            ),
+                        }
+                    }
+                }
+                Becomes::Named(solver_keyword, names) => {
+                    let word = self.word(index, &keyword).unwrap_or_default();
+                    match names.iter().find(|(view, _)| *view == word) {
+                        Some(&(_, solver_word)) => {
+                            words_argument(
+                                &mut statement,
+                                solver_keyword,
+                                &[solver_word],
+                                argument_span,
+                            );
+                        }
+                        None => self.wrong(
+                            format!(
+                                "{} is one of {}",
+                                keyword.to_ascii_lowercase(),
+                                names
+                                    .iter()
+                                    .map(|(view, _)| view.to_ascii_lowercase())
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
+                            ),
+                            argument_span,
+                        ),
+                    }
+                }
+                Becomes::SwitchTo(solver_keyword, solver_word) => {
+                    if self.switch(index, &keyword, argument_span) == Some(true) {
+                        words_argument(
+                            &mut statement,
+                            solver_keyword,
+                            &[solver_word],
+                            argument_span,
+                        );
+                    }
+                }
+                Becomes::Input(input) => {
+                    if let Some(on) = self.switch(index, &keyword, argument_span) {
+                        inputs_span.get_or_insert(argument_span);
+                        if on {
+                            inputs.push(input);
+                        } else {
+                            inputs_off = true;
+                        }
                     }
                 }
                 Becomes::PerAngle(solver_keyword) => {
@@ -324,22 +392,60 @@ impl Reader<'_> {
                     }
                 }
                 Becomes::Switch(solver_keyword) => {
-                    let word = self.word(index, &keyword).unwrap_or_default();
-                    match word.as_str() {
-                        "ON" | "YES" | "TRUE" => {
-                            flag_argument(&mut statement, solver_keyword, argument_span);
-                        }
-                        "OFF" | "NO" | "FALSE" => {}
-                        _ => self.wrong(
-                            format!("{} is on or off", keyword.to_ascii_lowercase()),
-                            argument_span,
-                        ),
+                    if self.switch(index, &keyword, argument_span) == Some(true) {
+                        flag_argument(&mut statement, solver_keyword, argument_span);
                     }
                 }
                 Becomes::Nothing => {}
             }
         }
+        // INPUTS lists the loads left on when one is turned off; else it is
+        // left out, and the friction reads every load its joint has.
+        if let Some(span) = inputs_span
+            && inputs_off
+        {
+            let words = if inputs.is_empty() {
+                vec!["NONE"]
+            } else {
+                inputs
+            };
+            words_argument(&mut statement, "INPUTS", &words, span);
+        }
+        self.write_initials(&mut statement, initials, initials_span);
         Some(statement)
+    }
+
+    /// A joint's initial conditions as its IC (a revolute joint's rotation,
+    /// a translational one's translation) or a cylindrical joint's ICROT
+    /// and ICTRAN: the displacement, then the velocity; a velocity alone
+    /// leaves the displacement empty.
+    fn write_initials(
+        &mut self,
+        statement: &mut Statement,
+        initials: [[Option<f64>; 2]; 2],
+        spans: [Option<Span>; 2],
+    ) {
+        let cylindrical = statement
+            .arguments
+            .iter()
+            .any(|argument| argument.keyword == "CYLINDRICAL");
+        for (rotation, [displacement, velocity]) in initials.into_iter().enumerate() {
+            let Some(span) = spans[rotation] else {
+                continue;
+            };
+            let keyword = match (cylindrical, rotation == 1) {
+                (false, _) => "IC",
+                (true, true) => "ICROT",
+                (true, false) => "ICTRAN",
+            };
+            let text =
+                |value: Option<f64>| value.map_or_else(String::new, |value| format!("{value:?}"));
+            let texts = match velocity {
+                Some(_) => vec![text(displacement), text(velocity)],
+                None => vec![text(displacement)],
+            };
+            list_argument(statement, keyword, texts, span);
+        }
     }
 
     /// The GRAPHICS statement of a geometry a contact meets: the solids a
