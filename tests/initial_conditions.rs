@@ -355,3 +355,69 @@ fn exact_names_coordinates() {
     let error = model_of(&two_links(", EXACT = X:W", "")).expect_err("W is no coordinate");
     assert!(error.contains("W is none of them"), "{error}");
 }
+
+/// Parts drawn far from where their joints hold them assemble to the
+/// joints, as Adams' assembly does (each Newton step turning a part by
+/// ALIMIT = 30° at most): a part on a REVOLUTE, TRANSLATIONAL,
+/// CYLINDRICAL, FIXED or PLANAR joint to ground, its I marker turned from
+/// the J marker by up to 85° about a random axis and moved up to 0.5 off
+/// it, its centre of mass up to 2 from the marker. After the assembly the
+/// joint's equations hold (I's place along J's x and y, or the whole of
+/// it, and its z axis along J's, not against it: AX and AY are 0, not π).
+/// A part turned by 56° about a marker 150 away (a real Adams View file)
+/// stopped 0.5 off before.
+#[test]
+fn parts_drawn_far_off_their_joints_assemble() {
+    use super::joints_random::{DrawShapes, euler_of};
+    use super::simulate_variants::Draw;
+    use nalgebra::{Rotation3, Unit, Vector3};
+    // The joints, and which of DX, DY, DZ (along J's axes), AX, AY, AZ each
+    // holds at zero.
+    let kinds: [(&str, [bool; 6]); 5] = [
+        ("REVOLUTE", [true, true, true, true, true, false]),
+        ("TRANSLATIONAL", [true, true, false, true, true, true]),
+        ("CYLINDRICAL", [true, true, false, true, true, false]),
+        ("FIXED", [true; 6]),
+        ("PLANAR", [false, false, true, true, true, false]),
+    ];
+    let mut draw = Draw(31);
+    for case in 0..40 {
+        let (kind, held) = kinds[case % kinds.len()];
+        let j_euler = draw.euler();
+        let j_axes = Rotation3::from_axis_angle(&Vector3::z_axis(), j_euler[0])
+            * Rotation3::from_axis_angle(&Vector3::x_axis(), j_euler[1])
+            * Rotation3::from_axis_angle(&Vector3::z_axis(), j_euler[2]);
+        let axis = Unit::new_normalize(draw.vector(1.0));
+        let turn = Rotation3::from_axis_angle(&axis, draw.uniform(0.0, 85_f64.to_radians()));
+        let i_axes = turn * j_axes;
+        let j_place = draw.vector(1.0);
+        let i_place = j_place + draw.vector(0.5);
+        let centre = i_place + draw.vector(2.0);
+        let [a, b, c] = j_euler;
+        let [d, e, f] = euler_of(i_axes.matrix());
+        let text = format!(
+            "a part drawn off its {kind} joint
+PART/1, GROUND
+MARKER/1, PART = 1, QP = {}, {}, {}, REULER = {a}, {b}, {c}
+PART/2, MASS = 2, CM = 3, IP = 0.3, 0.5, 0.7
+MARKER/2, PART = 2, QP = {}, {}, {}, REULER = {d}, {e}, {f}
+MARKER/3, PART = 2, QP = {}, {}, {}
+JOINT/1, {kind}, I = 2, J = 1
+REQUEST/1, F1 = DX(2, 1, 1), F2 = DY(2, 1, 1), F3 = DZ(2, 1, 1), F4 = AX(2, 1), F5 = AY(2, 1), F6 = AZ(2, 1)
+END
+",
+            j_place.x, j_place.y, j_place.z, i_place.x, i_place.y, i_place.z, centre.x, centre.y, centre.z
+        );
+        let run = run(&text, &settings(0.01, 1, 1e-8))
+            .unwrap_or_else(|errors| panic!("case {case}: {errors}\n{text}"));
+        let first = &run.rows[0];
+        for (k, held) in held.iter().enumerate() {
+            let value: f64 = first[14 + k];
+            assert!(
+                !held || value.abs() < 1e-8,
+                "case {case}: column {} is {value} after the assembly\n{text}",
+                k + 1
+            );
+        }
+    }
+}

@@ -28,7 +28,7 @@ const END: f64 = 2.0;
 const ROWS: usize = 40;
 
 /// What a chain draws beyond numbers: vectors and axes.
-trait DrawShapes {
+pub(super) trait DrawShapes {
     /// A vector of components uniform in `[-size, size)`.
     fn vector(&mut self, size: f64) -> Vector3<f64>;
     /// Body 3-1-3 angles away from the degenerate `θ = 0, π`.
@@ -75,7 +75,7 @@ fn rotation([psi, theta, phi]: [f64; 3]) -> Matrix3<f64> {
 }
 
 /// The body 3-1-3 angles of a rotation (`θ` away from 0 and π).
-fn euler_of(r: &Matrix3<f64>) -> [f64; 3] {
+pub(super) fn euler_of(r: &Matrix3<f64>) -> [f64; 3] {
     [
         r[(0, 2)].atan2(-r[(1, 2)]),
         r[(2, 2)].clamp(-1.0, 1.0).acos(),

@@ -544,9 +544,21 @@ fn least_change(
     inverse_inertia: &[Matrix3<f64>],
     residual: impl Fn(&Row<f64>) -> f64,
 ) -> Result<Vec<[f64; 6]>, Singular> {
+    let residuals = DVector::from_iterator(rows.len(), rows.iter().map(residual));
+    least_change_for(model, rows, bodies, inverse_inertia, residuals)
+}
+
+/// The least change that takes `residuals` to zero at first order, the
+/// Jacobian `rows`' (as [`least_change`]).
+fn least_change_for(
+    model: &Model,
+    rows: &[Row<f64>],
+    bodies: &[BodyMotion<f64>],
+    inverse_inertia: &[Matrix3<f64>],
+    residuals: DVector<f64>,
+) -> Result<Vec<[f64; 6]>, Singular> {
     let inverse = inverses(model, bodies, inverse_inertia, true);
-    let rhs = DVector::from_iterator(rows.len(), rows.iter().map(residual));
-    let lambda = multipliers(rows, &inverse, rhs)?;
+    let lambda = multipliers(rows, &inverse, residuals)?;
     Ok(generalised(rows, &lambda, bodies.len())
         .iter()
         .zip(&inverse)
@@ -630,6 +642,10 @@ const POSITION_ITERATIONS: usize = 40;
 
 /// Halvings of a Newton step that does not lower the residual, at most.
 const STEP_HALVINGS: usize = 12;
+
+/// The largest turn of a part in one Newton step on the positions: Adams'
+/// ALIMIT, 30°.
+const TURN_LIMIT: f64 = std::f64::consts::PI / 6.0;
 
 /// The tolerance a state assembled with a zero tolerance must meet in the
 /// end: `ASSEMBLED · (1 + |largest coordinate|)` on each state's least
@@ -753,10 +769,11 @@ fn scaled(
 
 /// Puts state `y` back on the constraints when the least change that does
 /// it is larger than `tolerance` allows: the positions by Newton's method
-/// on the least change, each step halved until it lowers the largest
-/// residual (a large correction, a part turned by tens of degrees, is not
-/// linear), until the change is a thousandth of the tolerance or rounding
-/// stops the residual from falling; then the velocities by one least
+/// on the least change, each step turning no part by more than 30° and
+/// halved until the change asked for at the trial state shrinks (a large
+/// correction, a part turned by tens of degrees, is not linear), until
+/// the change is a thousandth of the tolerance or rounding stops it from
+/// shrinking; then the velocities by one least
 /// change. The residuals found before; an error when the positions end
 /// further off than the tolerance (with a zero tolerance, than
 /// [`ASSEMBLED`] of the state's size).
@@ -868,13 +885,36 @@ pub(crate) fn project(
             break;
         }
         let start = y.to_vec();
-        let mut fraction = 1.0;
+        let size = scaled(&start, offsets, &change, 0, fine);
+        // No part turned by more than ALIMIT in one step.
+        let turn = change.iter().fold(0.0_f64, |most, change| {
+            most.max(Vector3::new(change[3], change[4], change[5]).norm())
+        });
+        let mut fraction = (TURN_LIMIT / turn).min(1.0);
         let mut lowered = false;
         for _ in 0..STEP_HALVINGS {
             moved(y, &start, offsets, &change, fraction);
-            let now = largest_residual(y);
-            if now < residual {
-                residual = now;
+            // The natural monotonicity test (Deuflhard): the change the
+            // step's Jacobian asks for at the trial state, its simplified
+            // Newton correction, is smaller than the step's own. Unlike
+            // the residuals, it weighs lengths and angles alike, so a part
+            // turned about a far point is not held back by the
+            // second-order error of its markers' places.
+            let trial = held(&motions(y, offsets), false);
+            let accepted = if trial.len() == rows.len() {
+                let residuals =
+                    DVector::from_iterator(trial.len(), trial.iter().map(|row| row.value));
+                least_change_for(model, &rows, &bodies, inverse_inertia, residuals).is_ok_and(
+                    |simplified| {
+                        scaled(&start, offsets, &simplified, 0, fine)
+                            <= (1.0 - 0.25 * fraction) * size
+                    },
+                )
+            } else {
+                largest_residual(y) < residual
+            };
+            if accepted {
+                residual = Residuals::of(&trial).position;
                 lowered = true;
                 break;
             }
