@@ -298,7 +298,44 @@ const FRICTION_MOMENTS: [(&str, Becomes); 2] = [
     ("TORSIONAL_MOMENT", Becomes::Input("TORSIONAL_MOMENT")),
 ];
 
-pub(super) const ELEMENTS: [ElementKind; 19] = [
+/// A kinematic measure's parameters: read where a function reads the
+/// measure ([`MEASURE`]).
+const KINEMATIC_MEASURE: [(&str, Becomes); 11] = [
+    ("FROM_POINT", Becomes::Nothing),
+    ("TO_POINT", Becomes::Nothing),
+    ("POINT", Becomes::Nothing),
+    ("OBJECT", Becomes::Nothing),
+    ("FROM_FIRST", Becomes::Nothing),
+    ("CHARACTERISTIC", Becomes::Nothing),
+    ("COMPONENT", Becomes::Nothing),
+    ("MOTION_RFRAME", Becomes::Nothing),
+    ("COORDINATE_RFRAME", Becomes::Nothing),
+    ("CREATE_MEASURE_DISPLAY", Becomes::Nothing),
+    ("LEGEND", Becomes::Nothing),
+];
+
+pub(super) const ELEMENTS: [ElementKind; 22] = [
+    ElementKind {
+        words: "MEASURE PT2PT",
+        statement: MEASURE,
+        flags: &["PT2PT"],
+        name: "MEASURE_NAME",
+        parameters: &[&KINEMATIC_MEASURE],
+    },
+    ElementKind {
+        words: "MEASURE POINT",
+        statement: MEASURE,
+        flags: &["POINT"],
+        name: "MEASURE_NAME",
+        parameters: &[&KINEMATIC_MEASURE],
+    },
+    ElementKind {
+        words: "MEASURE OBJECT",
+        statement: MEASURE,
+        flags: &["OBJECT"],
+        name: "MEASURE_NAME",
+        parameters: &[&KINEMATIC_MEASURE],
+    },
     ElementKind {
         words: "FORCE ELEMENT_LIKE FRICTION",
         statement: "FRICTION",
@@ -570,6 +607,11 @@ pub(super) const ELEMENTS: [ElementKind; 19] = [
             ("HALT", Becomes::Switch("HALT")),
             ("PRINT", Becomes::Switch("PRINT")),
             ("RETURN", Becomes::Switch("RETURN")),
+            ("CODGEN", Becomes::Switch("CODGEN")),
+            ("RESTART", Becomes::Switch("RESTART")),
+            ("YYDUMP", Becomes::Switch("YYDUMP")),
+            ("DT", Becomes::Numbers("DT")),
+            ("STEPSIZE", Becomes::Numbers("STEPSIZE")),
             ("BISECTION", Becomes::Nothing),
             ("TIME_ERROR", Becomes::Nothing),
         ]],
@@ -587,7 +629,9 @@ pub(super) const ELEMENTS: [ElementKind; 19] = [
     },
 ];
 
-/// The kind of a function measure's element, which is not written.
+/// The kind of a measure's element, which is not written: a function
+/// reads its function (a function measure's) or the function of the
+/// kinematics it measures.
 pub(super) const MEASURE: &str = "MEASURE";
 
 /// The joint and primitive commands: their kind by the last word.

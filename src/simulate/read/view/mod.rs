@@ -38,12 +38,11 @@ use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
 
 use compact_str::CompactString;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 
 use super::commands::RunCommands;
 use crate::check::Checked;
 use crate::model::{Argument, Dataset, FileKind, ModelCheck, Statement, Value, ValueItem};
-use crate::scene::euler_313;
 use crate::simulate::error::SimulateError;
 use crate::span::Span;
 
@@ -62,7 +61,7 @@ mod solids;
 mod write;
 
 use elements::{
-    Becomes, ELEMENTS, JOINT_PARAMETERS, NOTED, PASSED_OVER, TWO_MARKERS, WIRES, becomes,
+    Becomes, ELEMENTS, JOINT_PARAMETERS, MEASURE, NOTED, PASSED_OVER, TWO_MARKERS, WIRES, becomes,
     constraint_kind,
 };
 
@@ -133,6 +132,8 @@ struct Part {
     velocity: Option<usize>,
     /// The solids (`geometry create shape` commands) on it.
     solids: Vec<usize>,
+    /// The id of its centre-of-mass marker, once its PART is written.
+    centre_marker: Option<u64>,
     /// Not made inactive (`part attributes ... active = off`).
     active: bool,
 }
@@ -181,6 +182,8 @@ struct Reader<'d> {
     /// The frame locations are given in by default.
     coordinates: Frame,
     degrees: bool,
+    /// How orientations are given (`defaults units orientation_type`).
+    orientation_type: Orientations,
     units: [(&'static str, &'static str); 4],
     units_span: Span,
     run: Option<RunCommands>,
@@ -297,6 +300,7 @@ pub fn solver_dataset(
         user_forces: Vec::new(),
         coordinates: Frame::GROUND,
         degrees: true,
+        orientation_type: Orientations::BODY_313,
         units: [
             ("FORCE", "NEWTON"),
             ("MASS", "KILOGRAM"),
@@ -390,6 +394,7 @@ impl<'d> Reader<'d> {
             mass: None,
             velocity: None,
             solids: Vec::new(),
+            centre_marker: None,
             active: true,
         });
         self.name(name, Entity::Part(self.parts.len() - 1));
@@ -549,10 +554,9 @@ impl<'d> Reader<'d> {
             _ => [0.0; 3],
         };
         let [x, y, z] = three(&location);
-        let [psi, theta, phi] = three(&orientation);
         reference.then(&Frame {
             origin: Vector3::new(x, y, z),
-            axes: euler_313(psi, theta, phi).to_rotation_matrix().into_inner(),
+            axes: self.orientation_type.axes(three(&orientation)),
         })
     }
 
@@ -776,14 +780,17 @@ impl<'d> Reader<'d> {
                         item.span,
                     ),
                 },
-                "ORIENTATION_TYPE" if value != "BODY313" => self.refuse(
-                    statement,
-                    format!(
-                        "orients by {}: mbexpr reads body313 angles, View's default",
-                        item.text
+                "ORIENTATION_TYPE" => match Orientations::named(&value) {
+                    Some(orientations) => self.orientation_type = orientations,
+                    None => self.refuse(
+                        statement,
+                        format!(
+                            "orients by {}: mbexpr reads angles of a body or space sequence of three axes (body313, View's default, body123, space321 ...)",
+                            item.text
+                        ),
+                        argument.span,
                     ),
-                    argument.span,
-                ),
+                },
                 "COORDINATE_SYSTEM_TYPE" if value != "CARTESIAN" => self.refuse(
                     statement,
                     format!(
@@ -842,6 +849,7 @@ impl<'d> Reader<'d> {
                 mass: None,
                 velocity: None,
                 solids: Vec::new(),
+                centre_marker: None,
                 active: true,
             });
             let part = self.parts.len() - 1;
@@ -1218,7 +1226,11 @@ impl<'d> Reader<'d> {
                 continue;
             }
             if becomes(parameters, keyword).is_none() {
-                self.refuse_unread(statement, argument);
+                // A measure's parameters count only where a function reads
+                // it, and are checked there.
+                if solver != MEASURE {
+                    self.refuse_unread(statement, argument);
+                }
                 continue;
             }
             let known = self.elements[element]
@@ -1387,5 +1399,64 @@ fn view_expression(argument: &Argument) -> bool {
             .iter()
             .any(|item| item.text.trim_start().starts_with('(')),
         Value::Flag | Value::Expression { .. } => false,
+    }
+}
+
+/// A sequence of three turns that gives orientations (View's
+/// `orientation_type`): about the axes `axes` (0 for x, 1 for y, 2 for z)
+/// in turn, each about the axis as the turns before left it (`body`), or
+/// about ground's (`space`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Orientations {
+    /// Each turn about the axes the turns before left (a body sequence).
+    body: bool,
+    /// The axes of the three turns, in order.
+    axes: [usize; 3],
+}
+
+impl Orientations {
+    /// Body 3-1-3, View's default and the solver's.
+    const BODY_313: Orientations = Orientations {
+        body: true,
+        axes: [2, 0, 2],
+    };
+
+    /// The sequence View names `name` (`BODY313`, `SPACE123`): `BODY` or
+    /// `SPACE` and three axes, no axis twice in a row.
+    fn named(name: &str) -> Option<Orientations> {
+        let (body, digits) = match name.strip_prefix("BODY") {
+            Some(digits) => (true, digits),
+            None => (false, name.strip_prefix("SPACE")?),
+        };
+        let axes: Vec<usize> = digits
+            .chars()
+            .map(|digit| match digit {
+                '1' => Some(0),
+                '2' => Some(1),
+                '3' => Some(2),
+                _ => None,
+            })
+            .collect::<Option<_>>()?;
+        let [a, b, c] = axes[..] else { return None };
+        (a != b && b != c).then_some(Orientations {
+            body,
+            axes: [a, b, c],
+        })
+    }
+
+    /// The axes (columns, in the frame the angles are given in) of the
+    /// orientation `angles` (radians): a body sequence turns by `R₁ R₂
+    /// R₃`, a space one by `R₃ R₂ R₁`.
+    fn axes(self, angles: [f64; 3]) -> Matrix3<f64> {
+        let turns = [0, 1, 2].map(|k| {
+            let axis = Unit::new_unchecked(Vector3::ith(self.axes[k], 1.0));
+            Rotation3::from_axis_angle(&axis, angles[k])
+        });
+        let [first, second, third] = turns;
+        if self.body {
+            (first * second * third).into_inner()
+        } else {
+            (third * second * first).into_inner()
+        }
     }
 }

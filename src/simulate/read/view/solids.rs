@@ -71,6 +71,7 @@ impl Reader<'_> {
         numbers_argument(statement, "MASS", &[mass], span);
         if let Some(id) = self.marker_id(index, "CENTER_OF_MASS_MARKER") {
             ids_argument(statement, "CM", id, span);
+            self.parts[part].centre_marker = Some(id);
         }
         if let Some(id) = self.marker_id(index, "INERTIA_MARKER") {
             ids_argument(statement, "IM", id, span);
@@ -124,6 +125,7 @@ impl Reader<'_> {
             axes: frame.axes,
         };
         let id = self.new_marker(part, at, false, span);
+        self.parts[part].centre_marker = Some(id);
         numbers_argument(statement, "MASS", &[mass], span);
         ids_argument(statement, "CM", id, span);
         // Adams' products are the positive integrals (Ixy = ∫xy dm).

@@ -577,11 +577,19 @@ impl Reader<'_> {
                         .find(|(keyword, _, _)| keyword == "FUNCTION")
                         .map(|&(_, command, position)| (command, position));
                     self.reading.push(measure);
-                    let measured =
-                        function.and_then(|(command, position)| self.function(command, position));
+                    let kinematic = !self.elements[measure].flags.is_empty();
+                    let measured = match function {
+                        Some((command, position)) => self
+                            .function(command, position)
+                            .map(|measured| measured.text.to_string()),
+                        None if kinematic => self.kinematics(measure),
+                        None => None,
+                    };
                     self.reading.pop();
                     match measured {
-                        Some(measured) => ids.push((at, format!("({})", measured.text))),
+                        Some(measured) => ids.push((at, format!("({measured})"))),
+                        // A kinematic measure says what it lacks.
+                        None if kinematic => {}
                         None => self.wrong(
                             format!("{name}: the measure has no function mbexpr reads"),
                             text.file_span(at),
@@ -621,6 +629,122 @@ impl Reader<'_> {
         }
         ids.sort_by_key(|(at, _)| at.start);
         Some(text.replaced(&ids))
+    }
+}
+
+/// The solver functions of View's kinematic characteristics: the
+/// characteristic, then the function of a component along an axis (`DX`,
+/// with `{}` for the axis) and of the magnitude, and whether they take
+/// the frame the time derivative is in.
+const CHARACTERISTICS: [(&str, &str, &str, bool); 5] = [
+    ("TRANSLATIONAL_DISPLACEMENT", "D{}", "DM", false),
+    ("TRANSLATIONAL_VELOCITY", "V{}", "VM", true),
+    ("TRANSLATIONAL_ACCELERATION", "ACC{}", "ACCM", true),
+    ("ANGULAR_VELOCITY", "W{}", "WM", false),
+    ("ANGULAR_ACCELERATION", "WDT{}", "WDTM", true),
+];
+
+/// A part's characteristics (`measure create object` of a part): those of
+/// its centre-of-mass marker.
+const CENTRE_CHARACTERISTICS: [(&str, &str); 5] = [
+    ("CM_POSITION", "TRANSLATIONAL_DISPLACEMENT"),
+    ("CM_VELOCITY", "TRANSLATIONAL_VELOCITY"),
+    ("CM_ACCELERATION", "TRANSLATIONAL_ACCELERATION"),
+    ("CM_ANGULAR_VELOCITY", "ANGULAR_VELOCITY"),
+    ("CM_ANGULAR_ACCELERATION", "ANGULAR_ACCELERATION"),
+];
+
+impl Reader<'_> {
+    /// The function of kinematic measure `measure`, which a function
+    /// reads: of its `to_point` from its `from_point` (a `pt2pt`; ground's
+    /// origin when none), of its `point` from ground's origin, or of the
+    /// marker or part's centre of mass its `object` names; components
+    /// along `coordinate_rframe`'s axes (ground's when none), derivatives
+    /// in `motion_rframe` (ground when none). What it cannot be is wrong at
+    /// its place.
+    fn kinematics(&mut self, measure: usize) -> Option<String> {
+        let parameters = self.elements[measure].given.clone();
+        let given = |keyword: &str| {
+            parameters
+                .iter()
+                .find(|(name, _, _)| name == keyword)
+                .map(|&(_, index, _)| index)
+        };
+        let kind = self.elements[measure].flags[0];
+        let span = self.elements[measure].span;
+        let component = given("COMPONENT").and_then(|index| self.word(index, "COMPONENT"));
+        let mut characteristic = given("CHARACTERISTIC")
+            .and_then(|index| self.word(index, "CHARACTERISTIC"))
+            .unwrap_or_else(|| "TRANSLATIONAL_DISPLACEMENT".into());
+        let marker = |reader: &mut Self, keyword: &str| match given(keyword) {
+            Some(index) => reader.marker_id(index, keyword).ok_or(()),
+            None => Ok(0),
+        };
+        let to = match kind {
+            "PT2PT" => marker(self, "TO_POINT"),
+            "POINT" => marker(self, "POINT"),
+            _ => {
+                let name = given("OBJECT").and_then(|index| self.word(index, "OBJECT"));
+                match name.as_deref().and_then(|name| self.find(name)) {
+                    Some(Entity::Marker(marker)) => self.markers[marker].id.ok_or(()),
+                    Some(Entity::Part(part)) => {
+                        match CENTRE_CHARACTERISTICS
+                            .iter()
+                            .find(|(centre, _)| *centre == characteristic)
+                        {
+                            Some(&(_, of_marker)) => {
+                                characteristic = of_marker.into();
+                                self.parts[part].centre_marker.ok_or(())
+                            }
+                            None => Err(()),
+                        }
+                    }
+                    _ => Err(()),
+                }
+            }
+        };
+        let from = if kind == "PT2PT" {
+            marker(self, "FROM_POINT")
+        } else {
+            Ok(0)
+        };
+        let axes = marker(self, "COORDINATE_RFRAME");
+        let moving = marker(self, "MOTION_RFRAME");
+        let function = CHARACTERISTICS
+            .iter()
+            .find(|(name, _, _, _)| *name == characteristic);
+        let (Ok(to), Ok(from), Ok(axes), Ok(moving), Some(&(_, along, magnitude, derivative))) =
+            (to, from, axes, moving, function)
+        else {
+            self.wrong(
+                String::from(
+                    "a function reads this measure, and mbexpr reads a measure of markers (pt2pt, point), or of a marker or a part's centre of mass (object), by its translational displacement, velocity or acceleration or its angular velocity or acceleration (cm_position ... for a part): this one is another, or names what the file does not create"
+                ),
+                span,
+            );
+            return None;
+        };
+        let axis = match component.as_deref() {
+            Some("X_COMPONENT") => Some("X"),
+            Some("Y_COMPONENT") => Some("Y"),
+            Some("Z_COMPONENT") => Some("Z"),
+            Some("MAG_COMPONENT") => None,
+            _ => {
+                self.wrong(
+                    "a function reads this measure: give its component (x_component, y_component, z_component or mag_component)".into(),
+                    span,
+                );
+                return None;
+            }
+        };
+        Some(match (axis, derivative) {
+            (Some(axis), true) => {
+                format!("{}({to},{from},{axes},{moving})", along.replace("{}", axis))
+            }
+            (Some(axis), false) => format!("{}({to},{from},{axes})", along.replace("{}", axis)),
+            (None, true) => format!("{magnitude}({to},{from},{moving})"),
+            (None, false) => format!("{magnitude}({to},{from})"),
+        })
     }
 }
 
