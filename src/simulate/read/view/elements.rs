@@ -314,7 +314,17 @@ const KINEMATIC_MEASURE: [(&str, Becomes); 11] = [
     ("LEGEND", Becomes::Nothing),
 ];
 
-pub(super) const ELEMENTS: [ElementKind; 22] = [
+pub(super) const ELEMENTS: [ElementKind; 23] = [
+    ElementKind {
+        words: "CONSTRAINT COMPLEX_JOINT GEAR",
+        statement: "GEAR",
+        flags: &[],
+        name: "GEAR_NAME",
+        parameters: &[&[
+            ("JOINT_NAME", Becomes::Joints("JOINTS")),
+            ("COMMON_VELOCITY_MARKER", Becomes::Marker("CV")),
+        ]],
+    },
     ElementKind {
         words: "MEASURE PT2PT",
         statement: MEASURE,

@@ -158,6 +158,8 @@ struct Element {
     /// `(command, argument)` of each parameter given, the last for each.
     given: Vec<(CompactString, usize, usize)>,
     active: bool,
+    /// Its name as the create command wrote it.
+    name: String,
 }
 
 /// The reader's state.
@@ -179,6 +181,9 @@ struct Reader<'d> {
     /// The user-defined force instances (`ude create instance` of a
     /// force): refused unless made inactive.
     user_forces: Vec<(String, usize, bool)>,
+    /// Every user-defined element's instance: its full name and its
+    /// definition's (what names inside it are part of).
+    instances: Vec<(String, String)>,
     /// The frame locations are given in by default.
     coordinates: Frame,
     degrees: bool,
@@ -298,6 +303,7 @@ pub fn solver_dataset(
         designs: Vec::new(),
         reading: Vec::new(),
         user_forces: Vec::new(),
+        instances: Vec::new(),
         coordinates: Frame::GROUND,
         degrees: true,
         orientation_type: Orientations::BODY_313,
@@ -613,10 +619,30 @@ impl<'d> Reader<'d> {
         let Some(name) = self.word(index, "INSTANCE_NAME") else {
             return;
         };
-        if definition.contains(".FORCES.") && self.view.statements[index].name.contains(" CREATE ")
-        {
-            self.user_forces.push((self.full(&name), index, true));
+        if self.view.statements[index].name.contains(" CREATE ") {
+            if definition.contains(".FORCES.") {
+                self.user_forces.push((self.full(&name), index, true));
+            }
+            self.instances.push((self.full(&name), definition));
         }
+    }
+
+    /// Why `name`, which names nothing the file creates, is not known: it
+    /// is inside a user-defined element's instance (a controls block's
+    /// variable), whose insides mbexpr does not read.
+    fn inside_instance(&self, name: &str) -> Option<String> {
+        let full = self.full(name);
+        self.instances
+            .iter()
+            .find(|(instance, _)| {
+                full.strip_prefix(instance.as_str())
+                    .is_some_and(|rest| rest.starts_with('.'))
+            })
+            .map(|(instance, definition)| {
+                format!(
+                    "{name} is inside {instance}, an instance of the View library element {definition}, whose insides mbexpr does not read: mbexpr simulates the model's own elements"
+                )
+            })
     }
 
     /// The frame of the model, part or marker argument `keyword` names.
@@ -1167,7 +1193,7 @@ impl<'d> Reader<'d> {
         let Some((solver, flags, name_keyword, parameters)) = found else {
             self.refuse(
                 statement,
-                "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, beams, contacts, joint frictions, gravity, variables, differential equations, function requests and sensors".into(),
+                "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, beams, contacts, joint frictions, couplers and gears, gravity, variables, differential equations, function requests and sensors".into(),
                 statement.span,
             );
             return;
@@ -1193,6 +1219,7 @@ impl<'d> Reader<'d> {
                 span: statement.span,
                 given: Vec::new(),
                 active: true,
+                name: name.clone(),
             });
             let element = self.elements.len() - 1;
             let full = self.full(&name);
@@ -1205,6 +1232,10 @@ impl<'d> Reader<'d> {
                 }
                 _ => {
                     let span = statement.place_of(name_keyword, name_keyword.len());
+                    if let Some(reason) = self.inside_instance(&name) {
+                        self.refuse(statement, reason, span);
+                        return;
+                    }
                     self.wrong(
                         format!(
                             "{} names no {} the file creates before",

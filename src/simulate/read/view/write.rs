@@ -54,6 +54,7 @@ impl Reader<'_> {
                 elements.push(statement);
             }
         }
+        elements.extend(self.write_measures());
         for geometry in 0..self.geometries.len() {
             if self.geometries[geometry].met
                 && let Some(statement) = self.write_graphic(geometry)
@@ -604,12 +605,12 @@ impl Reader<'_> {
                         text.file_span(at),
                     );
                 }
-                _ => self.wrong(
-                    format!(
+                _ => {
+                    let message = self.inside_instance(&name).unwrap_or_else(|| format!(
                         "{name} is a View object mbexpr does not evaluate in a function (it reads design variables and function measures): give its value"
-                    ),
-                    text.file_span(at),
-                ),
+                    ));
+                    self.wrong(message, text.file_span(at));
+                }
             }
         }
         for (at, name) in replacements {
@@ -621,10 +622,12 @@ impl Reader<'_> {
             };
             match id {
                 Some(id) => ids.push((at, id.to_string())),
-                None => self.wrong(
-                    format!("{name} is no marker, part or element the file creates"),
-                    text.file_span(at),
-                ),
+                None => {
+                    let message = self.inside_instance(&name).unwrap_or_else(|| {
+                        format!("{name} is no marker, part or element the file creates")
+                    });
+                    self.wrong(message, text.file_span(at));
+                }
             }
         }
         ids.sort_by_key(|(at, _)| at.start);
@@ -655,6 +658,92 @@ const CENTRE_CHARACTERISTICS: [(&str, &str); 5] = [
 ];
 
 impl Reader<'_> {
+    /// The measures as VARIABLEs, as View has the solver compute them (a
+    /// column each in the run's rows), numbered after the file's
+    /// variables: each active function or kinematic measure mbexpr reads.
+    /// One it does not read (an object measure of a joint) is left out
+    /// with a note, not refused: only a function that reads it needs it.
+    fn write_measures(&mut self) -> Vec<Statement> {
+        let mut next = self
+            .elements
+            .iter()
+            .filter(|element| element.statement == "VARIABLE")
+            .filter_map(|element| element.id)
+            .max()
+            .unwrap_or(0);
+        let mut variables = Vec::new();
+        let mut written = Vec::new();
+        let mut unread = Vec::new();
+        for measure in 0..self.elements.len() {
+            if !(self.elements[measure].active && self.elements[measure].statement == MEASURE) {
+                continue;
+            }
+            let span = self.elements[measure].span;
+            let before = self.errors.len();
+            self.reading.push(measure);
+            let function = self.measure_function(measure);
+            self.reading.pop();
+            let read = self.errors.len() == before;
+            self.errors.truncate(before);
+            match function {
+                Some(function) if read => {
+                    next += 1;
+                    let mut statement = new_statement("VARIABLE", Some(next), span);
+                    statement.arguments.push(Argument {
+                        keyword: "FUNCTION".into(),
+                        keyword_span: span,
+                        span,
+                        value: Value::Expression {
+                            text: function,
+                            span,
+                        },
+                    });
+                    variables.push(statement);
+                    written.push(format!("VARIABLE/{next} = {}", self.elements[measure].name));
+                }
+                _ => unread.push(span),
+            }
+        }
+        if let Some(first) = variables.first() {
+            self.notes.push((
+                format!(
+                    "the measures, as View has the solver compute them: {}",
+                    written.join(", ")
+                ),
+                first.span,
+            ));
+        }
+        if let Some(&first) = unread.first() {
+            let count = unread.len();
+            self.notes.push((
+                format!(
+                    "{count} measure{} mbexpr does not compute (an orientation measure, an object measure of a joint or force ...) left out of the rows (here the first)",
+                    if count == 1 { "" } else { "s" },
+                ),
+                first,
+            ));
+        }
+        variables
+    }
+
+    /// The function of measure `measure`: a function measure's function, a
+    /// kinematic measure's ([`Reader::kinematics`]); what it lacks is
+    /// wrong.
+    fn measure_function(&mut self, measure: usize) -> Option<Embedded> {
+        let span = self.elements[measure].span;
+        if !self.elements[measure].flags.is_empty() {
+            return self
+                .kinematics(measure)
+                .map(|text| Embedded::pinned(&text, span.start));
+        }
+        let (command, position) = self.elements[measure]
+            .given
+            .iter()
+            .find(|(keyword, _, _)| keyword == "FUNCTION")
+            .map(|&(_, command, position)| (command, position))?;
+        self.function(command, position)
+    }
+
     /// The function of kinematic measure `measure`, which a function
     /// reads: of its `to_point` from its `from_point` (a `pt2pt`; ground's
     /// origin when none), of its `point` from ground's origin, or of the
@@ -680,26 +769,39 @@ impl Reader<'_> {
             Some(index) => reader.marker_id(index, keyword).ok_or(()),
             None => Ok(0),
         };
-        let to = match kind {
-            "PT2PT" => marker(self, "TO_POINT"),
-            "POINT" => marker(self, "POINT"),
+        // Each marker's id, or why the measure is not read (`None` where
+        // `marker_id` said so at its place).
+        let to: Result<u64, Option<String>> = match kind {
+            "PT2PT" => marker(self, "TO_POINT").map_err(|()| None),
+            "POINT" => marker(self, "POINT").map_err(|()| None),
             _ => {
-                let name = given("OBJECT").and_then(|index| self.word(index, "OBJECT"));
-                match name.as_deref().and_then(|name| self.find(name)) {
-                    Some(Entity::Marker(marker)) => self.markers[marker].id.ok_or(()),
-                    Some(Entity::Part(part)) => {
-                        match CENTRE_CHARACTERISTICS
-                            .iter()
-                            .find(|(centre, _)| *centre == characteristic)
-                        {
-                            Some(&(_, of_marker)) => {
-                                characteristic = of_marker.into();
-                                self.parts[part].centre_marker.ok_or(())
-                            }
-                            None => Err(()),
+                let name = given("OBJECT")
+                    .and_then(|index| self.word(index, "OBJECT"))
+                    .unwrap_or_default();
+                match self.find(&name) {
+                    Some(Entity::Marker(marker)) => self.markers[marker].id.ok_or(None),
+                    Some(Entity::Part(part)) => match CENTRE_CHARACTERISTICS
+                        .iter()
+                        .find(|(centre, _)| *centre == characteristic)
+                    {
+                        Some(&(_, of_marker)) => {
+                            characteristic = of_marker.into();
+                            self.parts[part].centre_marker.ok_or_else(|| {
+                                Some(format!("{name} has no mass properties mbexpr reads"))
+                            })
                         }
-                    }
-                    _ => Err(()),
+                        None => Err(Some(format!(
+                            "a part's characteristic {} is not one mbexpr reads (cm_position, cm_velocity, cm_acceleration, cm_angular_velocity, cm_angular_acceleration)",
+                            characteristic.to_ascii_lowercase()
+                        ))),
+                    },
+                    Some(Entity::Element(_)) => Err(Some(format!(
+                        "{name} is a joint, force or other element: mbexpr does not compute object measures of elements (their {}); measure its markers with a pt2pt measure, or use the solver function in the function",
+                        characteristic.to_ascii_lowercase()
+                    ))),
+                    _ => Err(Some(format!(
+                        "object = {name} names no marker or part the file creates"
+                    ))),
                 }
             }
         };
@@ -713,15 +815,20 @@ impl Reader<'_> {
         let function = CHARACTERISTICS
             .iter()
             .find(|(name, _, _, _)| *name == characteristic);
+        let reason = match (&to, function) {
+            (Err(reason), _) => reason.clone(),
+            (Ok(_), None) => Some(format!(
+                "its characteristic {} is not one mbexpr reads (translational_displacement, translational_velocity, translational_acceleration, angular_velocity, angular_acceleration)",
+                characteristic.to_ascii_lowercase()
+            )),
+            _ => None,
+        };
+        if let Some(reason) = reason {
+            self.wrong(format!("a function reads this measure: {reason}"), span);
+        }
         let (Ok(to), Ok(from), Ok(axes), Ok(moving), Some(&(_, along, magnitude, derivative))) =
             (to, from, axes, moving, function)
         else {
-            self.wrong(
-                String::from(
-                    "a function reads this measure, and mbexpr reads a measure of markers (pt2pt, point), or of a marker or a part's centre of mass (object), by its translational displacement, velocity or acceleration or its angular velocity or acceleration (cm_position ... for a part): this one is another, or names what the file does not create"
-                ),
-                span,
-            );
             return None;
         };
         let axis = match component.as_deref() {
