@@ -1261,3 +1261,91 @@ END
         "{last:?}"
     );
 }
+
+/// View's plate (`geometry create shape plate`: corners at markers, each
+/// a circle of `radius` joined to the next by tangent lines, `width`
+/// thick about the corners' plane): without rounding, a rectangle is the
+/// block of its sides; a rounded triangle in a tilted plane is the same
+/// plate with its outline drawn as 3 000 corners (the arcs as chords); a
+/// concave outline is refused.
+#[test]
+fn a_plates_mass_agrees_with_a_block_and_its_drawn_outline() {
+    let density = 7.8;
+    let corner = |name: &str, at: Vector3<f64>| {
+        format!(
+            "marker create marker_name = .s.body.{name} location = {}, {}, {} orientation = 0d, 0d, 0d relative_to = .s.ground\n",
+            at.x, at.y, at.z
+        )
+    };
+    let plate = |points: &[Vector3<f64>], width: f64, radius: f64| {
+        let mut text = String::new();
+        let mut names = Vec::new();
+        for (k, point) in points.iter().enumerate() {
+            text.push_str(&corner(&format!("C{k}"), *point));
+            names.push(format!(".s.body.C{k}"));
+        }
+        text.push_str(&format!(
+            "geometry create shape plate plate_name = .s.body.P marker_name = {} width = {width} radius = {radius}\n",
+            names.join(", ")
+        ));
+        text
+    };
+    let (a, b, t) = (0.4, 0.25, 0.03);
+    let rectangle = [
+        Vector3::new(0.0, 0.0, 0.0),
+        Vector3::new(a, 0.0, 0.0),
+        Vector3::new(a, b, 0.0),
+        Vector3::new(0.0, b, 0.0),
+    ];
+    let flat = solid_mass(density, &plate(&rectangle, t, 0.0));
+    let block = solid_mass(
+        density,
+        &format!(
+            "{}geometry create shape block block_name = .s.body.B corner_marker = .s.body.K diag_corner_coords = {a}, {b}, {t}",
+            corner("K", Vector3::new(0.0, 0.0, -t / 2.0))
+        ),
+    );
+    assert!(
+        differs(flat, block, 1.0) < 1e-12,
+        "{flat:?} against {block:?}"
+    );
+    // A triangle in a tilted plane, rounded by 0.05.
+    let (e1, e2) = (Vector3::new(0.6, 0.8, 0.0), Vector3::new(-0.48, 0.36, 0.8));
+    let place = |[u, v]: [f64; 2]| Vector3::new(0.2, -0.1, 0.3) + e1 * u + e2 * v;
+    let triangle = [[0.0, 0.0], [0.5, 0.1], [0.15, 0.4]];
+    let radius = 0.05;
+    let rounded = solid_mass(density, &plate(&triangle.map(place), t, radius));
+    let mut outline = Vec::new();
+    for k in 0..3 {
+        let [before, at, after] = [triangle[(k + 2) % 3], triangle[k], triangle[(k + 1) % 3]];
+        let normal = |p: [f64; 2], q: [f64; 2]| {
+            (q[1] - p[1]).atan2(q[0] - p[0]) - std::f64::consts::FRAC_PI_2
+        };
+        let (from, to) = (normal(before, at), normal(at, after));
+        let turn = (to - from).rem_euclid(std::f64::consts::TAU);
+        for step in 0..=1000 {
+            let angle = from + turn * step as f64 / 1000.0;
+            outline.push(place([
+                at[0] + radius * angle.cos(),
+                at[1] + radius * angle.sin(),
+            ]));
+        }
+    }
+    let drawn = solid_mass(density, &plate(&outline, t, 0.0));
+    assert!(
+        differs(rounded, drawn, 1.0) < 2e-6,
+        "{rounded:?} against {drawn:?}"
+    );
+    let concave = [[0.0, 0.0], [0.5, 0.0], [0.1, 0.1], [0.0, 0.5]].map(place);
+    let text = format!(
+        "defaults units length = meter angle = deg force = newton mass = kg time = sec
+model create model_name = s
+material create material_name = .s.stuff density = 1
+part create rigid_body name_and_position part_name = .s.body adams_id = 2 location = 0, 0, 0 orientation = 0d, 0d, 0d
+part create rigid_body mass_properties part_name = .s.body material_type = .s.stuff
+{}",
+        plate(&concave, t, radius)
+    );
+    let refused = view_model(&text).expect_err("a concave plate");
+    assert!(refused.contains("concave outline"), "{refused}");
+}

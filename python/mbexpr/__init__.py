@@ -316,7 +316,9 @@ def simulate(
     rows.
 
     ``path_or_text`` is a file (a solver dataset, with END and STEPS of a
-    ``SIMULATE/DYNAMIC`` command in an ``.acf`` beside it, or a scene file
+    ``SIMULATE/DYNAMIC`` command in an ``.acf`` beside it; an Adams View
+    command file ``.cmd``, read as the dataset View would export, its run
+    from its last ``simulation single_run transient``; or a scene file
     ``.toml``) or the model's text (``format`` "dataset" or "scene"; by
     default a text with a line starting ``[`` is a scene). A path-like
     object, a string naming a file that exists, a one-line string that

@@ -246,6 +246,25 @@ impl Reader<'_> {
                 };
                 (frame, Moments::link(length, width, depth))
             }
+            "PLATE" => {
+                let names = self.names(index, "MARKER_NAME");
+                let mut corners = Vec::new();
+                for name in names {
+                    match self.find(&name) {
+                        Some(Entity::Marker(marker)) => {
+                            corners.push(self.markers[marker].frame.origin)
+                        }
+                        _ => {
+                            return Err(format!(
+                                "marker_name: {name} is no marker the file creates"
+                            ));
+                        }
+                    }
+                }
+                let thickness = number(self, "WIDTH", false)?;
+                let radius = number(self, "RADIUS", false)?;
+                plate(&corners, thickness, radius)?
+            }
             _ => {
                 return Err(
                     "is a shape whose volume mbexpr does not compute: give the part's mass, centre of mass and inertia (mass_properties with mass, center_of_mass_marker, ixx ...)".into(),
@@ -379,5 +398,210 @@ impl Moments {
             first: Vector3::new(volume * length / 2.0, 0.0, 0.0),
             second: Matrix3::from_diagonal(&Vector3::new(xx, yy, zz)),
         }
+    }
+}
+
+/// View's plate: the outline around its corners (`corners`, in ground),
+/// each corner a circle of `radius` about its marker joined to the next by
+/// tangent lines (the convex polygon of the corners widened by `radius`,
+/// as a link is about its two markers), `thickness` thick and centred on
+/// the corners' plane. Its frame (the first corner, the first side along
+/// x, the plane's normal along z) and its moments there.
+fn plate(
+    corners: &[Vector3<f64>],
+    thickness: f64,
+    radius: f64,
+) -> Result<(Frame, Moments), String> {
+    if corners.len() < 3 {
+        return Err("has fewer than three corners (marker_name)".into());
+    }
+    if !(thickness > 0.0 && radius >= 0.0) {
+        return Err("has no volume: its width must be positive and its radius not negative".into());
+    }
+    // The plane's normal by Newell's method, and the corners in it.
+    let mut normal = Vector3::zeros();
+    for (k, a) in corners.iter().enumerate() {
+        let b = corners[(k + 1) % corners.len()];
+        normal += Vector3::new(
+            (a.y - b.y) * (a.z + b.z),
+            (a.z - b.z) * (a.x + b.x),
+            (a.x - b.x) * (a.y + b.y),
+        );
+    }
+    let size = corners.iter().fold(0.0_f64, |most, corner| {
+        most.max((corner - corners[0]).norm())
+    });
+    let normal = normal
+        .try_normalize(1e-12 * size * size)
+        .ok_or("has its corners on one line")?;
+    if corners
+        .iter()
+        .any(|corner| normal.dot(&(corner - corners[0])).abs() > 1e-9 * size)
+    {
+        return Err("has its corners off one plane".into());
+    }
+    let x = (corners[1] - corners[0])
+        .try_normalize(1e-12 * size)
+        .ok_or("has two corners at one point")?;
+    let y = normal.cross(&x);
+    let points: Vec<[f64; 2]> = corners
+        .iter()
+        .map(|corner| {
+            let d = corner - corners[0];
+            [d.dot(&x), d.dot(&y)]
+        })
+        .collect();
+    let outline = Outline::of(&points, radius)?;
+    let t = thickness;
+    let moments = Moments {
+        volume: outline.area * t,
+        first: Vector3::new(outline.x, outline.y, 0.0) * t,
+        second: Matrix3::new(
+            outline.xx * t,
+            outline.xy * t,
+            0.0, //
+            outline.xy * t,
+            outline.yy * t,
+            0.0, //
+            0.0,
+            0.0,
+            outline.area * t * t * t / 12.0,
+        ),
+    };
+    let frame = Frame {
+        origin: corners[0],
+        axes: Matrix3::from_columns(&[x, y, normal]),
+    };
+    Ok((frame, moments))
+}
+
+/// A plane region's area and its first and second moments about the
+/// origin (`∫x`, `∫y`, `∫x²`, `∫y²`, `∫xy`).
+#[derive(Clone, Copy, Default)]
+struct Outline {
+    area: f64,
+    x: f64,
+    y: f64,
+    xx: f64,
+    yy: f64,
+    xy: f64,
+}
+
+impl Outline {
+    /// The convex polygon `points` widened by `radius`: the polygon, a
+    /// rectangle outside each side and a sector about each corner.
+    fn of(points: &[[f64; 2]], radius: f64) -> Result<Outline, String> {
+        let mut points = points.to_vec();
+        let mut outline = Outline::polygon(&points);
+        if outline.area < 0.0 {
+            points.reverse();
+            outline = Outline::polygon(&points);
+        }
+        let n = points.len();
+        let side = |k: usize| {
+            let [a, b] = [points[k], points[(k + 1) % n]];
+            [b[0] - a[0], b[1] - a[1]]
+        };
+        for k in 0..n {
+            let [before, after] = [side((k + n - 1) % n), side(k)];
+            if before[0] * after[1] - before[1] * after[0] < -1e-12 * (outline.area.abs() + 1e-300)
+            {
+                return Err(
+                    "has a concave outline (its corners turn both ways): mbexpr computes the mass of convex plates".into(),
+                );
+            }
+        }
+        if radius == 0.0 {
+            return Ok(outline);
+        }
+        // The outward normal's angle of each side (counter-clockwise).
+        let angle = |k: usize| {
+            let [dx, dy] = side(k);
+            dy.atan2(dx) - std::f64::consts::FRAC_PI_2
+        };
+        for k in 0..n {
+            let [a, b] = [points[k], points[(k + 1) % n]];
+            let theta = angle(k);
+            let out = [radius * theta.cos(), radius * theta.sin()];
+            outline.add(
+                &Outline::polygon(&[
+                    a,
+                    [a[0] + out[0], a[1] + out[1]],
+                    [b[0] + out[0], b[1] + out[1]],
+                    b,
+                ])
+                .abs(),
+            );
+            let start = angle((k + n - 1) % n);
+            let turn = (theta - start).rem_euclid(2.0 * PI);
+            outline.add(&Outline::sector(radius, start, start + turn).about(a));
+        }
+        Ok(outline)
+    }
+
+    /// A polygon's (signed by its turn: positive counter-clockwise).
+    fn polygon(points: &[[f64; 2]]) -> Outline {
+        let mut outline = Outline::default();
+        for (k, &[x0, y0]) in points.iter().enumerate() {
+            let [x1, y1] = points[(k + 1) % points.len()];
+            let cross = x0 * y1 - x1 * y0;
+            outline.area += cross / 2.0;
+            outline.x += (x0 + x1) * cross / 6.0;
+            outline.y += (y0 + y1) * cross / 6.0;
+            outline.xx += (x0 * x0 + x0 * x1 + x1 * x1) * cross / 12.0;
+            outline.yy += (y0 * y0 + y0 * y1 + y1 * y1) * cross / 12.0;
+            outline.xy += (x0 * y1 + 2.0 * x0 * y0 + 2.0 * x1 * y1 + x1 * y0) * cross / 24.0;
+        }
+        outline
+    }
+
+    /// A sector of a disc of `radius` about the origin, from angle `from`
+    /// to `to` counter-clockwise.
+    fn sector(radius: f64, from: f64, to: f64) -> Outline {
+        let (r2, r3, r4) = (radius * radius, radius.powi(3), radius.powi(4));
+        let turn = to - from;
+        let double = ((2.0 * to).sin() - (2.0 * from).sin()) / 4.0;
+        Outline {
+            area: r2 * turn / 2.0,
+            x: r3 / 3.0 * (to.sin() - from.sin()),
+            y: r3 / 3.0 * (from.cos() - to.cos()),
+            xx: r4 / 4.0 * (turn / 2.0 + double),
+            yy: r4 / 4.0 * (turn / 2.0 - double),
+            xy: r4 / 8.0 * (to.sin().powi(2) - from.sin().powi(2)),
+        }
+    }
+
+    /// These moments of a region moved by `by`.
+    fn about(self, [dx, dy]: [f64; 2]) -> Outline {
+        Outline {
+            area: self.area,
+            x: self.x + dx * self.area,
+            y: self.y + dy * self.area,
+            xx: self.xx + 2.0 * dx * self.x + dx * dx * self.area,
+            yy: self.yy + 2.0 * dy * self.y + dy * dy * self.area,
+            xy: self.xy + dx * self.y + dy * self.x + dx * dy * self.area,
+        }
+    }
+
+    /// The region's moments with its area positive.
+    fn abs(self) -> Outline {
+        let sign = self.area.signum();
+        Outline {
+            area: self.area * sign,
+            x: self.x * sign,
+            y: self.y * sign,
+            xx: self.xx * sign,
+            yy: self.yy * sign,
+            xy: self.xy * sign,
+        }
+    }
+
+    fn add(&mut self, other: &Outline) {
+        self.area += other.area;
+        self.x += other.x;
+        self.y += other.y;
+        self.xx += other.xx;
+        self.yy += other.yy;
+        self.xy += other.xy;
     }
 }
