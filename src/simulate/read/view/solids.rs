@@ -108,7 +108,7 @@ impl Reader<'_> {
         }
         if total.volume <= 0.0 {
             self.wrong(
-                "the part's mass comes from its geometry (material_type or density), but it has no solid whose volume mbexpr computes (block, cylinder, frustum, ellipsoid, torus, link)".into(),
+                "the part's mass comes from its geometry (material_type or density), but it has no solid whose volume mbexpr computes (block, cylinder, frustum, ellipsoid, torus, link, plate, extrusion)".into(),
                 span,
             );
             return;
@@ -264,6 +264,23 @@ impl Reader<'_> {
                 let thickness = number(self, "WIDTH", false)?;
                 let radius = number(self, "RADIUS", false)?;
                 plate(&corners, thickness, radius)?
+            }
+            "EXTRUSION" => {
+                if self.argument(index, "PATH_POINTS").is_some() {
+                    return Err(
+                        "is extruded along a path: mbexpr computes the mass of straight extrusions"
+                            .into(),
+                    );
+                }
+                let frame = marker_frame(self, "REFERENCE_MARKER")?;
+                let points = self
+                    .numbers(index, "POINTS_FOR_PROFILE", false)
+                    .filter(|values| values.len() >= 9 && values.len() % 3 == 0)
+                    .ok_or(
+                        "has no points_for_profile (three or more points, three numbers each)",
+                    )?;
+                let length = number(self, "LENGTH_ALONG_Z_AXIS", false)?;
+                (frame, extrusion(&points, length)?)
             }
             _ => {
                 return Err(
@@ -473,6 +490,44 @@ fn plate(
         axes: Matrix3::from_columns(&[x, y, normal]),
     };
     Ok((frame, moments))
+}
+
+/// View's extrusion: the profile `points` (x, y, z in its reference
+/// marker, all at one z) extruded along z by `length` (towards −z when
+/// negative), in the marker's frame.
+fn extrusion(points: &[f64], length: f64) -> Result<Moments, String> {
+    let z0 = points[2];
+    if points
+        .chunks(3)
+        .any(|point| (point[2] - z0).abs() > 1e-9 * (1.0 + z0.abs()))
+    {
+        return Err("has its profile off one plane of its reference marker's z".into());
+    }
+    let profile: Vec<[f64; 2]> = points.chunks(3).map(|point| [point[0], point[1]]).collect();
+    let outline = Outline::polygon(&profile).abs();
+    let (start, end) = if length < 0.0 {
+        (z0 + length, z0)
+    } else {
+        (z0, z0 + length)
+    };
+    let depth = end - start;
+    let z = (end * end - start * start) / 2.0;
+    let zz = (end.powi(3) - start.powi(3)) / 3.0;
+    Ok(Moments {
+        volume: outline.area * depth,
+        first: Vector3::new(outline.x * depth, outline.y * depth, outline.area * z),
+        second: Matrix3::new(
+            outline.xx * depth,
+            outline.xy * depth,
+            outline.x * z, //
+            outline.xy * depth,
+            outline.yy * depth,
+            outline.y * z, //
+            outline.x * z,
+            outline.y * z,
+            outline.area * zz,
+        ),
+    })
 }
 
 /// A plane region's area and its first and second moments about the
