@@ -1410,3 +1410,75 @@ geometry create shape plate plate_name = .s.body.P marker_name = .s.body.C0, .s.
         );
     }
 }
+
+/// A feature of a solid (`geometry create feature blend`, a hole, a
+/// chamfer) changes its volume: where the part's mass comes from its
+/// solids it is refused at its place; where the file gives the mass it
+/// only draws, and the model reads.
+#[test]
+fn a_solids_feature_is_refused_where_the_mass_comes_from_the_solid() {
+    let text = |mass: &str| {
+        format!(
+            "defaults units length = meter angle = deg force = newton mass = kg time = sec
+model create model_name = f
+material create material_name = .f.steel density = 7801
+part create rigid_body name_and_position part_name = .f.plate adams_id = 2 location = 0, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .f.plate.CORNER adams_id = 2 location = 0, 0, 0 orientation = 0d, 0d, 0d
+part create rigid_body mass_properties part_name = .f.plate {mass}
+geometry create shape block block_name = .f.plate.BOX_9 corner_marker = .f.plate.CORNER diag_corner_coords = 0.25, 0.02, 0.25
+geometry create feature blend blend_name = .f.plate.BOX_9.BLEND_1 subtype = edge radius1 = 0.05 radius2 = 0.05 reference_marker = .f.plate.CORNER locations = 0.0, 0.0, 0.125 chamfer = no
+geometry modify feature blend blend_name = .f.plate.BOX_9.BLEND_1 radius1 = 0.04
+"
+        )
+    };
+    let refused = view_model(&text("material_type = .f.steel")).expect_err("refused");
+    assert!(
+        refused.contains("8:1: ") && refused.contains("changes its solid's volume"),
+        "{refused}"
+    );
+    assert_eq!(
+        refused.matches("changes its solid's volume").count(),
+        1,
+        "{refused}"
+    );
+    let given = text("mass = 3 center_of_mass_marker = .f.plate.CORNER ixx = 1 iyy = 1 izz = 1");
+    let model = view_model(&given).unwrap_or_else(|errors| panic!("{errors}"));
+    assert_eq!(model.masses[0].mass, 3.0);
+}
+
+/// A measure's ends may be points (`point create`), not markers: a
+/// marker is made at each point a measure reads. An arm turning freely at
+/// 2 rad/s about ground's z carries a point 0.7 out; its distance from a
+/// ground point 1.5 along x is `|0.7 (cos 2t, sin 2t) − (1.5, 0)|`.
+#[test]
+fn a_measure_between_points_follows_them() {
+    let text = "defaults units length = meter angle = rad force = newton mass = kg time = sec
+model create model_name = p
+marker create marker_name = .p.ground.PIVOT adams_id = 1 location = 0, 0, 0 orientation = 0, 0, 0
+point create point_name = .p.ground.POST location = 1.5, 0, 0
+part create rigid_body name_and_position part_name = .p.arm adams_id = 2 location = 0, 0, 0 orientation = 0, 0, 0
+part create rigid_body initial_velocity part_name = .p.arm wz = 2
+marker create marker_name = .p.arm.HUB adams_id = 2 location = 0, 0, 0 orientation = 0, 0, 0
+point create point_name = .p.arm.TIP location = 0.5, 0, 0
+point modify point_name = .p.arm.TIP location = 0.7, 0, 0
+part create rigid_body mass_properties part_name = .p.arm mass = 1 center_of_mass_marker = .p.arm.HUB ixx = 1 iyy = 1 izz = 1
+constraint create joint revolute joint_name = .p.HINGE adams_id = 1 i_marker_name = .p.arm.HUB j_marker_name = .p.ground.PIVOT
+measure create pt2pt measure_name = .p.GAP from_point = .p.ground.POST to_point = .p.arm.TIP characteristic = translational_displacement component = mag_component
+simulation single_run transient end_time = 2 number_of_steps = 20
+";
+    let model = view_model(text).unwrap_or_else(|errors| panic!("{errors}"));
+    let gap = simulate::columns(&model)
+        .iter()
+        .position(|column| column == "VARIABLE/1")
+        .expect("the measure's column");
+    for row in rows(&model, 2.0, 20) {
+        let t = row[0];
+        let expected =
+            ((0.7 * (2.0 * t).cos() - 1.5).powi(2) + (0.7 * (2.0 * t).sin()).powi(2)).sqrt();
+        assert!(
+            (row[gap] - expected).abs() < 1e-7,
+            "at {t}: {} against {expected}",
+            row[gap]
+        );
+    }
+}

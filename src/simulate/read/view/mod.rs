@@ -105,7 +105,19 @@ enum Entity {
     Geometry(usize),
     /// A design variable's value (`variable create ... real_value = v`).
     Design(usize),
+    /// A point (`point create`), where a measure reads it.
+    Point(usize),
     Model,
+}
+
+/// A point on a part (`point create`): a measure of it is a measure of a
+/// marker made there when a function or a VARIABLE needs it.
+struct Point {
+    part: usize,
+    frame: Frame,
+    span: Span,
+    /// The id of the marker made at it, once made.
+    marker: Option<u64>,
 }
 
 /// A geometry (`geometry create shape ...`): its command and shape, its
@@ -134,6 +146,9 @@ struct Part {
     solids: Vec<usize>,
     /// The id of its centre-of-mass marker, once its PART is written.
     centre_marker: Option<u64>,
+    /// The features (`geometry create feature`: blends, chamfers, holes)
+    /// on its solids, by command.
+    features: Vec<usize>,
     /// Not made inactive (`part attributes ... active = off`).
     active: bool,
 }
@@ -173,6 +188,7 @@ struct Reader<'d> {
     parts: Vec<Part>,
     markers: Vec<Marker>,
     elements: Vec<Element>,
+    points: Vec<Point>,
     geometries: Vec<Geometry>,
     densities: Vec<f64>,
     designs: Vec<f64>,
@@ -298,6 +314,7 @@ pub fn solver_dataset(
         parts: Vec::new(),
         markers: Vec::new(),
         elements: Vec::new(),
+        points: Vec::new(),
         geometries: Vec::new(),
         densities: Vec::new(),
         designs: Vec::new(),
@@ -401,6 +418,7 @@ impl<'d> Reader<'d> {
             velocity: None,
             solids: Vec::new(),
             centre_marker: None,
+            features: Vec::new(),
             active: true,
         });
         self.name(name, Entity::Part(self.parts.len() - 1));
@@ -749,6 +767,7 @@ impl<'d> Reader<'d> {
                 }
             }
             ("MARKER", Some(verb)) => self.marker(index, verb == "MODIFY", false),
+            ("POINT", Some(verb)) => self.point(index, verb == "MODIFY"),
             ("FLOATING_MARKER", Some("CREATE")) => self.marker(index, false, true),
             ("SIMULATION SINGLE_RUN TRANSIENT", None) => {
                 let parameters: Vec<(String, String)> = statement
@@ -765,6 +784,7 @@ impl<'d> Reader<'d> {
             }
             ("SIMULATION SCRIPT", Some(_)) => self.script(index),
             _ if words.starts_with("GEOMETRY SHAPE ") => self.solid(index, &words[15..]),
+            _ if words.starts_with("GEOMETRY FEATURE ") => self.feature(index),
             _ if words.split(' ').nth(1) == Some("ATTRIBUTES") => self.attributes(index),
             _ => self.element(index, words, verb),
         }
@@ -876,6 +896,7 @@ impl<'d> Reader<'d> {
                 velocity: None,
                 solids: Vec::new(),
                 centre_marker: None,
+                features: Vec::new(),
                 active: true,
             });
             let part = self.parts.len() - 1;
@@ -910,6 +931,42 @@ impl<'d> Reader<'d> {
             } else {
                 self.parts[part].frame = self.placed(index);
             }
+        }
+    }
+
+    /// A point on a part, kept for the measures that name it; otherwise
+    /// it only draws, so nothing about it is refused (a point this cannot
+    /// place is left out).
+    fn point(&mut self, index: usize, modify: bool) {
+        let Some(name) = self.word(index, "POINT_NAME") else {
+            return;
+        };
+        let full = self.full(&name);
+        let errors = self.errors.len();
+        let frame = if modify {
+            self.moves(index).then(|| self.placed(index))
+        } else {
+            Some(self.placed(index))
+        };
+        let placed = self.errors.len() == errors;
+        self.errors.truncate(errors);
+        match (modify, frame, self.find(&full)) {
+            (true, Some(frame), Some(Entity::Point(point))) if placed => {
+                self.points[point].frame = frame;
+            }
+            (false, Some(frame), _) if placed => {
+                let owner = full.rsplit_once('.').map(|(owner, _)| owner.to_string());
+                if let Some(Entity::Part(part)) = owner.and_then(|owner| self.find(&owner)) {
+                    self.points.push(Point {
+                        part,
+                        frame,
+                        span: self.view.statements[index].span,
+                        marker: None,
+                    });
+                    self.name(full, Entity::Point(self.points.len() - 1));
+                }
+            }
+            _ => {}
         }
     }
 
@@ -1045,6 +1102,26 @@ impl<'d> Reader<'d> {
                 .map(|(name, value)| (name.to_ascii_uppercase(), key(value)))
                 .collect();
             self.transient(&parameters, item.span);
+        }
+    }
+
+    /// A feature of a solid (a blend, chamfer or hole: its name is the
+    /// solid's and its own), kept with the solid's part: it changes the
+    /// solid's volume, which matters where the part's mass comes from its
+    /// solids. A feature of a solid the file does not create (a Parasolid
+    /// one) is passed over with it.
+    fn feature(&mut self, index: usize) {
+        if !self.view.statements[index].name.contains(" CREATE ") {
+            return;
+        }
+        let Some(name) = self.object_name(index).map(|name| self.full(&name)) else {
+            return;
+        };
+        let solid = name.rsplit_once('.').map(|(solid, _)| solid.to_string());
+        if let Some(Entity::Geometry(geometry)) = solid.and_then(|solid| self.find(&solid))
+            && let Some(part) = self.geometries[geometry].part
+        {
+            self.parts[part].features.push(index);
         }
     }
 
@@ -1406,6 +1483,15 @@ impl<'d> Reader<'d> {
         let name = self.word(index, keyword)?;
         match self.find(&name) {
             Some(Entity::Marker(marker)) => self.markers[marker].id,
+            Some(Entity::Point(point)) => {
+                if self.points[point].marker.is_none() {
+                    let Point {
+                        part, frame, span, ..
+                    } = self.points[point];
+                    self.points[point].marker = Some(self.new_marker(part, frame, false, span));
+                }
+                self.points[point].marker
+            }
             _ => {
                 let span = self.view.statements[index].place_of(keyword, keyword.len());
                 self.wrong(

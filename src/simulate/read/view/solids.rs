@@ -103,6 +103,15 @@ impl Reader<'_> {
                 }
             }
         }
+        for index in self.parts[part].features.clone() {
+            let command = &self.view.statements[index];
+            self.refuse(
+                command,
+                "changes its solid's volume (a blend, chamfer or hole), which mbexpr does not compute: give the part's mass, centre of mass and inertia (mass_properties with mass, center_of_mass_marker, ixx ...)".into(),
+                command.span,
+            );
+            refused = true;
+        }
         if refused {
             return;
         }
