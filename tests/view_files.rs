@@ -28,6 +28,14 @@ fn view_model(text: &str) -> Result<Model, String> {
     })
 }
 
+/// The index of `model`'s output column `name` in a row.
+fn column(model: &Model, name: &str) -> usize {
+    simulate::columns(model)
+        .iter()
+        .position(|column| column == name)
+        .unwrap_or_else(|| panic!("no column {name}"))
+}
+
 /// The rows of a run of `model` to `end` with `steps` output steps.
 fn rows(model: &Model, end: f64, steps: usize) -> Vec<Vec<f64>> {
     let simulation = Simulation::new(model).expect("the model compiles");
@@ -865,11 +873,7 @@ fn the_view_four_bar_follows_its_closed_form() {
     let text = include_str!("../examples/simulate/n_view_four_bar.cmd");
     let model = view_model(text).unwrap_or_else(|errors| panic!("{errors}"));
     assert_eq!(model.run, Some((1.0, 20)));
-    let columns = simulate::columns(&model);
-    let angle = columns
-        .iter()
-        .position(|column| column == "REQUEST/1.F2")
-        .expect("the request's column");
+    let angle = column(&model, "REQUEST/1.F2");
     let (a, d): (Vector3<f64>, Vector3<f64>) = (Vector3::zeros(), Vector3::new(400.0, 0.0, 0.0));
     let (b0, c0) = (
         Vector3::new(0.0, 100.0, 0.0),
@@ -962,13 +966,8 @@ REQUEST/1, F2 = AZ(2, 1)\\F3 = WZ(2, 1, 1)
 END
 ";
     let rows = same_motion(view, dataset, 1e-7);
-    let columns = simulate::columns(&view_model(view).expect("the model"));
-    let [angle, speed] = ["REQUEST/1.F2", "REQUEST/1.F3"].map(|name| {
-        columns
-            .iter()
-            .position(|column| column == name)
-            .expect("the request's columns")
-    });
+    let model = view_model(view).expect("the model");
+    let [angle, speed] = ["REQUEST/1.F2", "REQUEST/1.F3"].map(|name| column(&model, name));
     // The brake's torque μd T0 on Izz: the wheel stops at 1 s, after the run.
     let alpha = 0.2 * 2.0 / 0.4;
     let (start, spin) = (30_f64.to_radians(), 180_f64.to_radians());
@@ -1004,13 +1003,7 @@ output_control create request request_name = .c.SLIDING adams_id = 1 f2 = "DZ(.c
 simulation single_run transient end_time = 1.0 number_of_steps = 20
 "#;
     let model = view_model(view).unwrap_or_else(|errors| panic!("{errors}"));
-    let columns = simulate::columns(&model);
-    let [along, speed] = ["REQUEST/1.F2", "REQUEST/1.F3"].map(|name| {
-        columns
-            .iter()
-            .position(|column| column == name)
-            .expect("the request's columns")
-    });
+    let [along, speed] = ["REQUEST/1.F2", "REQUEST/1.F3"].map(|name| column(&model, name));
     let slope = 20_f64.to_radians();
     let braking = 9.80665 * (slope.sin() + 0.3 * slope.cos());
     let stop = 2.0 / braking;
@@ -1467,10 +1460,7 @@ measure create pt2pt measure_name = .p.GAP from_point = .p.ground.POST to_point 
 simulation single_run transient end_time = 2 number_of_steps = 20
 ";
     let model = view_model(text).unwrap_or_else(|errors| panic!("{errors}"));
-    let gap = simulate::columns(&model)
-        .iter()
-        .position(|column| column == "VARIABLE/1")
-        .expect("the measure's column");
+    let gap = column(&model, "VARIABLE/1");
     for row in rows(&model, 2.0, 20) {
         let t = row[0];
         let expected =

@@ -235,28 +235,13 @@ impl Reader<'_> {
                     }
                 }
                 Becomes::Named(solver_keyword, names) => {
-                    let word = self.word(index, &keyword).unwrap_or_default();
-                    match names.iter().find(|(view, _)| *view == word) {
-                        Some(&(_, solver_word)) => {
-                            words_argument(
-                                &mut statement,
-                                solver_keyword,
-                                &[solver_word],
-                                argument_span,
-                            );
-                        }
-                        None => self.wrong(
-                            format!(
-                                "{} is one of {}",
-                                keyword.to_ascii_lowercase(),
-                                names
-                                    .iter()
-                                    .map(|(view, _)| view.to_ascii_lowercase())
-                                    .collect::<Vec<_>>()
-                                    .join(", ")
-                            ),
+                    if let Some(solver_word) = self.one_of(index, &keyword, names, argument_span) {
+                        words_argument(
+                            &mut statement,
+                            solver_keyword,
+                            &[solver_word],
                             argument_span,
-                        ),
+                        );
                     }
                 }
                 Becomes::SwitchTo(solver_keyword, solver_word) => {
@@ -300,23 +285,10 @@ impl Reader<'_> {
                     }
                 }
                 Becomes::Choice(choices) => {
-                    let word = self.word(index, &keyword).unwrap_or_default();
-                    match choices.iter().find(|(view, _)| *view == word) {
-                        Some(&(_, solver_keyword)) => {
-                            flag_argument(&mut statement, solver_keyword, argument_span);
-                        }
-                        None => self.wrong(
-                            format!(
-                                "{} is one of {}",
-                                keyword.to_ascii_lowercase(),
-                                choices
-                                    .iter()
-                                    .map(|(view, _)| view.to_ascii_lowercase())
-                                    .collect::<Vec<_>>()
-                                    .join(", ")
-                            ),
-                            argument_span,
-                        ),
+                    if let Some(solver_keyword) =
+                        self.one_of(index, &keyword, choices, argument_span)
+                    {
+                        flag_argument(&mut statement, solver_keyword, argument_span);
                     }
                 }
                 Becomes::Word(solver_keyword) => {
@@ -414,6 +386,38 @@ impl Reader<'_> {
         }
         self.write_initials(&mut statement, initials, initials_span);
         Some(statement)
+    }
+
+    /// The solver's word for the View word parameter `keyword` of command
+    /// `index` gives among `choices` (View's word, the solver's); another
+    /// word is wrong at `span`.
+    fn one_of(
+        &mut self,
+        index: usize,
+        keyword: &str,
+        choices: &[(&'static str, &'static str)],
+        span: Span,
+    ) -> Option<&'static str> {
+        let word = self.word(index, keyword).unwrap_or_default();
+        let found = choices
+            .iter()
+            .find(|(view, _)| *view == word)
+            .map(|&(_, solver)| solver);
+        if found.is_none() {
+            let listed: Vec<String> = choices
+                .iter()
+                .map(|(view, _)| view.to_ascii_lowercase())
+                .collect();
+            self.wrong(
+                format!(
+                    "{} is one of {}",
+                    keyword.to_ascii_lowercase(),
+                    listed.join(", ")
+                ),
+                span,
+            );
+        }
+        found
     }
 
     /// A joint's initial conditions as its IC (a revolute joint's rotation,
@@ -572,25 +576,10 @@ impl Reader<'_> {
                         && !self.reading.contains(&measure)
                         && self.reading.len() < MEASURE_DEPTH =>
                 {
-                    let function = self.elements[measure]
-                        .given
-                        .iter()
-                        .find(|(keyword, _, _)| keyword == "FUNCTION")
-                        .map(|&(_, command, position)| (command, position));
-                    self.reading.push(measure);
-                    let kinematic = !self.elements[measure].flags.is_empty();
-                    let measured = match function {
-                        Some((command, position)) => self
-                            .function(command, position)
-                            .map(|measured| measured.text.to_string()),
-                        None if kinematic => self.kinematics(measure),
-                        None => None,
-                    };
-                    self.reading.pop();
-                    match measured {
-                        Some(measured) => ids.push((at, format!("({measured})"))),
+                    match self.measure_function(measure) {
+                        Some(measured) => ids.push((at, format!("({})", measured.text))),
                         // A kinematic measure says what it lacks.
-                        None if kinematic => {}
+                        None if !self.elements[measure].flags.is_empty() => {}
                         None => self.wrong(
                             format!("{name}: the measure has no function mbexpr reads"),
                             text.file_span(at),
@@ -680,9 +669,7 @@ impl Reader<'_> {
             }
             let span = self.elements[measure].span;
             let before = self.errors.len();
-            self.reading.push(measure);
             let function = self.measure_function(measure);
-            self.reading.pop();
             let read = self.errors.len() == before;
             self.errors.truncate(before);
             match function {
@@ -728,20 +715,23 @@ impl Reader<'_> {
 
     /// The function of measure `measure`: a function measure's function, a
     /// kinematic measure's ([`Reader::kinematics`]); what it lacks is
-    /// wrong.
+    /// wrong. The measure is being read meanwhile (against loops).
     fn measure_function(&mut self, measure: usize) -> Option<Embedded> {
         let span = self.elements[measure].span;
-        if !self.elements[measure].flags.is_empty() {
-            return self
-                .kinematics(measure)
-                .map(|text| Embedded::pinned(&text, span.start));
-        }
-        let (command, position) = self.elements[measure]
-            .given
-            .iter()
-            .find(|(keyword, _, _)| keyword == "FUNCTION")
-            .map(|&(_, command, position)| (command, position))?;
-        self.function(command, position)
+        self.reading.push(measure);
+        let function = if self.elements[measure].flags.is_empty() {
+            self.elements[measure]
+                .given
+                .iter()
+                .find(|(keyword, _, _)| keyword == "FUNCTION")
+                .map(|&(_, command, position)| (command, position))
+                .and_then(|(command, position)| self.function(command, position))
+        } else {
+            self.kinematics(measure)
+                .map(|text| Embedded::pinned(&text, span.start))
+        };
+        self.reading.pop();
+        function
     }
 
     /// The function of kinematic measure `measure`, which a function
