@@ -30,13 +30,14 @@ END
 /// The first REQUEST column: after the time and one part's 13 states.
 const FIRST: usize = 14;
 
-/// A pendulum drawn hanging with `IC = θ0, ω0` swings as the same pendulum
+/// A pendulum drawn hanging with `IC = ω0, θ0` (the velocity first, as
+/// Adams reads it) swings as the same pendulum
 /// drawn at θ0 with its angular velocity ω0 given on the PART.
 #[test]
 fn a_revolute_ic_starts_the_pendulum_where_its_part_would() {
     for (angle, rate) in [(0.3, 1.5), (-1.2, 0.0), (2.5, -4.0)] {
         let with_ic = run(
-            &pendulum(&format!(", IC = {angle}, {rate}"), ""),
+            &pendulum(&format!(", IC = {rate}, {angle}"), ""),
             &settings(2.0, 20, 1e-10),
         )
         .expect("the pendulum with its IC runs");
@@ -69,11 +70,17 @@ fn a_revolute_ic_starts_the_pendulum_where_its_part_would() {
     }
 }
 
-/// With only a displacement, the velocity is the least change from the
-/// PART's (here none): the pendulum starts at rest at θ0.
+/// With only a displacement (`IC = , θ0`), the velocity is the least
+/// change from the PART's (here none): the pendulum starts at rest at θ0.
+/// With only a velocity (`IC = ω0`), the pendulum starts where it is drawn,
+/// turning at ω0.
 #[test]
 fn an_ic_without_a_velocity_leaves_the_velocity_to_the_parts() {
-    let run = run(&pendulum(", IC = 0.7", ""), &settings(0.5, 5, 1e-9)).expect("it runs");
+    let spun = run(&pendulum(", IC = 0.7", ""), &settings(0.5, 5, 1e-9)).expect("it runs");
+    let first = &spun.rows[0];
+    assert!(first[FIRST].abs() < 1e-12, "{first:?}");
+    assert!((first[FIRST + 1] - 0.7).abs() < 1e-12, "{first:?}");
+    let run = run(&pendulum(", IC = , 0.7", ""), &settings(0.5, 5, 1e-9)).expect("it runs");
     let first = &run.rows[0];
     assert!((first[FIRST] - 0.7).abs() < 1e-12, "{first:?}");
     assert!(first[FIRST + 1].abs() < 1e-12, "{first:?}");
@@ -95,7 +102,7 @@ fn a_parts_given_velocities_are_kept_where_the_joint_leaves_them_free() {
         ("", ", VX = 2", 2.5),
         ("", ", VX = 2, VY = 1", 2.5),
         ("", ", VX = 2, WZ = 2.5", 2.5),
-        (", IC = 0, -1", ", WZ = 5", -1.0),
+        (", IC = -1, 0", ", WZ = 5", -1.0),
     ];
     for (joint, part, rate) in cases {
         let run = run(&pendulum(joint, part), &settings(0.1, 1, 1e-10))
@@ -112,7 +119,7 @@ fn a_parts_given_velocities_are_kept_where_the_joint_leaves_them_free() {
 }
 
 /// A slider (mass 2) on a translational joint along ground's x under a
-/// spring of stiffness 50 from its drawn place: `IC = x0, v0` gives `x =
+/// spring of stiffness 50 from its drawn place: `IC = v0, x0` gives `x =
 /// x0 cos ωt + v0/ω sin ωt`.
 #[test]
 fn a_translational_ic_starts_the_oscillator() {
@@ -121,7 +128,7 @@ PART/1, GROUND
 MARKER/1, PART = 1, REULER = 90D, 90D, 0D
 PART/2, MASS = 2, CM = 20, IP = 1, 1, 1
 MARKER/20, PART = 2, REULER = 90D, 90D, 0D
-JOINT/1, TRANSLATIONAL, I = 20, J = 1, IC = 0.2, -1.0
+JOINT/1, TRANSLATIONAL, I = 20, J = 1, IC = -1.0, 0.2
 SFORCE/1, TRANSLATIONAL, ACTIONONLY, I = 20, J = 1, FUNCTION = -50*DZ(20, 1, 1)
 REQUEST/1, F1 = DZ(20, 1, 1), F2 = DX(20, 1)
 END
@@ -143,8 +150,8 @@ END
     assert!(worst < 1e-8, "{worst}");
 }
 
-/// A free body on a cylindrical joint along ground's z: `ICTRAN = d, v`
-/// and `ICROT = r, w` give `d + v t` and `r + w t`.
+/// A free body on a cylindrical joint along ground's z: `ICTRAN = v, d`
+/// and `ICROT = w, r` give `d + v t` and `r + w t`.
 #[test]
 fn a_cylindrical_joint_takes_ictran_and_icrot() {
     let text = "cylinder
@@ -152,7 +159,7 @@ PART/1, GROUND
 MARKER/1, PART = 1
 PART/2, MASS = 3, CM = 20, IP = 1, 1, 0.5
 MARKER/20, PART = 2
-JOINT/1, CYLINDRICAL, I = 20, J = 1, ICTRAN = 0.5, 0.25, ICROT = 0.4, -3
+JOINT/1, CYLINDRICAL, I = 20, J = 1, ICTRAN = 0.25, 0.5, ICROT = -3, 0.4
 REQUEST/1, F1 = DZ(20, 1), F2 = AZ(20, 1)
 END
 ";
@@ -171,7 +178,7 @@ END
 }
 
 /// A crank (0.2) and rod (0.7) drive a slider along ground's x; the
-/// crank's `IC = θ0, ω0` sets the whole loop: the slider at `r cos θ0 +
+/// crank's `IC = ω0, θ0` sets the whole loop: the slider at `r cos θ0 +
 /// √(l² − r² sin² θ0)` and moving at that expression's rate.
 #[test]
 fn a_crank_ic_places_the_whole_loop() {
@@ -192,7 +199,7 @@ MARKER/32, PART = 3, QP = 0.9, 0, 0
 PART/4, MASS = 1, CM = 40, IP = 0.01, 0.01, 0.01
 MARKER/40, PART = 4, QP = 0.9, 0, 0
 MARKER/41, PART = 4, QP = 0.9, 0, 0, REULER = 90D, 90D, 0D
-JOINT/1, REVOLUTE, I = 21, J = 1, IC = {angle}, {rate}
+JOINT/1, REVOLUTE, I = 21, J = 1, IC = {rate}, {angle}
 JOINT/2, REVOLUTE, I = 31, J = 22
 JOINT/3, REVOLUTE, I = 40, J = 32
 JOINT/4, TRANSLATIONAL, I = 41, J = 2

@@ -430,6 +430,10 @@ fn a_view_file_moves_as_the_dataset_it_stands_for() {
     assert_eq!(rows.last().map(|row| row[0]), Some(1.5));
     // The run moved: the crank turned 45 degrees, the link swung.
     assert!(rows[0] != rows[30]);
+    // The dataset mbexpr writes for the View file (`simulate --dataset`)
+    // is the model it simulates: read back, it moves as the View file.
+    let (exported, _) = simulate::view_dataset_text(VIEW_MODEL).unwrap_or_else(|_| panic!("read"));
+    same_motion(VIEW_MODEL, &exported, 1e-12);
 }
 
 /// A part of `density` with the solids `geometry` (commands placed on its
@@ -960,7 +964,7 @@ PART/1, GROUND
 MARKER/1, PART = 1
 PART/2, MASS = 3, CM = 2, IP = 0.2, 0.2, 0.4
 MARKER/2, PART = 2
-JOINT/1, REVOLUTE, I = 2, J = 1, IC = 0.5235987755982988, 3.141592653589793
+JOINT/1, REVOLUTE, I = 2, J = 1, IC = 3.141592653589793, 0.5235987755982988
 FRICTION/1, JOINT = 1, MU_STATIC = 0.3, MU_DYNAMIC = 0.2, FRICTION_ARM = 1, BENDING_REACTION_ARM = 1, PIN_RADIUS = 0.05, STICTION_TRANSITION_VELOCITY = 1E-3, MAX_STICTION_DEFORMATION = 1E-4, FRICTION_TORQUE_PRELOAD = 2, EFFECT = ALL, INPUTS = PRELOAD, INACTIVE = STATIC
 REQUEST/1, F2 = AZ(2, 1)\\F3 = WZ(2, 1, 1)
 END
@@ -1093,9 +1097,11 @@ marker create marker_name = .o.ground.M adams_id = 7 location = 0, 0, 0 orientat
 /// measure: a `pt2pt` measure (of its to point from its from point,
 /// components along `coordinate_rframe`, derivatives in `motion_rframe`),
 /// a `point` measure (from ground's origin) and `object` measures of a
-/// marker and of a part's centre of mass. A request reading them moves as
-/// the dataset whose request calls DY, VM, ACCX, WM and WZ by hand, and a
-/// sensor on a pt2pt measure stops the run where the dataset's does.
+/// marker and of a part's centre of mass, angular rates in the file's angle
+/// unit (degrees here: `RTOD * WZ`, as View writes them). A request reading
+/// them moves as the dataset whose request calls DY, VM, ACCX, WM and WZ by
+/// hand, and a sensor on a pt2pt measure stops the run where the dataset's
+/// does.
 #[test]
 fn kinematic_measures_read_by_functions_are_their_functions() {
     let view = r#"defaults units length = meter angle = deg force = newton mass = kg time = sec
@@ -1115,7 +1121,7 @@ measure create pt2pt measure_name = .k.TIP_SPEED from_point = .k.ground.TILTED t
 measure create point measure_name = .k.TIP_ACCELERATION point = .k.arm.TIP characteristic = translational_acceleration component = x_component
 measure create object measure_name = .k.SPIN from_first = no object = .k.arm.TIP characteristic = angular_velocity component = mag_component
 measure create object measure_name = .k.ARM_SPIN from_first = no object = .k.arm coordinate_rframe = .k.ground.TILTED characteristic = cm_angular_velocity component = z_component
-measure create object measure_name = .k.UNREAD object = .k.HINGE characteristic = element_force component = x_component
+measure create object measure_name = .k.HINGE_FORCE object = .k.HINGE characteristic = element_force component = x_component
 output_control create request request_name = .k.MEASURED adams_id = 1 f2 = ".k.TIP_HEIGHT" f3 = ".k.TIP_SPEED" f4 = ".k.TIP_ACCELERATION" f5 = ".k.SPIN" f6 = "2 * .k.ARM_SPIN"
 executive_control create sensor sensor_name = .k.LEVEL adams_id = 1 compare = le value = -0.5 error = 1e-6 codgen = off halt = on print = off restart = off return = off yydump = off function = ".k.TIP_HEIGHT"
 simulation single_run transient end_time = 3 number_of_steps = 30
@@ -1131,20 +1137,21 @@ MARKER/3, PART = 2, QP = 0.5, 0, 0
 MARKER/4, PART = 2, QP = 1, 0, 0
 JOINT/1, REVOLUTE, I = 2, J = 1
 ACCGRAV/JGRAV = -9.80665
-REQUEST/1, F2 = DY(4, 1, 5)\\F3 = VM(4, 5, 2)\\F4 = ACCX(4, 0, 0, 0)\\F5 = WM(4, 0)\\F6 = 2 * WZ(3, 0, 5)
+REQUEST/1, F2 = DY(4, 1, 5)\\F3 = VM(4, 5, 2)\\F4 = ACCX(4, 0, 0, 0)\\F5 = RTOD * WM(4, 0)\\F6 = 2 * RTOD * WZ(3, 0, 5)
 SENSOR/1, LE, VALUE = -0.5, ERROR = 1E-6, HALT, FUNCTION = DY(4, 1, 5)
 VARIABLE/1, FUNCTION = DY(4, 1, 5)
 VARIABLE/2, FUNCTION = VM(4, 5, 2)
 VARIABLE/3, FUNCTION = ACCX(4, 0, 0, 0)
-VARIABLE/4, FUNCTION = WM(4, 0)
-VARIABLE/5, FUNCTION = WZ(3, 0, 5)
+VARIABLE/4, FUNCTION = RTOD * WM(4, 0)
+VARIABLE/5, FUNCTION = RTOD * WZ(3, 0, 5)
+VARIABLE/6, FUNCTION = JOINT(1, 1, 2, 0)
 END
 ";
     let rows = same_motion(view, dataset, 1e-7);
     // The arm swings, and its tip passes the sensor's level (in the tilted
     // frame): the run halts there.
     let last = rows.last().expect("rows");
-    let height = last.len() - 10;
+    let height = last.len() - 11;
     assert!(
         rows.len() < 31,
         "the sensor halts the run: {} rows",
@@ -1152,29 +1159,165 @@ END
     );
     assert!((last[height] + 0.5).abs() < 1e-5, "{last:?}");
     // The measures are VARIABLEs, a column each, as View has the solver
-    // compute them; the joint's force measure, which no function reads,
-    // is left out with a note, and refused where a function reads it.
+    // compute them (the joint's force too, which no function reads); a
+    // part's kinetic energy is left out with a note, and refused where a
+    // function reads it.
     let model = view_model(view).expect("the model");
     let notes: Vec<&str> = model.notes.iter().map(|(note, _)| note.as_str()).collect();
     assert!(
         notes
             .iter()
             .any(|note| note.contains("VARIABLE/1 = K.TIP_HEIGHT")
-                && note.contains("VARIABLE/5 = K.ARM_SPIN")),
+                && note.contains("VARIABLE/6 = K.HINGE_FORCE")),
         "{notes:?}"
     );
+    let energy = "measure create object measure_name = .k.ENERGY object = .k.arm characteristic = kinetic_energy component = mag_component\n";
+    let unread = view.replace("output_control", &format!("{energy}output_control"));
+    let model = view_model(&unread).expect("the model");
     assert!(
-        notes
+        model
+            .notes
             .iter()
-            .any(|note| note.starts_with("1 measure mbexpr does not compute")),
-        "{notes:?}"
+            .any(|(note, _)| note.starts_with("1 measure mbexpr does not compute")),
+        "{:?}",
+        model.notes
     );
-    let refused = view_model(&view.replace("f6 = \"2 * .k.ARM_SPIN\"", "f6 = \".k.UNREAD\""))
-        .expect_err("a joint's force measure is refused");
+    let refused = view_model(&unread.replace("f6 = \"2 * .k.ARM_SPIN\"", "f6 = \".k.ENERGY\""))
+        .expect_err("a part's kinetic energy is refused");
     assert!(
-        refused.contains("K.HINGE is a joint, force or other element"),
+        refused.contains("a part's characteristic kinetic_energy is not one mbexpr reads"),
         "{refused}"
     );
+}
+
+/// Object measures of elements, orientation measures and angle measures
+/// become the functions View writes for them (each seen in a View export
+/// beside its `.cmd`): a joint's projection angles and rates of one marker
+/// from the other (`RTOD * AZ(21,22)` for `from_first = no`, of J from I
+/// for `yes`), its reaction and a force's load as their element functions
+/// on I (`from_first = yes`, `JOINT(11,0,1,0)`) or J, along
+/// `coordinate_rframe`; a motion's load and the kinematics of its joint;
+/// orientations of a marker or a part's frame from another frame in any
+/// convention; the included angle of three markers. Angles and their rates
+/// are in the file's angle unit: degrees, and radians where the file says
+/// `angle = rad`.
+#[test]
+fn object_orientation_and_angle_measures_are_the_functions_view_writes() {
+    let view = r#"defaults units length = meter angle = deg force = newton mass = kg time = sec
+model create model_name = k
+marker create marker_name = .k.ground.PIVOT adams_id = 1 location = 0, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .k.ground.TILTED adams_id = 5 location = 0.3, 0, 0 orientation = 30d, 20d, 0d
+marker create marker_name = .k.ground.RAIL adams_id = 6 location = 0, -2, 0 orientation = 0d, 90d, 0d
+part create rigid_body name_and_position part_name = .k.arm adams_id = 2 location = 0, 0, 0 orientation = 40d, 0d, 0d
+marker create marker_name = .k.arm.HUB adams_id = 2 relative_to = .k.arm location = 0, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .k.arm.CM adams_id = 3 relative_to = .k.arm location = 0.5, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .k.arm.TIP adams_id = 4 relative_to = .k.arm location = 1, 0, 0 orientation = 0d, 0d, 0d
+part create rigid_body mass_properties part_name = .k.arm mass = 2 center_of_mass_marker = .k.arm.CM ixx = 0.01 iyy = 0.2 izz = 0.2
+part create rigid_body name_and_position part_name = .k.slider adams_id = 3 location = 0, -2, 0 orientation = 0d, 90d, 0d
+marker create marker_name = .k.slider.S adams_id = 7 relative_to = .k.slider location = 0, 0, 0 orientation = 0d, 0d, 0d
+part create rigid_body mass_properties part_name = .k.slider mass = 1.5 center_of_mass_marker = .k.slider.S ixx = 0.1 iyy = 0.1 izz = 0.1
+constraint create joint revolute joint_name = .k.HINGE adams_id = 1 i_marker_name = .k.arm.HUB j_marker_name = .k.ground.PIVOT
+constraint create joint translational joint_name = .k.SLIDE adams_id = 2 i_marker_name = .k.slider.S j_marker_name = .k.ground.RAIL
+constraint create motion_generator motion_name = .k.PUSH adams_id = 1 joint_name = .k.SLIDE type_of_freedom = translational time_derivative = displacement function = "0.2*sin(2*time)"
+force create direct single_component_force single_component_force_name = .k.DAMPER adams_id = 2 type_of_freedom = rotational i_marker_name = .k.arm.HUB j_marker_name = .k.ground.PIVOT action_only = off function = "-0.3*WZ(.k.arm.HUB, .k.ground.PIVOT)"
+force create body gravitational gravity_field_name = gravity x_component_gravity = 0 y_component_gravity = -9.80665 z_component_gravity = 0
+measure create object measure_name = .k.ANGLE_NO from_first = no object = .k.HINGE characteristic = ax_ay_az_projection_angles component = z_component
+measure create object measure_name = .k.ANGLE_YES from_first = yes object = .k.HINGE characteristic = ax_ay_az_projection_angles component = z_component
+measure create object measure_name = .k.RATE from_first = yes object = .k.HINGE characteristic = angular_velocity component = z_component
+measure create object measure_name = .k.SPIN_UP from_first = no object = .k.HINGE coordinate_rframe = .k.ground.TILTED characteristic = angular_acceleration component = y_component
+measure create object measure_name = .k.PIN_Y from_first = yes object = .k.HINGE characteristic = element_force component = y_component
+measure create object measure_name = .k.PIN_J from_first = no object = .k.HINGE coordinate_rframe = .k.ground.TILTED characteristic = element_force component = mag_component
+measure create object measure_name = .k.DAMPING from_first = yes object = .k.DAMPER characteristic = element_torque component = z_component
+measure create object measure_name = .k.PUSHING from_first = yes object = .k.PUSH characteristic = element_force component = y_component
+measure create object measure_name = .k.PUSH_SPEED from_first = no object = .k.PUSH characteristic = translational_velocity component = y_component
+measure create object measure_name = .k.SLID from_first = yes object = .k.SLIDE characteristic = translational_displacement component = mag_component
+measure create orient measure_name = .k.HEADING to_frame = .k.arm from_frame = .k.ground.TILTED characteristic = body_3_2_1 component = angle_1_component
+measure create orient measure_name = .k.TURN from_frame = .k.ground.TILTED to_frame = .k.arm.TIP characteristic = space_1_2_3 component = angle_3_component
+measure create orient measure_name = .k.E0 to_frame = .k.arm.TIP characteristic = euler_parameters component = param_1_component
+measure create orient measure_name = .k.COSINE to_frame = .k.arm.TIP from_frame = .k.ground.TILTED characteristic = direction_cosines component = mat_2_1_component
+measure create orient measure_name = .k.PITCHED to_frame = .k.arm.TIP characteristic = yaw_pitch_roll component = angle_1_component
+measure create orient measure_name = .k.PSI to_frame = .k.arm.TIP from_frame = .k.ground characteristic = euler_angles component = angle_1_component
+measure create angle measure_name = .k.OPENING first_point = .k.arm.TIP middle_point = .k.ground.PIVOT last_point = .k.ground.TILTED
+output_control create request request_name = .k.MEASURED adams_id = 1 f2 = ".k.ANGLE_NO" f3 = "2 * .k.PIN_Y" f4 = ".k.OPENING"
+simulation single_run transient end_time = 2 number_of_steps = 20
+"#;
+    let dataset = "the measured arm and slider, by hand
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/5, PART = 1, QP = 0.3, 0, 0, REULER = 30D, 20D, 0D
+MARKER/6, PART = 1, QP = 0, -2, 0, REULER = 0D, 90D, 0D
+PART/2, MASS = 2, CM = 3, IP = 0.01, 0.2, 0.2, REULER = 40D, 0D, 0D
+MARKER/2, PART = 2
+MARKER/3, PART = 2, QP = 0.5, 0, 0
+MARKER/4, PART = 2, QP = 1, 0, 0
+PART/3, MASS = 1.5, CM = 7, IP = 0.1, 0.1, 0.1, QG = 0, -2, 0, REULER = 0D, 90D, 0D
+MARKER/7, PART = 3
+JOINT/1, REVOLUTE, I = 2, J = 1
+JOINT/2, TRANSLATIONAL, I = 7, J = 6
+MOTION/1, JOINT = 2, TRANSLATION, DISPLACEMENT, FUNCTION = 0.2*SIN(2*TIME)
+SFORCE/2, ROTATION, I = 2, J = 1, FUNCTION = -0.3*WZ(2, 1)
+ACCGRAV/JGRAV = -9.80665
+REQUEST/1, F2 = RTOD * AZ(2,1)\\F3 = 2 * JOINT(1,0,3,0)\\F4 = RTOD * INCANG(4,1,5)
+VARIABLE/1, FUNCTION = RTOD * AZ(2,1)
+VARIABLE/2, FUNCTION = RTOD * AZ(1,2)
+VARIABLE/3, FUNCTION = RTOD * WZ(1,2,0)
+VARIABLE/4, FUNCTION = RTOD * WDTY(2,1,5)
+VARIABLE/5, FUNCTION = JOINT(1,0,3,0)
+VARIABLE/6, FUNCTION = JOINT(1,1,1,5)
+VARIABLE/7, FUNCTION = SFORCE(2,0,8,0)
+VARIABLE/8, FUNCTION = MOTION(1,0,3,0)
+VARIABLE/9, FUNCTION = VY(7,6,0)
+VARIABLE/10, FUNCTION = DM(6,7)
+VARIABLE/11, FUNCTION = RTOD * ORIENT(6,1,2,5)
+VARIABLE/12, FUNCTION = RTOD * ORIENT(13,3,4,5)
+VARIABLE/13, FUNCTION = ORIENT(27,1,4,0)
+VARIABLE/14, FUNCTION = ORIENT(29,2,4,5)
+VARIABLE/15, FUNCTION = RTOD * YAW(4,0)
+VARIABLE/16, FUNCTION = RTOD * PSI(4,0)
+VARIABLE/17, FUNCTION = RTOD * INCANG(4,1,5)
+END
+";
+    let rows = same_motion(view, dataset, 1e-7);
+    let (exported, _) = simulate::view_dataset_text(view).unwrap_or_else(|_| panic!("read"));
+    same_motion(view, &exported, 1e-12);
+    // The arm swings (its angle from the pivot, and from the arm the
+    // opposite), the slider is pushed: the measures move.
+    let last = rows.last().expect("rows");
+    let first = &rows[0];
+    let variable = |k: usize| last.len() - 17 + k - 1;
+    assert!((first[variable(1)] - 40.0).abs() < 1e-9, "{first:?}");
+    assert!((last[variable(1)] + last[variable(2)]).abs() < 1e-9);
+    assert!((last[variable(1)] - 40.0).abs() > 1.0);
+    assert!(last[variable(8)].abs() > 1.0, "the motion pushes: {last:?}");
+    assert!((last[variable(16)] - last[variable(1)]).abs() < 1e-9);
+    // In radians where the file says so: no RTOD.
+    let in_radians = view.replace("angle = deg", "angle = rad");
+    same_motion(&in_radians, &dataset.replace("RTOD * ", ""), 1e-7);
+    // What a measure cannot be is wrong where a function reads it.
+    for (measure, message) in [
+        (
+            "measure create object measure_name = .k.X object = .k.HINGE characteristic = ax_ay_az_projection_angles component = mag_component",
+            "projection angles have no magnitude",
+        ),
+        (
+            "measure create orient measure_name = .k.X to_frame = .k.arm.TIP characteristic = euler_parameters component = angle_1_component",
+            "its component angle_1_component is not one of a euler_parameters measure",
+        ),
+        (
+            "measure create orient measure_name = .k.X to_frame = .k.arm.TIP characteristic = body_1_1_2 component = angle_1_component",
+            "body_1_1_2 is no sequence of turns mbexpr reads",
+        ),
+        (
+            "measure create angle measure_name = .k.X first_point = .k.arm.TIP middle_point = .k.ground.PIVOT",
+            "give its first_point, middle_point and last_point",
+        ),
+    ] {
+        let text = view.replace("output_control", &format!("{measure}\noutput_control"));
+        let refused =
+            view_model(&text.replace("f4 = \".k.OPENING\"", "f4 = \".k.X\"")).expect_err(measure);
+        assert!(refused.contains(message), "{measure}: {refused}");
+    }
 }
 
 /// View writes long point lists with the comma at the start of each

@@ -181,7 +181,7 @@ fn plain_argument(pair: Pair<'_, Rule>, base: usize) -> Argument {
             Rule::values => {
                 for item in part
                     .into_inner()
-                    .filter(|item| item.as_rule() == Rule::value)
+                    .filter(|item| matches!(item.as_rule(), Rule::value | Rule::empty_value))
                 {
                     let text = item.as_str().trim_end();
                     let start = base + item.as_span().start();

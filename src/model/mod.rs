@@ -13,6 +13,7 @@ mod text;
 mod variables;
 mod view;
 pub mod vocabulary;
+mod write;
 
 use compact_str::CompactString;
 use thiserror::Error;

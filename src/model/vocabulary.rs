@@ -215,6 +215,7 @@ pub const STATEMENTS: &[(&str, Option<&[&str]>)] = &[
             "FRICTION_MODEL",
             "FRICTION_TORQUE_PRELOAD",
             "INACTIVE",
+            "INACTIVE_DURING",
             "INITIAL_OVERLAP",
             "INPUTS",
             "I_YOKE",

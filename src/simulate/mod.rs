@@ -133,6 +133,19 @@ pub fn from_text(
     }
 }
 
+/// The solver dataset the Adams View command file `text` is read as, as
+/// text (the dataset View's File > Export > Adams Solver Dataset writes for
+/// it), with what the reading noted, each at its place in `text`.
+pub fn view_dataset_text(text: &str) -> Result<(String, Vec<(String, crate::span::Span)>), Unread> {
+    let view = crate::model::read(text, crate::model::FileKind::Cmd);
+    let report = crate::model::check_model(text, &view);
+    if !report.problems.is_empty() {
+        return Err(Unread::Unchecked(report.problems));
+    }
+    let read = read::solver_dataset(&view, &report).map_err(Unread::Refused)?;
+    Ok((read.dataset.to_text(), read.notes))
+}
+
 /// A model compiled for simulation: its DIFF functions and force
 /// components as one program with an output each, and its output columns
 /// as another.

@@ -65,6 +65,9 @@ pub struct Args {
     /// What the file is (by default its extension says).
     #[arg(long, value_enum)]
     kind: Option<ModelKind>,
+    /// Print the solver dataset an Adams View command file is read as (what View's File > Export > Adams Solver Dataset writes for it) and simulate nothing.
+    #[arg(long)]
+    dataset: bool,
     /// The end time (the run starts at 0).
     #[arg(long, allow_hyphen_values = true)]
     end: Option<f64>,
@@ -159,6 +162,45 @@ impl Source {
             }
         }
         Fatal::input(diagnostics(&self.path, &self.text, placed) + &nowhere)
+    }
+}
+
+/// Writes the solver dataset the View command file `path` is read as, its
+/// notes on standard error.
+fn write_dataset(path: &str, out: &mut impl Write) -> Result<Outcome, Fatal> {
+    let (_, file_kind) = simulate::format_of_path(path, None)
+        .map_err(|message| Fatal::usage(format!("error: {message}")))?;
+    if file_kind != mbexpr::model::FileKind::Cmd {
+        return Err(Fatal::usage(
+            "error: --dataset writes the solver dataset of an Adams View command file (.cmd)",
+        ));
+    }
+    let text = files::read(path).map_err(|message| Fatal::usage(format!("error: {message}")))?;
+    let source = Source {
+        path: path.to_string(),
+        text,
+    };
+    match simulate::view_dataset_text(&source.text) {
+        Ok((dataset, notes)) => {
+            let notes = notes
+                .into_iter()
+                .map(|(note, span)| (span, format!("note: {note}")));
+            let _ = write!(
+                std::io::stderr(),
+                "{}",
+                diagnostics(path, &source.text, notes)
+            );
+            out.write_all(dataset.as_bytes()).map_err(Fatal::from)?;
+            Ok(Outcome::Success)
+        }
+        Err(Unread::Refused(errors)) => Err(source.render_all(None, &errors)),
+        Err(Unread::Unchecked(problems)) => Err(Fatal::input(diagnostics(
+            path,
+            &source.text,
+            problems
+                .iter()
+                .map(|problem| (problem.error.span(), problem.error.to_string())),
+        ))),
     }
 }
 
@@ -303,6 +345,9 @@ fn check_writable(option: &str, path: &str) -> Result<(), Fatal> {
 
 /// Runs `mbexpr simulate`.
 pub fn run(args: &Args, out: &mut impl Write) -> Result<Outcome, Fatal> {
+    if args.dataset {
+        return write_dataset(&args.file, out);
+    }
     let (source, model, run_problem) = read_model(&args.file, args.kind)?;
     let (end, steps) = match (args.end, args.steps, model.run) {
         (Some(end), Some(steps), _) => (end, steps),

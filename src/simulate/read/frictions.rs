@@ -94,7 +94,8 @@
 //!   would (the damping vanishes where the creep is full; both terms take
 //!   energy, never give it); `SLIDING` has no creep state;
 //! - a static equilibrium keeps the creep at its value (no stiction in
-//!   statics, as `INACTIVE = STATIC` asks; sliding friction is 0 at rest).
+//!   statics, as `INACTIVE = STATIC` asks, or `INACTIVE_DURING = STATIC` as
+//!   Adams View 2015 writes it; sliding friction is 0 at rest).
 //!
 //! - `FRICTION_MODEL = LUGRE`: the creep is the bristles' deflection `z`
 //!   of the LuGre model (Canudas de Wit, Olsson, Åström, Lischinsky,
@@ -211,7 +212,7 @@ struct Switch {
 }
 
 /// The FRICTION's keywords of one word.
-const SWITCHES: [Switch; 3] = [
+const SWITCHES: [Switch; 4] = [
     Switch {
         keyword: "FRICTION_MODEL",
         shortest: 10,
@@ -227,6 +228,13 @@ const SWITCHES: [Switch; 3] = [
     Switch {
         keyword: "INACTIVE",
         shortest: 4,
+        taken: &["STATIC"],
+        words: "STATIC",
+    },
+    // The same, as Adams View 2015 writes it (and Adams Solver reads it).
+    Switch {
+        keyword: "INACTIVE_DURING",
+        shortest: 10,
         taken: &["STATIC"],
         words: "STATIC",
     },

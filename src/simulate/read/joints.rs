@@ -227,8 +227,8 @@ fn marker(
 }
 
 /// The initial conditions of `joints` (`IC` of a REVOLUTE or TRANSLATIONAL
-/// joint, `ICTRAN` and `ICROT` of a CYLINDRICAL one: the displacement,
-/// then optionally the velocity). A condition on a displacement a MOTION
+/// joint, `ICTRAN` and `ICROT` of a CYLINDRICAL one: the velocity, then
+/// optionally the displacement). A condition on a displacement a MOTION
 /// of `motions` drives is left aside with a note in `notes`, as Adams
 /// does: the motion sets it.
 pub(crate) fn initials(
@@ -273,7 +273,7 @@ pub(crate) fn initials(
             let Some((displacement, velocity)) = initial_values(statement, argument) else {
                 errors.push(SimulateError::Model {
                     message: format!(
-                        "{label}: {keyword} = the initial displacement [, the initial velocity]: one or two numbers"
+                        "{label}: {keyword} = the initial velocity [, the initial displacement]: one or two numbers (`{keyword} = , d` gives the displacement alone)"
                     ),
                     span: argument.span,
                 });
@@ -304,9 +304,12 @@ pub(crate) fn initials(
     initials
 }
 
-/// An initial condition's displacement and velocity, each when given: one
-/// or two finite numbers, the first left empty (only an Adams View file's
-/// statements, written by mbexpr, can) when the velocity alone is given.
+/// An initial condition's displacement and velocity, each when given:
+/// `IC = velocity [, displacement]`, the velocity first as Adams reads it
+/// (Adams View writes `translational_ic = -146.99, velocity_ic = -0.1815`
+/// as `IC = -0.1815, -146.99`, and Adams Solver assembles that model with
+/// the joint at -146.99), the velocity left empty (`IC = , 30`) when the
+/// displacement alone is given.
 fn initial_values(
     statement: &Statement,
     argument: &Argument,
@@ -315,12 +318,12 @@ fn initial_values(
         && let [first, second] = items.as_slice()
         && first.text.is_empty()
     {
-        let velocity = second.number().filter(|value| value.is_finite())?;
-        return Some((None, Some(velocity)));
+        let displacement = second.number().filter(|value| value.is_finite())?;
+        return Some((Some(displacement), None));
     }
     let values = number_list(statement, argument).ok()?;
     if !(1..=2).contains(&values.len()) || values.iter().any(|value| !value.is_finite()) {
         return None;
     }
-    Some((Some(values[0]), values.get(1).copied()))
+    Some((values.get(1).copied(), Some(values[0])))
 }

@@ -173,14 +173,16 @@ pub(super) const JOINT_TYPES: [(&str, &str); 11] = [
     ("SCREW", "SCREW"),
 ];
 
-/// Joint primitives by their View word.
-pub(super) const PRIMITIVES: [&str; 6] = [
-    "ATPOINT",
-    "INLINE",
-    "INPLANE",
-    "ORIENTATION",
-    "PARALLEL_AXES",
-    "PERPENDICULAR",
+/// Joint primitives by their View word and solver keyword (View writes
+/// `parallel_axis` for the solver's PARALLEL_AXES).
+pub(super) const PRIMITIVES: [(&str, &str); 7] = [
+    ("ATPOINT", "ATPOINT"),
+    ("INLINE", "INLINE"),
+    ("INPLANE", "INPLANE"),
+    ("ORIENTATION", "ORIENTATION"),
+    ("PARALLEL_AXIS", "PARALLEL_AXES"),
+    ("PARALLEL_AXES", "PARALLEL_AXES"),
+    ("PERPENDICULAR", "PERPENDICULAR"),
 ];
 
 pub(super) const JOINT_PARAMETERS: &[&[(&str, Becomes)]] = &[
@@ -298,14 +300,20 @@ const FRICTION_MOMENTS: [(&str, Becomes); 2] = [
     ("TORSIONAL_MOMENT", Becomes::Input("TORSIONAL_MOMENT")),
 ];
 
-/// A kinematic measure's parameters: read where a function reads the
-/// measure ([`MEASURE`]).
-const KINEMATIC_MEASURE: [(&str, Becomes); 11] = [
+/// The parameters of a measure of kinematics or loads (`pt2pt`, `point`,
+/// `object`, `orient`, `angle`): read where a function reads the measure
+/// ([`MEASURE`]).
+const KINEMATIC_MEASURE: [(&str, Becomes); 16] = [
     ("FROM_POINT", Becomes::Nothing),
     ("TO_POINT", Becomes::Nothing),
     ("POINT", Becomes::Nothing),
     ("OBJECT", Becomes::Nothing),
     ("FROM_FIRST", Becomes::Nothing),
+    ("TO_FRAME", Becomes::Nothing),
+    ("FROM_FRAME", Becomes::Nothing),
+    ("FIRST_POINT", Becomes::Nothing),
+    ("MIDDLE_POINT", Becomes::Nothing),
+    ("LAST_POINT", Becomes::Nothing),
     ("CHARACTERISTIC", Becomes::Nothing),
     ("COMPONENT", Becomes::Nothing),
     ("MOTION_RFRAME", Becomes::Nothing),
@@ -314,7 +322,7 @@ const KINEMATIC_MEASURE: [(&str, Becomes); 11] = [
     ("LEGEND", Becomes::Nothing),
 ];
 
-pub(super) const ELEMENTS: [ElementKind; 23] = [
+pub(super) const ELEMENTS: [ElementKind; 25] = [
     ElementKind {
         words: "CONSTRAINT COMPLEX_JOINT GEAR",
         statement: "GEAR",
@@ -343,6 +351,20 @@ pub(super) const ELEMENTS: [ElementKind; 23] = [
         words: "MEASURE OBJECT",
         statement: MEASURE,
         flags: &["OBJECT"],
+        name: "MEASURE_NAME",
+        parameters: &[&KINEMATIC_MEASURE],
+    },
+    ElementKind {
+        words: "MEASURE ORIENT",
+        statement: MEASURE,
+        flags: &["ORIENT"],
+        name: "MEASURE_NAME",
+        parameters: &[&KINEMATIC_MEASURE],
+    },
+    ElementKind {
+        words: "MEASURE ANGLE",
+        statement: MEASURE,
+        flags: &["ANGLE"],
         name: "MEASURE_NAME",
         parameters: &[&KINEMATIC_MEASURE],
     },
@@ -655,8 +677,8 @@ pub(super) fn constraint_kind(words: &str) -> Option<(&'static str, &'static str
     let kind = words.strip_prefix("CONSTRAINT PRIMITIVE_JOINT ")?;
     PRIMITIVES
         .iter()
-        .find(|primitive| **primitive == kind)
-        .map(|&primitive| ("JPRIM", primitive))
+        .find(|(view, _)| *view == kind)
+        .map(|&(_, solver)| ("JPRIM", solver))
 }
 
 /// What parameter `keyword` of an element becomes, when it has one.

@@ -146,6 +146,9 @@ struct Part {
     solids: Vec<usize>,
     /// The id of its centre-of-mass marker, once its PART is written.
     centre_marker: Option<u64>,
+    /// The id of a marker at its frame, once a measure of its orientation
+    /// needs one.
+    frame_marker: Option<u64>,
     /// The features (`geometry create feature`: blends, chamfers, holes)
     /// on its solids, by command.
     features: Vec<usize>,
@@ -418,6 +421,7 @@ impl<'d> Reader<'d> {
             velocity: None,
             solids: Vec::new(),
             centre_marker: None,
+            frame_marker: None,
             features: Vec::new(),
             active: true,
         });
@@ -896,6 +900,7 @@ impl<'d> Reader<'d> {
                 velocity: None,
                 solids: Vec::new(),
                 centre_marker: None,
+                frame_marker: None,
                 features: Vec::new(),
                 active: true,
             });
@@ -1477,6 +1482,25 @@ impl<'d> Reader<'d> {
             floating,
         });
         id
+    }
+
+    /// The marker whose axes the frame `keyword` of command `index` names
+    /// are: a marker, a point's marker, a part's (a marker made at its
+    /// frame), or ground's (0) for the ground part and the model.
+    fn frame_marker(&mut self, index: usize, keyword: &str) -> Option<u64> {
+        let name = self.word(index, keyword)?;
+        match self.find(&name) {
+            Some(Entity::Part(part)) if self.parts[part].ground => Some(0),
+            Some(Entity::Model) => Some(0),
+            Some(Entity::Part(part)) => {
+                if self.parts[part].frame_marker.is_none() {
+                    let (frame, span) = (self.parts[part].frame, self.parts[part].span);
+                    self.parts[part].frame_marker = Some(self.new_marker(part, frame, false, span));
+                }
+                self.parts[part].frame_marker
+            }
+            _ => self.marker_id(index, keyword),
+        }
     }
 
     fn marker_id(&mut self, index: usize, keyword: &str) -> Option<u64> {

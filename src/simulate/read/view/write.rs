@@ -422,8 +422,8 @@ impl Reader<'_> {
 
     /// A joint's initial conditions as its IC (a revolute joint's rotation,
     /// a translational one's translation) or a cylindrical joint's ICROT
-    /// and ICTRAN: the displacement, then the velocity; a velocity alone
-    /// leaves the displacement empty.
+    /// and ICTRAN: the velocity, then the displacement, as Adams reads
+    /// them; a displacement alone leaves the velocity empty.
     fn write_initials(
         &mut self,
         statement: &mut Statement,
@@ -445,9 +445,10 @@ impl Reader<'_> {
             };
             let text =
                 |value: Option<f64>| value.map_or_else(String::new, |value| format!("{value:?}"));
-            let texts = match velocity {
-                Some(_) => vec![text(displacement), text(velocity)],
-                None => vec![text(displacement)],
+            // The velocity first, as Adams reads a joint's IC.
+            let texts = match displacement {
+                Some(_) => vec![text(velocity), text(displacement)],
+                None => vec![text(velocity)],
             };
             list_argument(statement, keyword, texts, span);
         }
@@ -650,8 +651,9 @@ impl Reader<'_> {
     /// The measures as VARIABLEs, as View has the solver compute them (a
     /// column each in the run's rows), numbered after the file's
     /// variables: each active function or kinematic measure mbexpr reads.
-    /// One it does not read (an object measure of a joint) is left out
-    /// with a note, not refused: only a function that reads it needs it.
+    /// One it does not read (a part's kinetic energy, a point's total
+    /// force ...) is left out with a note, not refused: only a function
+    /// that reads it needs it.
     fn write_measures(&mut self) -> Vec<Statement> {
         let mut next = self
             .elements
@@ -704,7 +706,7 @@ impl Reader<'_> {
             let count = unread.len();
             self.notes.push((
                 format!(
-                    "{count} measure{} mbexpr does not compute (an orientation measure, an object measure of a joint or force ...) left out of the rows (here the first)",
+                    "{count} measure{} mbexpr does not compute (a characteristic such as a part's kinetic energy or a point's total force ...) left out of the rows (here the first)",
                     if count == 1 { "" } else { "s" },
                 ),
                 first,
@@ -737,9 +739,10 @@ impl Reader<'_> {
     /// The function of kinematic measure `measure`, which a function
     /// reads: of its `to_point` from its `from_point` (a `pt2pt`; ground's
     /// origin when none), of its `point` from ground's origin, or of the
-    /// marker or part's centre of mass its `object` names; components
-    /// along `coordinate_rframe`'s axes (ground's when none), derivatives
-    /// in `motion_rframe` (ground when none). What it cannot be is wrong at
+    /// marker, part's centre of mass or element its `object` names
+    /// ([`Reader::element_measure`]); components along
+    /// `coordinate_rframe`'s axes (ground's when none), derivatives in
+    /// `motion_rframe` (ground when none). What it cannot be is wrong at
     /// its place.
     fn kinematics(&mut self, measure: usize) -> Option<String> {
         let parameters = self.elements[measure].given.clone();
@@ -752,6 +755,41 @@ impl Reader<'_> {
         let kind = self.elements[measure].flags[0];
         let span = self.elements[measure].span;
         let component = given("COMPONENT").and_then(|index| self.word(index, "COMPONENT"));
+        let frame = |reader: &mut Self, keyword: &str| match given(keyword) {
+            Some(index) => reader.frame_marker(index, keyword),
+            None => Some(0),
+        };
+        match kind {
+            "ORIENT" => {
+                let characteristic = given("CHARACTERISTIC")
+                    .and_then(|index| self.word(index, "CHARACTERISTIC"))
+                    .unwrap_or_else(|| "EULER_ANGLES".into());
+                let (to, from) = (frame(self, "TO_FRAME")?, frame(self, "FROM_FRAME")?);
+                return match self.orientation(&characteristic, component.as_deref(), to, from) {
+                    Ok(function) => Some(function),
+                    Err(reason) => {
+                        self.wrong(format!("a function reads this measure: {reason}"), span);
+                        None
+                    }
+                };
+            }
+            "ANGLE" => {
+                let mut ends = Vec::new();
+                for keyword in ["FIRST_POINT", "MIDDLE_POINT", "LAST_POINT"] {
+                    match given(keyword) {
+                        Some(index) => ends.push(self.marker_id(index, keyword)?),
+                        None => {
+                            let reason = "give its first_point, middle_point and last_point";
+                            self.wrong(format!("a function reads this measure: {reason}"), span);
+                            return None;
+                        }
+                    }
+                }
+                let function = format!("INCANG({},{},{})", ends[0], ends[1], ends[2]);
+                return Some(self.in_angle_unit(function));
+            }
+            _ => {}
+        }
         let mut characteristic = given("CHARACTERISTIC")
             .and_then(|index| self.word(index, "CHARACTERISTIC"))
             .unwrap_or_else(|| "TRANSLATIONAL_DISPLACEMENT".into());
@@ -759,91 +797,379 @@ impl Reader<'_> {
             Some(index) => reader.marker_id(index, keyword).ok_or(()),
             None => Ok(0),
         };
-        // Each marker's id, or why the measure is not read (`None` where
-        // `marker_id` said so at its place).
-        let to: Result<u64, Option<String>> = match kind {
-            "PT2PT" => marker(self, "TO_POINT").map_err(|()| None),
-            "POINT" => marker(self, "POINT").map_err(|()| None),
+        let axes = marker(self, "COORDINATE_RFRAME");
+        let moving = marker(self, "MOTION_RFRAME");
+        let (Ok(axes), Ok(moving)) = (axes, moving) else {
+            return None;
+        };
+        // The measured marker and the one it is measured from, or why the
+        // measure is not read (`None` where `marker_id` said so at its
+        // place).
+        let ends: Result<(u64, u64), Option<String>> = match kind {
+            "PT2PT" => match (marker(self, "TO_POINT"), marker(self, "FROM_POINT")) {
+                (Ok(to), Ok(from)) => Ok((to, from)),
+                _ => Err(None),
+            },
+            "POINT" => marker(self, "POINT").map(|to| (to, 0)).map_err(|()| None),
             _ => {
                 let name = given("OBJECT")
                     .and_then(|index| self.word(index, "OBJECT"))
                     .unwrap_or_default();
                 match self.find(&name) {
-                    Some(Entity::Marker(marker)) => self.markers[marker].id.ok_or(None),
+                    Some(Entity::Marker(marker)) => {
+                        self.markers[marker].id.map(|id| (id, 0)).ok_or(None)
+                    }
                     Some(Entity::Part(part)) => match CENTRE_CHARACTERISTICS
                         .iter()
                         .find(|(centre, _)| *centre == characteristic)
                     {
                         Some(&(_, of_marker)) => {
                             characteristic = of_marker.into();
-                            self.parts[part].centre_marker.ok_or_else(|| {
-                                Some(format!("{name} has no mass properties mbexpr reads"))
-                            })
+                            self.parts[part]
+                                .centre_marker
+                                .map(|id| (id, 0))
+                                .ok_or_else(|| {
+                                    Some(format!("{name} has no mass properties mbexpr reads"))
+                                })
                         }
                         None => Err(Some(format!(
                             "a part's characteristic {} is not one mbexpr reads (cm_position, cm_velocity, cm_acceleration, cm_angular_velocity, cm_angular_acceleration)",
                             characteristic.to_ascii_lowercase()
                         ))),
                     },
-                    Some(Entity::Element(_)) => Err(Some(format!(
-                        "{name} is a joint, force or other element: mbexpr does not compute object measures of elements (their {}); measure its markers with a pt2pt measure, or use the solver function in the function",
-                        characteristic.to_ascii_lowercase()
-                    ))),
+                    Some(Entity::Element(element)) => {
+                        let from_first = match given("FROM_FIRST") {
+                            Some(index) => self.switch(index, "FROM_FIRST", span)?,
+                            None => false,
+                        };
+                        let measured = ObjectMeasure {
+                            element,
+                            characteristic: &characteristic,
+                            component: component.as_deref(),
+                            from_first,
+                            axes,
+                            moving,
+                        };
+                        return match self.element_measure(&measured) {
+                            Ok(function) => Some(function),
+                            Err(reason) => {
+                                self.wrong(
+                                    format!("a function reads this measure: {name}: {reason}"),
+                                    span,
+                                );
+                                None
+                            }
+                        };
+                    }
                     _ => Err(Some(format!(
-                        "object = {name} names no marker or part the file creates"
+                        "object = {name} names no marker, part or element the file creates"
                     ))),
                 }
             }
         };
-        let from = if kind == "PT2PT" {
-            marker(self, "FROM_POINT")
-        } else {
-            Ok(0)
+        let ends = match ends {
+            Ok(ends) => ends,
+            Err(reason) => {
+                if let Some(reason) = reason {
+                    self.wrong(format!("a function reads this measure: {reason}"), span);
+                }
+                return None;
+            }
         };
-        let axes = marker(self, "COORDINATE_RFRAME");
-        let moving = marker(self, "MOTION_RFRAME");
-        let function = CHARACTERISTICS
-            .iter()
-            .find(|(name, _, _, _)| *name == characteristic);
-        let reason = match (&to, function) {
-            (Err(reason), _) => reason.clone(),
-            (Ok(_), None) => Some(format!(
-                "its characteristic {} is not one mbexpr reads (translational_displacement, translational_velocity, translational_acceleration, angular_velocity, angular_acceleration)",
-                characteristic.to_ascii_lowercase()
-            )),
-            _ => None,
-        };
-        if let Some(reason) = reason {
-            self.wrong(format!("a function reads this measure: {reason}"), span);
+        match self.motion_function(&characteristic, component.as_deref(), ends, axes, moving) {
+            Ok(function) => Some(function),
+            Err(reason) => {
+                self.wrong(format!("a function reads this measure: {reason}"), span);
+                None
+            }
         }
-        let (Ok(to), Ok(from), Ok(axes), Ok(moving), Some(&(_, along, magnitude, derivative))) =
-            (to, from, axes, moving, function)
-        else {
-            return None;
-        };
-        let axis = match component.as_deref() {
+    }
+
+    /// The function of `characteristic` (a translational or angular
+    /// displacement, velocity or acceleration) of marker `to` from marker
+    /// `from` (`ends`), its `component` along the axes of marker `axes`,
+    /// derivatives in the frame of marker `moving` (each 0 for ground's);
+    /// angular quantities in the file's angle unit, as View has the solver
+    /// compute its measures (`RTOD * AZ(21,22)` where angles are degrees).
+    fn motion_function(
+        &self,
+        characteristic: &str,
+        component: Option<&str>,
+        (to, from): (u64, u64),
+        axes: u64,
+        moving: u64,
+    ) -> Result<String, String> {
+        let axis = match component {
             Some("X_COMPONENT") => Some("X"),
             Some("Y_COMPONENT") => Some("Y"),
             Some("Z_COMPONENT") => Some("Z"),
             Some("MAG_COMPONENT") => None,
             _ => {
-                self.wrong(
-                    "a function reads this measure: give its component (x_component, y_component, z_component or mag_component)".into(),
-                    span,
+                return Err(
+                    "give its component (x_component, y_component, z_component or mag_component)"
+                        .into(),
                 );
-                return None;
             }
         };
-        Some(match (axis, derivative) {
+        if characteristic == "AX_AY_AZ_PROJECTION_ANGLES" {
+            let Some(axis) = axis else {
+                return Err("projection angles have no magnitude: give x_component, y_component or z_component".into());
+            };
+            return Ok(self.in_angle_unit(format!("A{axis}({to},{from})")));
+        }
+        let Some(&(_, along, magnitude, derivative)) = CHARACTERISTICS
+            .iter()
+            .find(|(name, _, _, _)| *name == characteristic)
+        else {
+            return Err(format!(
+                "its characteristic {} is not one mbexpr reads (translational_displacement, translational_velocity, translational_acceleration, angular_velocity, angular_acceleration)",
+                characteristic.to_ascii_lowercase()
+            ));
+        };
+        let function = match (axis, derivative) {
             (Some(axis), true) => {
                 format!("{}({to},{from},{axes},{moving})", along.replace("{}", axis))
             }
             (Some(axis), false) => format!("{}({to},{from},{axes})", along.replace("{}", axis)),
             (None, true) => format!("{magnitude}({to},{from},{moving})"),
             (None, false) => format!("{magnitude}({to},{from})"),
+        };
+        Ok(if along.starts_with('W') {
+            self.in_angle_unit(function)
+        } else {
+            function
         })
     }
+
+    /// `function`, an angle or an angular rate in radians, in the file's
+    /// angle unit: View has the solver compute its measures in the units
+    /// of the model (`RTOD * AZ(21,22)` where angles are degrees).
+    fn in_angle_unit(&self, function: String) -> String {
+        if self.degrees {
+            format!("RTOD * {function}")
+        } else {
+            function
+        }
+    }
+
+    /// The function of `component` of an orientation measure of
+    /// `characteristic` (`measure create orient`): of marker `to`'s axes
+    /// from marker `from`'s (0 for ground's) as Euler angles (body 3-1-3),
+    /// yaw, pitch and roll, projection angles, the angles of any body or
+    /// space sequence (`body_1_2_3`, `space_3_2_1`, Bryant angles: body
+    /// 1-2-3), Euler parameters or direction cosines (`mat_i_j_component`:
+    /// row i, column j). Angles are in the file's angle unit.
+    fn orientation(
+        &self,
+        characteristic: &str,
+        component: Option<&str>,
+        to: u64,
+        from: u64,
+    ) -> Result<String, String> {
+        let component = component.unwrap_or_default();
+        let numbered = |prefix: &str| {
+            component
+                .strip_prefix(prefix)
+                .and_then(|rest| rest.strip_suffix("_COMPONENT"))
+                .and_then(|digit| digit.parse::<u8>().ok())
+        };
+        let angle = numbered("ANGLE_").filter(|k| (1..=3).contains(k));
+        let wrong_component = |expected: &str| {
+            format!(
+                "its component {} is not one of a {} measure: give {expected}",
+                component.to_ascii_lowercase(),
+                characteristic.to_ascii_lowercase()
+            )
+        };
+        let angles = "angle_1_component, angle_2_component or angle_3_component";
+        let named = |names: [&str; 3]| match angle {
+            Some(k) => {
+                Ok(self.in_angle_unit(format!("{}({to},{from})", names[usize::from(k) - 1])))
+            }
+            None => Err(wrong_component(angles)),
+        };
+        match characteristic {
+            "EULER_ANGLES" => named(["PSI", "THETA", "PHI"]),
+            "YAW_PITCH_ROLL" => named(["YAW", "PITCH", "ROLL"]),
+            "AX_AY_AZ_PROJECTION_ANGLES" => named(["AX", "AY", "AZ"]),
+            "EULER_PARAMETERS" => match numbered("PARAM_").filter(|k| (1..=4).contains(k)) {
+                Some(k) => Ok(format!("ORIENT(27,{k},{to},{from})")),
+                None => Err(wrong_component("param_1_component ... param_4_component")),
+            },
+            "DIRECTION_COSINES" => {
+                let entry = component
+                    .strip_prefix("MAT_")
+                    .and_then(|rest| rest.strip_suffix("_COMPONENT"))
+                    .and_then(|rest| rest.split_once('_'))
+                    .and_then(|(row, column)| {
+                        Some((row.parse::<u8>().ok()?, column.parse::<u8>().ok()?))
+                    })
+                    .filter(|(row, column)| (1..=3).contains(row) && (1..=3).contains(column));
+                match entry {
+                    // ORIENT's direction cosines go by columns.
+                    Some((row, column)) => {
+                        Ok(format!("ORIENT(29,{},{to},{from})", row + 3 * (column - 1)))
+                    }
+                    None => Err(wrong_component("mat_1_1_component ... mat_3_3_component")),
+                }
+            }
+            sequence => {
+                let (body, axes) = match sequence {
+                    "BRYANT_ANGLES" => (true, "1_2_3"),
+                    _ => match (
+                        sequence.strip_prefix("BODY_"),
+                        sequence.strip_prefix("SPACE_"),
+                    ) {
+                        (Some(axes), _) => (true, axes),
+                        (_, Some(axes)) => (false, axes),
+                        _ => {
+                            return Err(format!(
+                                "its characteristic {} is not one mbexpr reads (euler_angles, yaw_pitch_roll, ax_ay_az_projection_angles, bryant_angles, body_1_2_3 ... space_3_2_3, euler_parameters, direction_cosines)",
+                                characteristic.to_ascii_lowercase()
+                            ));
+                        }
+                    },
+                };
+                let Some(system) = SEQUENCES.iter().position(|known| *known == axes) else {
+                    return Err(format!(
+                        "its characteristic {} is no sequence of turns mbexpr reads",
+                        characteristic.to_ascii_lowercase()
+                    ));
+                };
+                let system = system + if body { 1 } else { 13 };
+                match angle {
+                    Some(k) => Ok(self.in_angle_unit(format!("ORIENT({system},{k},{to},{from})"))),
+                    None => Err(wrong_component(angles)),
+                }
+            }
+        }
+    }
+
+    /// The function of an object measure of an element: a joint,
+    /// primitive, motion or force, as View writes it. Its load
+    /// (`element_force`, `element_torque`) is the element's function, on
+    /// its I marker where `from_first` (`JOINT(11,0,1,0)`), on its J marker
+    /// otherwise, along `coordinate_rframe`'s axes; its kinematics
+    /// (displacements, velocities, accelerations, projection angles) are
+    /// those of one of its markers from the other: of J from I where
+    /// `from_first` (`AZ(2,1)` for a joint of I = 1, J = 2), of I from J
+    /// otherwise. A motion on a joint is measured at the joint's markers.
+    fn element_measure(&mut self, measured: &ObjectMeasure) -> Result<String, String> {
+        let statement = self.elements[measured.element].statement;
+        if let Some(offset) = LOADS
+            .iter()
+            .position(|load| *load == measured.characteristic)
+        {
+            let Some(&(_, function)) = LOAD_FUNCTIONS.iter().find(|(of, _)| *of == statement)
+            else {
+                return Err(format!(
+                    "the {} of a {} is not one mbexpr computes",
+                    measured.characteristic.to_ascii_lowercase(),
+                    statement.to_ascii_lowercase()
+                ));
+            };
+            let along = match measured.component {
+                Some("MAG_COMPONENT") => 1,
+                Some("X_COMPONENT") => 2,
+                Some("Y_COMPONENT") => 3,
+                Some("Z_COMPONENT") => 4,
+                _ => {
+                    return Err("give its component (x_component, y_component, z_component or mag_component)".into());
+                }
+            };
+            let id = self.elements[measured.element].id.unwrap_or(0);
+            let on_j = u8::from(!measured.from_first);
+            return Ok(format!(
+                "{function}({id},{on_j},{},{})",
+                along + 4 * offset,
+                measured.axes
+            ));
+        }
+        let (i, j) = self.element_markers(measured.element)?;
+        let ends = if measured.from_first { (j, i) } else { (i, j) };
+        self.motion_function(
+            measured.characteristic,
+            measured.component,
+            ends,
+            measured.axes,
+            measured.moving,
+        )
+    }
+
+    /// The I and J markers of element `element` (a joint's, a primitive's,
+    /// a force's; a motion on a joint, the joint's).
+    fn element_markers(&mut self, element: usize) -> Result<(u64, u64), String> {
+        let given = self.elements[element].given.clone();
+        let mut ends = [None, None];
+        for (keyword, index, _) in given {
+            match keyword.as_str() {
+                "I_MARKER_NAME" => ends[0] = self.marker_id(index, &keyword),
+                "J_MARKER_NAME" => ends[1] = self.marker_id(index, &keyword),
+                "JOINT_NAME" => {
+                    let name = self.word(index, &keyword).unwrap_or_default();
+                    if let Some(Entity::Element(joint)) = self.find(&name)
+                        && joint != element
+                    {
+                        return self.element_markers(joint);
+                    }
+                }
+                _ => {}
+            }
+        }
+        match ends {
+            [Some(i), Some(j)] => Ok((i, j)),
+            _ => Err(format!(
+                "a {} has no I and J markers mbexpr measures from one another",
+                self.elements[element].statement.to_ascii_lowercase()
+            )),
+        }
+    }
 }
+
+/// An object measure of an element, as [`Reader::element_measure`] reads
+/// it.
+struct ObjectMeasure<'c> {
+    element: usize,
+    /// View's characteristic, upper case.
+    characteristic: &'c str,
+    /// View's component, upper case.
+    component: Option<&'c str>,
+    /// Measured from (or at) the element's first marker, I.
+    from_first: bool,
+    /// The marker the components are along (0: ground).
+    axes: u64,
+    /// The marker the derivatives are taken in (0: ground).
+    moving: u64,
+}
+
+/// The sequences of turns of the solver's ORIENT systems 1 to 12 (body
+/// fixed; 13 to 24 the same about space-fixed axes), as View names them.
+const SEQUENCES: [&str; 12] = [
+    "1_2_3", "2_3_1", "3_1_2", "1_3_2", "2_1_3", "3_2_1", "1_2_1", "1_3_1", "2_1_2", "2_3_2",
+    "3_1_3", "3_2_3",
+];
+
+/// The loads an element's object measure reads, in the order of the
+/// components of the solver's element functions (1–4 the force, 5–8 the
+/// torque).
+const LOADS: [&str; 2] = ["ELEMENT_FORCE", "ELEMENT_TORQUE"];
+
+/// The solver function of each element statement whose load a measure
+/// reads.
+const LOAD_FUNCTIONS: [(&str, &str); 12] = [
+    ("JOINT", "JOINT"),
+    ("JPRIM", "JPRIM"),
+    ("MOTION", "MOTION"),
+    ("SFORCE", "SFORCE"),
+    ("VFORCE", "VFORCE"),
+    ("VTORQUE", "VTORQ"),
+    ("GFORCE", "GFORCE"),
+    ("BUSHING", "BUSH"),
+    ("BEAM", "BEAM"),
+    ("SPRINGDAMPER", "SPDP"),
+    ("CONTACT", "CONTACT"),
+    ("FIELD", "FIELD"),
+];
 
 pub(super) fn new_statement(name: &str, id: Option<u64>, span: Span) -> Statement {
     Statement {
