@@ -2181,6 +2181,26 @@ fn check_commands(commands: &str) -> String {
     }
 }
 
+/// The command file Adams View writes names the model by its Windows path
+/// (`file/model=C:\Users\...`, its backslashes part of the value), after
+/// a blank first line.
+#[test]
+fn a_command_file_naming_its_model_by_a_windows_path_reads() {
+    let text = "\nfile/model=C:\\Users\\ben.thornton\\code\\models\\test\n! Insert ACF commands here:\nSIMULATE/DYNAMIC, END=0.25, DTOUT=1.0E-02\nstop\n";
+    let dataset = model::read(text, FileKind::Acf);
+    let report = model::check_model(text, &dataset);
+    assert!(report.problems.is_empty(), "{:?}", report.problems);
+    let path = match &dataset.statements[0].arguments[0].value {
+        model::Value::List(items) => items[0].text.to_string(),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(path, "C:\\Users\\ben.thornton\\code\\models\\test");
+    assert_eq!(
+        check_commands("file/model=C:\\models\\crank; sim/dyn, end = 0.25, dtout = 0.01"),
+        "0.25 25"
+    );
+}
+
 #[test]
 fn command_files_give_one_run_of_equally_spaced_outputs() {
     let cases = [

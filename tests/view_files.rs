@@ -1320,6 +1320,102 @@ END
     }
 }
 
+/// A simulation script of solver commands (`solver_commands = "!
+/// Insert ACF commands here:", "SIMULATE/STATIC", "SIMULATE/DYNAMIC,
+/// END=5.0, DTOUT=1.0E-02"`, as View writes a scripted simulation) gives
+/// the run as its command file would: the end, the steps, a static
+/// equilibrium first; commands mbexpr does not run leave a note.
+#[test]
+fn a_scripted_simulations_solver_commands_give_the_run() {
+    let model = |commands: &str| {
+        let text = format!(
+            "model create model_name = s
+part create rigid_body name_and_position part_name = .s.ball adams_id = 2 location = 0, 0, 0 orientation = 0, 0, 0
+marker create marker_name = .s.ball.M adams_id = 2 location = 0, 0, 0 orientation = 0, 0, 0
+part create rigid_body mass_properties part_name = .s.ball mass = 1 center_of_mass_marker = .s.ball.M ixx = 1 iyy = 1 izz = 1
+simulation script create sim_script_name = .s.Last_Sim commands = \"simulation single_run scripted sim_script_name=.s.SCRIPT_1 reset_before_and_after=yes model_name=.s\"
+simulation script create sim_script_name = .s.SCRIPT_1 solver_commands = {commands}
+"
+        );
+        view_model(&text).unwrap_or_else(|errors| panic!("{errors}"))
+    };
+    let scripted = model(
+        "\"! Insert ACF commands here:\", \"SIMULATE/STATIC\",  &\n   \"SIMULATE/DYNAMIC, END=5.0, DTOUT=1.0E-02\"",
+    );
+    assert_eq!(scripted.run, Some((5.0, 500)));
+    assert!(scripted.statics);
+    let dynamic = model("\"sim/dyn, end = 2, steps = 40\"");
+    assert_eq!(dynamic.run, Some((2.0, 40)));
+    assert!(!dynamic.statics);
+    let changed = model("\"deactivate/joint, id = 1\", \"sim/dyn, end = 1, steps = 10\"");
+    assert_eq!(changed.run, None);
+    assert!(
+        changed
+            .notes
+            .iter()
+            .any(|(note, _)| note.contains("DEACTIVATE changes the model")),
+        "{:?}",
+        changed.notes
+    );
+}
+
+/// Locations in cylindrical coordinates (`defaults units
+/// coordinate_system_type = cylindrical`: `r, θ, z`, θ in the angle unit)
+/// place parts, markers and points as their cartesian equivalents do; a
+/// solid drawn by points is refused there.
+#[test]
+fn cylindrical_locations_are_their_cartesian_places() {
+    let model = |system: &str, [hub, tip, part]: [&str; 3]| {
+        format!(
+            "defaults units length = meter angle = deg force = newton mass = kg time = sec
+defaults units coordinate_system_type = {system}
+model create model_name = c
+marker create marker_name = .c.ground.PIVOT adams_id = 1 location = {hub} orientation = 0d, 0d, 0d
+part create rigid_body name_and_position part_name = .c.arm adams_id = 2 location = {part} orientation = 20d, 0d, 0d
+marker create marker_name = .c.arm.HUB adams_id = 2 location = {hub} orientation = 0d, 0d, 0d
+marker create marker_name = .c.arm.TIP adams_id = 3 location = {tip} orientation = 0d, 0d, 0d
+part create rigid_body mass_properties part_name = .c.arm mass = 2 center_of_mass_marker = .c.arm.TIP ixx = 0.01 iyy = 0.2 izz = 0.2
+constraint create joint revolute joint_name = .c.HINGE adams_id = 1 i_marker_name = .c.arm.HUB j_marker_name = .c.ground.PIVOT
+force create body gravitational gravity_field_name = gravity x_component_gravity = 0 y_component_gravity = -9.80665 z_component_gravity = 0
+simulation single_run transient end_time = 1 number_of_steps = 10
+"
+        )
+    };
+    let (sin, cos) = (30.0_f64.to_radians()).sin_cos();
+    let (s2, c2) = (120.0_f64.to_radians()).sin_cos();
+    let cartesian = model(
+        "cartesian",
+        [
+            &format!("{}, {}, 0.1", 0.5 * cos, 0.5 * sin),
+            &format!("{}, {}, 0.1", 1.5 * cos, 1.5 * sin),
+            &format!("{}, {}, 0", 0.2 * c2, 0.2 * s2),
+        ],
+    );
+    let cylindrical = model(
+        "cylindrical",
+        ["0.5, 30, 0.1", "1.5, 30d, 0.1", "0.2, 120, 0"],
+    );
+    let (exported, _) = simulate::view_dataset_text(&cartesian).unwrap_or_else(|_| panic!("read"));
+    let rows = same_motion(&cylindrical, &exported, 1e-12);
+    assert!(rows[0] != rows[10], "the arm swings");
+    let radians = model(
+        "cylindrical",
+        [
+            "0.5, 0.5235987755982988, 0.1",
+            "1.5, 30d, 0.1",
+            "0.2, 2.0943951023931953, 0",
+        ],
+    )
+    .replace("angle = deg", "angle = rad");
+    same_motion(&radians, &exported, 1e-12);
+    let extruded = format!(
+        "{cylindrical}geometry create shape extrusion extrusion_name = .c.arm.E reference_marker = .c.arm.TIP points_for_profile = 0, 0, 0, 1, 0, 0, 0, 1, 0 length_along_z_axis = 0.1\n"
+    )
+    .replace("mass = 2 center_of_mass_marker = .c.arm.TIP ixx = 0.01 iyy = 0.2 izz = 0.2", "density = 100");
+    let refused = view_model(&extruded).expect_err("points in cylindrical coordinates");
+    assert!(refused.contains("cartesian coordinates only"), "{refused}");
+}
+
 /// View writes long point lists with the comma at the start of each
 /// continued line (`points_for_profile = 0, 0, 0  &` then `, 1, 0, 0  &`);
 /// they read as one list, and a line with a comma but no value is still

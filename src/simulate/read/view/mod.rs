@@ -208,6 +208,9 @@ struct Reader<'d> {
     degrees: bool,
     /// How orientations are given (`defaults units orientation_type`).
     orientation_type: Orientations,
+    /// Locations are given as cylindrical coordinates, `r, θ, z` (θ in the
+    /// angle unit; `defaults units coordinate_system_type = cylindrical`).
+    cylindrical: bool,
     units: [(&'static str, &'static str); 4],
     units_span: Span,
     run: Option<RunCommands>,
@@ -327,6 +330,7 @@ pub fn solver_dataset(
         coordinates: Frame::GROUND,
         degrees: true,
         orientation_type: Orientations::BODY_313,
+        cylindrical: false,
         units: [
             ("FORCE", "NEWTON"),
             ("MASS", "KILOGRAM"),
@@ -581,7 +585,14 @@ impl<'d> Reader<'d> {
             [a, b, c] => [*a, *b, *c],
             _ => [0.0; 3],
         };
-        let [x, y, z] = three(&location);
+        let [mut x, mut y, z] = three(&location);
+        if self.cylindrical && location.len() == 3 {
+            // r, θ, z: θ is an angle (in the angle unit, or with `d`).
+            let angle = self
+                .numbers(index, "LOCATION", true)
+                .map_or(0.0, |values| values[1]);
+            (x, y) = (location[0] * angle.cos(), location[0] * angle.sin());
+        }
         reference.then(&Frame {
             origin: Vector3::new(x, y, z),
             axes: self.orientation_type.axes(three(&orientation)),
@@ -841,10 +852,12 @@ impl<'d> Reader<'d> {
                         argument.span,
                     ),
                 },
-                "COORDINATE_SYSTEM_TYPE" if value != "CARTESIAN" => self.refuse(
+                "COORDINATE_SYSTEM_TYPE" if value == "CYLINDRICAL" => self.cylindrical = true,
+                "COORDINATE_SYSTEM_TYPE" if value == "CARTESIAN" => self.cylindrical = false,
+                "COORDINATE_SYSTEM_TYPE" => self.refuse(
                     statement,
                     format!(
-                        "places by {} coordinates: mbexpr reads cartesian ones, View's default",
+                        "places by {} coordinates: mbexpr reads cartesian ones (View's default) and cylindrical ones",
                         item.text
                     ),
                     argument.span,
@@ -1082,8 +1095,38 @@ impl<'d> Reader<'d> {
         }
     }
 
-    /// A `simulation script`'s transient commands, as if given alone.
+    /// A `simulation script`'s transient commands, as if given alone; or
+    /// its `solver_commands`, a command file's lines (`SIMULATE/STATIC`,
+    /// `SIMULATE/DYNAMIC, END=5.0, DTOUT=1.0E-02`), read as an `.acf`.
     fn script(&mut self, index: usize) {
+        if let Some(items) = self.items(index, "SOLVER_COMMANDS") {
+            let span = items
+                .iter()
+                .map(|item| item.span)
+                .reduce(|first, last| first.to(last))
+                .unwrap_or(self.view.statements[index].span);
+            let text: Vec<String> = items
+                .iter()
+                .map(|item| item.text.trim_matches('"').to_string())
+                .collect();
+            let commands = crate::model::read(&text.join("\n"), crate::model::FileKind::Acf);
+            if !commands.problems.is_empty() {
+                self.notes.push((
+                    "these solver commands are not all commands mbexpr reads: give --end and --steps".into(),
+                    span,
+                ));
+                return;
+            }
+            match super::commands::run_settings(&commands) {
+                Ok(Some(run)) => self.run = Some(RunCommands { span, ..run }),
+                Ok(None) => {}
+                Err((message, _)) => self.notes.push((
+                    format!("these solver commands give no run mbexpr makes ({message}): give --end and --steps"),
+                    span,
+                )),
+            }
+            return;
+        }
         let Some(items) = self.items(index, "COMMANDS") else {
             return;
         };

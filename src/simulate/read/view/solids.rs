@@ -281,6 +281,9 @@ impl Reader<'_> {
                             .into(),
                     );
                 }
+                if self.cylindrical {
+                    return Err("is drawn by points, which mbexpr reads in cartesian coordinates only: give the part's mass, centre of mass and inertia, or draw the file in cartesian coordinates".into());
+                }
                 let frame = marker_frame(self, "REFERENCE_MARKER")?;
                 let points = self
                     .numbers(index, "POINTS_FOR_PROFILE", false)
