@@ -593,9 +593,12 @@ fn a_parts_mass_from_its_solids_agrees_with_the_closed_forms() {
     assert!(differs(torus, expected, 1.0) < 1e-12, "torus");
 }
 
-/// View's link (a bar with semicircular ends, `width` across, `depth`
-/// thick) from `M2` at the ground's origin to `M1`, against a quadrature
-/// of its outline on a fine grid; two solids on one part add.
+/// View's link (a bar with rounded ends, `width` across, `depth` thick)
+/// from `M2` at the ground's origin to `M1`, against a quadrature of its
+/// outline on a fine grid; each end is half of the regular 20-gon
+/// inscribed in the end's circle, as View rounds it (its export of a
+/// user's link, below, holds the 20-gon's mass and moments to ten
+/// digits); two solids on one part add.
 #[test]
 fn a_links_mass_agrees_with_a_quadrature_of_its_outline() {
     let density = 3.0;
@@ -624,9 +627,15 @@ fn a_links_mass_agrees_with_a_quadrature_of_its_outline() {
         let u = -radius + (i as f64 + 0.5) / cells as f64 * span_x;
         for j in 0..cells / 5 {
             let v = -radius + (j as f64 + 0.5) / (cells / 5) as f64 * span_y;
-            let inside = (0.0..=length).contains(&u)
-                || u * u + v * v <= radius * radius
-                || (u - length) * (u - length) + v * v <= radius * radius;
+            // Inside the 20-gon about (cx, 0) whose vertices lie at
+            // ±90° + 18° k: within its apothem along each side's normal.
+            let in_polygon = |cx: f64| {
+                (0..20).all(|k| {
+                    let normal = (99.0 + 18.0 * f64::from(k)).to_radians();
+                    (u - cx) * normal.cos() + v * normal.sin() <= radius * 9f64.to_radians().cos()
+                })
+            };
+            let inside = (0.0..=length).contains(&u) || in_polygon(0.0) || in_polygon(length);
             if inside {
                 area += cell;
                 first += u * cell;
@@ -658,6 +667,43 @@ fn a_links_mass_agrees_with_a_quadrature_of_its_outline() {
         "link: {:e}",
         differs(link, expected, 1.0)
     );
+    // A user's link (Radka208677/RL_with_Continuous_Action_Space,
+    // pendulum.cmd: 100 mm long, 10 wide, 5 deep, steel of 7.801e-6
+    // kg/mm³) and the mass and moments Adams View exported for it
+    // (pendulum.adm: MASS = 0.042018302, IP = 41.03368968, 40.77766026,
+    // 0.4311056795 about its centre).
+    let text = "defaults units length = mm angle = deg force = newton mass = kg time = sec
+model create model_name = s
+material create material_name = .s.steel density = 7.801E-06
+part create rigid_body name_and_position part_name = .s.body adams_id = 2 location = 0, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .s.body.M1 adams_id = 1 location = 0, 0, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .s.body.M2 adams_id = 2 location = 0, -100, 0 orientation = 0d, 0d, 0d
+part create rigid_body mass_properties part_name = .s.body material_type = .s.steel
+geometry create shape link link_name = .s.body.L i_marker = .s.body.M1 j_marker = .s.body.M2 width = 10.0 depth = 5.0
+";
+    let model = view_model(text).unwrap_or_else(|errors| panic!("{errors}"));
+    let mass = &model.masses[0];
+    // mbexpr holds masses divided by the units consistency factor (1000
+    // for mm, kg, N).
+    let units = 1000.0;
+    assert!(
+        (mass.mass * units - 0.042018302).abs() < 1e-9,
+        "{}",
+        mass.mass
+    );
+    // The part's axes are the link's principal axes: the moments, smallest
+    // first (about the link's length, across it in its plane, through it).
+    let mut ours: Vec<f64> = (0..3).map(|k| mass.inertia[(k, k)] * units).collect();
+    ours.sort_by(f64::total_cmp);
+    for (ours, view) in ours
+        .into_iter()
+        .zip([0.4311056795, 40.77766026, 41.03368968])
+    {
+        assert!(
+            (ours - view).abs() < 2e-9 * view.max(1.0),
+            "{ours} against {view}"
+        );
+    }
 
     // A block and a sphere on one part: their sum about the common centre.
     let block = "geometry create shape block block_name = .s.body.B corner_marker = .s.body.M2 diag_corner_coords = 0.2, 0.2, 0.2";

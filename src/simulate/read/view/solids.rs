@@ -408,27 +408,33 @@ impl Moments {
     }
 
     /// View's link: a bar from the origin along x of `length`, `width`
-    /// across (y) with semicircular ends, and `depth` thick (z), centred on
-    /// the xy plane.
+    /// across (y) with rounded ends, and `depth` thick (z), centred on the
+    /// xy plane. View rounds each end by half of a regular 20-gon inscribed
+    /// in the end's circle (ten sides, from one corner of the bar to the
+    /// other), and so its mass: a user's link of 100 × 10 × 5 mm at 7.801
+    /// g/cm³ has mass 0.042018302 and moments 0.4311056795, 40.77766026,
+    /// 41.03368968 in View's export, the 20-gon's to ten digits (the exact
+    /// semicircles give 0.0420684).
     fn link(length: f64, width: f64, depth: f64) -> Moments {
         let radius = width / 2.0;
-        let bar = length * width * depth;
-        let half_disc = PI * radius * radius * depth / 2.0;
-        // Each half disc's centroid lies 4r/3π beyond its end.
-        let out = 4.0 * radius / (3.0 * PI);
-        let xx = bar * length * length / 3.0
-            + half_disc * radius * radius / 4.0
-            + half_disc * (radius * radius / 4.0 + 2.0 * length * out + length * length);
-        let yy = bar * width * width / 12.0 + 2.0 * half_disc * radius * radius / 4.0;
-        let zz = (bar + 2.0 * half_disc) * depth * depth / 12.0;
-        let volume = bar + 2.0 * half_disc;
-        Moments {
-            volume,
-            first: Vector3::new(volume * length / 2.0, 0.0, 0.0),
-            second: Matrix3::from_diagonal(&Vector3::new(xx, yy, zz)),
+        let step = 2.0 * PI / f64::from(LINK_SIDES);
+        let mut points = vec![[0.0, -radius], [length, -radius]];
+        for k in 1..LINK_SIDES / 2 {
+            let angle = -PI / 2.0 + f64::from(k) * step;
+            points.push([length + radius * angle.cos(), radius * angle.sin()]);
         }
+        points.extend([[length, radius], [0.0, radius]]);
+        for k in 1..LINK_SIDES / 2 {
+            let angle = PI / 2.0 + f64::from(k) * step;
+            points.push([radius * angle.cos(), radius * angle.sin()]);
+        }
+        prism(Outline::polygon(&points).abs(), -depth / 2.0, depth / 2.0)
     }
 }
+
+/// The sides of the regular polygon View draws a link's rounded ends by
+/// (half of it at each end).
+const LINK_SIDES: u32 = 20;
 
 /// View's plate: the outline around its corners (`corners`, in ground),
 /// each corner a circle of `radius` about its marker joined to the next by
@@ -522,10 +528,16 @@ fn extrusion(points: &[f64], length: f64) -> Result<Moments, String> {
     } else {
         (z0, z0 + length)
     };
+    Ok(prism(outline, start, end))
+}
+
+/// The moments of the region `outline` of the xy plane swept along z
+/// from `start` to `end`.
+fn prism(outline: Outline, start: f64, end: f64) -> Moments {
     let depth = end - start;
     let z = (end * end - start * start) / 2.0;
     let zz = (end.powi(3) - start.powi(3)) / 3.0;
-    Ok(Moments {
+    Moments {
         volume: outline.area * depth,
         first: Vector3::new(outline.x * depth, outline.y * depth, outline.area * z),
         second: Matrix3::new(
@@ -539,7 +551,7 @@ fn extrusion(points: &[f64], length: f64) -> Result<Moments, String> {
             outline.y * z,
             outline.area * zz,
         ),
-    })
+    }
 }
 
 /// A plane region's area and its first and second moments about the
