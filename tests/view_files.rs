@@ -1462,6 +1462,32 @@ simulation single_run transient end_time = 1 number_of_steps = 10
     assert!(refused.contains("cartesian coordinates only"), "{refused}");
 }
 
+/// The measures' VARIABLEs take the ids the file's variables leave free,
+/// in order, as View's export numbers them (a user's delta robot:
+/// variables 1-4 and 8-18 leave 5, 6, 7 to its first three measures and
+/// 19 on to the rest).
+#[test]
+fn measures_take_the_variable_ids_left_free() {
+    let text = "model create model_name = v
+part create rigid_body name_and_position part_name = .v.ball adams_id = 2 location = 0, 0, 0 orientation = 0, 0, 0
+marker create marker_name = .v.ball.M adams_id = 2 location = 0, 0, 0 orientation = 0, 0, 0
+part create rigid_body mass_properties part_name = .v.ball mass = 1 center_of_mass_marker = .v.ball.M ixx = 1 iyy = 1 izz = 1
+data_element create variable variable_name = .v.A adams_id = 1 function = \"1\"
+data_element create variable variable_name = .v.B adams_id = 2 function = \"2\"
+data_element create variable variable_name = .v.C adams_id = 4 function = \"4\"
+measure create point measure_name = .v.HEIGHT point = .v.ball.M characteristic = translational_displacement component = y_component
+measure create point measure_name = .v.SPEED point = .v.ball.M characteristic = translational_velocity component = y_component
+measure create point measure_name = .v.FALL point = .v.ball.M characteristic = translational_acceleration component = y_component
+";
+    let model = view_model(text).unwrap_or_else(|errors| panic!("{errors}"));
+    assert!(
+        model.notes.iter().any(|(note, _)| note
+            .ends_with("VARIABLE/3 = V.HEIGHT, VARIABLE/5 = V.SPEED, VARIABLE/6 = V.FALL")),
+        "{:?}",
+        model.notes
+    );
+}
+
 /// View writes long point lists with the comma at the start of each
 /// continued line (`points_for_profile = 0, 0, 0  &` then `, 1, 0, 0  &`);
 /// they read as one list, and a line with a comma but no value is still

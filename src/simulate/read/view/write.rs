@@ -2,6 +2,7 @@
 //! and the GRAPHICS of contacts' solids, and functions with their names
 //! turned into ids.
 
+use std::collections::HashSet;
 use std::f64::consts::PI;
 
 use super::elements::{Becomes, MEASURE, becomes};
@@ -649,19 +650,23 @@ const CENTRE_CHARACTERISTICS: [(&str, &str); 5] = [
 
 impl Reader<'_> {
     /// The measures as VARIABLEs, as View has the solver compute them (a
-    /// column each in the run's rows), numbered after the file's
-    /// variables: each active function or kinematic measure mbexpr reads.
+    /// column each in the run's rows), numbered by the ids the file's
+    /// variables leave free: each active function or kinematic measure
+    /// mbexpr reads.
     /// One it does not read (a part's kinetic energy, a point's total
     /// force ...) is left out with a note, not refused: only a function
     /// that reads it needs it.
     fn write_measures(&mut self) -> Vec<Statement> {
-        let mut next = self
+        // Each measure takes the smallest id no VARIABLE has, in order, as
+        // View's export numbers them (variables 1-4 and 8-18 leave 5, 6, 7
+        // to the first three measures and 19 on to the rest).
+        let taken: HashSet<u64> = self
             .elements
             .iter()
             .filter(|element| element.statement == "VARIABLE")
             .filter_map(|element| element.id)
-            .max()
-            .unwrap_or(0);
+            .collect();
+        let mut free = (1..).filter(move |id| !taken.contains(id));
         let mut variables = Vec::new();
         let mut written = Vec::new();
         let mut unread = Vec::new();
@@ -676,7 +681,7 @@ impl Reader<'_> {
             self.errors.truncate(before);
             match function {
                 Some(function) if read => {
-                    next += 1;
+                    let next = free.next().unwrap_or(u64::MAX);
                     let mut statement = new_statement("VARIABLE", Some(next), span);
                     statement.arguments.push(Argument {
                         keyword: "FUNCTION".into(),
