@@ -1281,3 +1281,33 @@ fn a_command_file_that_gives_no_run_is_refused_at_its_place() {
     std::fs::remove_dir_all(&folder).ok();
     insta::assert_snapshot!(shown);
 }
+
+/// `simulate --dataset` prints the solver dataset a View command file is
+/// read as, which runs as the View file does; another file is a usage
+/// error.
+#[test]
+fn simulate_prints_the_dataset_a_view_file_is_read_as() {
+    let view = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/simulate/n_view_four_bar.cmd"
+    );
+    let (dataset, _, code) = mbexpr(&["simulate", "--dataset", view], "");
+    assert_eq!(code, 0);
+    assert!(dataset.starts_with("mbexpr\nUNITS/\n"), "{dataset}");
+    assert!(dataset.ends_with("END\n"), "{dataset}");
+    let run = ["--end", "0.5", "--steps", "5", "--format", "csv"];
+    let (from_view, _, _) = mbexpr(&[&["simulate", view][..], &run[..]].concat(), "");
+    let (from_dataset, _, code) = mbexpr(&[&["simulate", "-"][..], &run[..]].concat(), &dataset);
+    assert_eq!(code, 0);
+    assert_eq!(from_view, from_dataset);
+    let adm = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/simulate/c_pendulum.adm"
+    );
+    let (_, refused, code) = mbexpr(&["simulate", "--dataset", adm], "");
+    assert_eq!(code, 2);
+    assert!(
+        refused.contains("an Adams View command file (.cmd)"),
+        "{refused}"
+    );
+}
