@@ -1113,7 +1113,7 @@ impl Reader<'_> {
                 "JOINT_NAME" => {
                     let name = self.word(index, &keyword).unwrap_or_default();
                     if let Some(Entity::Element(joint)) = self.find(&name)
-                        && joint != element
+                        && self.elements[joint].statement == "JOINT"
                     {
                         return self.element_markers(joint);
                     }
