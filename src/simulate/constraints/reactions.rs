@@ -427,6 +427,15 @@ impl Reactions {
             Holder::Joint(index) if model.joints[index].pair.is_some() => {
                 self.contacts[index].unwrap_or_else(|| Vector3::repeat(f64::NAN))
             }
+            // A joint that holds its origins together pushes each body at
+            // its own marker's origin, as Adams applies it: on ground, the
+            // other body's torque is taken about the other marker's origin,
+            // so the markers' drift apart (1e-6 of a length) adds no moment
+            // (a spherical joint's torque stays 0, a revolute's about its
+            // axis too).
+            Holder::Joint(index) if sign < 0.0 && holds_origins_together(&model.joints[index]) => {
+                self.place(model, other).0
+            }
             _ => self.place(model, marker).0,
         };
         let mut force = Vector3::zeros();
@@ -543,6 +552,24 @@ impl Reactions {
         }
         sum
     }
+}
+
+/// Whether `joint`'s equations hold its I and J origins together (in
+/// ground's components, so each body's share acts at its own origin).
+fn holds_origins_together(joint: &crate::simulate::model::Joint) -> bool {
+    use crate::simulate::model::JointKind;
+    joint.curve.is_none()
+        && joint.pair.is_none()
+        && matches!(
+            joint.kind,
+            JointKind::Fixed
+                | JointKind::Revolute
+                | JointKind::Spherical
+                | JointKind::Universal
+                | JointKind::Hooke
+                | JointKind::Convel
+                | JointKind::AtPoint
+        )
 }
 
 /// The body `target` is on (`None`: ground).
