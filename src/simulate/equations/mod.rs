@@ -624,10 +624,14 @@ impl<'m> Mechanics<'m> {
             // started (or there from the start), a residual that stops
             // shrinking is the rounding of the joints' solve (or of an
             // implicit DIFF's FUNCTION, whose terms can be far larger than
-            // a rate near zero).
+            // a rate near zero); below a hundred-billionth of the values it
+            // is, wherever it started (a small reaction beside large ones,
+            // through a loop's redundant joints, swings between two guesses
+            // 3e-13 of the largest apart).
             let stalled = size >= last_size
-                && size <= 1e-9 * scale
-                && (size <= 1e-6 * first || first <= 1e-9 * first_scale);
+                && (size <= 1e-11 * scale
+                    || size <= 1e-9 * scale
+                        && (size <= 1e-6 * first || first <= 1e-9 * first_scale));
             if settled || stalled {
                 return Ok(given);
             }
