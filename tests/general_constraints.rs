@@ -165,7 +165,8 @@ END
     assert!(worst < 1e-7, "{worst}");
 }
 
-/// What a GCON may not read, and a GCON with no I, refused at its place; a
+/// What a GCON may not read, refused at its place (one with no I runs, its
+/// reaction reported at ground's origin, as Adams View writes it); a
 /// GCON whose FUNCTION cannot be evaluated where the parts start, named;
 /// a GCON on velocities (held at their level) that runs, and one whose
 /// velocities do not move it (`0 * WZ`: no row of `G`), named.

@@ -1488,6 +1488,45 @@ measure create point measure_name = .v.FALL point = .v.ball.M characteristic = t
     );
 }
 
+/// A general constraint (`constraint create general_constraint`, its
+/// FUNCTION given by a later `modify`, as View writes it) is the dataset's
+/// GCON: a point mass held 2 from ground's origin swings as the dataset's
+/// pendulum does; without its `i_marker_name` (as View exports one made
+/// without it) it runs alike, its reaction reported at ground's origin.
+#[test]
+fn a_view_general_constraint_is_the_datasets_gcon() {
+    let view = |marker: &str| {
+        format!(
+            "defaults units length = meter angle = deg force = newton mass = kg time = sec
+model create model_name = g
+marker create marker_name = .g.ground.O adams_id = 1 location = 0, 0, 0 orientation = 0, 0, 0
+part create rigid_body name_and_position part_name = .g.ball adams_id = 2 location = 2, 0, 0 orientation = 0, 0, 0
+marker create marker_name = .g.ball.M adams_id = 20 location = 2, 0, 0 orientation = 0, 0, 0
+part create rigid_body mass_properties part_name = .g.ball mass = 1.5 center_of_mass_marker = .g.ball.M ixx = 0.2 iyy = 0.3 izz = 0.4
+constraint create general_constraint general_constraint_name = .g.GCON_1 adams_id = 1{marker}
+force create body gravitational gravity_field_name = gravity x_component_gravity = 0 y_component_gravity = -9.80665 z_component_gravity = 0
+output_control create request request_name = .g.PLACE adams_id = 1 f2 = \"DX(.g.ball.M)\" f3 = \"DY(.g.ball.M)\"
+constraint modify general_constraint general_constraint_name = .g.GCON_1 function = \"DM(.g.ball.M, .g.ground.O) - 2\"
+simulation single_run transient end_time = 1 number_of_steps = 10
+"
+        )
+    };
+    let dataset = "distance
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1.5, CM = 20, IP = 0.2, 0.3, 0.4, QG = 2, 0, 0
+MARKER/20, PART = 2
+GCON/1, I = 1, FUNCTION = DM(20, 1) - 2
+ACCGRAV/JGRAV = -9.80665
+REQUEST/1, F2 = DX(20)\\F3 = DY(20)
+END
+";
+    let rows = same_motion(&view(" i_marker_name = .g.ground.O"), dataset, 1e-7);
+    assert!(rows[10][rows[10].len() - 1] < -1.0, "the mass swings down");
+    same_motion(&view(""), dataset, 1e-7);
+}
+
 /// View writes long point lists with the comma at the start of each
 /// continued line (`points_for_profile = 0, 0, 0  &` then `, 1, 0, 0  &`);
 /// they read as one list, and a line with a comma but no value is still

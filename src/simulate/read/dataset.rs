@@ -536,13 +536,14 @@ impl Reader<'_> {
         for index in indices {
             let statement = &dataset.statements[index];
             let label = statement.label();
-            if statement.argument("I", 1).is_none() {
-                self.refuse(
-                    format!("{label}: give I = the marker its reaction acts on"),
-                    statement.span,
-                );
-            }
-            let i = self.marker(statement, "I");
+            // Without I (as Adams View writes a general constraint made
+            // without its marker), the reaction is reported at ground's
+            // origin.
+            let i = if statement.argument("I", 1).is_none() {
+                Some(Target::Ground)
+            } else {
+                self.marker(statement, "I")
+            };
             let function = self.expression(index, "FUNCTION");
             let Some(written) = statement.argument("FUNCTION", 4) else {
                 self.refuse(

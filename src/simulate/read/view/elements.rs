@@ -322,7 +322,17 @@ const KINEMATIC_MEASURE: [(&str, Becomes); 16] = [
     ("LEGEND", Becomes::Nothing),
 ];
 
-pub(super) const ELEMENTS: [ElementKind; 25] = [
+pub(super) const ELEMENTS: [ElementKind; 26] = [
+    ElementKind {
+        words: "CONSTRAINT GENERAL_CONSTRAINT",
+        statement: "GCON",
+        flags: &[],
+        name: "GENERAL_CONSTRAINT_NAME",
+        parameters: &[&[
+            ("I_MARKER_NAME", Becomes::Marker("I")),
+            ("FUNCTION", Becomes::Function("FUNCTION")),
+        ]],
+    },
     ElementKind {
         words: "CONSTRAINT COMPLEX_JOINT GEAR",
         statement: "GEAR",

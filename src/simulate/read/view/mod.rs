@@ -23,7 +23,7 @@
 //! - **Later commands.** `modify` commands change what a `create` made
 //!   (View writes every function after the objects it reads), and
 //!   `attributes ... active = off` leaves an element out.
-//! - **Elements.** Joints and primitives, motions, single-component
+//! - **Elements.** Joints and primitives, general constraints, motions, single-component
 //!   forces, force and torque vectors, general forces, spring-dampers,
 //!   bushings, beams, contacts (their solids written as GRAPHICS), gravity,
 //!   variables, differential equations, function requests and sensors.
@@ -1318,7 +1318,7 @@ impl<'d> Reader<'d> {
         let Some((solver, flags, name_keyword, parameters)) = found else {
             self.refuse(
                 statement,
-                "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, beams, contacts, joint frictions, couplers and gears, gravity, variables, differential equations, function requests and sensors".into(),
+                "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, general constraints, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, beams, contacts, joint frictions, couplers and gears, gravity, variables, differential equations, function requests and sensors".into(),
                 statement.span,
             );
             return;
