@@ -142,6 +142,27 @@ impl Source {
         }
     }
 
+    /// Why the model was not read: the refusals, or the problems of a file
+    /// that does not check (then that it does not, and `outcome`).
+    fn unread(&self, unread: Unread, outcome: &str) -> Fatal {
+        match unread {
+            Unread::Refused(errors) => self.render_all(None, &errors),
+            Unread::Unchecked(problems) => {
+                let texts = diagnostics(
+                    &self.path,
+                    &self.text,
+                    problems
+                        .iter()
+                        .map(|problem| (problem.error.span(), problem.error.to_string())),
+                );
+                Fatal::input(format!(
+                    "{texts}{}: the model does not check: {outcome}\n",
+                    self.path
+                ))
+            }
+        }
+    }
+
     /// Every error of `errors`, those placed in the file in one pass over
     /// it (in file order), then those placed nowhere.
     fn render_all(&self, model: Option<&Model>, errors: &[SimulateError]) -> Fatal {
@@ -180,28 +201,18 @@ fn write_dataset(path: &str, out: &mut impl Write) -> Result<Outcome, Fatal> {
         path: path.to_string(),
         text,
     };
-    match simulate::view_dataset_text(&source.text) {
-        Ok((dataset, notes)) => {
-            let notes = notes
-                .into_iter()
-                .map(|(note, span)| (span, format!("note: {note}")));
-            let _ = write!(
-                std::io::stderr(),
-                "{}",
-                diagnostics(path, &source.text, notes)
-            );
-            out.write_all(dataset.as_bytes()).map_err(Fatal::from)?;
-            Ok(Outcome::Success)
-        }
-        Err(Unread::Refused(errors)) => Err(source.render_all(None, &errors)),
-        Err(Unread::Unchecked(problems)) => Err(Fatal::input(diagnostics(
-            path,
-            &source.text,
-            problems
-                .iter()
-                .map(|problem| (problem.error.span(), problem.error.to_string())),
-        ))),
-    }
+    let (dataset, notes) = simulate::view_dataset_text(&source.text)
+        .map_err(|unread| source.unread(unread, "nothing written"))?;
+    let notes = notes
+        .into_iter()
+        .map(|(note, span)| (span, format!("note: {note}")));
+    let _ = write!(
+        std::io::stderr(),
+        "{}",
+        diagnostics(path, &source.text, notes)
+    );
+    out.write_all(dataset.as_bytes()).map_err(Fatal::from)?;
+    Ok(Outcome::Success)
 }
 
 /// Reads the model of `path` (`-`: standard input), reporting every problem
@@ -221,22 +232,8 @@ fn read_model(
         path: path.to_string(),
         text,
     };
-    let mut model = match simulate::from_text(&source.text, format, file_kind) {
-        Ok(model) => model,
-        Err(Unread::Refused(errors)) => return Err(source.render_all(None, &errors)),
-        Err(Unread::Unchecked(problems)) => {
-            let texts = diagnostics(
-                path,
-                &source.text,
-                problems
-                    .iter()
-                    .map(|problem| (problem.error.span(), problem.error.to_string())),
-            );
-            return Err(Fatal::input(format!(
-                "{texts}{path}: the model does not check: nothing simulated\n"
-            )));
-        }
-    };
+    let mut model = simulate::from_text(&source.text, format, file_kind)
+        .map_err(|unread| source.unread(unread, "nothing simulated"))?;
     // Why the .acf gives no run: an error only for a run that needs it.
     let mut run_problem = None;
     if format == ModelFormat::Dataset && file_kind != mbexpr::model::FileKind::Cmd {

@@ -652,10 +652,9 @@ impl Reader<'_> {
     /// The measures as VARIABLEs, as View has the solver compute them (a
     /// column each in the run's rows), numbered by the ids the file's
     /// variables leave free: each active function or kinematic measure
-    /// mbexpr reads.
-    /// One it does not read (a part's kinetic energy, a point's total
-    /// force ...) is left out with a note, not refused: only a function
-    /// that reads it needs it.
+    /// mbexpr reads. One it does not read (a part's kinetic energy, a
+    /// point's total force ...) is left out with a note, not refused: only
+    /// a function that reads it needs it.
     fn write_measures(&mut self) -> Vec<Statement> {
         // Each measure takes the smallest id no VARIABLE has, in order, as
         // View's export numbers them (variables 1-4 and 8-18 leave 5, 6, 7
@@ -770,13 +769,8 @@ impl Reader<'_> {
                     .and_then(|index| self.word(index, "CHARACTERISTIC"))
                     .unwrap_or_else(|| "EULER_ANGLES".into());
                 let (to, from) = (frame(self, "TO_FRAME")?, frame(self, "FROM_FRAME")?);
-                return match self.orientation(&characteristic, component.as_deref(), to, from) {
-                    Ok(function) => Some(function),
-                    Err(reason) => {
-                        self.wrong(format!("a function reads this measure: {reason}"), span);
-                        None
-                    }
-                };
+                let function = self.orientation(&characteristic, component.as_deref(), to, from);
+                return self.read_measure(function, span);
             }
             "ANGLE" => {
                 let mut ends = Vec::new();
@@ -784,9 +778,8 @@ impl Reader<'_> {
                     match given(keyword) {
                         Some(index) => ends.push(self.marker_id(index, keyword)?),
                         None => {
-                            let reason = "give its first_point, middle_point and last_point";
-                            self.wrong(format!("a function reads this measure: {reason}"), span);
-                            return None;
+                            let lacks = "give its first_point, middle_point and last_point";
+                            return self.read_measure(Err(lacks.into()), span);
                         }
                     }
                 }
@@ -855,16 +848,10 @@ impl Reader<'_> {
                             axes,
                             moving,
                         };
-                        return match self.element_measure(&measured) {
-                            Ok(function) => Some(function),
-                            Err(reason) => {
-                                self.wrong(
-                                    format!("a function reads this measure: {name}: {reason}"),
-                                    span,
-                                );
-                                None
-                            }
-                        };
+                        let function = self
+                            .element_measure(&measured)
+                            .map_err(|reason| format!("{name}: {reason}"));
+                        return self.read_measure(function, span);
                     }
                     _ => Err(Some(format!(
                         "object = {name} names no marker, part or element the file creates"
@@ -874,20 +861,22 @@ impl Reader<'_> {
         };
         let ends = match ends {
             Ok(ends) => ends,
-            Err(reason) => {
-                if let Some(reason) = reason {
-                    self.wrong(format!("a function reads this measure: {reason}"), span);
-                }
-                return None;
-            }
+            Err(Some(reason)) => return self.read_measure(Err(reason), span),
+            Err(None) => return None,
         };
-        match self.motion_function(&characteristic, component.as_deref(), ends, axes, moving) {
-            Ok(function) => Some(function),
-            Err(reason) => {
+        let function =
+            self.motion_function(&characteristic, component.as_deref(), ends, axes, moving);
+        self.read_measure(function, span)
+    }
+
+    /// A measure's `function`, or what it lacks, wrong at the measure's
+    /// place `span`.
+    fn read_measure(&mut self, function: Result<String, String>, span: Span) -> Option<String> {
+        function
+            .map_err(|reason| {
                 self.wrong(format!("a function reads this measure: {reason}"), span);
-                None
-            }
-        }
+            })
+            .ok()
     }
 
     /// The function of `characteristic` (a translational or angular
@@ -904,18 +893,7 @@ impl Reader<'_> {
         axes: u64,
         moving: u64,
     ) -> Result<String, String> {
-        let axis = match component {
-            Some("X_COMPONENT") => Some("X"),
-            Some("Y_COMPONENT") => Some("Y"),
-            Some("Z_COMPONENT") => Some("Z"),
-            Some("MAG_COMPONENT") => None,
-            _ => {
-                return Err(
-                    "give its component (x_component, y_component, z_component or mag_component)"
-                        .into(),
-                );
-            }
-        };
+        let axis = axis_of(component)?.map(|axis| ["X", "Y", "Z"][axis]);
         if characteristic == "AX_AY_AZ_PROJECTION_ANGLES" {
             let Some(axis) = axis else {
                 return Err("projection angles have no magnitude: give x_component, y_component or z_component".into());
@@ -1073,15 +1051,8 @@ impl Reader<'_> {
                     statement.to_ascii_lowercase()
                 ));
             };
-            let along = match measured.component {
-                Some("MAG_COMPONENT") => 1,
-                Some("X_COMPONENT") => 2,
-                Some("Y_COMPONENT") => 3,
-                Some("Z_COMPONENT") => 4,
-                _ => {
-                    return Err("give its component (x_component, y_component, z_component or mag_component)".into());
-                }
-            };
+            // The components 1 to 4: the magnitude, then x, y and z.
+            let along = axis_of(measured.component)?.map_or(1, |axis| axis + 2);
             let id = self.elements[measured.element].id.unwrap_or(0);
             let on_j = u8::from(!measured.from_first);
             return Ok(format!(
@@ -1128,6 +1099,20 @@ impl Reader<'_> {
                 self.elements[element].statement.to_ascii_lowercase()
             )),
         }
+    }
+}
+
+/// The axis a measure's `component` is along (0, 1, 2 for x, y, z; `None`
+/// for the magnitude), or what is wrong with it.
+fn axis_of(component: Option<&str>) -> Result<Option<usize>, String> {
+    match component {
+        Some("X_COMPONENT") => Ok(Some(0)),
+        Some("Y_COMPONENT") => Ok(Some(1)),
+        Some("Z_COMPONENT") => Ok(Some(2)),
+        Some("MAG_COMPONENT") => Ok(None),
+        _ => Err(
+            "give its component (x_component, y_component, z_component or mag_component)".into(),
+        ),
     }
 }
 
