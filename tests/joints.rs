@@ -780,4 +780,18 @@ END
         .err()
         .expect("the model cannot run");
     assert!(error.contains("cannot be assembled"), "{error}");
+    // Holes placed as a file rounded to 10 digits places them (3e-10 short
+    // of the pins' metre) are no disagreement: the data's precision, which
+    // Adams assembles; 1e-5 short is one.
+    let rounded = text.replace("QP = 0.6, 0, 0", "QP = 0.9999999997, 0, 0");
+    let rounded = run(&rounded, &settings(1.0, 4, 1e-6)).expect("rounding assembles");
+    assert_eq!(rounded.rows.len(), 5);
+    let short = text.replace("QP = 0.6, 0, 0", "QP = 0.99999, 0, 0");
+    let error = run(&short, &settings(1.0, 4, 1e-6))
+        .err()
+        .expect("the model cannot run");
+    assert!(
+        error.contains("cannot be assembled: JOINT/2") && error.contains("1.000e-5"),
+        "{error}"
+    );
 }

@@ -1527,6 +1527,43 @@ END
     same_motion(&view(""), dataset, 1e-7);
 }
 
+/// Adams Controls exports a plant's inputs and outputs in models named
+/// inside the model (`model create model_name = .PM.Controls_Plant_1`,
+/// then `.PM.PM`), and names the ground by its bare name after them: the
+/// inner models are namespaces of the outer one, its ground the only one.
+#[test]
+fn models_named_inside_the_model_are_its_namespaces() {
+    let view = "defaults units length = meter angle = deg force = newton mass = kg time = sec
+model create model_name = g
+model create model_name = .g.Controls_Plant_1
+model create model_name = .g.g
+part modify rigid_body name_and_position part_name = ground adams_id = 1
+marker create marker_name = .g.ground.O adams_id = 1 location = 0, 0, 0 orientation = 0, 0, 0
+part create rigid_body name_and_position part_name = .g.ball adams_id = 2 location = 2, 0, 0 orientation = 0, 0, 0
+marker create marker_name = .g.ball.M adams_id = 20 location = 2, 0, 0 orientation = 0, 0, 0
+part create rigid_body mass_properties part_name = .g.ball mass = 1.5 center_of_mass_marker = .g.ball.M ixx = 0.2 iyy = 0.3 izz = 0.4
+marker create marker_name = .g.ball.P adams_id = 21 location = 0, 0, 0 orientation = 0, 0, 0
+constraint create joint spherical joint_name = .g.PIN adams_id = 1 i_marker_name = .g.ball.P j_marker_name = .g.ground.O
+force create body gravitational gravity_field_name = gravity x_component_gravity = 0 y_component_gravity = -9.80665 z_component_gravity = 0
+output_control create request request_name = .g.PLACE adams_id = 1 f2 = \"DX(.g.ball.M)\" f3 = \"DY(.g.ball.M)\"
+simulation single_run transient end_time = 1 number_of_steps = 10
+";
+    let dataset = "a ball on a rod
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1.5, CM = 20, IP = 0.2, 0.3, 0.4, QG = 2, 0, 0
+MARKER/20, PART = 2
+MARKER/21, PART = 2, QP = -2, 0, 0
+JOINT/1, SPHERICAL, I = 21, J = 1
+ACCGRAV/JGRAV = -9.80665
+REQUEST/1, F2 = DX(20)\\F3 = DY(20)
+END
+";
+    let rows = same_motion(view, dataset, 1e-7);
+    assert!(rows[10][rows[10].len() - 1] < -1.0, "the ball swings down");
+}
+
 /// View writes long point lists with the comma at the start of each
 /// continued line (`points_for_profile = 0, 0, 0  &` then `, 1, 0, 0  &`);
 /// they read as one list, and a line with a comma but no value is still
@@ -1550,7 +1587,7 @@ geometry create shape extrusion  &\r
     assert_eq!(model.scene.bodies.len(), 1);
     let broken = text.replace("      , 0.0, 500.0, -25.0  &\r\n", "      ,  &\r\n");
     let error = view_model(&broken).expect_err("a comma with no value");
-    assert!(error.contains("not a statement"), "{error}");
+    assert!(error.contains("not a View command"), "{error}");
 }
 
 /// A View gear (`constraint create complex_joint gear`: two joints and the

@@ -41,7 +41,7 @@ pub fn read(text: &str) -> Dataset {
             Ok(mut pairs) => pairs.next().expect("the top rule matched"),
             Err(error) => {
                 let offset = base + super::pest_offset(&error);
-                dataset.problems.push(ReadError::Unreadable {
+                dataset.problems.push(ReadError::UnreadableCommand {
                     span: Span::at(offset),
                 });
                 continue;
@@ -53,7 +53,7 @@ pub fn read(text: &str) -> Dataset {
                 Rule::unreadable => {
                     let span = span_of(&pair, base);
                     let length = pair.as_str().trim_end().len();
-                    dataset.problems.push(ReadError::Unreadable {
+                    dataset.problems.push(ReadError::UnreadableCommand {
                         span: Span::new(span.start, span.start + length),
                     });
                 }

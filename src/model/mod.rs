@@ -224,6 +224,14 @@ pub enum ReadError {
         /// The line.
         span: Span,
     },
+    /// Text in a View command file that is no command.
+    #[error(
+        "this is not a View command: expected its words, then `parameter = value` pairs, a line ending with `&` continuing on the next (or a comment starting with `!`)"
+    )]
+    UnreadableCommand {
+        /// The command's text.
+        span: Span,
+    },
     /// A continuation line (`, KEY = value`) right after the title, where
     /// the title reads as a statement: a dataset without its title line.
     #[error(
@@ -259,6 +267,7 @@ impl ReadError {
     pub fn span(&self) -> Span {
         match self {
             ReadError::Unreadable { span }
+            | ReadError::UnreadableCommand { span }
             | ReadError::ContinuesTheTitle { span, .. }
             | ReadError::IdTooLarge { span }
             | ReadError::TooDeep { span, .. } => *span,

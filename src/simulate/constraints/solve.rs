@@ -1178,8 +1178,19 @@ fn is_finite(row: &Row<f64>) -> bool {
             .all(|(_, entries)| entries.iter().all(|entry| entry.is_finite()))
 }
 
+/// How far a left-out equation may stay from zero, as a fraction of the
+/// state's size, before its joint disagrees with the others: the data's
+/// own precision, not the assembly's. View writes 10 significant digits
+/// (an angle of `66.99486285d` to 1e-8 degrees), and that rounding,
+/// carried through a loop of parts, leaves a repeated equation off by
+/// about 1e-9 of the model (a user's SolidWorks-made parallel robot: 1.07e-9
+/// m in a model a metre across, which Adams assembles without a word). A
+/// marker in the wrong place is off by far more.
+const REDUNDANT_AGREEMENT: f64 = 1e-7;
+
 /// The left-out equation (see [`find_redundant`]) furthest from zero at
-/// state `y`, when it is further than [`ASSEMBLED`] of the state's size:
+/// state `y`, when it is further than [`REDUNDANT_AGREEMENT`] of the
+/// state's size:
 /// its joint (an index into the model's joints) and its value. An
 /// equation that repeats others to first order must also agree with them:
 /// a pin 0.4 m from where a second pin holds the same part is no
@@ -1204,7 +1215,7 @@ pub(crate) fn disagreeing_redundant(
                 .map(move |&equation| (index, rows[equation].value.abs()))
                 .collect::<Vec<_>>()
         })
-        .filter(|(_, value)| *value > ASSEMBLED * size)
+        .filter(|(_, value)| *value > REDUNDANT_AGREEMENT * size)
         .fold(
             None,
             |most: Option<(usize, f64)>, (joint, value)| match most {

@@ -710,6 +710,16 @@ impl<'d> Reader<'d> {
             ("MODEL", Some("CREATE")) => {
                 if let Some(name) = self.word(index, "MODEL_NAME") {
                     let name = key(&name);
+                    // A model named inside one the file made (Adams Controls'
+                    // `.PM.Controls_Plant_1`, holding the plant's inputs and
+                    // outputs) is a namespace of that model: its parts, the
+                    // ground among them, stay the outer model's.
+                    if let Some((outer, _)) = name.split_once('.')
+                        && self.names.get(outer) == Some(&Entity::Model)
+                    {
+                        self.name(name, Entity::Model);
+                        return;
+                    }
                     self.model = Some(name.clone());
                     self.name(name.clone(), Entity::Model);
                     // The ground made before any model takes the model's name.
@@ -1431,10 +1441,15 @@ impl<'d> Reader<'d> {
         for geometry in &self.geometries {
             taken.entry("GRAPHICS").or_default().extend(geometry.id);
         }
+        // The smallest free id only grows as ids are taken, so each kind's
+        // search starts where its last one ended (linear in the ids).
+        let mut searched_from: HashMap<&'static str, u64> = HashMap::new();
         let mut next = |kind: &'static str| {
             let ids = taken.entry(kind).or_default();
-            let id = (1..).find(|id| !ids.contains(id)).unwrap_or(1);
+            let from = searched_from.entry(kind).or_insert(1);
+            let id = (*from..).find(|id| !ids.contains(id)).unwrap_or(*from);
             ids.insert(id);
+            *from = id + 1;
             id
         };
         // The ground first, so that it takes 1 when it is free.
