@@ -61,7 +61,9 @@ def measures_in_notes(stderr):
     """VARIABLE/n of each measure name, from mbexpr's note."""
     names = {}
     for variable, name in re.findall(r"(VARIABLE/\d+) = ([A-Z0-9_.]+)", stderr):
-        names[name.split(".")[-1]] = variable
+        # Without the model's name: `SPRING_1.DEFORMATION`, a library
+        # spring's variable, is named so in the export too.
+        names[name.split(".", 1)[-1]] = variable
     return names
 
 

@@ -1859,3 +1859,110 @@ simulation single_run transient end_time = 2 number_of_steps = 20
         );
     }
 }
+
+/// View's library springs (`ude create instance` of `.MDI.Forces.spring`
+/// and `.MDI.Forces.torsion_spring`, their values set on the instance's
+/// variables, some with their units) are the SFORCEs and VARIABLEs View
+/// exports for them: `- k*(DM(i,j) - L0) - c*VR(i,j) + preload` with the
+/// design length, `- k*(AZ(i,j) - θ0) - c*WZ(i,j,j) + preload` with the
+/// design angle, in a millimetre and degree model.
+#[test]
+fn view_library_springs_are_the_sforces_view_exports() {
+    let spring = |instance: &str, values: &[(&str, &str)]| {
+        let mut text = format!(
+            "ude create instance instance_name = .m.{instance} definition_name = .MDI.Forces.{} location = 0, 0, 0 orientation = 0, 0, 0\n",
+            if instance.starts_with("TORSION") {
+                "torsion_spring"
+            } else {
+                "spring"
+            }
+        );
+        for (variable, value) in values {
+            text += &format!("variable modify variable_name = .m.{instance}.{variable} {value}\n");
+        }
+        text + &format!("ude modify instance instance_name = .m.{instance}\n")
+    };
+    let view = |stiffness_mode: &str| {
+        format!(
+            "defaults units length = mm angle = deg force = newton mass = kg time = sec
+model create model_name = m
+marker create marker_name = .m.ground.O adams_id = 1 location = 0, 0, 0 orientation = 0, 0, 0
+marker create marker_name = .m.ground.G adams_id = 2 location = 0, 0, 100 orientation = 0, 0, 0
+marker create marker_name = .m.ground.W0 adams_id = 3 location = 0, 300, 0 orientation = 30d, 0, 0
+part create rigid_body name_and_position part_name = .m.slider adams_id = 2 location = 0, 0, 100 orientation = 0, 0, 0
+marker create marker_name = .m.slider.S adams_id = 4 location = 0, 0, 100 orientation = 0, 0, 0
+part create rigid_body mass_properties part_name = .m.slider mass = 2 center_of_mass_marker = .m.slider.S ixx = 1 iyy = 1 izz = 1
+part create rigid_body initial_velocity part_name = .m.slider vz = 50
+part create rigid_body name_and_position part_name = .m.wheel adams_id = 3 location = 0, 300, 0 orientation = 0, 0, 0
+marker create marker_name = .m.wheel.W1 adams_id = 5 location = 0, 300, 0 orientation = 0, 0, 0
+part create rigid_body mass_properties part_name = .m.wheel mass = 1 center_of_mass_marker = .m.wheel.W1 ixx = 300 iyy = 300 izz = 500
+part create rigid_body initial_velocity part_name = .m.wheel wz = 90
+constraint create joint translational joint_name = .m.RAIL adams_id = 1 i_marker_name = .m.slider.S j_marker_name = .m.ground.G
+constraint create joint revolute joint_name = .m.PIN adams_id = 2 i_marker_name = .m.wheel.W1 j_marker_name = .m.ground.W0
+{}{}simulation single_run transient end_time = 0.5 number_of_steps = 10
+",
+            spring(
+                "SPRING_1",
+                &[
+                    ("i_marker", "object_value = (.m.slider.S)"),
+                    ("j_marker", "object_value = (.m.ground.O)"),
+                    ("stiffness_mode", "string_value = \"linear\""),
+                    ("stiffness_coefficient", "real_value = 2.0"),
+                    ("damping_mode", "string_value = \"linear\""),
+                    ("damping_coefficient", "real_value = (0.5(newton-sec/mm))"),
+                    ("free_length_mode", "string_value = \"Design_Length\""),
+                    ("free_length", "real_value = 1.0"),
+                    ("preload", "real_value = 3.0"),
+                ]
+            ),
+            spring(
+                "TORSION_SPRING_1",
+                &[
+                    ("i_marker", "object_value = (.m.ground.W0)"),
+                    ("j_marker", "object_value = (.m.wheel.W1)"),
+                    ("stiffness_mode", &format!("string_value = \"{stiffness_mode}\"")),
+                    ("stiffness_coefficient", "real_value = (10(newton-mm/deg))"),
+                    ("damping_mode", "string_value = \"linear\""),
+                    ("damping_coefficient", "real_value = 0.2"),
+                    ("free_angle_mode", "string_value = \"Design_Angle\""),
+                    ("free_angle", "real_value = 1.0"),
+                    ("preload", "real_value = 0.0"),
+                ]
+            ),
+        )
+    };
+    let dataset = "two springs
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = MILLIMETER, TIME = SECOND
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/2, PART = 1, QP = 0, 0, 100
+MARKER/3, PART = 1, QP = 0, 300, 0, REULER = 30D, 0, 0
+PART/2, MASS = 2, CM = 4, IP = 1, 1, 1, QG = 0, 0, 100, VZ = 50
+MARKER/4, PART = 2
+PART/3, MASS = 1, CM = 5, IP = 300, 300, 500, QG = 0, 300, 0, WZ = 1.5707963267948966
+MARKER/5, PART = 3
+JOINT/1, TRANSLATIONAL, I = 4, J = 2
+JOINT/2, REVOLUTE, I = 5, J = 3
+SFORCE/1, TRANSLATION, I = 4, J = 1, FUNCTION = - 2*(DM(4,1) - 100) - 0.5*VR(4,1) + 3
+SFORCE/2, ROTATION, I = 3, J = 5
+, FUNCTION = - 10*180/PI*(AZ(3,5) - PI/6) - 0.2*180/PI*WZ(3,5,5) + 0
+VARIABLE/1, FUNCTION = DM(4,1) - 100
+VARIABLE/2, FUNCTION = VR(4,1)
+VARIABLE/3, FUNCTION = (DX(4,1)*FX(4,1) + DY(4,1)*FY(4,1) + DZ(4,1)*FZ(4,1))/DM(4,1)
+VARIABLE/4, FUNCTION = AZ(3,5) - PI/6
+VARIABLE/5, FUNCTION = WZ(3,5,5)
+VARIABLE/6, FUNCTION = SFORCE(2, 0, 8, 5)
+END
+";
+    let rows = same_motion(&view("linear"), dataset, 1e-7);
+    // Both springs act: the slider is pushed back and the wheel slowed.
+    let model = view_model(&view("linear")).unwrap_or_else(|errors| panic!("{errors}"));
+    let force = column(&model, "VARIABLE/3");
+    assert!(rows.iter().any(|row| row[force].abs() > 10.0));
+    // A spline's stiffness is refused at the variable that asks for it.
+    let error = view_model(&view("spline")).expect_err("a spline is refused");
+    assert!(
+        error.contains("TORSION_SPRING_1 sets stiffness_mode to SPLINE"),
+        "{error}"
+    );
+}

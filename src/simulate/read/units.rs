@@ -81,6 +81,18 @@ const TIMES: [(&str, f64); 8] = [
     ("DAY", 86_400.0),
 ];
 
+/// What one `unit` (a solver unit's name: `NEWTON`, `MILLIMETER` ...) is
+/// worth in newton, kilogram, metre or second.
+pub(super) fn worth(unit: &str) -> Option<f64> {
+    FORCES
+        .iter()
+        .chain(&MASSES)
+        .chain(&LENGTHS)
+        .chain(&TIMES)
+        .find(|(name, _)| *name == unit)
+        .map(|&(_, worth)| worth)
+}
+
 /// The predefined systems of `UNITS/SYSTEM`: force, mass, length and time.
 const SYSTEMS: [(&str, [&str; 4]); 5] = [
     ("MKS", ["NEWTON", "KILOGRAM", "METER", "SECOND"]),

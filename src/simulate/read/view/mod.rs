@@ -57,6 +57,7 @@ pub struct ViewDataset {
 }
 
 mod elements;
+mod library;
 mod solids;
 mod write;
 
@@ -200,6 +201,9 @@ struct Reader<'d> {
     /// The user-defined force instances (`ude create instance` of a
     /// force): refused unless made inactive.
     user_forces: Vec<(String, usize, bool)>,
+    /// The command that sets each variable last (`variable create` or
+    /// `modify`), by full name: a library spring's values.
+    instance_variables: HashMap<String, usize>,
     /// Every user-defined element's instance: its full name and its
     /// definition's (what names inside it are part of).
     instances: Vec<(String, String)>,
@@ -326,6 +330,7 @@ pub fn solver_dataset(
         designs: Vec::new(),
         reading: Vec::new(),
         user_forces: Vec::new(),
+        instance_variables: HashMap::new(),
         instances: Vec::new(),
         coordinates: Frame::GROUND,
         degrees: true,
@@ -618,6 +623,7 @@ impl<'d> Reader<'d> {
         let Some(name) = self.word(index, "VARIABLE_NAME") else {
             return;
         };
+        self.instance_variables.insert(self.full(&name), index);
         let Some((_, argument)) = self.argument(index, "REAL_VALUE") else {
             return;
         };

@@ -6,6 +6,7 @@ use std::collections::HashSet;
 use std::f64::consts::PI;
 
 use super::elements::{Becomes, MEASURE, becomes};
+use super::library::{LibrarySpring, spring_statement};
 use super::{Entity, Frame, Reader};
 use crate::check::{Argument as TreeArgument, NodeKind, Reference, visit};
 use crate::model::{Argument, Embedded, Statement, Value, ValueItem};
@@ -18,17 +19,8 @@ const MEASURE_DEPTH: usize = 32;
 impl Reader<'_> {
     /// The solver statements.
     pub(super) fn write(&mut self) -> Vec<Statement> {
-        for (_, index, active) in self.user_forces.clone() {
-            if active {
-                let command = &self.view.statements[index];
-                self.refuse(
-                    command,
-                    "is a user-defined force (a View library element), which mbexpr does not read: write it as a force element".into(),
-                    command.span,
-                );
-            }
-        }
         self.assign_ids();
+        let (springs, spring_variables) = self.write_library_springs();
         let mut statements = Vec::new();
         let mut units = new_statement("UNITS", None, self.units_span);
         for (kind, unit) in self.units {
@@ -55,7 +47,8 @@ impl Reader<'_> {
                 elements.push(statement);
             }
         }
-        elements.extend(self.write_measures());
+        elements.extend(springs);
+        elements.extend(self.write_measures(spring_variables));
         for geometry in 0..self.geometries.len() {
             if self.geometries[geometry].met
                 && let Some(statement) = self.write_graphic(geometry)
@@ -649,26 +642,87 @@ const CENTRE_CHARACTERISTICS: [(&str, &str); 5] = [
 ];
 
 impl Reader<'_> {
+    /// The ids no element of the solver statement `kind` has, smallest
+    /// first (View's export numbers what it makes so).
+    fn free_ids(&self, kind: &str) -> impl Iterator<Item = u64> + use<> {
+        let taken: HashSet<u64> = self
+            .elements
+            .iter()
+            .filter(|element| element.statement == kind)
+            .filter_map(|element| element.id)
+            .collect();
+        (1..).filter(move |id| !taken.contains(id))
+    }
+
+    /// The active user-defined forces: each library spring's SFORCE (the
+    /// smallest ids no SFORCE has, in order) and its VARIABLEs' names and
+    /// functions; any other is refused.
+    fn write_library_springs(&mut self) -> (Vec<Statement>, Vec<(String, String, Span)>) {
+        let mut free = self.free_ids("SFORCE");
+        let mut springs = Vec::new();
+        let mut variables = Vec::new();
+        for (name, index, active) in self.user_forces.clone() {
+            if !active {
+                continue;
+            }
+            let command = &self.view.statements[index];
+            let kind = self
+                .instances
+                .iter()
+                .find(|(instance, _)| *instance == name)
+                .and_then(|(_, definition)| LibrarySpring::of_definition(definition));
+            let Some(kind) = kind else {
+                self.refuse(
+                    command,
+                    "is a user-defined force (a View library element other than a spring or a torsion spring), which mbexpr does not read: write it as a force element".into(),
+                    command.span,
+                );
+                continue;
+            };
+            match self.library_spring(&name, kind) {
+                Ok(spring) => {
+                    let id = free.next().unwrap_or(u64::MAX);
+                    springs.push(spring_statement(&spring, kind, id, command.span));
+                    for (variable, function) in spring.variables {
+                        let function = function.replace("{id}", &id.to_string());
+                        variables.push((variable, function, command.span));
+                    }
+                }
+                Err((reason, place)) => {
+                    let at = &self.view.statements[place.unwrap_or(index)];
+                    self.refuse(at, format!("{name} {reason}"), at.span);
+                }
+            }
+        }
+        (springs, variables)
+    }
+
     /// The measures as VARIABLEs, as View has the solver compute them (a
     /// column each in the run's rows), numbered by the ids the file's
     /// variables leave free: each active function or kinematic measure
     /// mbexpr reads. One it does not read (a part's kinetic energy, a
     /// point's total force ...) is left out with a note, not refused: only
-    /// a function that reads it needs it.
-    fn write_measures(&mut self) -> Vec<Statement> {
+    /// a function that reads it needs it. The library springs' VARIABLEs
+    /// (`first`: each name, function and place) come before them.
+    fn write_measures(&mut self, first: Vec<(String, String, Span)>) -> Vec<Statement> {
         // Each measure takes the smallest id no VARIABLE has, in order, as
         // View's export numbers them (variables 1-4 and 8-18 leave 5, 6, 7
         // to the first three measures and 19 on to the rest).
-        let taken: HashSet<u64> = self
-            .elements
-            .iter()
-            .filter(|element| element.statement == "VARIABLE")
-            .filter_map(|element| element.id)
-            .collect();
-        let mut free = (1..).filter(move |id| !taken.contains(id));
+        let mut free = self.free_ids("VARIABLE");
         let mut variables = Vec::new();
         let mut written = Vec::new();
         let mut unread = Vec::new();
+        for (name, function, span) in first {
+            let next = free.next().unwrap_or(u64::MAX);
+            let mut statement = new_statement("VARIABLE", Some(next), span);
+            function_argument(
+                &mut statement,
+                Embedded::pinned(&function, span.start),
+                span,
+            );
+            variables.push(statement);
+            written.push(format!("VARIABLE/{next} = {name}"));
+        }
         for measure in 0..self.elements.len() {
             if !(self.elements[measure].active && self.elements[measure].statement == MEASURE) {
                 continue;
@@ -682,15 +736,7 @@ impl Reader<'_> {
                 Some(function) if read => {
                     let next = free.next().unwrap_or(u64::MAX);
                     let mut statement = new_statement("VARIABLE", Some(next), span);
-                    statement.arguments.push(Argument {
-                        keyword: "FUNCTION".into(),
-                        keyword_span: span,
-                        span,
-                        value: Value::Expression {
-                            text: function,
-                            span,
-                        },
-                    });
+                    function_argument(&mut statement, function, span);
                     variables.push(statement);
                     written.push(format!("VARIABLE/{next} = {}", self.elements[measure].name));
                 }
@@ -1189,6 +1235,19 @@ pub(super) fn list_argument(
                 })
                 .collect(),
         ),
+    });
+}
+
+/// A `FUNCTION = function` argument at `span`.
+pub(super) fn function_argument(statement: &mut Statement, function: Embedded, span: Span) {
+    statement.arguments.push(Argument {
+        keyword: "FUNCTION".into(),
+        keyword_span: span,
+        span,
+        value: Value::Expression {
+            text: function,
+            span,
+        },
     });
 }
 
