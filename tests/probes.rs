@@ -155,6 +155,26 @@ const EXTREMES: [&str; 12] = [
     "0", "-1", "1e308", "-1e308", "1e-308", "5e-324", "1e15", "-1e-30", "1E400", "nan", "3", "1e30",
 ];
 
+/// `text` with the numbers `swaps` picks (each a digit's run) replaced by
+/// the extremes it names.
+fn with_extremes(text: &str, swaps: &[(prop::sample::Index, usize)]) -> String {
+    let mut text = text.to_string();
+    for (which, extreme) in swaps {
+        let numbers: Vec<(usize, usize)> = text
+            .match_indices(|c: char| c.is_ascii_digit())
+            .map(|(at, _)| {
+                let end = text[at..]
+                    .find(|c: char| !(c.is_ascii_alphanumeric() || c == '.'))
+                    .map_or(text.len(), |n| at + n);
+                (at, end)
+            })
+            .collect();
+        let (start, end) = numbers[which.index(numbers.len())];
+        text.replace_range(start..end, EXTREMES[*extreme]);
+    }
+    text
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
 
@@ -163,18 +183,7 @@ proptest! {
     #[test]
     fn mangled_simulation_datasets_run_or_stop_with_an_error(swaps in prop::collection::vec((any::<prop::sample::Index>(), 0usize..12), 1..4), dop853 in any::<bool>()) {
         use mbexpr::simulate::{self, Settings, Simulation};
-        let mut text = DROPPED_BALL.to_string();
-        for (which, extreme) in &swaps {
-            let numbers: Vec<(usize, usize)> = text
-                .match_indices(|c: char| c.is_ascii_digit())
-                .map(|(at, _)| {
-                    let end = text[at..].find(|c: char| !(c.is_ascii_alphanumeric() || c == '.')).map_or(text.len(), |n| at + n);
-                    (at, end)
-                })
-                .collect();
-            let (start, end) = numbers[which.index(numbers.len())];
-            text.replace_range(start..end, EXTREMES[*extreme]);
-        }
+        let text = with_extremes(DROPPED_BALL, &swaps);
         let dataset = mbexpr::model::read(&text, mbexpr::model::FileKind::Adm);
         let report = mbexpr::model::check_model(&text, &dataset);
         if !report.problems.is_empty() {
@@ -195,5 +204,35 @@ proptest! {
             true
         });
         prop_assert!(finite, "{text}");
+    }
+}
+
+/// The View four-bar, whose numbers the View probe swaps.
+const VIEW_FOUR_BAR: &str = include_str!("../examples/simulate/n_view_four_bar.cmd");
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// A View file with its numbers swapped for extreme ones is read as a
+    /// dataset with finite numbers only, or refused with errors inside the
+    /// file; never a panic.
+    #[test]
+    fn mangled_view_files_read_as_finite_datasets_or_are_refused(swaps in prop::collection::vec((any::<prop::sample::Index>(), 0usize..12), 1..4)) {
+        let text = with_extremes(VIEW_FOUR_BAR, &swaps);
+        match mbexpr::simulate::view_dataset_text(&text) {
+            Ok((dataset, _)) => {
+                for token in dataset.split(|c: char| c == ',' || c == '=' || c.is_whitespace()) {
+                    prop_assert!(token.parse::<f64>().map_or(true, f64::is_finite), "{token} in {dataset}");
+                }
+            }
+            Err(mbexpr::simulate::Unread::Refused(errors)) => {
+                for error in &errors {
+                    if let mbexpr::simulate::Place::File(span) = error.place() {
+                        prop_assert!(span.end <= text.len(), "{error:?}");
+                    }
+                }
+            }
+            Err(_) => {}
+        }
     }
 }

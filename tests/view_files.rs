@@ -1966,3 +1966,20 @@ END
         "{error}"
     );
 }
+
+/// A place computed from numbers at the doubles' limit overflows: the
+/// reading stops at the command it comes from, and never writes a
+/// non-finite number into the dataset (`simulate --dataset` included).
+#[test]
+fn places_beyond_the_doubles_range_are_wrong_at_their_command() {
+    let text = "part create rigid_body name_and_position part_name = .m.p adams_id = 2 location = 0, 0, 1e308 orientation = 0, 0, 0
+marker create marker_name = .m.p.M adams_id = 3 location = 0, 0, -1e308 orientation = 0, 0, 0
+part create rigid_body mass_properties part_name = .m.p mass = 1 center_of_mass_marker = .m.p.M ixx = 1 iyy = 1 izz = 1";
+    let error = check(text);
+    assert!(
+        error.starts_with("3:1: MARKER/3 QP computes to NaN") && error.contains("doubles' limit"),
+        "{error}"
+    );
+    let model = format!("model create model_name = m\n{text}\n");
+    assert!(simulate::view_dataset_text(&model).is_err());
+}

@@ -128,6 +128,16 @@ impl Reader<'_> {
             "PRELOAD",
             Quantity::Rate(if torsion { [1, 1, 0, 0] } else { [1, 0, 0, 0] }),
         )?;
+        if ![Some(free), stiffness, damping, Some(preload)]
+            .iter()
+            .flatten()
+            .all(|value| value.is_finite())
+        {
+            return Err((
+                "has values that reach the doubles' limit (about 1e308) where it is drawn or in its coefficients: give smaller values".into(),
+                None,
+            ));
+        }
         let (measure, rate) = if torsion {
             (format!("AZ({i},{j})"), format!("WZ({i},{j},{j})"))
         } else {

@@ -352,6 +352,7 @@ pub fn solver_dataset(
         reader.command(index);
     }
     let statements = reader.write();
+    reader.check_finite(&statements);
     if !reader.errors.is_empty() {
         return Err(SimulateError::grouped(reader.errors));
     }
@@ -368,6 +369,41 @@ pub fn solver_dataset(
 }
 
 impl<'d> Reader<'d> {
+    /// Every number the reading wrote is finite: a place, an axis or a mass
+    /// computed from numbers near the doubles' limit (about 1e308) can
+    /// overflow, and is wrong at the command it comes from (one error a
+    /// statement).
+    fn check_finite(&mut self, statements: &[Statement]) {
+        for statement in statements {
+            let overflowed =
+                statement
+                    .arguments
+                    .iter()
+                    .find_map(|argument| match &argument.value {
+                        Value::List(items) => items
+                            .iter()
+                            .find(|item| {
+                                item.text
+                                    .parse::<f64>()
+                                    .is_ok_and(|value| !value.is_finite())
+                            })
+                            .map(|item| (argument, item.text.clone())),
+                        _ => None,
+                    });
+            if let Some((argument, value)) = overflowed {
+                self.wrong(
+                    format!(
+                        "{}/{} {} computes to {value}: the numbers it is made from reach the doubles' limit (about 1e308): give smaller values",
+                        statement.name,
+                        statement.id.unwrap_or(0),
+                        argument.keyword
+                    ),
+                    argument.span,
+                );
+            }
+        }
+    }
+
     fn refuse(&mut self, statement: &Statement, reason: String, span: Span) {
         self.errors.push(SimulateError::Unsupported {
             statement: format!("`{}`", label(statement)),
