@@ -945,12 +945,14 @@ impl Reader<'_> {
                 ),
             );
         } else if mass > 0.0 && !positive_definite(&inertia) {
-            fail(
-                &mut self.errors,
-                format!(
+            // At IP where it is given (a View file's `ixx ...`, on its
+            // mass command), the statement where it is not.
+            self.errors.push(SimulateError::Model {
+                message: format!(
                     "{label}: the inertia is singular or not positive definite about the centre of mass: give IP = xx, yy, zz (and products) with positive moments"
                 ),
-            );
+                span: statement.argument("IP", 2).map_or(statement.span, |ip| ip.span),
+            });
         }
         MassProperties {
             mass,
