@@ -46,28 +46,18 @@ impl LibrarySpring {
 pub(super) struct WrittenSpring {
     /// The SFORCE's I and J marker ids.
     pub(super) markers: [u64; 2],
-    /// The terms of its function, the SFORCE's id left as `{id}`.
+    /// The terms of its function.
     pub(super) function: String,
     /// Its VARIABLEs: the name View gives each, and its function (the
     /// SFORCE's id left as `{id}`).
     pub(super) variables: Vec<(String, String)>,
 }
 
-/// A value of a spring's variable: a number in the model's units, or a
-/// number with its units (`(1.0E-002(newton-meter/rad))`).
-enum Quantity {
-    Length,
-    Angle,
-    /// Force (or torque) per length or angle, and per velocity: the
-    /// powers of force, length, angle and time.
-    Rate([i32; 4]),
-}
-
 impl Reader<'_> {
     /// The solver form of the library spring `instance` (its full key
     /// name), or the reason it cannot be written, at the place to show.
     pub(super) fn library_spring(
-        &mut self,
+        &self,
         instance: &str,
         spring: LibrarySpring,
     ) -> Result<WrittenSpring, (String, Option<usize>)> {
@@ -79,42 +69,30 @@ impl Reader<'_> {
         let [i, j] = ids;
         let (frame_i, frame_j) = (markers[0].1, markers[1].1);
         let torsion = spring == LibrarySpring::Torsion;
-        let (free_mode, free_parameter, design) = if torsion {
+        let (free_mode, design) = if torsion {
             let angle = frame_i
                 .axes
                 .column(0)
                 .dot(&frame_j.axes.column(1))
                 .atan2(frame_i.axes.column(0).dot(&frame_j.axes.column(0)));
-            ("FREE_ANGLE_MODE", "FREE_ANGLE", angle)
+            ("FREE_ANGLE_MODE", angle)
         } else {
             let distance = (frame_i.origin - frame_j.origin).norm();
-            ("FREE_LENGTH_MODE", "FREE_LENGTH", distance)
+            ("FREE_LENGTH_MODE", distance)
         };
         let free = match self.spring_word(instance, free_mode)?.as_str() {
             "DESIGN_LENGTH" | "DESIGN_ANGLE" => design,
             other => {
+                let free = if torsion { "angle" } else { "length" };
                 return Err((
                     format!(
-                        "sets {} to {other}, a free {} other than the design one, which mbexpr does not read (no export of it was seen): draw the spring at its free {}",
+                        "sets {} to {other}, a free {free} other than the design one, which mbexpr does not read (no export of it was seen): draw the spring at its free {free}",
                         free_mode.to_ascii_lowercase(),
-                        if torsion { "angle" } else { "length" },
-                        if torsion { "angle" } else { "length" },
                     ),
                     self.spring_command(instance, free_mode),
                 ));
             }
         };
-        // The free value's own variable, unread in design mode, must still
-        // be a number where it is given.
-        let _ = self.spring_quantity(
-            instance,
-            free_parameter,
-            if torsion {
-                Quantity::Angle
-            } else {
-                Quantity::Length
-            },
-        );
         let per = if torsion {
             [1, 1, -1, 0]
         } else {
@@ -126,7 +104,7 @@ impl Reader<'_> {
         let preload = self.spring_quantity(
             instance,
             "PRELOAD",
-            Quantity::Rate(if torsion { [1, 1, 0, 0] } else { [1, 0, 0, 0] }),
+            if torsion { [1, 1, 0, 0] } else { [1, 0, 0, 0] },
         )?;
         if ![Some(free), stiffness, damping, Some(preload)]
             .iter()
@@ -186,18 +164,25 @@ impl Reader<'_> {
             .copied()
     }
 
-    /// The reason a variable is missing, at the instance's command.
-    fn missing(&self, instance: &str, parameter: &str) -> (String, Option<usize>) {
-        (
-            format!(
-                "has no variable {} (View writes every variable of the instance)",
-                parameter.to_ascii_lowercase()
-            ),
-            self.user_forces
-                .iter()
-                .find(|(name, _, _)| name == instance)
-                .map(|&(_, index, _)| index),
-        )
+    /// The command that sets the instance's variable `parameter` last, or
+    /// that it is missing (at the instance's command).
+    fn spring_variable(
+        &self,
+        instance: &str,
+        parameter: &str,
+    ) -> Result<usize, (String, Option<usize>)> {
+        self.spring_command(instance, parameter).ok_or_else(|| {
+            (
+                format!(
+                    "has no variable {} (View writes every variable of the instance)",
+                    parameter.to_ascii_lowercase()
+                ),
+                self.user_forces
+                    .iter()
+                    .find(|(name, _, _)| name == instance)
+                    .map(|&(_, index, _)| index),
+            )
+        })
     }
 
     /// The word a string variable of the instance holds (`linear`), keyed.
@@ -206,9 +191,7 @@ impl Reader<'_> {
         instance: &str,
         parameter: &str,
     ) -> Result<String, (String, Option<usize>)> {
-        let index = self
-            .spring_command(instance, parameter)
-            .ok_or_else(|| self.missing(instance, parameter))?;
+        let index = self.spring_variable(instance, parameter)?;
         Ok(self.word(index, "STRING_VALUE").unwrap_or_default())
     }
 
@@ -219,9 +202,7 @@ impl Reader<'_> {
         instance: &str,
         parameter: &str,
     ) -> Result<(u64, Frame), (String, Option<usize>)> {
-        let index = self
-            .spring_command(instance, parameter)
-            .ok_or_else(|| self.missing(instance, parameter))?;
+        let index = self.spring_variable(instance, parameter)?;
         let name = self
             .items(index, "OBJECT_VALUE")
             .and_then(|items| items.first())
@@ -246,7 +227,7 @@ impl Reader<'_> {
     /// coefficient in the solver's units (`per`: the powers of force,
     /// length, angle and time) when `linear`.
     fn spring_term(
-        &mut self,
+        &self,
         instance: &str,
         what: &str,
         per: [i32; 4],
@@ -255,11 +236,7 @@ impl Reader<'_> {
         match self.spring_word(instance, &mode_name)?.as_str() {
             "NONE" => Ok(None),
             "LINEAR" => self
-                .spring_quantity(
-                    instance,
-                    &format!("{what}_COEFFICIENT"),
-                    Quantity::Rate(per),
-                )
+                .spring_quantity(instance, &format!("{what}_COEFFICIENT"), per)
                 .map(Some),
             other => Err((
                 format!(
@@ -273,17 +250,16 @@ impl Reader<'_> {
     }
 
     /// A real variable of the instance in the solver's units (radians for
-    /// angles): a number in the model's units, or a number with its units
-    /// in brackets (`(3.0E-004(newton-meter-sec/rad))`).
+    /// angles), its dimensions `powers` of force, length, angle and time:
+    /// a number in the model's units, or a number with its units in
+    /// brackets (`(3.0E-004(newton-meter-sec/rad))`).
     fn spring_quantity(
-        &mut self,
+        &self,
         instance: &str,
         parameter: &str,
-        quantity: Quantity,
+        powers: [i32; 4],
     ) -> Result<f64, (String, Option<usize>)> {
-        let index = self
-            .spring_command(instance, parameter)
-            .ok_or_else(|| self.missing(instance, parameter))?;
+        let index = self.spring_variable(instance, parameter)?;
         let text = self
             .items(index, "REAL_VALUE")
             .and_then(|items| items.first())
@@ -297,12 +273,6 @@ impl Reader<'_> {
                 ),
                 Some(index),
             )
-        };
-        // The powers of force, length, angle and time the value is in.
-        let powers = match quantity {
-            Quantity::Length => [0, 1, 0, 0],
-            Quantity::Angle => [0, 0, 1, 0],
-            Quantity::Rate(powers) => powers,
         };
         let (number, factor) = match text
             .strip_prefix('(')
@@ -377,10 +347,9 @@ pub(super) fn spring_statement(
     flag_argument(&mut statement, flag, span);
     ids_argument(&mut statement, "I", spring.markers[0], span);
     ids_argument(&mut statement, "J", spring.markers[1], span);
-    let function = spring.function.replace("{id}", &id.to_string());
     function_argument(
         &mut statement,
-        Embedded::pinned(&function, span.start),
+        Embedded::pinned(&spring.function, span.start),
         span,
     );
     statement

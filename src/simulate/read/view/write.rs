@@ -712,16 +712,16 @@ impl Reader<'_> {
         let mut variables = Vec::new();
         let mut written = Vec::new();
         let mut unread = Vec::new();
-        for (name, function, span) in first {
+        // The next free id's VARIABLE of `function`, noted as `name`'s.
+        let mut variable = |name: &str, function: Embedded, span: Span| {
             let next = free.next().unwrap_or(u64::MAX);
             let mut statement = new_statement("VARIABLE", Some(next), span);
-            function_argument(
-                &mut statement,
-                Embedded::pinned(&function, span.start),
-                span,
-            );
+            function_argument(&mut statement, function, span);
             variables.push(statement);
             written.push(format!("VARIABLE/{next} = {name}"));
+        };
+        for (name, function, span) in first {
+            variable(&name, Embedded::pinned(&function, span.start), span);
         }
         for measure in 0..self.elements.len() {
             if !(self.elements[measure].active && self.elements[measure].statement == MEASURE) {
@@ -733,13 +733,7 @@ impl Reader<'_> {
             let read = self.errors.len() == before;
             self.errors.truncate(before);
             match function {
-                Some(function) if read => {
-                    let next = free.next().unwrap_or(u64::MAX);
-                    let mut statement = new_statement("VARIABLE", Some(next), span);
-                    function_argument(&mut statement, function, span);
-                    variables.push(statement);
-                    written.push(format!("VARIABLE/{next} = {}", self.elements[measure].name));
-                }
+                Some(function) if read => variable(&self.elements[measure].name, function, span),
                 _ => unread.push(span),
             }
         }
