@@ -795,3 +795,88 @@ END
         "{error}"
     );
 }
+
+/// A part of 2 kg spun on a hinge about ground z (its centre of mass 0.5
+/// m out), under gravity across the hinge and a load of `along` m/s²
+/// along it, which the hinge's reaction takes whole and which does no
+/// work: the part swings as without it.
+fn hinge_loaded_along_its_axis(along: f64) -> String {
+    format!(
+        "a hinge loaded along its axis
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 2, CM = 3, IP = 0.01, 0.2, 0.2, WZ = 1.5707963267948966
+MARKER/2, PART = 2
+MARKER/3, PART = 2, QP = 0.5, 0, 0
+JOINT/1, REVOLUTE, I = 2, J = 1
+ACCGRAV/JGRAV = -9.80665, KGRAV = {along}
+END
+"
+    )
+}
+
+/// `along method`: the hinge's turn at t = 0.2 with a load of `along`
+/// along its axis against the turn without it, at rtol 1e-6. A reaction
+/// of 2e9 N turns with any tilt of the hinge the tolerance allows and
+/// pushes the part along its swing: held on the joint to the tolerance
+/// alone, the turn was 2e-5 to 2.6e-4 rad off (Radau5, DOP853, auto);
+/// the joints are now held tighter where the reactions push that hard.
+#[test]
+fn a_hinge_loaded_along_its_axis_swings_as_unloaded() {
+    let turn = |along: f64, method_name: &str| {
+        let mut settings = settings(0.2, 1, 1e-6);
+        settings.method = method(method_name);
+        let run = run(&hinge_loaded_along_its_axis(along), &settings).expect("the hinge runs");
+        let last = run.rows.last().expect("a row at the end");
+        (angle(last, 4, 0.0), run)
+    };
+    for case in [
+        "1e6 radau",
+        "1e6 dop853",
+        "1e9 radau",
+        "1e9 dop853",
+        "1e9 auto",
+    ] {
+        let (along, method_name) = case.split_once(' ').expect("two fields");
+        let along: f64 = along.parse().expect("a number");
+        let (unloaded, _) = turn(0.0, method_name);
+        let (loaded, run) = turn(along, method_name);
+        println!(
+            "{case}: turn {loaded:.12} against {unloaded:.12}, {} projections",
+            run.summary.projections
+        );
+        assert!(
+            (loaded - unloaded).abs() < 1e-6,
+            "{case}: {loaded} {unloaded}"
+        );
+    }
+}
+
+/// A load of 1e15 along the hinge leaves rounding of about 0.1 m/s² in the
+/// part's accelerations along the axis, which no step size brings below
+/// the tolerance: the steps shrank to 1e-9 s and the run stopped at its
+/// budget after 0.4 ms (a mutation fuzz's View file). Those rates are now
+/// measured against their rounding where the tolerance would take more
+/// than a million steps, and the run says so.
+#[test]
+fn a_load_far_past_the_doubles_precision_runs_and_says_rounding_held_it() {
+    let mut settings = settings(0.01, 1, 1e-6);
+    settings.method = Method::Dop853;
+    settings.max_steps = 150_000;
+    let run = run(&hinge_loaded_along_its_axis(1e15), &settings)
+        .expect("the hinge runs within the budget");
+    let stats = run.summary.stats;
+    println!("{stats}: {} limited by rounding", stats.rounding_limited);
+    assert!(stats.rounding_limited > 0 && stats.rounding_limited_from.is_some());
+    let unloaded = super::simulate::run(&hinge_loaded_along_its_axis(0.0), &settings)
+        .expect("the unloaded hinge runs");
+    let (turn, expected) = (
+        angle(run.rows.last().expect("a row"), 4, 0.0),
+        angle(unloaded.rows.last().expect("a row"), 4, 0.0),
+    );
+    println!("turn {turn:.12} against {expected:.12}");
+    assert!(
+        (turn - expected).abs() < 1e-3 * expected.abs(),
+        "{turn} {expected}"
+    );
+}

@@ -251,6 +251,11 @@ struct Compiler<'s> {
 /// that the compiler's recursion stays well inside a thread's stack.
 const MAX_INLINED_NESTING: usize = 2 * crate::syntax::MAX_NESTING;
 
+/// The stack the compiler's recursion keeps in hand before it grows a new
+/// segment ([`Compiler::node`]), and the size of a segment.
+const STACK_RED_ZONE: usize = 64 * 1024;
+const STACK_SEGMENT: usize = 1024 * 1024;
+
 impl Compiler<'_> {
     fn new_slot(&mut self, constant: Option<f64>) -> Slot {
         self.constant_values.push(constant);
@@ -346,7 +351,10 @@ impl Compiler<'_> {
             return self.constant(0.0);
         }
         self.depth += 1;
-        let slot = self.node_kind(node);
+        // Each level takes a few hundred bytes of stack: where less than
+        // STACK_RED_ZONE is left, the rest of the tree goes on a new
+        // segment of STACK_SEGMENT on the heap.
+        let slot = stacker::maybe_grow(STACK_RED_ZONE, STACK_SEGMENT, || self.node_kind(node));
         self.depth -= 1;
         slot
     }

@@ -464,8 +464,11 @@ impl Dop853 {
             core.h = core.h.min(DENSE_EDGE / lambda);
         }
         loop {
+            if core.floor_due(self.after_rejection) {
+                core.update_floor(system);
+            }
             let (h, lands) = core.trial(t_end, &mut cause)?;
-            let err = match self.stages(core, system, h) {
+            let (err, plain) = match self.stages(core, system, h) {
                 Ok(err) => err,
                 Err(why) => {
                     core.reject(h * FAILURE_SHRINK, why, &mut cause);
@@ -488,6 +491,7 @@ impl Dop853 {
                 self.after_rejection = true;
                 continue;
             }
+            core.count_rounding_limited(plain);
             let mut h_new = h / shrink.clamp(GROW_MOST, SHRINK_MOST);
             if self.after_rejection {
                 h_new = h_new.min(h);
@@ -516,13 +520,13 @@ impl Dop853 {
     }
 
     /// The stages of a trial step of size `h` and its error in units of the
-    /// tolerance.
+    /// error scale, and in units of the tolerance alone.
     fn stages<S: System + ?Sized>(
         &mut self,
         core: &mut Core,
         system: &mut S,
         h: f64,
-    ) -> Result<f64, Rejection<S::Error>> {
+    ) -> Result<(f64, f64), Rejection<S::Error>> {
         let n = self.n;
         self.k[..n].copy_from_slice(&core.dy);
         for (index, stage) in STAGES.iter().enumerate() {
@@ -541,36 +545,47 @@ impl Dop853 {
         // weights): not Hairer's `max(|y0|, |y1|)`, with which a trial step
         // that blows up widens its own tolerance and is accepted (a ball
         // struck on a stiff contact at rtol 0.1 left at 130 m/s).
-        let mut err = 0.0_f64;
+        // Each state's scale is also widened to what rounding leaves in it
+        // over the step ([`Core::error_scale`]); `plain` is the error
+        // against the tolerance alone.
+        let (mut err, mut plain) = (0.0_f64, 0.0_f64);
         for group in &core.groups {
-            let (mut err5, mut err3) = (0.0, 0.0);
+            // The sums of the squared 5th- and 3rd-order estimates, against
+            // the widened scale and against the tolerance.
+            let (mut widened, mut tolerance) = ([0.0; 2], [0.0; 2]);
             for i in group.clone() {
-                let scale = core.atol[i] + core.rtol * core.y[i].abs();
+                let scale = core.error_scale(i, h);
                 let at = |stage: usize| self.k[stage * n + i];
                 let increment: f64 = WEIGHTS.iter().map(|&(j, b)| b * at(j)).sum();
                 let third = increment - WEIGHTS3.iter().map(|&(j, b)| b * at(j)).sum::<f64>();
                 let fifth: f64 = ERROR5.iter().map(|&(j, e)| e * at(j)).sum();
-                err3 += (third / scale).powi(2);
-                err5 += (fifth / scale).powi(2);
+                widened[0] += (fifth / scale.scale).powi(2);
+                widened[1] += (third / scale.scale).powi(2);
+                tolerance[0] += (fifth / scale.tolerance).powi(2);
+                tolerance[1] += (third / scale.tolerance).powi(2);
             }
             let size = group.len() as f64;
-            let group_err = if blend {
-                let denominator = if err5 + 0.01 * err3 > 0.0 {
-                    err5 + 0.01 * err3
+            let group_err = |[err5, err3]: [f64; 2]| {
+                if blend {
+                    let denominator = if err5 + 0.01 * err3 > 0.0 {
+                        err5 + 0.01 * err3
+                    } else {
+                        1.0
+                    };
+                    h * err5 / (size * denominator).sqrt()
                 } else {
-                    1.0
-                };
-                h * err5 / (size * denominator).sqrt()
-            } else {
-                h * (err5 / size).sqrt()
+                    h * (err5 / size).sqrt()
+                }
             };
-            if !group_err.is_finite() {
+            let group_err_widened = group_err(widened);
+            if !group_err_widened.is_finite() {
                 return Err(Rejection::NonFinite);
             }
-            err = err.max(group_err);
+            err = err.max(group_err_widened);
+            plain = plain.max(group_err(tolerance));
         }
         if err.is_finite() {
-            Ok(err)
+            Ok((err, plain))
         } else {
             Err(Rejection::NonFinite)
         }

@@ -134,9 +134,6 @@ pub(super) struct Radau5 {
     jacobian_reuse: f64,
     /// `atol + rtol |y|` at the start of the step.
     scale: Vec<f64>,
-    /// The system's rounding floor of each rate where the Jacobian was
-    /// last evaluated ([`System::rounding_floor`]).
-    floor: Vec<f64>,
     /// The system's Jacobian: dense, or on the system's pattern.
     jacobian: Jacobian,
     /// The Jacobian may be used at the current state.
@@ -193,7 +190,6 @@ impl Radau5 {
             newton_tolerance,
             jacobian_reuse: jacobian_reuse(options)?,
             scale: zeros(),
-            floor: zeros(),
             jacobian: Jacobian::zeros(n, pattern.map(Rc::new)),
             jacobian_valid: false,
             jacobian_current: false,
@@ -233,6 +229,13 @@ impl Radau5 {
         self.jacobian_current = false;
         self.contraction = 1.0;
         self.last_accepted = None;
+    }
+
+    /// Goes on from a state moved slightly from the last one reached
+    /// ([`Stepper::nudge`](super::Stepper::nudge)): the Jacobian becomes one
+    /// of an earlier state.
+    pub fn nudged(&mut self) {
+        self.jacobian_current = false;
     }
 
     /// Starts again after an event, which may have changed the system:
@@ -324,6 +327,7 @@ impl Radau5 {
                 let predicted = h_accepted / h * (err * err / err_accepted).powf(0.25) / SAFETY;
                 quotient = quotient.max(predicted.clamp(GROW_MOST, SHRINK_MOST));
             }
+            core.count_rounding_limited(self.error_against_tolerance(core));
             self.last_accepted = Some((h, err.max(1e-2)));
             let mut h_new = h / quotient;
             if self.after_rejection {
@@ -397,13 +401,7 @@ impl Radau5 {
         if !self.jacobian.values().iter().all(|entry| entry.is_finite()) {
             return Err(IntegrateError::JacobianNotFinite { t: core.t });
         }
-        // A floor the system cannot give is none.
-        if system
-            .rounding_floor(core.t, &core.y, &mut self.floor)
-            .is_err()
-        {
-            self.floor.fill(0.0);
-        }
+        core.update_floor(system);
         self.jacobian_valid = true;
         self.jacobian_current = true;
         self.jacobian_evaluated = true;
@@ -489,7 +487,7 @@ impl Radau5 {
             // a joints' solve cannot contract below it.
             let norm = grouped_rms(&core.groups, 3, |i| {
                 let (dw1, dw2) = (self.real_rhs[i], self.complex_rhs[i]);
-                let scale = self.scale[i].max(FLOOR_MARGIN * h * self.floor[i]);
+                let scale = self.scale[i].max(FLOOR_MARGIN * h * core.floor[i]);
                 [dw1, dw2.re, dw2.im]
                     .map(|dw| (dw / scale).powi(2))
                     .iter()
@@ -562,16 +560,17 @@ impl Radau5 {
             self.real_rhs[i] = combination[i] + core.dy[i];
         }
         self.matrices.solve_real(&mut self.real_rhs);
-        let groups = &core.groups;
-        let size = |estimate: &[f64], scale: &[f64]| {
-            let err = grouped_rms(groups, 1, |i| (estimate[i] / scale[i]).powi(2));
+        let size = |core: &Core, estimate: &[f64]| {
+            let err = grouped_rms(&core.groups, 1, |i| {
+                (estimate[i] / core.error_scale(i, h).scale).powi(2)
+            });
             if err.is_nan() {
                 f64::INFINITY
             } else {
                 err.max(1e-10)
             }
         };
-        let err = size(&self.real_rhs, &self.scale);
+        let err = size(core, &self.real_rhs);
         if err < 1.0 || !(self.first || self.after_rejection) {
             return err;
         }
@@ -590,7 +589,15 @@ impl Radau5 {
             self.real_rhs[i] = refined[i] + combination[i];
         }
         self.matrices.solve_real(&mut self.real_rhs);
-        size(&self.real_rhs, &self.scale)
+        size(core, &self.real_rhs)
+    }
+
+    /// The last error estimate (in `real_rhs`) against the tolerance alone,
+    /// with no allowance for rounding.
+    fn error_against_tolerance(&self, core: &Core) -> f64 {
+        grouped_rms(&core.groups, 1, |i| {
+            (self.real_rhs[i] / core.error_scale(i, 0.0).tolerance).powi(2)
+        })
     }
 
     /// The last step's collocation polynomial at `t`: in the step's second

@@ -695,6 +695,13 @@ impl Report<'_> {
                 Shown(from)
             );
         }
+        if let Some(from) = stats.rounding_limited_from {
+            text += &format!(
+                "warning: {} from t = {} passed the error test only against the rounding of the accelerations (loads that cancel to rounding: a joint's reaction against forces or gravity far larger than the motion's): there the results are as accurate as double precision allows, not as rtol asks\n",
+                Counted(stats.rounding_limited, "step"),
+                Shown(from)
+            );
+        }
         if self.signal != 0 {
             text += &format!(
                 "interrupted by {}: {} rows written\n",
@@ -732,6 +739,10 @@ impl Report<'_> {
             "rhs_failures": stats.rhs_failures,
             "jacobians": stats.jacobian_evaluations,
             "lu_decompositions": stats.lu_decompositions,
+            "rounding_limited": stats.rounding_limited_from.map(|from| json!({
+                "steps": stats.rounding_limited,
+                "from": from,
+            })),
             "events": summary.events.len(),
             "method_changes": changes,
             "stiff_from": summary.stiff_from,

@@ -101,6 +101,11 @@ pub(crate) struct Mechanics<'m> {
     /// The run's record of the program's DELAYs, shared by its evaluators
     /// (`None`: the program has none).
     delays: Option<SharedRecord>,
+    /// Each part's joints' reactions per unit of mass and of inertia
+    /// (`|R| / m` and `(|τ_R| + |R| a) ‖I⁻¹‖`), where the rounding floor was
+    /// last taken ([`Mechanics::rounding_floor`]): how hard they push the
+    /// part along its free path per radian its joints drift.
+    reaction_push: Vec<[f64; 2]>,
 }
 
 /// At most this many of Newton's iterations settle the loop values at one
@@ -293,6 +298,7 @@ impl<'m> Mechanics<'m> {
             loop_values,
             settling_matrix: None,
             delays,
+            reaction_push: vec![[0.0; 2]; model.scene.bodies.len()],
         }
     }
 
@@ -451,19 +457,29 @@ impl<'m> Mechanics<'m> {
 
     /// The rounding floor of each rate at `(t, y)` with the sites on
     /// `held`, into `floor`: for a part's accelerations, the rounding of
-    /// the loads summed in them, `ε (|F| + |R| + m |g|) / m` and `ε (|τ| +
-    /// |τ_R| + |R| a) ‖I⁻¹‖` with `R`, `τ_R` the joints' reactions, which
-    /// can cancel the elements' loads and gravity to rounding (a part at
-    /// rest on a slope), and `a` the largest arm from the centre of mass
-    /// to a joint's marker; zero elsewhere and in a model without joints.
+    /// the loads summed in each component, with `R`, `τ_R` the joints'
+    /// reactions, which can cancel the elements' loads and gravity to
+    /// rounding (a part at rest on a slope): `ε (|F_c| + |R_c| + m |g_c|) /
+    /// m` along each ground axis `c`, and for the angular accelerations
+    /// (in the part's axes) `ε (|τ_c| + |τ_R,c| + a Σ_{d≠c} |R_d|)` carried
+    /// through the part's turn and `I⁻¹` in sizes, with `a` the largest arm
+    /// from the centre of mass to a joint's marker; zero elsewhere and in a
+    /// model without joints. Taken component by component, a hinge loaded
+    /// along its axis has rounding in the loads along that axis only, not
+    /// in the motion it leaves free. Into `carried`, what each position's
+    /// rate takes from them per unit of time: its velocity's floor, and
+    /// for the quaternion's rate `q ⊗ (0, ω) / 2` the angular floor carried
+    /// through `q` in sizes.
     pub(crate) fn rounding_floor(
         &mut self,
         t: f64,
         y: &[f64],
         held: Option<&[Option<Code>]>,
         floor: &mut [f64],
+        carried: &mut [f64],
     ) -> Result<(), OutputError> {
         floor.fill(0.0);
+        carried.fill(0.0);
         let model = self.equations.model;
         if !model.is_constrained() {
             return Ok(());
@@ -480,28 +496,71 @@ impl<'m> Mechanics<'m> {
         let Some(applied) = &solved.applied else {
             return Ok(());
         };
+        let sizes = |vector: &Vector3<f64>| vector.map(f64::abs);
         for (body, mass) in model.masses.iter().enumerate() {
             if mass.is_massless() {
                 continue;
             }
             let (force, torque) = (&applied.force[body], &applied.torque[body]);
-            let reaction = (solved.loads.force[body] - force).norm();
-            // The reactions' torques about the centre are the sum of
-            // each equation's force times its arm, which can cancel: their
-            // sizes are those of the net force at the joints' markers.
-            let moment = (solved.loads.torque[body] - torque).norm()
-                + reaction * self.equations.joint_arms[body];
-            let linear = f64::EPSILON
-                * (force.norm() + reaction + mass.mass * model.gravity.norm())
-                / mass.mass;
-            let angular = f64::EPSILON
-                * (torque.norm() + moment)
-                * self.equations.inverse_inertia[body].norm();
+            let reaction = solved.loads.force[body] - force;
+            let reaction_torque = solved.loads.torque[body] - torque;
+            let arm = self.equations.joint_arms[body];
+            // The reactions' torques about the centre are the sum of each
+            // equation's force times its arm, which can cancel: their
+            // sizes are those of the net force at the joints' markers, each
+            // component from the force's other two.
+            let moment = sizes(&reaction_torque);
+            let across = Vector3::from_fn(|c, _| {
+                (0..3)
+                    .filter(|&d| d != c)
+                    .map(|d| reaction[d].abs())
+                    .sum::<f64>()
+                    * arm
+            });
+            let inverse_inertia = self.equations.inverse_inertia[body];
+            self.reaction_push[body] = [
+                reaction.norm() / mass.mass,
+                (reaction_torque.norm() + reaction.norm() * arm) * inverse_inertia.norm(),
+            ];
+            let linear = (sizes(force) + sizes(&reaction) + sizes(&model.gravity) * mass.mass)
+                * (f64::EPSILON / mass.mass);
             let offset = body_offset(model, body);
-            floor[offset + 7..offset + 10].fill(linear);
-            floor[offset + 10..offset + BODY_STATES].fill(angular);
+            let quaternion = &y[offset + 3..offset + 7];
+            let turn = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                quaternion[0],
+                quaternion[1],
+                quaternion[2],
+                quaternion[3],
+            ))
+            .to_rotation_matrix()
+            .into_inner();
+            let in_ground = (sizes(torque) + moment + across) * f64::EPSILON;
+            let angular =
+                inverse_inertia.map(f64::abs) * (turn.transpose().map(f64::abs) * in_ground);
+            for c in 0..3 {
+                floor[offset + 7 + c] = linear[c];
+                floor[offset + 10 + c] = angular[c];
+                carried[offset + c] = linear[c];
+            }
+            // q' = (−v·ω, w ω + v × ω) / 2 for q = (w, v), in sizes.
+            let scalar = quaternion[0].abs();
+            let vector = Vector3::new(quaternion[1], quaternion[2], quaternion[3]).map(f64::abs);
+            carried[offset + 3] = 0.5 * vector.dot(&angular);
+            for c in 0..3 {
+                let (d, e) = ((c + 1) % 3, (c + 2) % 3);
+                carried[offset + 4 + c] =
+                    0.5 * (scalar * angular[c] + vector[d] * angular[e] + vector[e] * angular[d]);
+            }
         }
         Ok(())
+    }
+
+    /// Each part's joints' reactions per unit of mass and of inertia where
+    /// the rounding floor was last taken (zeros before, and for a massless
+    /// part): how hard they push it along its free path per radian its
+    /// joints drift.
+    pub(crate) fn reaction_push(&self) -> &[[f64; 2]] {
+        &self.reaction_push
     }
 
     /// Solves the loop values at `(t, y)` with the sites on `held` into

@@ -102,8 +102,15 @@ impl System for Held<'_> {
         Some(self.mechanics.pattern().clone())
     }
 
-    fn rounding_floor(&mut self, t: f64, y: &[f64], floor: &mut [f64]) -> Result<(), OutputError> {
-        self.mechanics.rounding_floor(t, y, Some(&self.held), floor)
+    fn rounding_floor(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        floor: &mut [f64],
+        carried: &mut [f64],
+    ) -> Result<(), OutputError> {
+        self.mechanics
+            .rounding_floor(t, y, Some(&self.held), floor, carried)
     }
 
     fn norm_groups(&mut self) -> Vec<std::ops::Range<usize>> {
