@@ -592,11 +592,11 @@ impl Radau5 {
         size(core, &self.real_rhs)
     }
 
-    /// The last error estimate (in `real_rhs`) against the tolerance alone,
-    /// with no allowance for rounding.
+    /// The last error estimate (in `real_rhs`) against the tolerance alone
+    /// (`scale`), with no allowance for rounding.
     fn error_against_tolerance(&self, core: &Core) -> f64 {
         grouped_rms(&core.groups, 1, |i| {
-            (self.real_rhs[i] / core.error_scale(i, 0.0).tolerance).powi(2)
+            (self.real_rhs[i] / self.scale[i]).powi(2)
         })
     }
 

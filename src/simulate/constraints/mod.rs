@@ -41,8 +41,9 @@ pub(crate) use reactions::{Component, Reactions, component_and_rm, flags, pick};
 pub(crate) use rows::BodyMotion;
 pub use solve::Residuals;
 pub(crate) use solve::{
-    Tolerance, Unassembled, Unheld, acceleration_residual, constraint_loads, disagreeing_redundant,
-    find_redundant, first_repeated, held_equations, multiplier_loads, project,
+    Tolerance, Unassembled, Unheld, acceleration_residual, body_quaternion, constraint_loads,
+    disagreeing_redundant, find_redundant, first_repeated, held_equations, multiplier_loads,
+    project,
 };
 
 use nalgebra::Vector3;

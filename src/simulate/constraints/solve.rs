@@ -520,7 +520,7 @@ pub(super) fn motions(y: &[f64], offsets: &[usize]) -> Vec<BodyMotion<f64>> {
         .iter()
         .map(|&offset| {
             let s = &y[offset..];
-            let rotation = quaternion(s).to_rotation_matrix().into_inner();
+            let rotation = body_quaternion(s).to_rotation_matrix().into_inner();
             BodyMotion {
                 centre: Vector3::new(s[0], s[1], s[2]),
                 velocity: Vector3::new(s[7], s[8], s[9]),
@@ -531,7 +531,9 @@ pub(super) fn motions(y: &[f64], offsets: &[usize]) -> Vec<BodyMotion<f64>> {
         .collect()
 }
 
-fn quaternion(s: &[f64]) -> UnitQuaternion<f64> {
+/// The orientation of the body whose states start at `s` (its quaternion
+/// `w x y z` at 3 to 6), normalised.
+pub(crate) fn body_quaternion(s: &[f64]) -> UnitQuaternion<f64> {
     UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(s[3], s[4], s[5], s[6]))
 }
 
@@ -1067,7 +1069,7 @@ fn moved(y: &mut [f64], start: &[f64], offsets: &[usize], change: &[[f64; 6]], f
         let turn = UnitQuaternion::from_scaled_axis(
             fraction * Vector3::new(change[3], change[4], change[5]),
         );
-        let q = turn * quaternion(s);
+        let q = turn * body_quaternion(s);
         s[3..7].copy_from_slice(&[q.w, q.i, q.j, q.k]);
     }
 }

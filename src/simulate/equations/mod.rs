@@ -43,8 +43,8 @@ use crate::number::{Directional, Number};
 use crate::scene::{StateComponent, is_run_state_input, parse_sensor_input};
 use crate::simulate::constraints::{
     BodyMotion, Component, CurveSite, Drives, Holder, Reactions, Unheld, acceleration_residual,
-    constraint_loads, curve_contacts, curve_sites, holders, joints_failed_in, joints_overflow_in,
-    joints_singular_in, multiplier_loads,
+    body_quaternion, constraint_loads, curve_contacts, curve_sites, holders, joints_failed_in,
+    joints_overflow_in, joints_singular_in, multiplier_loads,
 };
 use crate::simulate::model::{Contact, Force, Model};
 use accelerations::{Accelerations, Measure};
@@ -509,7 +509,6 @@ impl<'m> Mechanics<'m> {
             // equation's force times its arm, which can cancel: their
             // sizes are those of the net force at the joints' markers, each
             // component from the force's other two.
-            let moment = sizes(&reaction_torque);
             let across = Vector3::from_fn(|c, _| {
                 (0..3)
                     .filter(|&d| d != c)
@@ -526,15 +525,10 @@ impl<'m> Mechanics<'m> {
                 * (f64::EPSILON / mass.mass);
             let offset = body_offset(model, body);
             let quaternion = &y[offset + 3..offset + 7];
-            let turn = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-                quaternion[0],
-                quaternion[1],
-                quaternion[2],
-                quaternion[3],
-            ))
-            .to_rotation_matrix()
-            .into_inner();
-            let in_ground = (sizes(torque) + moment + across) * f64::EPSILON;
+            let turn = body_quaternion(&y[offset..])
+                .to_rotation_matrix()
+                .into_inner();
+            let in_ground = (sizes(torque) + sizes(&reaction_torque) + across) * f64::EPSILON;
             let angular =
                 inverse_inertia.map(f64::abs) * (turn.transpose().map(f64::abs) * in_ground);
             for c in 0..3 {

@@ -17,8 +17,8 @@ pub use sink::{MethodChange, Sink};
 pub use statics::Equilibrium;
 
 use super::constraints::{
-    Drives, JOINTS, MOTIONS, Residuals, Tolerance, Unassembled, disagreeing_redundant,
-    first_repeated, owner_of_row, project, why_unmet,
+    Drives, JOINTS, MOTIONS, Residuals, Tolerance, Unassembled, body_quaternion,
+    disagreeing_redundant, first_repeated, owner_of_row, project, why_unmet,
 };
 use super::equations::{BODY_STATES, Mechanics, RunValue, body_offset};
 use super::error::{Place, SimulateError};
@@ -707,9 +707,7 @@ impl Rows<'_> {
         for (body, mass) in model.masses.iter().enumerate() {
             let offset = body_offset(model, body);
             let state = &y[offset..offset + BODY_STATES];
-            let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-                state[3], state[4], state[5], state[6],
-            ));
+            let q = body_quaternion(state);
             let arm = q * mass.centre;
             let omega = q * nalgebra::Vector3::new(state[10], state[11], state[12]);
             let velocity = nalgebra::Vector3::new(state[7], state[8], state[9]) - omega.cross(&arm);

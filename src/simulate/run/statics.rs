@@ -15,7 +15,7 @@
 use nalgebra::{DMatrix, DVector, UnitQuaternion, Vector3};
 
 use super::super::Model;
-use super::super::constraints::{Imposed, held_equations};
+use super::super::constraints::{Imposed, body_quaternion, held_equations};
 use super::super::equations::{BODY_STATES, Mechanics};
 use super::super::error::SimulateError;
 use crate::eval::OutputError;
@@ -137,12 +137,7 @@ impl Layout {
         let mut along = residual.clone();
         for (part, &offset) in self.offsets.iter().enumerate() {
             let column = self.diffs + 6 * part;
-            let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-                y[offset + 3],
-                y[offset + 4],
-                y[offset + 5],
-                y[offset + 6],
-            ));
+            let q = body_quaternion(&y[offset..]);
             let in_body = Vector3::new(
                 residual[column + 3],
                 residual[column + 4],
@@ -165,12 +160,7 @@ impl Layout {
                 moved[offset + k] += step[column + k];
             }
             let turn = Vector3::new(step[column + 3], step[column + 4], step[column + 5]);
-            let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-                y[offset + 3],
-                y[offset + 4],
-                y[offset + 5],
-                y[offset + 6],
-            ));
+            let q = body_quaternion(&y[offset..]);
             let turned = UnitQuaternion::from_scaled_axis(turn) * q;
             moved[offset + 3] = turned.w;
             moved[offset + 4] = turned.i;
