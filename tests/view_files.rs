@@ -1983,3 +1983,46 @@ part create rigid_body mass_properties part_name = .m.p mass = 1 center_of_mass_
     let model = format!("model create model_name = m\n{text}\n");
     assert!(simulate::view_dataset_text(&model).is_err());
 }
+
+/// View's point mass (`part create point_mass`, its mass, centre-of-mass
+/// marker and initial velocity given by the commands of the same name) is
+/// the dataset's POINT_MASS: hung on a spring and set swinging, it
+/// moves as the dataset written by hand, and
+/// straight down it bobs as the closed form says.
+#[test]
+fn a_view_point_mass_is_the_datasets_point_mass() {
+    let view = |velocity: f64| {
+        format!(
+            "defaults units length = meter angle = deg force = newton mass = kg time = sec
+model create model_name = p
+marker create marker_name = .p.ground.anchor adams_id = 1 location = 0, 0, 0 orientation = 0d, 0d, 0d
+part create point_mass name_and_position point_mass_name = .p.bob adams_id = 2 location = 0, -1, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .p.bob.cm adams_id = 3 location = 0, 0, 0 orientation = 0d, 0d, 0d relative_to = .p.bob
+part modify point_mass mass_properties point_mass_name = .p.bob mass = 2.0 center_of_mass_marker = .p.bob.cm
+part create point_mass initial_velocity point_mass_name = .p.bob vx = {velocity}
+force create element_like translational_spring_damper spring_damper_name = .p.spring i_marker_name = .p.bob.cm j_marker_name = .p.ground.anchor stiffness = 100.0 damping = 0.0 displacement_at_preload = 1.0
+force create body gravitational gravity_field_name = gravity x_component_gravity = 0.0 y_component_gravity = -9.80665 z_component_gravity = 0.0
+simulation single_run transient end_time = 1 number_of_steps = 20
+"
+        )
+    };
+    let dataset = "the bob on its spring, by hand
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND
+PART/1, GROUND
+MARKER/1, PART = 1
+POINT_MASS/2, QG = 0, -1, 0, MASS = 2.0, CM = 3, VX = 0.8
+MARKER/3, POINT_MASS = 2
+SPRINGDAMPER/1, TRANSLATION, I = 3, J = 1, K = 100.0, C = 0.0, LENGTH = 1.0
+ACCGRAV/JGRAV = -9.80665
+END
+";
+    same_motion(&view(0.8), dataset, 1e-8);
+    // Straight down: y = -1 - g m/k (1 - cos ωt), ω² = k/m.
+    let model = view_model(&view(0.0)).unwrap_or_else(|errors| panic!("{errors}"));
+    let y = column(&model, "POINT_MASS/2.y");
+    let (sag, omega) = (9.80665 * 2.0 / 100.0, (100.0_f64 / 2.0).sqrt());
+    for row in rows(&model, 1.0, 20) {
+        let exact = -1.0 - sag * (1.0 - (omega * row[0]).cos());
+        assert!((row[y] - exact).abs() < 1e-8, "{row:?} against {exact}");
+    }
+}

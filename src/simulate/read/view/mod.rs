@@ -1,6 +1,6 @@
 //! An Adams View command file (`.cmd`) read as the solver dataset Adams
 //! View writes for it (File > Export > Adams Solver Dataset), so that the
-//! dataset reader simulates it: parts, markers, joints, motions, forces and
+//! dataset reader simulates it: parts, point masses, markers, joints, motions, forces and
 //! data elements become the statements they stand for, each at the place of
 //! its command in the `.cmd`.
 //!
@@ -139,6 +139,9 @@ struct Part {
     span: Span,
     frame: Frame,
     ground: bool,
+    /// A point mass (`part create point_mass`): a POINT_MASS, a mass
+    /// without inertia or rotation.
+    point_mass: bool,
     /// The `mass_properties` command.
     mass: Option<usize>,
     /// The `initial_velocity` command.
@@ -244,6 +247,17 @@ fn words_and_verb(statement: &Statement) -> (String, Option<&str>) {
             (rest.join(" "), Some(words[at]))
         }
         None => (words.join(" "), None),
+    }
+}
+
+/// The parameter that names the part of a `part ... mass_properties` or
+/// `initial_velocity` command with words `words`: a point mass's or a
+/// rigid body's.
+fn part_keyword(words: &str) -> &'static str {
+    if words.starts_with("PART POINT_MASS") {
+        "POINT_MASS_NAME"
+    } else {
+        "PART_NAME"
     }
 }
 
@@ -462,6 +476,7 @@ impl<'d> Reader<'d> {
             span,
             frame: Frame::GROUND,
             ground: true,
+            point_mass: false,
             mass: None,
             velocity: None,
             solids: Vec::new(),
@@ -815,9 +830,10 @@ impl<'d> Reader<'d> {
                     self.name(name, entity);
                 }
             }
-            ("PART RIGID_BODY NAME_AND_POSITION", Some(verb)) => self.part(index, verb),
-            ("PART RIGID_BODY MASS_PROPERTIES", Some(verb)) => {
-                if let Some(part) = self.part_named(index, "PART_NAME") {
+            ("PART RIGID_BODY NAME_AND_POSITION", Some(verb)) => self.part(index, verb, false),
+            ("PART POINT_MASS NAME_AND_POSITION", Some(verb)) => self.part(index, verb, true),
+            ("PART RIGID_BODY MASS_PROPERTIES" | "PART POINT_MASS MASS_PROPERTIES", Some(verb)) => {
+                if let Some(part) = self.part_named(index, part_keyword(&words)) {
                     // View's expression definitions state again, as View
                     // expressions, what the create command wrote evaluated.
                     let restated = verb == "MODIFY"
@@ -828,8 +844,8 @@ impl<'d> Reader<'d> {
                     }
                 }
             }
-            ("PART RIGID_BODY INITIAL_VELOCITY", Some(_)) => {
-                if let Some(part) = self.part_named(index, "PART_NAME") {
+            ("PART RIGID_BODY INITIAL_VELOCITY" | "PART POINT_MASS INITIAL_VELOCITY", Some(_)) => {
+                if let Some(part) = self.part_named(index, part_keyword(&words)) {
                     self.parts[part].velocity = Some(index);
                 }
             }
@@ -938,15 +954,23 @@ impl<'d> Reader<'d> {
         }
     }
 
-    fn part(&mut self, index: usize, verb: &str) {
+    /// A part (`part create rigid_body name_and_position`), or a point mass
+    /// (`part create point_mass name_and_position`), created or moved.
+    fn part(&mut self, index: usize, verb: &str, point_mass: bool) {
         let statement = &self.view.statements[index];
-        let Some(name) = self.word(index, "PART_NAME") else {
+        let (name_keyword, new_name_keyword) = if point_mass {
+            ("POINT_MASS_NAME", "NEW_POINT_MASS_NAME")
+        } else {
+            ("PART_NAME", "NEW_PART_NAME")
+        };
+        let Some(name) = self.word(index, name_keyword) else {
             return;
         };
         for argument in &statement.arguments {
             match argument.keyword.as_str() {
-                "PART_NAME" | "NEW_PART_NAME" | "ADAMS_ID" | "LOCATION" | "ORIENTATION"
-                | "RELATIVE_TO" | "COMMENTS" | "GROUND_PART" => {}
+                keyword if keyword == name_keyword || keyword == new_name_keyword => {}
+                "ADAMS_ID" | "LOCATION" | "ORIENTATION" | "RELATIVE_TO" | "COMMENTS"
+                | "GROUND_PART" => {}
                 "PLANAR" if self.word(index, "PLANAR").as_deref() == Some("NO") => {}
                 "PLANAR_AXES" => {}
                 _ => self.refuse_unread(statement, argument),
@@ -961,6 +985,7 @@ impl<'d> Reader<'d> {
                 span: statement.span,
                 frame: Frame::GROUND,
                 ground: false,
+                point_mass,
                 mass: None,
                 velocity: None,
                 solids: Vec::new(),
@@ -973,7 +998,7 @@ impl<'d> Reader<'d> {
             self.name(name, Entity::Part(part));
             part
         } else {
-            match self.part_named(index, "PART_NAME") {
+            match self.part_named(index, name_keyword) {
                 Some(part) => part,
                 None => return,
             }
@@ -981,7 +1006,7 @@ impl<'d> Reader<'d> {
         if let Some(id) = id {
             self.parts[part].id = Some(id);
         }
-        if let Some(new_name) = self.word(index, "NEW_PART_NAME") {
+        if let Some(new_name) = self.word(index, new_name_keyword) {
             // The markers keep their part: their names are re-entered under
             // the new one.
             let old = self.parts[part].name.clone();
@@ -1468,8 +1493,15 @@ impl<'d> Reader<'d> {
     /// The ids of every object, given or the next free of its kind.
     fn assign_ids(&mut self) {
         let mut taken: HashMap<&'static str, HashSet<u64>> = HashMap::new();
+        let kind = |part: &Part| {
+            if part.point_mass {
+                "POINT_MASS"
+            } else {
+                "PART"
+            }
+        };
         for part in &self.parts {
-            taken.entry("PART").or_default().extend(part.id);
+            taken.entry(kind(part)).or_default().extend(part.id);
         }
         for marker in &self.markers {
             taken.entry("MARKER").or_default().extend(marker.id);
@@ -1499,7 +1531,7 @@ impl<'d> Reader<'d> {
         order.sort_by_key(|&part| !self.parts[part].ground);
         for part in order {
             if self.parts[part].id.is_none() {
-                self.parts[part].id = Some(next("PART"));
+                self.parts[part].id = Some(next(kind(&self.parts[part])));
             }
         }
         for marker in &mut self.markers {

@@ -39,6 +39,16 @@ impl Reader<'_> {
                 return;
             }
             self.mass_from_solids(part, density, statement, span);
+            if self.parts[part].point_mass {
+                // A point mass keeps the mass and centre of its solids.
+                statement
+                    .arguments
+                    .retain(|argument| argument.keyword != "IP");
+            }
+            return;
+        }
+        if self.parts[part].point_mass {
+            self.point_mass_properties(part, index, statement);
             return;
         }
         for argument in &command.arguments {
@@ -77,6 +87,31 @@ impl Reader<'_> {
             ids_argument(statement, "IM", id, span);
         }
         numbers_argument(statement, "IP", &moments, span);
+    }
+
+    /// A point mass's MASS and CM: it has no inertia, no material and no
+    /// solids to take them from.
+    fn point_mass_properties(&mut self, part: usize, index: usize, statement: &mut Statement) {
+        let command = &self.view.statements[index];
+        let span = command.span;
+        for argument in &command.arguments {
+            if !matches!(
+                argument.keyword.as_str(),
+                "POINT_MASS_NAME" | "MASS" | "CENTER_OF_MASS_MARKER"
+            ) {
+                self.refuse_unread(command, argument);
+            }
+        }
+        if let Some(mass) = self
+            .numbers(index, "MASS", false)
+            .and_then(|values| values.first().copied())
+        {
+            numbers_argument(statement, "MASS", &[mass], span);
+        }
+        if let Some(id) = self.marker_id(index, "CENTER_OF_MASS_MARKER") {
+            ids_argument(statement, "CM", id, span);
+            self.parts[part].centre_marker = Some(id);
+        }
     }
 
     /// MASS, CM (a marker made at the centre of mass, with the part's

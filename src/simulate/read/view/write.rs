@@ -63,7 +63,12 @@ impl Reader<'_> {
                 continue;
             }
             let mut statement = new_statement("MARKER", marker.id, marker.span);
-            ids_argument(&mut statement, "PART", part.id.unwrap_or(0), marker.span);
+            let owner = if part.point_mass {
+                "POINT_MASS"
+            } else {
+                "PART"
+            };
+            ids_argument(&mut statement, owner, part.id.unwrap_or(0), marker.span);
             if marker.floating {
                 flag_argument(&mut statement, "FLOATING", marker.span);
             } else {
@@ -78,7 +83,12 @@ impl Reader<'_> {
 
     fn write_part(&mut self, part: usize) -> Option<Statement> {
         let span = self.parts[part].span;
-        let mut statement = new_statement("PART", self.parts[part].id, span);
+        let kind = if self.parts[part].point_mass {
+            "POINT_MASS"
+        } else {
+            "PART"
+        };
+        let mut statement = new_statement(kind, self.parts[part].id, span);
         if self.parts[part].ground {
             flag_argument(&mut statement, "GROUND", span);
             return Some(statement);
@@ -99,7 +109,7 @@ impl Reader<'_> {
         for argument in &command.arguments {
             let keyword = argument.keyword.as_str();
             match keyword {
-                "PART_NAME" => {}
+                "PART_NAME" | "POINT_MASS_NAME" => {}
                 "VX" | "VY" | "VZ" | "WX" | "WY" | "WZ" => {
                     let angular = keyword.starts_with('W');
                     if let Some(values) = self.numbers(index, keyword, angular) {
