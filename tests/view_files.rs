@@ -2026,3 +2026,221 @@ END
         assert!((row[y] - exact).abs() < 1e-8, "{row:?} against {exact}");
     }
 }
+
+/// The value View's language gives `expression`, as the reading puts it in
+/// a parameter (the text as written where it is not evaluated), with the
+/// variables `n` (4) and `.m.s` ("ab") set before.
+fn evaluated(expression: &str) -> String {
+    let text = format!(
+        "variable set variable_name = n real_value = 4\nvariable set variable_name = .m.s string_value = \"ab\"\nmarker create marker_name = .m.ground.A location = {expression}\n"
+    );
+    let dataset = mbexpr::model::read(&text, FileKind::Cmd);
+    let marker = dataset.statements.last().expect("the marker command");
+    match &marker.arguments.last().expect("its location").value {
+        mbexpr::model::Value::List(items) => items[0].text.to_string(),
+        other => format!("{other:?}"),
+    }
+}
+
+#[test]
+fn view_expressions_evaluate_as_view_does() {
+    let cases = [
+        "(1 + 2*3)",
+        "(2**3**2)",
+        "(-2**2)",
+        "(7/2)",
+        "(RTOI(7/2))",
+        "(NINT(-2.5))",
+        "(MOD(-7, 3))",
+        "(n * 2.5)",
+        "(eval(.m.s // \"_\" // RTOI(n)))",
+        "(\"x\" // 1.5)",
+        "(n > 3 && n < 5)",
+        "(!(n == 4) || 0)",
+        "(eval(\"2 + 2\"))",
+        "(PI * RTOD)",
+        "(MAX(1, n, 3) + MIN(2, -1))",
+        "(STOI(\"12\") + 1)",
+        "(1.5e3 + .5)",
+        "(SQRT(-1))",
+        "(1/0)",
+        "(20g)",
+        "(30d)",
+        "(LOC_RELATIVE_TO({0, 0, 0}, .m.ground.A))",
+        "(unknown + 1)",
+        "((1 + 2)",
+    ];
+    let report: String = cases
+        .iter()
+        .map(|case| format!("{case} => {}\n", evaluated(case)))
+        .collect();
+    insta::assert_snapshot!(report);
+}
+
+/// The rows of the View file `text` run to `end` with `steps` steps.
+fn view_rows(text: &str, end: f64, steps: usize) -> (Vec<String>, Vec<Vec<f64>>) {
+    let model = view_model(text).unwrap_or_else(|errors| panic!("{errors}"));
+    (simulate::columns(&model), rows(&model, end, steps))
+}
+
+/// A chain of links built in a `for` loop (its length a variable, each
+/// link's name joined with `//` and `RTOI`, the first pinned to ground in
+/// an `if` branch and the others to the link before in the `else`, a
+/// `while` loop adding a damper a link) moves as the same chain written
+/// out command by command.
+#[test]
+fn a_chain_built_in_loops_is_the_chain_written_out() {
+    let head = "defaults units length = mm angle = deg force = newton mass = kg time = sec
+model create model_name = chain
+marker create marker_name = .chain.ground.top location = 0, 0, 0 orientation = 0d, 0d, 0d
+force create body gravitational gravity_field_name = .chain.gravity x_component_gravity = 0 y_component_gravity = -9806.65 z_component_gravity = 0
+";
+    let link = |i: usize| {
+        let y = -(i as f64 - 1.0) * 100.0;
+        let pin = if i == 1 {
+            "constraint create joint revolute joint_name = .chain.pin_1 i_marker_name = .chain.link_1.top j_marker_name = .chain.ground.top\n".to_string()
+        } else {
+            format!(
+                "constraint create joint revolute joint_name = .chain.pin_{i} i_marker_name = .chain.link_{i}.top j_marker_name = .chain.link_{}.bottom\n",
+                i - 1
+            )
+        };
+        format!(
+            "part create rigid_body name_and_position part_name = .chain.link_{i} location = {}, {y}, 0 orientation = 0d, 0d, 0d
+part modify rigid_body mass_properties part_name = .chain.link_{i} mass = 0.5 ixx = 417 iyy = 417 izz = 417
+marker create marker_name = .chain.link_{i}.top location = 0, {y}, 0 orientation = 0d, 0d, 0d
+marker create marker_name = .chain.link_{i}.bottom location = 0, {}, 0 orientation = 0d, 0d, 0d
+{pin}",
+            10.0 * i as f64,
+            y - 100.0
+        )
+    };
+    let damper = |i: usize| {
+        format!(
+            "force create direct single_component_force single_component_force_name = .chain.damper_{i} type_of_freedom = rotational action_only = off i_marker_name = .chain.link_{i}.top j_marker_name = .chain.link_{i}.bottom function = \"-50*WZ(.chain.link_1.top)\"\n"
+        )
+    };
+    let mut written = head.to_string();
+    for i in 1..=3 {
+        written.push_str(&link(i));
+    }
+    for i in 1..=3 {
+        written.push_str(&damper(i));
+    }
+    let looped = format!(
+        "{head}variable set variable_name = .chain.links integer_value = 3
+variable set variable_name = .chain.length real_value = 100.0
+for variable_name = i start_value = 1 end_value = (eval(.chain.links))
+  part create rigid_body name_and_position part_name = (eval(\".chain.link_\" // RTOI(i))) &
+    location = (10*i), (-(i - 1) * eval(.chain.length)), 0 orientation = 0d, 0d, 0d
+  part modify rigid_body mass_properties part_name = (eval(\".chain.link_\" // RTOI(i))) mass = 0.5 &
+    ixx = (NINT(0.5 * .chain.length**2 / 12)) iyy = 417 izz = 417
+  marker create marker_name = (eval(\".chain.link_\" // RTOI(i) // \".top\")) &
+    location = 0, (-(i - 1) * .chain.length), 0 orientation = 0d, 0d, 0d
+  marker create marker_name = (eval(\".chain.link_\" // RTOI(i) // \".bottom\")) &
+    location = 0, (-i * .chain.length), 0 orientation = 0d, 0d, 0d
+  if condition = (i == 1)
+    constraint create joint revolute joint_name = .chain.pin_1 i_marker_name = .chain.link_1.top j_marker_name = .chain.ground.top
+  else
+    constraint create joint revolute joint_name = (eval(\".chain.pin_\" // RTOI(i))) &
+      i_marker_name = (eval(\".chain.link_\" // RTOI(i) // \".top\")) &
+      j_marker_name = (eval(\".chain.link_\" // RTOI(i - 1) // \".bottom\"))
+  end
+end ! the links
+variable set variable_name = k integer_value = 1
+while condition = (k <= .chain.links)
+  force create direct single_component_force single_component_force_name = (eval(\".chain.damper_\" // RTOI(k))) &
+    type_of_freedom = rotational action_only = off &
+    i_marker_name = (eval(\".chain.link_\" // RTOI(k) // \".top\")) &
+    j_marker_name = (eval(\".chain.link_\" // RTOI(k) // \".bottom\")) &
+    function = \"-50*WZ(.chain.link_1.top)\"
+  variable set variable_name = k integer_value = (k + 1)
+end
+"
+    );
+    // A function is a string of the solver's language, not evaluated: the
+    // looped dampers all read link 1's turn, as the written ones do.
+    let (columns, a) = view_rows(&written, 0.5, 10);
+    let (looped_columns, b) = view_rows(&looped, 0.5, 10);
+    assert_eq!(columns, looped_columns);
+    assert_eq!(columns.len(), 1 + 3 * 13, "{columns:?}");
+    for (x, y) in a.iter().flatten().zip(b.iter().flatten()) {
+        assert!((x - y).abs() <= 1e-9 * y.abs().max(1.0), "{x} against {y}");
+    }
+    // The chain swings: the last link has moved.
+    let last = b.last().expect("rows");
+    assert!((last[1 + 2 * 13] - 30.0).abs() > 1.0, "{last:?}");
+}
+
+#[test]
+fn a_loop_that_cannot_be_carried_out_is_refused_at_its_place() {
+    let deep = format!(
+        "{}marker create marker_name = .m.ground.A\n{}",
+        "for variable_name = i start_value = 1 end_value = 1\n".repeat(70),
+        "end\n".repeat(70)
+    );
+    let cases = [
+        "for variable_name = i start_value = 1 end_value = (db_count(.m, \"part\"))\nmarker create marker_name = .m.ground.A\nend".to_string(),
+        "for variable_name = i start_value = 1 end_value = 1e7\nmarker create marker_name = .m.ground.A\nend".to_string(),
+        "for variable_name = i start_value = 1 end_value = 3 increment_value = 0\nend".to_string(),
+        "while condition = (1)\nmarker create marker_name = .m.ground.A\nend".to_string(),
+        deep,
+        // Ten thousand `if` blocks inside one another: an error, not a
+        // stack overflow.
+        format!("{}{}", "if condition = (1)\n".repeat(10_000), "end\n".repeat(10_000)),
+    ];
+    let report: String = cases
+        .iter()
+        .map(|case| {
+            format!(
+                "{}\n  => {}\n",
+                case.lines().next().unwrap_or_default(),
+                check(case)
+            )
+        })
+        .collect();
+    insta::assert_snapshot!(report);
+}
+
+/// The commands View carries out for `text`: each command's words and
+/// its parameters' values, one a line.
+fn carried_out(text: &str) -> String {
+    let dataset = mbexpr::model::read(text, FileKind::Cmd);
+    let mut lines = String::new();
+    for statement in &dataset.statements {
+        lines.push_str(&statement.name.to_ascii_lowercase());
+        for argument in &statement.arguments {
+            if let mbexpr::model::Value::List(items) = &argument.value {
+                let values: Vec<&str> = items.iter().map(|item| item.text.as_str()).collect();
+                lines.push_str(&format!(
+                    " {}={}",
+                    argument.keyword.to_ascii_lowercase(),
+                    values.join(",")
+                ));
+            }
+        }
+        lines.push('\n');
+    }
+    lines
+}
+
+#[test]
+fn loops_and_if_blocks_are_carried_out_as_view_does() {
+    let cases = [
+        // A while loop counting with a variable it sets.
+        "variable set variable_name = k real_value = 0\nwhile condition = (k < 3)\nvariable set variable_name = k real_value = (k + 1)\nend\nmarker create marker_name = .m.ground.A location = (k), 0, 0",
+        // A break, a continue, a loop counting down by a half.
+        "for variable_name = i start_value = 1 end_value = 5\nif condition = (i == 2)\ncontinue\nelseif condition = (i == 4)\nbreak\nend\nmarker create marker_name = (eval(\".m.ground.M\" // RTOI(i)))\nend\nfor variable_name = x start_value = 1 end_value = 0 increment_value = -0.5\nmarker create marker_name = .m.ground.X location = (x), 0, 0\nend",
+        // A loop over names; a loop that runs no time.
+        "for variable_name = part object_names = .m.A, .m.B\npart create rigid_body name_and_position part_name = (part)\nend\nfor variable_name = i start_value = 2 end_value = 1\nmarker create marker_name = .m.ground.NEVER\nend",
+        // A `break` outside any loop, in an `if`: nothing is left out.
+        "if condition = (1)\nbreak\nend\nmarker create marker_name = .m.ground.AFTER",
+        // An if that reads the model: every branch as written.
+        "if condition = (! db_exists(\".colors.RED\"))\ncolor create color_name = .colors.RED\nelse\ncolor modify color_name = .colors.RED\nend",
+    ];
+    let report: String = cases
+        .iter()
+        .map(|case| format!("{case}\n  =>\n{}", carried_out(case)))
+        .collect();
+    insta::assert_snapshot!(report);
+}

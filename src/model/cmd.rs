@@ -61,6 +61,11 @@ pub fn read(text: &str) -> Dataset {
             }
         }
     }
+    // View's command language carried out: variables, loops, `if`
+    // blocks and values in parentheses.
+    let (statements, problem) = super::script::carry_out(std::mem::take(&mut dataset.statements));
+    dataset.statements = statements;
+    dataset.problems.extend(problem);
     dataset
 }
 

@@ -9,6 +9,7 @@ mod encoding;
 pub(crate) mod initial;
 pub(crate) mod linear_systems;
 mod references;
+mod script;
 mod text;
 mod variables;
 mod view;
@@ -260,6 +261,25 @@ pub enum ReadError {
         /// The bracket past the limit.
         span: Span,
     },
+    /// A View command file whose loops write more commands than the
+    /// reader takes.
+    #[error(
+        "the loops here write more than {limit} commands, so the file is not read: check the loop's bounds (the largest models users have are about 50 000 commands)"
+    )]
+    TooManyCommands {
+        /// The limit.
+        limit: usize,
+        /// The loop, or the command past the limit.
+        span: Span,
+    },
+    /// View loops and `if` blocks nested past the limit.
+    #[error("loops and `if` blocks nest deeper than {limit} levels here, so the file is not read")]
+    NestedTooDeep {
+        /// The limit.
+        limit: usize,
+        /// The block past the limit.
+        span: Span,
+    },
 }
 
 impl ReadError {
@@ -270,7 +290,9 @@ impl ReadError {
             | ReadError::UnreadableCommand { span }
             | ReadError::ContinuesTheTitle { span, .. }
             | ReadError::IdTooLarge { span }
-            | ReadError::TooDeep { span, .. } => *span,
+            | ReadError::TooDeep { span, .. }
+            | ReadError::TooManyCommands { span, .. }
+            | ReadError::NestedTooDeep { span, .. } => *span,
         }
     }
 }

@@ -802,7 +802,7 @@ impl<'d> Reader<'d> {
                     }
                 }
             }
-            ("VARIABLE", Some(_)) => self.design_variable(index),
+            ("VARIABLE", Some(_)) | ("VARIABLE SET", None) => self.design_variable(index),
             ("UDE INSTANCE", Some(_)) => self.user_defined(index),
             ("MATERIAL", Some("MODIFY")) => {
                 // A density given again as a View expression keeps the
@@ -833,7 +833,7 @@ impl<'d> Reader<'d> {
             ("PART RIGID_BODY NAME_AND_POSITION", Some(verb)) => self.part(index, verb, false),
             ("PART POINT_MASS NAME_AND_POSITION", Some(verb)) => self.part(index, verb, true),
             ("PART RIGID_BODY MASS_PROPERTIES" | "PART POINT_MASS MASS_PROPERTIES", Some(verb)) => {
-                if let Some(part) = self.part_named(index, part_keyword(&words)) {
+                if let Some(part) = self.part_named(index, part_keyword(words)) {
                     // View's expression definitions state again, as View
                     // expressions, what the create command wrote evaluated.
                     let restated = verb == "MODIFY"
@@ -845,7 +845,7 @@ impl<'d> Reader<'d> {
                 }
             }
             ("PART RIGID_BODY INITIAL_VELOCITY" | "PART POINT_MASS INITIAL_VELOCITY", Some(_)) => {
-                if let Some(part) = self.part_named(index, part_keyword(&words)) {
+                if let Some(part) = self.part_named(index, part_keyword(words)) {
                     self.parts[part].velocity = Some(index);
                 }
             }
@@ -1392,6 +1392,14 @@ impl<'d> Reader<'d> {
                     };
                 Some((statement, vec![flag], name, parameters))
             });
+        if matches!(words, "FOR" | "WHILE") {
+            self.refuse(
+                statement,
+                "is a loop mbexpr could not carry out: its bounds (or condition) must evaluate to numbers: numbers, arithmetic, variables set before and loop counters, and View's numeric functions (EVAL, RTOI, SQRT ...); a loop over the objects of a type, or reading the model (db_exists ...), is not carried out".into(),
+                statement.span,
+            );
+            return;
+        }
         let Some((solver, flags, name_keyword, parameters)) = found else {
             self.refuse(
                 statement,
