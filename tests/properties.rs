@@ -294,3 +294,56 @@ proptest! {
         }
     }
 }
+
+/// A line of a View script: the blocks of its language, variables set
+/// and read, and values in brackets made of View's expression tokens.
+fn script_line() -> impl Strategy<Value = String> {
+    let piece = prop::sample::select(vec![
+        "i", "k", ".m.n", "1", "2.5", "-", "+", "*", "/", "**", "//", "(", ")", ",", "==", "<",
+        "&&", "!", "\"a\"", "eval(", "RTOI(", "MOD(", "SQRT(", "1e308", "0", "PI", "$x", "{",
+    ]);
+    let value =
+        prop::collection::vec(piece, 0..8).prop_map(|pieces| format!("({})", pieces.concat()));
+    prop_oneof![
+        value
+            .clone()
+            .prop_map(|v| format!("for variable_name = i start_value = 1 end_value = {v}")),
+        value.clone().prop_map(|v| format!("while condition = {v}")),
+        value.clone().prop_map(|v| format!("if condition = {v}")),
+        value
+            .clone()
+            .prop_map(|v| format!("elseif condition = {v}")),
+        Just("else".to_string()),
+        Just("end".to_string()),
+        Just("break".to_string()),
+        Just("continue".to_string()),
+        value
+            .clone()
+            .prop_map(|v| format!("variable set variable_name = k real_value = {v}")),
+        value
+            .clone()
+            .prop_map(|v| format!("variable set variable_name = .m.n string_value = {v}")),
+        value
+            .clone()
+            .prop_map(|v| format!("marker create marker_name = .m.ground.A location = {v}, 0, 0")),
+        value.prop_map(|v| format!(
+            "part create rigid_body name_and_position part_name = {v} adams_id = {v}"
+        )),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// View's command language carried out on random scripts: no panic,
+    /// no hang, every problem at a place in the text.
+    #[test]
+    fn random_view_scripts_never_panic(lines in prop::collection::vec(script_line(), 0..24)) {
+        let text = format!("model create model_name = m\n{}\n", lines.join("\n"));
+        let dataset = mbexpr::model::read(&text, mbexpr::model::FileKind::Cmd);
+        for problem in &dataset.problems {
+            prop_assert!(problem.span().end <= text.len());
+        }
+        let _ = mbexpr::simulate::from_text(&text, mbexpr::simulate::ModelFormat::Dataset, mbexpr::model::FileKind::Cmd);
+    }
+}
