@@ -2153,13 +2153,14 @@ while condition = (k <= .chain.links)
     type_of_freedom = rotational action_only = off &
     i_marker_name = (eval(\".chain.link_\" // RTOI(k) // \".top\")) &
     j_marker_name = (eval(\".chain.link_\" // RTOI(k) // \".bottom\")) &
-    function = \"-50*WZ(.chain.link_1.top)\"
+    function = \"-150/.chain.links*WZ(.chain.link_1.top)\"
   variable set variable_name = k integer_value = (k + 1)
 end
 "
     );
     // A function is a string of the solver's language, not evaluated: the
-    // looped dampers all read link 1's turn, as the written ones do.
+    // looped dampers all read link 1's turn, as the written ones do, and
+    // the integer variable `.chain.links` (3) as a design variable.
     let (columns, a) = view_rows(&written, 0.5, 10);
     let (looped_columns, b) = view_rows(&looped, 0.5, 10);
     assert_eq!(columns, looped_columns);

@@ -53,7 +53,10 @@ pub(crate) fn check_names(
 ) {
     let (mut markers, mut objects) = (Created::default(), Created::default());
     for statement in &dataset.statements {
-        if !statement.name.split(' ').any(|word| word == "CREATE") {
+        // `variable set` makes the variable when there is none yet.
+        if !statement.name.split(' ').any(|word| word == "CREATE")
+            && statement.name != "VARIABLE SET"
+        {
             continue;
         }
         for argument in &statement.arguments {

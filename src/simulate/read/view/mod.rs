@@ -675,14 +675,18 @@ impl<'d> Reader<'d> {
             return;
         };
         self.instance_variables.insert(self.full(&name), index);
-        let Some((_, argument)) = self.argument(index, "REAL_VALUE") else {
+        // A real value, or an integer one (`variable set ... integer_value`).
+        let Some((keyword, argument)) = ["REAL_VALUE", "INTEGER_VALUE"]
+            .into_iter()
+            .find_map(|keyword| Some((keyword, self.argument(index, keyword)?.1)))
+        else {
             return;
         };
         if view_expression(argument) {
             return;
         }
         let Some([value]) = self
-            .numbers(index, "REAL_VALUE", false)
+            .numbers(index, keyword, false)
             .as_deref()
             .map(|values| match values {
                 [value] => [*value],
