@@ -567,9 +567,9 @@ enum Token {
 /// has that the script does not evaluate (a unit after a number, `$`,
 /// braces).
 fn tokens(text: &str) -> Option<Vec<Token>> {
-    const SYMBOLS: [&str; 20] = [
+    const SYMBOLS: [&str; 19] = [
         "**", "//", "==", "!=", "<>", "<=", ">=", "&&", "||", "+", "-", "*", "/", "(", ")", ",",
-        "<", ">", "!", ":",
+        "<", ">", "!",
     ];
     let bytes = text.as_bytes();
     let mut tokens = Vec::new();

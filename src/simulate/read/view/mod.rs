@@ -685,13 +685,13 @@ impl<'d> Reader<'d> {
         if view_expression(argument) {
             return;
         }
-        let Some([value]) = self
-            .numbers(index, keyword, false)
-            .as_deref()
-            .map(|values| match values {
-                [value] => [*value],
-                _ => [f64::NAN],
-            })
+        let Some([value]) =
+            self.numbers(index, keyword, false)
+                .as_deref()
+                .map(|values| match values {
+                    [value] => [*value],
+                    _ => [f64::NAN],
+                })
         else {
             return;
         };
