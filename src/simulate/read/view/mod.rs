@@ -596,7 +596,7 @@ impl<'d> Reader<'d> {
                 None => {
                     self.wrong(
                         format!(
-                            "{}: `{}` is not a number mbexpr reads (a View expression in parentheses, or a value with its unit, is evaluated by View: give the number)",
+                            "{}: `{}` is not a number mbexpr reads (a value with its unit, or a View expression of what mbexpr does not evaluate: a function of the model, a name no variable before has, a result out of range): give the number",
                             keyword.to_ascii_lowercase(),
                             item.text
                         ),
@@ -1488,7 +1488,7 @@ impl<'d> Reader<'d> {
                 if !known {
                     self.wrong(
                         format!(
-                            "{}: a View expression mbexpr does not evaluate, and no command before gives the value: give the number",
+                            "{}: a View expression mbexpr could not evaluate (a value with its unit, a function of the model, a name no variable before has), and no command before gives the value: give the number",
                             keyword.to_ascii_lowercase()
                         ),
                         argument.span,
