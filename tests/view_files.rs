@@ -2186,6 +2186,11 @@ fn a_loop_that_cannot_be_carried_out_is_refused_at_its_place() {
         "for variable_name = i start_value = 1 end_value = 3 increment_value = 0\nend".to_string(),
         "while condition = (1)\nmarker create marker_name = .m.ground.A\nend".to_string(),
         deep,
+        // Loops inside loops that write nothing: bounded by their rounds.
+        "for variable_name = i start_value = 1 end_value = 200000\nfor variable_name = j start_value = 1 end_value = 200000\nend\nend".to_string(),
+        // A string doubled in a loop: past 64 KiB it is not evaluated, and
+        // the location that reads it is refused.
+        "variable set variable_name = s string_value = \"ab\"\nfor variable_name = i start_value = 1 end_value = 100\nvariable set variable_name = s string_value = (s // s)\nend\nmarker create marker_name = .m.ground.A location = (STOR(s)), 0, 0".to_string(),
         // Ten thousand `if` blocks inside one another: an error, not a
         // stack overflow.
         format!("{}{}", "if condition = (1)\n".repeat(10_000), "end\n".repeat(10_000)),

@@ -272,6 +272,16 @@ pub enum ReadError {
         /// The loop, or the command past the limit.
         span: Span,
     },
+    /// View loops that go round more times than the reader takes.
+    #[error(
+        "the loops here go round more than {limit} times, so the file is not read: check the loops' bounds and conditions"
+    )]
+    TooManyRounds {
+        /// The limit.
+        limit: usize,
+        /// The loop that went past it.
+        span: Span,
+    },
     /// View loops and `if` blocks nested past the limit.
     #[error("loops and `if` blocks nest deeper than {limit} levels here, so the file is not read")]
     NestedTooDeep {
@@ -292,6 +302,7 @@ impl ReadError {
             | ReadError::IdTooLarge { span }
             | ReadError::TooDeep { span, .. }
             | ReadError::TooManyCommands { span, .. }
+            | ReadError::TooManyRounds { span, .. }
             | ReadError::NestedTooDeep { span, .. } => *span,
         }
     }

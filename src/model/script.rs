@@ -27,9 +27,17 @@ use crate::span::Span;
 /// copies take.
 const MOST_COMMANDS: usize = 250_000;
 
+/// How many times the loops of one file may go round in all (loops
+/// inside loops that write nothing still take time).
+const MOST_ROUNDS: usize = 1_000_000;
+
 /// How deep loops and `if` blocks may nest, and `EVAL` may evaluate the
 /// strings it is given.
 const MOST_NESTED: usize = 64;
+
+/// The longest string `//` may make (a string doubled in a loop grows as
+/// 2^n): a longer one is not evaluated.
+const LONGEST_TEXT: usize = 65_536;
 
 /// A value of View's language.
 #[derive(Clone, Debug, PartialEq)]
@@ -112,7 +120,8 @@ fn blocks(statements: &[Statement]) -> Blocks {
 
 /// The file's commands as View carries them out (see the module's
 /// account); a problem where the loops write more than
-/// [`MOST_COMMANDS`] commands or nest deeper than [`MOST_NESTED`].
+/// [`MOST_COMMANDS`] commands, go round more than [`MOST_ROUNDS`] times
+/// or nest deeper than [`MOST_NESTED`].
 pub(super) fn carry_out(statements: Vec<Statement>) -> (Vec<Statement>, Option<ReadError>) {
     let scripted = statements.iter().any(|statement| {
         matches!(statement.name.as_str(), "FOR" | "WHILE" | "IF")
@@ -134,6 +143,7 @@ pub(super) fn carry_out(statements: Vec<Statement>) -> (Vec<Statement>, Option<R
         problem: None,
         depth: 0,
         loops: 0,
+        rounds: 0,
     };
     script.block(0, statements.len());
     match script.problem.take() {
@@ -153,6 +163,8 @@ struct Script<'s> {
     depth: usize,
     /// How many loops are going round.
     loops: usize,
+    /// How many times the loops have gone round.
+    rounds: usize,
 }
 
 impl Script<'_> {
@@ -214,6 +226,20 @@ impl Script<'_> {
         for index in from..to {
             self.emit(self.statements[index].clone());
         }
+    }
+
+    /// Counts a loop's round: false (with the problem) past
+    /// [`MOST_ROUNDS`].
+    fn round(&mut self, span: Span) -> bool {
+        self.rounds += 1;
+        if self.rounds > MOST_ROUNDS {
+            self.problem = Some(ReadError::TooManyRounds {
+                limit: MOST_ROUNDS,
+                span,
+            });
+            return false;
+        }
+        true
     }
 
     /// Enters a nested block: false (with the problem) past
@@ -287,6 +313,9 @@ impl Script<'_> {
         }
         self.loops += 1;
         for value in values {
+            if !self.round(statement.span) {
+                break;
+            }
             self.variables.insert(name.clone(), value);
             if self.block(opener + 1, end) == Flow::Break || self.problem.is_some() {
                 break;
@@ -309,16 +338,7 @@ impl Script<'_> {
             return true;
         }
         self.loops += 1;
-        let mut rounds = 0;
-        while going && self.problem.is_none() {
-            rounds += 1;
-            if rounds > MOST_COMMANDS {
-                self.problem = Some(ReadError::TooManyCommands {
-                    limit: MOST_COMMANDS,
-                    span,
-                });
-                break;
-            }
+        while going && self.problem.is_none() && self.round(span) {
             if self.block(opener + 1, end) == Flow::Break {
                 break;
             }
@@ -398,7 +418,8 @@ impl Script<'_> {
     }
 
     /// Records a variable's value (`real_value`, `integer_value` or
-    /// `string_value`, a single one); one that is not known is forgotten.
+    /// `string_value`, a single one); one that is not known (a list, an
+    /// expression left in brackets) is forgotten.
     fn assign(&mut self, statement: &Statement) {
         let Some(name) = self.word(statement, "VARIABLE_NAME") else {
             return;
@@ -412,6 +433,8 @@ impl Script<'_> {
             .find_map(|&(keyword, kind)| {
                 let items = items(statement, keyword)?;
                 Some(match (items, kind) {
+                    // A value still in brackets was not evaluated.
+                    ([item], _) if item.text.trim_start().starts_with('(') => None,
                     ([item], 0) => item.text.trim().parse().ok().map(Datum::Real),
                     ([item], 1) => item.text.trim().parse().ok().map(Datum::Integer),
                     ([item], _) => Some(Datum::Text(item.text.to_string())),
@@ -700,7 +723,11 @@ impl Parser<'_, '_> {
         let mut value = self.sum()?;
         while self.eat("//") {
             let right = self.sum()?;
-            value = Datum::Text(value.text() + &right.text());
+            let (left, right) = (value.text(), right.text());
+            if left.len() + right.len() > LONGEST_TEXT {
+                return None;
+            }
+            value = Datum::Text(left + &right);
         }
         Some(value)
     }
