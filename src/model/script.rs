@@ -139,6 +139,7 @@ pub(super) fn carry_out(statements: Vec<Statement>) -> (Vec<Statement>, Option<R
         statements: &statements,
         blocks,
         variables: HashMap::new(),
+        by_last: HashMap::new(),
         out: Vec::new(),
         problem: None,
         depth: 0,
@@ -157,6 +158,9 @@ struct Script<'s> {
     blocks: Blocks,
     /// The variables by key (upper case, no leading dot).
     variables: HashMap<String, Datum>,
+    /// The variables' keys by their last part (after the last dot), so
+    /// that a name read by its tail is found without a search of all.
+    by_last: HashMap<String, Vec<String>>,
     out: Vec<Statement>,
     problem: Option<ReadError>,
     /// How deep the blocks being carried out nest.
@@ -316,7 +320,7 @@ impl Script<'_> {
             if !self.round(statement.span) {
                 break;
             }
-            self.variables.insert(name.clone(), value);
+            self.set(name.clone(), value);
             if self.block(opener + 1, end) == Flow::Break || self.problem.is_some() {
                 break;
             }
@@ -425,7 +429,7 @@ impl Script<'_> {
             return;
         };
         if statement.name == "VARIABLE DELETE" {
-            self.variables.remove(&name);
+            self.forget(&name);
             return;
         }
         let value = [("REAL_VALUE", 0), ("INTEGER_VALUE", 1), ("STRING_VALUE", 2)]
@@ -442,12 +446,8 @@ impl Script<'_> {
                 })
             });
         match value {
-            Some(Some(value)) => {
-                self.variables.insert(name, value);
-            }
-            Some(None) => {
-                self.variables.remove(&name);
-            }
+            Some(Some(value)) => self.set(name, value),
+            Some(None) => self.forget(&name),
             None => {}
         }
     }
@@ -521,6 +521,26 @@ impl Script<'_> {
         (parser.at == tokens.len()).then_some(value)
     }
 
+    /// Gives variable `name` (a key) `value`.
+    fn set(&mut self, name: String, value: Datum) {
+        if !self.variables.contains_key(&name) {
+            self.by_last
+                .entry(last_part(&name).to_string())
+                .or_default()
+                .push(name.clone());
+        }
+        self.variables.insert(name, value);
+    }
+
+    /// Forgets variable `name` (a key).
+    fn forget(&mut self, name: &str) {
+        if self.variables.remove(name).is_some()
+            && let Some(names) = self.by_last.get_mut(last_part(name))
+        {
+            names.retain(|known| known != name);
+        }
+    }
+
     /// A variable's value: by its full name, or the one variable whose
     /// name ends with it (a loop counter `i`, a model's `.m.n` read as `n`).
     fn variable(&self, name: &str) -> Option<Datum> {
@@ -533,12 +553,15 @@ impl Script<'_> {
                 && long.ends_with(short)
                 && long.as_bytes()[long.len() - short.len() - 1] == b'.'
         };
+        // A name and its tail end in the same part.
         let mut found = self
-            .variables
-            .iter()
-            .filter(|(known, _)| tail(known, &name) || tail(&name, known));
+            .by_last
+            .get(last_part(&name))
+            .into_iter()
+            .flatten()
+            .filter(|known| tail(known, &name) || tail(&name, known));
         match (found.next(), found.next()) {
-            (Some((_, value)), None) => Some(value.clone()),
+            (Some(known), None) => self.variables.get(known).cloned(),
             _ => None,
         }
     }
@@ -554,6 +577,11 @@ fn items<'a>(statement: &'a Statement, keyword: &str) -> Option<&'a [ValueItem]>
         Value::List(items) => Some(items),
         _ => None,
     }
+}
+
+/// The part of a key after its last dot (all of it when it has none).
+fn last_part(key: &str) -> &str {
+    key.rsplit('.').next().unwrap_or(key)
 }
 
 /// A name as the script keys it: upper case, no quotes or leading dot.
