@@ -2186,6 +2186,8 @@ fn a_loop_that_cannot_be_carried_out_is_refused_at_its_place() {
         "for variable_name = i start_value = 1 end_value = 3 increment_value = 0\nend".to_string(),
         "while condition = (1)\nmarker create marker_name = .m.ground.A\nend".to_string(),
         deep,
+        // A `break` outside any loop.
+        "if condition = (1)\nbreak\nend".to_string(),
         // Loops inside loops that write nothing: bounded by their rounds.
         "for variable_name = i start_value = 1 end_value = 200000\nfor variable_name = j start_value = 1 end_value = 200000\nend\nend".to_string(),
         // A string doubled in a loop: past 64 KiB it is not evaluated, and

@@ -1396,6 +1396,14 @@ impl<'d> Reader<'d> {
                     };
                 Some((statement, vec![flag], name, parameters))
             });
+        if matches!(words, "BREAK" | "CONTINUE") {
+            self.refuse(
+                statement,
+                "stands outside any loop, so there is nothing for it to leave: take it out, or put it inside the `for` or `while` it is meant to leave".into(),
+                statement.span,
+            );
+            return;
+        }
         if matches!(words, "FOR" | "WHILE") {
             self.refuse(
                 statement,
