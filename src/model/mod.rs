@@ -308,6 +308,15 @@ impl ReadError {
     }
 }
 
+/// A View name as the readers key it (`model::script`'s variables, the
+/// View reader's objects): upper case, without quotes and the leading dot.
+pub(crate) fn view_key(name: &str) -> String {
+    name.trim()
+        .trim_matches('"')
+        .trim_start_matches('.')
+        .to_ascii_uppercase()
+}
+
 /// Reads a model file of the given kind.
 pub fn read(text: &str, kind: FileKind) -> Dataset {
     if let Some(span) = too_deep(text) {

@@ -18,7 +18,7 @@
 
 use std::collections::HashMap;
 
-use super::{Argument, LARGEST_ID, ReadError, Statement, Value, ValueItem};
+use super::{Argument, LARGEST_ID, ReadError, Statement, Value, ValueItem, view_key as key};
 use crate::span::Span;
 
 /// The most commands the loops of one file may write, and the most times
@@ -147,9 +147,11 @@ pub(super) fn carry_out(statements: Vec<Statement>) -> (Vec<Statement>, Option<R
         rounds: 0,
     };
     script.block(0, statements.len());
-    match script.problem.take() {
-        Some(problem) => (statements.clone(), Some(problem)),
-        None => (script.out, None),
+    let (out, problem) = (script.out, script.problem);
+    match problem {
+        // The file as read, with the problem that stops it.
+        Some(problem) => (statements, Some(problem)),
+        None => (out, None),
     }
 }
 
@@ -179,14 +181,13 @@ impl Script<'_> {
             let statement = &self.statements[index];
             let end = self.blocks.end.get(&index).copied().filter(|&end| end < to);
             match (statement.name.as_str(), end) {
-                ("FOR", Some(end)) => {
-                    if !self.repeat(index, end) {
-                        self.copy(index, end + 1);
-                    }
-                    index = end + 1;
-                }
-                ("WHILE", Some(end)) => {
-                    if !self.repeat_while(index, end) {
+                (kind @ ("FOR" | "WHILE"), Some(end)) => {
+                    let carried = if kind == "FOR" {
+                        self.repeat(index, end)
+                    } else {
+                        self.repeat_while(index, end)
+                    };
+                    if !carried {
                         self.copy(index, end + 1);
                     }
                     index = end + 1;
@@ -582,14 +583,6 @@ fn items<'a>(statement: &'a Statement, keyword: &str) -> Option<&'a [ValueItem]>
 /// The part of a key after its last dot (all of it when it has none).
 fn last_part(key: &str) -> &str {
     key.rsplit('.').next().unwrap_or(key)
-}
-
-/// A name as the script keys it: upper case, no quotes or leading dot.
-fn key(name: &str) -> String {
-    name.trim()
-        .trim_matches('"')
-        .trim_start_matches('.')
-        .to_ascii_uppercase()
 }
 
 /// The id `adams_id` gives, as the command reader reads it.

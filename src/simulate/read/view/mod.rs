@@ -42,7 +42,9 @@ use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 
 use super::commands::RunCommands;
 use crate::check::Checked;
-use crate::model::{Argument, Dataset, FileKind, ModelCheck, Statement, Value, ValueItem};
+use crate::model::{
+    Argument, Dataset, FileKind, ModelCheck, Statement, Value, ValueItem, view_key as key,
+};
 use crate::simulate::error::SimulateError;
 use crate::span::Span;
 
@@ -223,15 +225,6 @@ struct Reader<'d> {
     run: Option<RunCommands>,
     errors: Vec<SimulateError>,
     notes: Vec<(String, Span)>,
-}
-
-/// A name as the reader keys it: upper case, without the leading dot and
-/// quotes.
-fn key(name: &str) -> String {
-    name.trim()
-        .trim_matches('"')
-        .trim_start_matches('.')
-        .to_ascii_uppercase()
 }
 
 /// The words of `statement` without its verb (`CREATE`, `MODIFY`), and the verb.
@@ -1370,6 +1363,21 @@ impl<'d> Reader<'d> {
             self.notes.push((note.to_string(), statement.span));
             return;
         }
+        // What the command language leaves (`model::script`): a loop it
+        // could not carry out, a `break` outside any loop.
+        let left_by_script = match words {
+            "FOR" | "WHILE" => Some(
+                "is a loop mbexpr could not carry out: its bounds (or condition) must evaluate to numbers: numbers, arithmetic, variables set before and loop counters, and View's numeric functions (EVAL, RTOI, SQRT ...); a loop over the objects of a type, or reading the model (db_exists ...), is not carried out",
+            ),
+            "BREAK" | "CONTINUE" => Some(
+                "stands outside any loop, so there is nothing for it to leave: take it out, or put it inside the `for` or `while` it is meant to leave",
+            ),
+            _ => None,
+        };
+        if let Some(reason) = left_by_script {
+            self.refuse(statement, reason.into(), statement.span);
+            return;
+        }
         let found = ELEMENTS
             .iter()
             .find(|kind| kind.words == words)
@@ -1396,22 +1404,6 @@ impl<'d> Reader<'d> {
                     };
                 Some((statement, vec![flag], name, parameters))
             });
-        if matches!(words, "BREAK" | "CONTINUE") {
-            self.refuse(
-                statement,
-                "stands outside any loop, so there is nothing for it to leave: take it out, or put it inside the `for` or `while` it is meant to leave".into(),
-                statement.span,
-            );
-            return;
-        }
-        if matches!(words, "FOR" | "WHILE") {
-            self.refuse(
-                statement,
-                "is a loop mbexpr could not carry out: its bounds (or condition) must evaluate to numbers: numbers, arithmetic, variables set before and loop counters, and View's numeric functions (EVAL, RTOI, SQRT ...); a loop over the objects of a type, or reading the model (db_exists ...), is not carried out".into(),
-                statement.span,
-            );
-            return;
-        }
         let Some((solver, flags, name_keyword, parameters)) = found else {
             self.refuse(
                 statement,

@@ -47,71 +47,51 @@ impl Reader<'_> {
             }
             return;
         }
-        if self.parts[part].point_mass {
-            self.point_mass_properties(part, index, statement);
-            return;
-        }
+        // A point mass has a mass and a centre, no inertia.
+        let point_mass = self.parts[part].point_mass;
+        let (name_keyword, inertia): (&str, &[&str]) = if point_mass {
+            ("POINT_MASS_NAME", &[])
+        } else {
+            (
+                "PART_NAME",
+                &["INERTIA_MARKER", "IXX", "IYY", "IZZ", "IXY", "IZX", "IYZ"],
+            )
+        };
         for argument in &command.arguments {
             let keyword = argument.keyword.as_str();
-            if !matches!(
-                keyword,
-                "PART_NAME"
-                    | "MASS"
-                    | "CENTER_OF_MASS_MARKER"
-                    | "INERTIA_MARKER"
-                    | "IXX"
-                    | "IYY"
-                    | "IZZ"
-                    | "IXY"
-                    | "IZX"
-                    | "IYZ"
-            ) {
+            if !(keyword == name_keyword
+                || matches!(keyword, "MASS" | "CENTER_OF_MASS_MARKER")
+                || inertia.contains(&keyword))
+            {
                 self.refuse_unread(command, argument);
             }
         }
-        let value = |reader: &mut Self, keyword: &str| {
+        let given = |reader: &mut Self, keyword: &str| {
             reader
                 .numbers(index, keyword, false)
                 .and_then(|values| values.first().copied())
-                .unwrap_or(0.0)
         };
-        let mass = value(self, "MASS");
-        let moments =
-            ["IXX", "IYY", "IZZ", "IXY", "IZX", "IYZ"].map(|keyword| value(self, keyword));
-        numbers_argument(statement, "MASS", &[mass], span);
-        if let Some(id) = self.marker_id(index, "CENTER_OF_MASS_MARKER") {
-            ids_argument(statement, "CM", id, span);
-            self.parts[part].centre_marker = Some(id);
-        }
-        if let Some(id) = self.marker_id(index, "INERTIA_MARKER") {
-            ids_argument(statement, "IM", id, span);
-        }
-        numbers_argument(statement, "IP", &moments, span);
-    }
-
-    /// A point mass's MASS and CM: it has no inertia, no material and no
-    /// solids to take them from.
-    fn point_mass_properties(&mut self, part: usize, index: usize, statement: &mut Statement) {
-        let command = &self.view.statements[index];
-        let span = command.span;
-        for argument in &command.arguments {
-            if !matches!(
-                argument.keyword.as_str(),
-                "POINT_MASS_NAME" | "MASS" | "CENTER_OF_MASS_MARKER"
-            ) {
-                self.refuse_unread(command, argument);
-            }
-        }
-        if let Some(mass) = self
-            .numbers(index, "MASS", false)
-            .and_then(|values| values.first().copied())
-        {
+        // A rigid body's mass left out is 0; a point mass's is left out of
+        // the POINT_MASS, which says it needs one.
+        let mass = given(self, "MASS").or((!point_mass).then_some(0.0));
+        let moments = (!point_mass).then(|| {
+            ["IXX", "IYY", "IZZ", "IXY", "IZX", "IYZ"]
+                .map(|keyword| given(self, keyword).unwrap_or(0.0))
+        });
+        if let Some(mass) = mass {
             numbers_argument(statement, "MASS", &[mass], span);
         }
         if let Some(id) = self.marker_id(index, "CENTER_OF_MASS_MARKER") {
             ids_argument(statement, "CM", id, span);
             self.parts[part].centre_marker = Some(id);
         }
+        let Some(moments) = moments else {
+            return;
+        };
+        if let Some(id) = self.marker_id(index, "INERTIA_MARKER") {
+            ids_argument(statement, "IM", id, span);
+        }
+        numbers_argument(statement, "IP", &moments, span);
     }
 
     /// MASS, CM (a marker made at the centre of mass, with the part's
