@@ -2252,3 +2252,62 @@ fn loops_and_if_blocks_are_carried_out_as_view_does() {
         .collect();
     insta::assert_snapshot!(report);
 }
+
+/// The four-bar linkage of the examples typed as View users type it, each
+/// command word and parameter cut short (`part cre rig name`, `loc =`,
+/// `color create` for View's `colors create`, a run's `sim single trans`
+/// in its script): View reads any beginning that is one name's alone, and
+/// so does mbexpr. The same solver dataset as the file written out; a
+/// beginning that is more than one name's is refused, both named.
+#[test]
+fn abbreviated_commands_are_read_as_view_reads_them() {
+    let typed = r#"default units len = mm ang = deg force = newton mass = kg ti = sec
+default units coord = cartesian orientation_t = body313
+mod cre model = four_bar
+color create color_name = .four_bar.BRIGHT red = 1 green = 1 blue = 0
+mat cre material_name = .four_bar.steel adams = 1 dens = 7.801E-06 young = 2.07E+05 poisson = 0.29
+mar cre mar = .four_bar.ground.PIVOT_A adams = 1 loc = 0.0, 0.0, 0.0 ori = 0.0d, 0.0d, 0.0d
+mar cre mar = .four_bar.ground.PIVOT_D adams = 2 loc = 400.0, 0.0, 0.0 ori = 0.0d, 0.0d, 0.0d
+part cre rig name part_name = .four_bar.crank adams = 2 loc = 0, 0, 0 ori = 0d, 0d, 0d
+mar cre mar = .four_bar.crank.END_A adams = 11 loc = 0, 0, 0 ori = 0d, 0d, 0d
+mar cre mar = .four_bar.crank.END_B adams = 12 loc = 0, 100, 0 ori = 0d, 0d, 0d
+part cre rig mass part_name = .four_bar.crank material = .four_bar.steel
+geom cre sha link link_name = .four_bar.crank.LINK_2 i_m = .four_bar.crank.END_A j_m = .four_bar.crank.END_B wid = 20.0 dep = 10.0
+part cre rig name part_name = .four_bar.coupler adams = 3 loc = 0, 0, 0 ori = 0d, 0d, 0d
+mar cre mar = .four_bar.coupler.END_B adams = 21 loc = 0, 100, 0 ori = 0d, 0d, 0d
+mar cre mar = .four_bar.coupler.END_C adams = 22 loc = 300, 250, 0 ori = 0d, 0d, 0d
+part cre rig mass part_name = .four_bar.coupler material = .four_bar.steel
+geom cre sha link link_name = .four_bar.coupler.LINK_3 i_m = .four_bar.coupler.END_B j_m = .four_bar.coupler.END_C wid = 20.0 dep = 10.0
+part cre rig name part_name = .four_bar.rocker adams = 4 loc = 0, 0, 0 ori = 0d, 0d, 0d
+mar cre mar = .four_bar.rocker.END_C adams = 31 loc = 300, 250, 0 ori = 0d, 0d, 0d
+mar cre mar = .four_bar.rocker.END_D adams = 32 loc = 400, 0, 0 ori = 0d, 0d, 0d
+part cre rig mass part_name = .four_bar.rocker material = .four_bar.steel
+geom cre sha link link_name = .four_bar.rocker.LINK_4 i_m = .four_bar.rocker.END_C j_m = .four_bar.rocker.END_D wid = 20.0 dep = 10.0
+cons cre joint rev joint_name = .four_bar.JOINT_A adams = 1 i_marker = .four_bar.crank.END_A j_marker = .four_bar.ground.PIVOT_A
+cons cre joint rev joint_name = .four_bar.JOINT_B adams = 2 i_marker = .four_bar.coupler.END_B j_marker = .four_bar.crank.END_B
+cons cre joint rev joint_name = .four_bar.JOINT_C adams = 3 i_marker = .four_bar.rocker.END_C j_marker = .four_bar.coupler.END_C
+cons cre joint rev joint_name = .four_bar.JOINT_D adams = 4 i_marker = .four_bar.rocker.END_D j_marker = .four_bar.ground.PIVOT_D
+cons cre motion motion_name = .four_bar.MOTION_1 adams = 1 type_of = rotational joint_name = .four_bar.JOINT_A time_der = displacement fun = "360d * time"
+force cre body grav gravity_field_name = gravity x_comp = 0.0 y_comp = -9806.65 z_comp = 0.0
+output cre req request_name = .four_bar.DRIVE adams = 1 f2 = "AZ(.four_bar.rocker.END_D, .four_bar.ground.PIVOT_D) * RTOD" f3 = "MOTION(.four_bar.MOTION_1, 0, 8, 0)" f4 = "JOINT(.four_bar.JOINT_D, 0, 2, 0)"
+sim script cre sim_script_name = .four_bar.Last_Sim commands = "sim single trans type=auto_select initial=no end=1.0 number=20 model_name=.four_bar"
+"#;
+    let written = include_str!("../examples/simulate/n_view_four_bar.cmd");
+    let (full, _) = simulate::view_dataset_text(written).unwrap_or_else(|_| panic!("read"));
+    let (short, _) = simulate::view_dataset_text(typed).unwrap_or_else(|unread| match unread {
+        simulate::Unread::Refused(errors) => panic!("{}", render(typed, None, &errors)),
+        simulate::Unread::Unchecked(problems) => panic!("{problems:?}"),
+    });
+    assert_eq!(short, full);
+    // A beginning more than one name's, of a parameter and of a command
+    // word, is refused with the names it begins.
+    let ambiguous = [
+        "part cre rig name part_name = .m.Q loc = 0, 0, 0 pla = yes",
+        "fo cre direct single_component_force single_component_force_name = .m.F",
+    ];
+    let report: String = ambiguous
+        .iter()
+        .map(|case| format!("{case}\n  => {}\n", check(case)))
+        .collect();
+    insta::assert_snapshot!(report);
+}

@@ -6,6 +6,7 @@ use pest::iterators::Pair;
 use pest_derive::Parser;
 
 use super::text::Embedded;
+use super::view_vocabulary;
 use super::{Argument, Dataset, FileKind, ReadError, Statement, Value, ValueItem};
 use crate::span::Span;
 
@@ -69,18 +70,25 @@ pub fn read(text: &str) -> Dataset {
     dataset
 }
 
+/// A command, its words and parameters in full where they are View's
+/// abbreviations of them (`view_vocabulary`).
 fn command(pair: Pair<'_, Rule>, base: usize) -> Statement {
     let span = span_of(&pair, base);
     let span = Span::new(span.start, span.start + pair.as_str().trim_end().len());
-    let mut words = Vec::new();
-    let mut arguments = Vec::new();
+    let mut written = Vec::new();
+    let mut parameters = Vec::new();
     for part in pair.into_inner() {
         match part.as_rule() {
-            Rule::words => words.extend(part.into_inner().map(|word| word.as_str().to_uppercase())),
-            Rule::parameter => arguments.push(parameter(part, base)),
+            Rule::words => written.extend(part.into_inner().map(|word| word.as_str())),
+            Rule::parameter => parameters.push(part),
             _ => {}
         }
     }
+    let (words, known) = view_vocabulary::command(&written);
+    let arguments: Vec<Argument> = parameters
+        .into_iter()
+        .map(|part| parameter(part, base, known))
+        .collect();
     let id = arguments
         .iter()
         .find(|argument: &&Argument| argument.keyword == "ADAMS_ID")
@@ -99,11 +107,20 @@ fn command(pair: Pair<'_, Rule>, base: usize) -> Statement {
     }
 }
 
-fn parameter(pair: Pair<'_, Rule>, base: usize) -> Argument {
+/// A parameter of `command`, its keyword in full where it abbreviates one
+/// of the command's alone.
+fn parameter(
+    pair: Pair<'_, Rule>,
+    base: usize,
+    command: Option<view_vocabulary::Command>,
+) -> Argument {
     let span = span_of(&pair, base);
     let mut inner = pair.into_inner();
     let name = inner.next().expect("a parameter starts with its name");
-    let keyword = name.as_str().to_uppercase();
+    let keyword = match command.map(|command| command.parameter(name.as_str())) {
+        Some(view_vocabulary::Meaning::One(full)) => full.to_ascii_uppercase(),
+        _ => name.as_str().to_uppercase(),
+    };
     let keyword_span = span_of(&name, base);
     let values: Vec<Pair<'_, Rule>> = inner.flat_map(|values| values.into_inner()).collect();
     let value = if holds_expression(&keyword) {

@@ -13,6 +13,7 @@ mod script;
 mod text;
 mod variables;
 mod view;
+pub(crate) mod view_vocabulary;
 pub mod vocabulary;
 mod write;
 

@@ -31,7 +31,7 @@ pub(super) const PASSED_OVER: [&str; 32] = [
     "GEOMETRY CREATE SHAPE GCONTACT",
     "GROUP",
     "MEASURE",
-    "COLOR",
+    "COLORS",
     "INTERFACE",
     "EXECUTIVE_CONTROL SET",
     "OUTPUT_CONTROL SET",
@@ -698,4 +698,81 @@ pub(super) fn becomes(parameters: &[&[(&'static str, Becomes)]], keyword: &str) 
         .flat_map(|group| group.iter())
         .find(|(view, _)| *view == keyword)
         .map(|&(_, becomes)| becomes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::view_vocabulary::{self, Meaning};
+
+    /// The commands and parameters the reading knows, checked against
+    /// View's own: an abbreviation is read in full, so each must be View's
+    /// name in full, or a command written as View writes it would be read
+    /// as another.
+    #[test]
+    fn the_reading_knows_views_own_names() {
+        let mut kinds: Vec<(String, Vec<&str>)> = ELEMENTS
+            .iter()
+            .map(|kind| {
+                let parameters = std::iter::once(kind.name)
+                    .chain(
+                        kind.parameters
+                            .iter()
+                            .flat_map(|g| g.iter().map(|(p, _)| *p)),
+                    )
+                    .collect();
+                (kind.words.to_string(), parameters)
+            })
+            .collect();
+        let joint: Vec<&str> = std::iter::once("JOINT_NAME")
+            .chain(
+                JOINT_PARAMETERS
+                    .iter()
+                    .flat_map(|g| g.iter().map(|(p, _)| *p)),
+            )
+            .collect();
+        for (view, _) in JOINT_TYPES {
+            kinds.push((format!("CONSTRAINT JOINT {view}"), joint.clone()));
+        }
+        let primitive: Vec<&str> = std::iter::once("JPRIM_NAME")
+            .chain(TWO_MARKERS.iter().map(|(p, _)| *p))
+            .collect();
+        for (view, _) in PRIMITIVES {
+            kinds.push((
+                format!("CONSTRAINT PRIMITIVE_JOINT {view}"),
+                primitive.clone(),
+            ));
+        }
+        let mut unknown = Vec::new();
+        for (words, parameters) in &kinds {
+            let mut written: Vec<&str> = words.split(' ').collect();
+            written.insert(1.min(written.len()), "CREATE");
+            let (full, command) = view_vocabulary::command(&written);
+            assert_eq!(full.join(" "), written.join(" "), "{words}");
+            let Some(command) = command else {
+                continue;
+            };
+            for parameter in parameters {
+                // A parameter View's command does not have is kept as
+                // written; one it has must be read as itself.
+                match command.parameter(parameter) {
+                    Meaning::Unknown => {}
+                    Meaning::One(name) if name.eq_ignore_ascii_case(parameter) => {}
+                    other => unknown.push(format!("{words}: {parameter} is read as {other:?}")),
+                }
+            }
+        }
+        assert!(unknown.is_empty(), "{unknown:#?}");
+    }
+
+    /// The commands passed over, as View's names read them: a word
+    /// written short (`color`) is read in full (`colors`).
+    #[test]
+    fn the_commands_passed_over_are_views_own() {
+        for over in PASSED_OVER.iter().chain(NOTED.iter().map(|(over, _)| over)) {
+            let written: Vec<&str> = over.split(' ').collect();
+            let (full, _) = view_vocabulary::command(&written);
+            assert_eq!(full.join(" "), *over);
+        }
+    }
 }

@@ -44,6 +44,7 @@ use super::commands::RunCommands;
 use crate::check::Checked;
 use crate::model::{
     Argument, Dataset, FileKind, ModelCheck, Statement, Value, ValueItem, view_key as key,
+    view_vocabulary,
 };
 use crate::simulate::error::SimulateError;
 use crate::span::Span;
@@ -544,10 +545,13 @@ impl<'d> Reader<'d> {
     /// Refuses `argument` of `statement`: a parameter the reading does not
     /// know.
     fn refuse_unread(&mut self, statement: &Statement, argument: &Argument) {
-        let reason = format!(
-            "sets {}, which mbexpr does not read",
-            argument.keyword.to_ascii_lowercase()
-        );
+        let reason = view_vocabulary::ambiguity(&statement.name, Some(&argument.keyword))
+            .unwrap_or_else(|| {
+                format!(
+                    "sets {}, which mbexpr does not read",
+                    argument.keyword.to_ascii_lowercase()
+                )
+            });
         self.refuse(statement, reason, argument.span);
     }
 
@@ -1205,23 +1209,28 @@ impl<'d> Reader<'d> {
             return;
         };
         for item in items {
+            // Each command as View reads it, abbreviations in full.
             let text = item.text.replace(" =", "=").replace("= ", "=");
-            let mut tokens = text.split_whitespace();
-            let words: Vec<String> = tokens
-                .by_ref()
-                .take(3)
-                .map(str::to_ascii_uppercase)
-                .collect();
-            let transient = ["SIMULATION", "SINGLE_RUN", "TRANSIENT"]
+            let tokens: Vec<&str> = text.split_whitespace().collect();
+            let first_parameter = tokens
                 .iter()
-                .zip(&words)
-                .all(|(full, word)| word.len() >= 3 && full.starts_with(word.as_str()));
-            if words.len() < 3 || !transient {
+                .position(|token| token.contains('='))
+                .unwrap_or(tokens.len());
+            let (written, parameters) = tokens.split_at(first_parameter);
+            let (words, command) = view_vocabulary::command(written);
+            if words != ["SIMULATION", "SINGLE_RUN", "TRANSIENT"] {
                 continue;
             }
-            let parameters: Vec<(String, String)> = tokens
+            let parameters: Vec<(String, String)> = parameters
+                .iter()
                 .filter_map(|token| token.split_once('='))
-                .map(|(name, value)| (name.to_ascii_uppercase(), key(value)))
+                .map(|(name, value)| {
+                    let name = match command.map(|command| command.parameter(name)) {
+                        Some(view_vocabulary::Meaning::One(full)) => full.to_ascii_uppercase(),
+                        _ => name.to_ascii_uppercase(),
+                    };
+                    (name, key(value))
+                })
                 .collect();
             self.transient(&parameters, item.span);
         }
@@ -1405,11 +1414,8 @@ impl<'d> Reader<'d> {
                 Some((statement, vec![flag], name, parameters))
             });
         let Some((solver, flags, name_keyword, parameters)) = found else {
-            self.refuse(
-                statement,
-                "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, general constraints, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, beams, contacts, joint frictions, couplers and gears, gravity, variables, differential equations, function requests and sensors".into(),
-                statement.span,
-            );
+            let reason = view_vocabulary::ambiguity(&statement.name, None).unwrap_or_else(|| "is not read: mbexpr simulates a View file's parts, markers, joints, joint primitives, general constraints, motions, single-component forces, force and torque vectors, general forces, spring-dampers, bushings, beams, contacts, joint frictions, couplers and gears, gravity, variables, differential equations, function requests and sensors".into());
+            self.refuse(statement, reason, statement.span);
             return;
         };
         let Some(verb) = verb else {

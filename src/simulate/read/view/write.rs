@@ -519,7 +519,7 @@ impl Reader<'_> {
             }
             "PLANE" => {
                 flag_argument(&mut statement, "PLANE", span);
-                marker(self, "REF_MARKER", "RM", &mut statement);
+                marker(self, "REF_MARKER_NAME", "RM", &mut statement);
             }
             _ => {
                 let command = &self.view.statements[index];
