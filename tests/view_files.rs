@@ -2188,6 +2188,10 @@ fn a_loop_that_cannot_be_carried_out_is_refused_at_its_place() {
         deep,
         // A `break` outside any loop.
         "if condition = (1)\nbreak\nend".to_string(),
+        // 300 000 rounds that write nothing are carried out; writing a
+        // command each, they stop at the commands' bound.
+        "for variable_name = i start_value = 1 end_value = 300000\nif condition = (i == 300000)\nmarker create marker_name = .m.ground.A location = (i / 100000), 0, 0\nend\nend".to_string(),
+        "for variable_name = i start_value = 1 end_value = 300000\nmarker create marker_name = .m.ground.A\nend".to_string(),
         // Loops inside loops that write nothing: bounded by their rounds.
         "for variable_name = i start_value = 1 end_value = 200000\nfor variable_name = j start_value = 1 end_value = 200000\nend\nend".to_string(),
         // A string doubled in a loop: past 64 KiB it is not evaluated, and

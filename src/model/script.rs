@@ -294,9 +294,11 @@ impl Script<'_> {
                 None => 1.0,
             };
             let count = ((last - start) / step + 1e-9).floor() + 1.0;
-            if count > MOST_COMMANDS as f64 {
-                self.problem = Some(ReadError::TooManyCommands {
-                    limit: MOST_COMMANDS,
+            // More rounds than all loops may go: refused before the
+            // counter's values are made.
+            if count > MOST_ROUNDS as f64 {
+                self.problem = Some(ReadError::TooManyRounds {
+                    limit: MOST_ROUNDS,
                     span: statement.span,
                 });
                 return true;
