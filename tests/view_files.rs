@@ -2303,6 +2303,51 @@ sim script cre sim_script_name = .four_bar.Last_Sim commands = "sim single trans
         simulate::Unread::Unchecked(problems) => panic!("{problems:?}"),
     });
     assert_eq!(short, full);
+    // The command language's own commands cut short as users type them
+    // (`var set var = n int = 3`, `for var = i start = 1 end = (n)`,
+    // `if cond = ...`): the same dataset as the script written out.
+    let loop_typed = r#"default units len = mm ang = deg force = newton mass = kg ti = sec
+mod cre model = chain
+var set var = n int = 3
+var set var = pre string = ".chain.link_"
+mar cre mar = .chain.ground.top loc = 0, 0, 0
+for var = i start = 1 end = (n)
+  part cre rig name part = (eval(pre // RTOI(i))) loc = 0, (-(i - 1) * 100), 0
+  part mod rig mass part = (eval(pre // RTOI(i))) mass = 0.5 ixx = 417 iyy = 417 izz = 417
+  mar cre mar = (eval(pre // RTOI(i) // ".top")) loc = 0, (-(i - 1) * 100), 0
+  mar cre mar = (eval(pre // RTOI(i) // ".bottom")) loc = 0, (-i * 100), 0
+  if cond = (i == 1)
+    cons cre joint rev joint = .chain.pin_1 i_marker = .chain.link_1.top j_marker = .chain.ground.top
+  else
+    cons cre joint rev joint = (eval(".chain.pin_" // RTOI(i))) i_marker = (eval(pre // RTOI(i) // ".top")) j_marker = (eval(pre // RTOI(i - 1) // ".bottom"))
+  end
+end
+"#;
+    let loop_written = r#"defaults units length = mm angle = deg force = newton mass = kg time = sec
+model create model_name = chain
+variable set variable_name = n integer_value = 3
+variable set variable_name = pre string_value = ".chain.link_"
+marker create marker_name = .chain.ground.top location = 0, 0, 0
+for variable_name = i start_value = 1 end_value = (n)
+  part create rigid_body name_and_position part_name = (eval(pre // RTOI(i))) location = 0, (-(i - 1) * 100), 0
+  part modify rigid_body mass_properties part_name = (eval(pre // RTOI(i))) mass = 0.5 ixx = 417 iyy = 417 izz = 417
+  marker create marker_name = (eval(pre // RTOI(i) // ".top")) location = 0, (-(i - 1) * 100), 0
+  marker create marker_name = (eval(pre // RTOI(i) // ".bottom")) location = 0, (-i * 100), 0
+  if condition = (i == 1)
+    constraint create joint revolute joint_name = .chain.pin_1 i_marker_name = .chain.link_1.top j_marker_name = .chain.ground.top
+  else
+    constraint create joint revolute joint_name = (eval(".chain.pin_" // RTOI(i))) i_marker_name = (eval(pre // RTOI(i) // ".top")) j_marker_name = (eval(pre // RTOI(i - 1) // ".bottom"))
+  end
+end
+"#;
+    let dataset = |text: &str| {
+        simulate::view_dataset_text(text)
+            .unwrap_or_else(|_| panic!("read"))
+            .0
+    };
+    let looped = dataset(loop_typed);
+    assert_eq!(looped, dataset(loop_written));
+    assert_eq!(looped.matches("JOINT/").count(), 3, "{looped}");
     // A beginning more than one name's, of a parameter and of a command
     // word, is refused with the names it begins.
     let ambiguous = [
