@@ -761,6 +761,11 @@ fn what_is_refused_is_refused_at_its_place() {
         ),
         format!("{part}\nmarker create marker_name = .m.P.B location = (.m.DV_2), 0, 0"),
         format!("{part}\ndefaults units length = furlong"),
+        // View's general motion, a library constraint: it would drive the
+        // part, so it is refused, not passed over.
+        format!(
+            "{part}\nude create instance instance_name = .m.general_motion_1 definition_name = .MDI.Constraints.general_motion\nvariable modify variable_name = .m.general_motion_1.r3_type integer_value = 1"
+        ),
         format!(
             "{part}\nsimulation single_run statics\nmarker attributes marker_name = .m.P.A active = off"
         ),

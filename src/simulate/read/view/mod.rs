@@ -204,8 +204,10 @@ struct Reader<'d> {
     designs: Vec<f64>,
     /// The function measures being read into a function (against loops).
     reading: Vec<usize>,
-    /// The user-defined force instances (`ude create instance` of a
-    /// force): refused unless made inactive.
+    /// The user-defined force and constraint instances (`ude create
+    /// instance` of a force, or of a constraint such as View's general
+    /// motion): the library springs are read, any other is refused unless
+    /// made inactive.
     user_forces: Vec<(String, usize, bool)>,
     /// The command that sets each variable last (`variable create` or
     /// `modify`), by full name: a library spring's values.
@@ -702,16 +704,17 @@ impl<'d> Reader<'d> {
         }
     }
 
-    /// A user-defined element's instance: a force's is refused (unless
-    /// made inactive later); other instances (a controls plant's
-    /// inputs and outputs) are passed over.
+    /// A user-defined element's instance: a force's or a constraint's
+    /// (View's library springs read, any other refused unless made
+    /// inactive later, since it would change the motion); other instances
+    /// (a controls plant's inputs and outputs) are passed over.
     fn user_defined(&mut self, index: usize) {
         let definition = self.word(index, "DEFINITION_NAME").unwrap_or_default();
         let Some(name) = self.word(index, "INSTANCE_NAME") else {
             return;
         };
         if self.view.statements[index].name.contains(" CREATE ") {
-            if definition.contains(".FORCES.") {
+            if definition.contains(".FORCES.") || definition.contains(".CONSTRAINTS.") {
                 self.user_forces.push((self.full(&name), index, true));
             }
             self.instances.push((self.full(&name), definition));

@@ -664,9 +664,9 @@ impl Reader<'_> {
         (1..).filter(move |id| !taken.contains(id))
     }
 
-    /// The active user-defined forces: each library spring's SFORCE (the
-    /// smallest ids no SFORCE has, in order) and its VARIABLEs' names and
-    /// functions; any other is refused.
+    /// The active user-defined forces and constraints: each library
+    /// spring's SFORCE (the smallest ids no SFORCE has, in order) and its
+    /// VARIABLEs' names and functions; any other is refused.
     fn write_library_springs(&mut self) -> (Vec<Statement>, Vec<(String, String, Span)>) {
         let mut free = self.free_ids("SFORCE");
         let mut springs = Vec::new();
@@ -682,11 +682,15 @@ impl Reader<'_> {
                 .find(|(instance, _)| *instance == name)
                 .and_then(|(_, definition)| LibrarySpring::of_definition(definition));
             let Some(kind) = kind else {
-                self.refuse(
-                    command,
-                    "is a user-defined force (a View library element other than a spring or a torsion spring), which mbexpr does not read: write it as a force element".into(),
-                    command.span,
-                );
+                let constraint = self.instances.iter().any(|(instance, definition)| {
+                    *instance == name && definition.contains(".CONSTRAINTS.")
+                });
+                let reason = if constraint {
+                    "is a user-defined constraint (a View library element: a general motion drives the components of one marker's motion relative to another), which mbexpr does not read: write each driven component as a motion between the markers (constraint create motion_generator with i_marker_name, j_marker_name and axis)"
+                } else {
+                    "is a user-defined force (a View library element other than a spring or a torsion spring), which mbexpr does not read: write it as a force element"
+                };
+                self.refuse(command, reason.into(), command.span);
                 continue;
             };
             match self.library_spring(&name, kind) {
