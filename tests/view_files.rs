@@ -766,6 +766,11 @@ fn what_is_refused_is_refused_at_its_place() {
         format!(
             "{part}\nude create instance instance_name = .m.general_motion_1 definition_name = .MDI.Constraints.general_motion\nvariable modify variable_name = .m.general_motion_1.r3_type integer_value = 1"
         ),
+        // An Adams Machinery element (a motor, a cam): its definition
+        // makes parts and forces; refused, not passed over.
+        format!(
+            "{part}\nude create instance instance_name = .m.motor_1 definition_name = .amachinery.parts.ac_motor_external"
+        ),
         format!(
             "{part}\nsimulation single_run statics\nmarker attributes marker_name = .m.P.A active = off"
         ),
@@ -2363,5 +2368,67 @@ end
         .iter()
         .map(|case| format!("{case}\n  => {}\n", check(case)))
         .collect();
+    insta::assert_snapshot!(report);
+}
+
+/// What a View export of a bicycle (a public model) writes beside its
+/// parts: `exact_coordinates`, the PART's EXACT (`all`, `none`, or
+/// coordinates in any order and case); velocities stated again as View
+/// expressions in the export's "expression definitions" (`vx =
+/// (.m.speed)`), which keep the values the create command wrote; and a
+/// View function (`function create`), which only View's own expressions
+/// call: passed over.
+#[test]
+fn exact_coordinates_restated_velocities_and_view_functions_are_read() {
+    let text = r#"defaults units length = mm angle = deg force = newton mass = kg time = sec
+model create model_name = m
+variable create variable_name = .m.speed units = "velocity" real_value = 100.0
+part create rigid_body name_and_position part_name = .m.P location = 10, 0, 0 exact_coordinates = z, X
+part create rigid_body initial_velocity part_name = .m.P vy = 100.0
+marker create marker_name = .m.P.A location = 0, 0, 0
+part create rigid_body mass_properties part_name = .m.P mass = 1 center_of_mass_marker = .m.P.A ixx = 1 iyy = 1 izz = 1
+part create point_mass name_and_position point_mass_name = .m.Q location = 0, 50, 0 exact_coordinates = all
+marker create marker_name = .m.Q.B location = 0, 50, 0
+part create point_mass mass_properties point_mass_name = .m.Q mass = 2 center_of_mass_marker = .m.Q.B
+part create rigid_body name_and_position part_name = .m.R location = 0, 0, 30 exact_coordinates = none
+marker create marker_name = .m.R.C location = 0, 0, 30
+part create rigid_body mass_properties part_name = .m.R mass = 1 center_of_mass_marker = .m.R.C ixx = 1 iyy = 1 izz = 1
+function create function_name = .double text_of_expression = "2 * x" type = real
+part modify rigid_body initial_velocity part_name = .m.P vy = (.m.speed)
+"#;
+    let (dataset, _) = simulate::view_dataset_text(text).unwrap_or_else(|unread| match unread {
+        Unread::Refused(errors) => panic!("{}", render(text, None, &errors)),
+        Unread::Unchecked(problems) => panic!("{problems:?}"),
+    });
+    let statement = |head: &str| -> String {
+        let start = dataset
+            .find(head)
+            .unwrap_or_else(|| panic!("{head} in {dataset}"));
+        let rest = &dataset[start + head.len()..];
+        let end = rest
+            .find(|c: char| c.is_ascii_uppercase() && rest.starts_with(c))
+            .unwrap_or(0);
+        let end = rest[end..]
+            .find("\nPART/")
+            .or_else(|| rest[end..].find("\nPOINT_MASS/"))
+            .or_else(|| rest[end..].find("\nMARKER/"))
+            .map_or(rest.len(), |at| at + end);
+        rest[..end].to_string()
+    };
+    let p = statement("PART/2\n");
+    assert!(p.contains(", EXACT = X:Z\n"), "{p}");
+    assert!(p.contains(", VY = 100.0"), "{p}");
+    let q = statement("POINT_MASS/");
+    assert!(q.contains(", EXACT = X:Y:Z\n"), "{q}");
+    assert!(!statement("PART/3\n").contains("EXACT"), "{dataset}");
+    // A word that is no coordinate is wrong at its place; a point mass
+    // has no angles.
+    let report: String = [
+        "part create rigid_body name_and_position part_name = .m.P exact_coordinates = x, w",
+        "part create point_mass name_and_position point_mass_name = .m.Q exact_coordinates = psi",
+    ]
+    .iter()
+    .map(|case| format!("{case}\n  => {}\n", check(case)))
+    .collect();
     insta::assert_snapshot!(report);
 }

@@ -2,7 +2,7 @@
 //! solver statements they write, and the commands it passes over.
 
 /// Commands that only draw, arrange or describe: passed over.
-pub(super) const PASSED_OVER: [&str; 32] = [
+pub(super) const PASSED_OVER: [&str; 33] = [
     "IF",
     "ELSE",
     "END",
@@ -32,6 +32,7 @@ pub(super) const PASSED_OVER: [&str; 32] = [
     "GROUP",
     "MEASURE",
     "COLORS",
+    "FUNCTION",
     "INTERFACE",
     "EXECUTIVE_CONTROL SET",
     "OUTPUT_CONTROL SET",

@@ -161,6 +161,10 @@ struct Part {
     features: Vec<usize>,
     /// Not made inactive (`part attributes ... active = off`).
     active: bool,
+    /// The coordinates the initial-conditions analysis holds
+    /// (`exact_coordinates`), as the solver's EXACT names them, and where
+    /// they are given.
+    exact: Option<(Vec<&'static str>, Span)>,
 }
 
 /// A marker (or floating marker) on a part.
@@ -204,10 +208,10 @@ struct Reader<'d> {
     designs: Vec<f64>,
     /// The function measures being read into a function (against loops).
     reading: Vec<usize>,
-    /// The user-defined force and constraint instances (`ude create
-    /// instance` of a force, or of a constraint such as View's general
-    /// motion): the library springs are read, any other is refused unless
-    /// made inactive.
+    /// The user-defined element instances other than a controls plant's
+    /// (`ude create instance` of a force, of a constraint such as View's
+    /// general motion, of an Adams Machinery part): the library springs
+    /// are read, any other is refused unless made inactive.
     user_forces: Vec<(String, usize, bool)>,
     /// The command that sets each variable last (`variable create` or
     /// `modify`), by full name: a library spring's values.
@@ -480,6 +484,7 @@ impl<'d> Reader<'d> {
             frame_marker: None,
             features: Vec::new(),
             active: true,
+            exact: None,
         });
         self.name(name, Entity::Part(self.parts.len() - 1));
     }
@@ -704,17 +709,18 @@ impl<'d> Reader<'d> {
         }
     }
 
-    /// A user-defined element's instance: a force's or a constraint's
-    /// (View's library springs read, any other refused unless made
-    /// inactive later, since it would change the motion); other instances
-    /// (a controls plant's inputs and outputs) are passed over.
+    /// A user-defined element's instance: View's library springs are
+    /// read; a controls plant's (Adams Controls: the model's inputs and
+    /// outputs, named) is passed over; any other (a general motion, an
+    /// Adams Machinery cam or follower, whose definitions make parts,
+    /// constraints and forces) is refused unless made inactive later.
     fn user_defined(&mut self, index: usize) {
         let definition = self.word(index, "DEFINITION_NAME").unwrap_or_default();
         let Some(name) = self.word(index, "INSTANCE_NAME") else {
             return;
         };
         if self.view.statements[index].name.contains(" CREATE ") {
-            if definition.contains(".FORCES.") || definition.contains(".CONSTRAINTS.") {
+            if !definition.starts_with("CONTROLS.") {
                 self.user_forces.push((self.full(&name), index, true));
             }
             self.instances.push((self.full(&name), definition));
@@ -848,9 +854,19 @@ impl<'d> Reader<'d> {
                     }
                 }
             }
-            ("PART RIGID_BODY INITIAL_VELOCITY" | "PART POINT_MASS INITIAL_VELOCITY", Some(_)) => {
+            (
+                "PART RIGID_BODY INITIAL_VELOCITY" | "PART POINT_MASS INITIAL_VELOCITY",
+                Some(verb),
+            ) => {
                 if let Some(part) = self.part_named(index, part_keyword(words)) {
-                    self.parts[part].velocity = Some(index);
+                    // View's expression definitions state the velocities
+                    // again as View expressions (`vx = (.m.Init_Vel)`).
+                    let restated = verb == "MODIFY"
+                        && self.parts[part].velocity.is_some()
+                        && statement.arguments.iter().any(view_expression);
+                    if !restated {
+                        self.parts[part].velocity = Some(index);
+                    }
                 }
             }
             ("MARKER", Some(verb)) => self.marker(index, verb == "MODIFY", false),
@@ -976,10 +992,11 @@ impl<'d> Reader<'d> {
                 "ADAMS_ID" | "LOCATION" | "ORIENTATION" | "RELATIVE_TO" | "COMMENTS"
                 | "GROUND_PART" => {}
                 "PLANAR" if self.word(index, "PLANAR").as_deref() == Some("NO") => {}
-                "PLANAR_AXES" => {}
+                "PLANAR_AXES" | "EXACT_COORDINATES" => {}
                 _ => self.refuse_unread(statement, argument),
             }
         }
+        let exact = self.exact_coordinates(index, point_mass);
         let id = self.id(index, "ADAMS_ID");
         let part = if verb == "CREATE" {
             let name = self.full(&name);
@@ -997,6 +1014,7 @@ impl<'d> Reader<'d> {
                 frame_marker: None,
                 features: Vec::new(),
                 active: true,
+                exact: None,
             });
             let part = self.parts.len() - 1;
             self.name(name, Entity::Part(part));
@@ -1009,6 +1027,9 @@ impl<'d> Reader<'d> {
         };
         if let Some(id) = id {
             self.parts[part].id = Some(id);
+        }
+        if let Some(exact) = exact {
+            self.parts[part].exact = Some(exact);
         }
         if let Some(new_name) = self.word(index, new_name_keyword) {
             // The markers keep their part: their names are re-entered under
@@ -1031,6 +1052,46 @@ impl<'d> Reader<'d> {
                 self.parts[part].frame = self.placed(index);
             }
         }
+    }
+
+    /// The coordinates a part's `exact_coordinates` holds in the
+    /// initial-conditions analysis, as EXACT names them (`all`: every one
+    /// the part has; `none`: none), and where they are given; `None` when
+    /// the command does not set them. A word that is no coordinate is
+    /// wrong at its place.
+    fn exact_coordinates(
+        &mut self,
+        index: usize,
+        point_mass: bool,
+    ) -> Option<(Vec<&'static str>, Span)> {
+        const COORDINATES: [&str; 6] = ["X", "Y", "Z", "PSI", "THETA", "PHI"];
+        let (_, argument) = self.argument(index, "EXACT_COORDINATES")?;
+        let span = argument.span;
+        let own = if point_mass { 3 } else { 6 };
+        let mut held = Vec::new();
+        for item in self.items(index, "EXACT_COORDINATES").unwrap_or_default() {
+            match key(&item.text).as_str() {
+                "ALL" => held.extend_from_slice(&COORDINATES[..own]),
+                "NONE" => {}
+                word => match COORDINATES[..own].iter().find(|known| **known == word) {
+                    Some(known) => held.push(*known),
+                    None => {
+                        self.wrong(
+                            format!(
+                                "exact_coordinates: `{}` is none of {}, all and none",
+                                item.text,
+                                COORDINATES[..own].join(", ").to_ascii_lowercase()
+                            ),
+                            item.span,
+                        );
+                        return None;
+                    }
+                },
+            }
+        }
+        held.sort_by_key(|coordinate| COORDINATES.iter().position(|known| known == coordinate));
+        held.dedup();
+        Some((held, span))
     }
 
     /// A point on a part, kept for the measures that name it; otherwise

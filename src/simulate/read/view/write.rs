@@ -95,6 +95,11 @@ impl Reader<'_> {
         }
         let frame = self.parts[part].frame;
         place_arguments(&mut statement, ["QG", "ZG", "XG"], &frame, span);
+        if let Some((exact, at)) = &self.parts[part].exact
+            && !exact.is_empty()
+        {
+            words_argument(&mut statement, "EXACT", &[&exact.join(":")], *at);
+        }
         if let Some(index) = self.parts[part].mass {
             self.mass_properties(part, index, &mut statement);
         }
@@ -682,15 +687,23 @@ impl Reader<'_> {
                 .find(|(instance, _)| *instance == name)
                 .and_then(|(_, definition)| LibrarySpring::of_definition(definition));
             let Some(kind) = kind else {
-                let constraint = self.instances.iter().any(|(instance, definition)| {
-                    *instance == name && definition.contains(".CONSTRAINTS.")
-                });
-                let reason = if constraint {
-                    "is a user-defined constraint (a View library element: a general motion drives the components of one marker's motion relative to another), which mbexpr does not read: write each driven component as a motion between the markers (constraint create motion_generator with i_marker_name, j_marker_name and axis)"
+                let definition = self
+                    .instances
+                    .iter()
+                    .find(|(instance, _)| *instance == name)
+                    .map(|(_, definition)| definition.as_str())
+                    .unwrap_or_default();
+                let reason = if definition.contains(".CONSTRAINTS.") {
+                    "is a user-defined constraint (a View library element: a general motion drives the components of one marker's motion relative to another), which mbexpr does not read: write each driven component as a motion between the markers (constraint create motion_generator with i_marker_name, j_marker_name and axis)".to_string()
+                } else if definition.contains(".FORCES.") {
+                    "is a user-defined force (a View library element other than a spring or a torsion spring), which mbexpr does not read: write it as a force element".to_string()
                 } else {
-                    "is a user-defined force (a View library element other than a spring or a torsion spring), which mbexpr does not read: write it as a force element"
+                    format!(
+                        "is an instance of the user-defined element {}, whose definition makes the parts, constraints or forces it stands for, which mbexpr does not read: write them as View commands",
+                        definition.to_ascii_lowercase()
+                    )
                 };
-                self.refuse(command, reason.into(), command.span);
+                self.refuse(command, reason, command.span);
                 continue;
             };
             match self.library_spring(&name, kind) {
