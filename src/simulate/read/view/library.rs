@@ -354,3 +354,131 @@ pub(super) fn spring_statement(
     );
     statement
 }
+
+/// View's general motion (`ude create instance` of this definition): the
+/// six components of I's motion relative to J, each free or driven.
+pub(super) const GENERAL_MOTION: &str = "MDI.CONSTRAINTS.GENERAL_MOTION";
+
+/// A general motion's components: the prefix of their variables
+/// (`t1_type`, `t1_func`, `t1_ic_disp` ...), the MOTION's component, and
+/// whether it is a rotation.
+const MOTION_COMPONENTS: [(&str, &str, bool); 6] = [
+    ("T1", "X", false),
+    ("T2", "Y", false),
+    ("T3", "Z", false),
+    ("R1", "B1", true),
+    ("R2", "B2", true),
+    ("R3", "B3", true),
+];
+
+impl Reader<'_> {
+    /// The MOTIONs of the general motion `instance` (its full key name),
+    /// made by `command`: one between its I and J markers for each
+    /// component its `*_type` drives (1 a displacement, 2 a velocity, 3 an
+    /// acceleration, as the exports' functions show; 0, every other
+    /// component of the exports seen, free), numbered from `ids`; or the
+    /// reason it cannot be written, at the place to show.
+    pub(super) fn general_motion(
+        &mut self,
+        instance: &str,
+        command: usize,
+        ids: &mut impl Iterator<Item = u64>,
+    ) -> Result<Vec<Statement>, (String, Option<usize>)> {
+        use super::write::{
+            flag_argument, function_argument, ids_argument, new_statement, numbers_argument,
+        };
+        let span = self.view.statements[command].span;
+        let i = self.spring_marker(instance, "I_MARKER")?.0;
+        let j = self.spring_marker(instance, "J_MARKER")?.0;
+        let mut motions = Vec::new();
+        for (prefix, component, rotation) in MOTION_COMPONENTS {
+            let kind_name = format!("{prefix}_TYPE");
+            let index = self.spring_variable(instance, &kind_name)?;
+            let kind = self
+                .items(index, "INTEGER_VALUE")
+                .and_then(|items| items.first())
+                .and_then(|item| item.text.trim().parse::<i64>().ok());
+            let derivative = match kind {
+                Some(0) => continue,
+                Some(1) => "DISPLACEMENT",
+                Some(2) => "VELOCITY",
+                Some(3) => "ACCELERATION",
+                _ => {
+                    return Err((
+                        format!(
+                            "{} is none of 0 (free), 1 (a displacement), 2 (a velocity) and 3 (an acceleration)",
+                            kind_name.to_ascii_lowercase()
+                        ),
+                        Some(index),
+                    ));
+                }
+            };
+            let function_name = format!("{prefix}_FUNC");
+            let index = self.spring_variable(instance, &function_name)?;
+            let Some(item) = self
+                .items(index, "STRING_VALUE")
+                .and_then(|items| items.first())
+                .cloned()
+            else {
+                return Err((
+                    format!("{} gives no function", function_name.to_ascii_lowercase()),
+                    Some(index),
+                ));
+            };
+            // The item's text without its quotes, placed inside them.
+            let quotes = (item.span.end - item.span.start).saturating_sub(item.text.len()) / 2;
+            let mut text = Embedded::default();
+            text.push(&item.text, item.span.start + quotes);
+            let checked = crate::syntax::parse(&text.text)
+                .map_err(|error| error.to_string())
+                .and_then(|parsed| {
+                    crate::check::check(&parsed).map_err(|errors| errors.to_string())
+                })
+                .map_err(|message| {
+                    (
+                        format!("{}: {message}", function_name.to_ascii_lowercase()),
+                        Some(index),
+                    )
+                })?;
+            let Some(function) = self.solver_function(&checked, &text) else {
+                continue;
+            };
+            let mut motion = new_statement("MOTION", ids.next(), span);
+            ids_argument(&mut motion, "I", i, span);
+            ids_argument(&mut motion, "J", j, span);
+            flag_argument(&mut motion, component, span);
+            flag_argument(&mut motion, derivative, span);
+            function_argument(&mut motion, function, span);
+            let constants = [
+                ("IC_DISP", "ICDISP", derivative != "DISPLACEMENT"),
+                ("IC_VELO", "ICVEL", derivative == "ACCELERATION"),
+            ];
+            for (suffix, keyword, used) in constants {
+                let name = format!("{prefix}_{suffix}");
+                let Some(index) = self.spring_command(instance, &name) else {
+                    continue;
+                };
+                let value = self
+                    .items(index, "REAL_VALUE")
+                    .and_then(|items| items.first())
+                    .and_then(|item| item.number())
+                    .unwrap_or(0.0);
+                if !used || value == 0.0 {
+                    continue;
+                }
+                if rotation && self.degrees {
+                    return Err((
+                        format!(
+                            "sets {} to {value}: whether View gives a general motion's initial angle in degrees or radians in a model in degrees is not known: give 0, or drive the angle itself",
+                            name.to_ascii_lowercase()
+                        ),
+                        Some(index),
+                    ));
+                }
+                numbers_argument(&mut motion, keyword, &[value], span);
+            }
+            motions.push(motion);
+        }
+        Ok(motions)
+    }
+}

@@ -6,9 +6,9 @@ use std::collections::HashSet;
 use std::f64::consts::PI;
 
 use super::elements::{Becomes, MEASURE, becomes};
-use super::library::{LibrarySpring, spring_statement};
+use super::library::{GENERAL_MOTION, LibrarySpring, spring_statement};
 use super::{Entity, Frame, Reader};
-use crate::check::{Argument as TreeArgument, NodeKind, Reference, visit};
+use crate::check::{Argument as TreeArgument, Checked, NodeKind, Reference, visit};
 use crate::model::{Argument, Embedded, Statement, Value, ValueItem};
 use crate::span::Span;
 
@@ -560,6 +560,15 @@ impl Reader<'_> {
             return None;
         }
         let tree = *self.trees.get(&(index, argument.keyword.clone()))?;
+        let text = text.clone();
+        self.solver_function(tree, &text)
+    }
+
+    /// The solver form of a View function `text` (checked as `tree`): its
+    /// names replaced by ids, design variables by their values, function
+    /// measures by their functions; what it names that is none of these
+    /// is wrong at its place.
+    pub(super) fn solver_function(&mut self, tree: &Checked, text: &Embedded) -> Option<Embedded> {
         let mut replacements = Vec::new();
         let mut unknown = Vec::new();
         visit(&tree.root, &mut |node| match &node.kind {
@@ -674,6 +683,7 @@ impl Reader<'_> {
     /// VARIABLEs' names and functions; any other is refused.
     fn write_library_springs(&mut self) -> (Vec<Statement>, Vec<(String, String, Span)>) {
         let mut free = self.free_ids("SFORCE");
+        let mut free_motions = self.free_ids("MOTION");
         let mut springs = Vec::new();
         let mut variables = Vec::new();
         for (name, index, active) in self.user_forces.clone() {
@@ -686,6 +696,20 @@ impl Reader<'_> {
                 .iter()
                 .find(|(instance, _)| *instance == name)
                 .and_then(|(_, definition)| LibrarySpring::of_definition(definition));
+            let general_motion = self
+                .instances
+                .iter()
+                .any(|(instance, definition)| *instance == name && definition == GENERAL_MOTION);
+            if general_motion {
+                match self.general_motion(&name, index, &mut free_motions) {
+                    Ok(motions) => springs.extend(motions),
+                    Err((reason, place)) => {
+                        let at = &self.view.statements[place.unwrap_or(index)];
+                        self.refuse(at, format!("{name} {reason}"), at.span);
+                    }
+                }
+                continue;
+            }
             let Some(kind) = kind else {
                 let definition = self
                     .instances
