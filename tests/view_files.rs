@@ -1178,8 +1178,8 @@ measure create point measure_name = .k.TIP_ACCELERATION point = .k.arm.TIP chara
 measure create object measure_name = .k.SPIN from_first = no object = .k.arm.TIP characteristic = angular_velocity component = mag_component
 measure create object measure_name = .k.ARM_SPIN from_first = no object = .k.arm coordinate_rframe = .k.ground.TILTED characteristic = cm_angular_velocity component = z_component
 measure create object measure_name = .k.HINGE_FORCE object = .k.HINGE characteristic = element_force component = x_component
-output_control create request request_name = .k.MEASURED adams_id = 1 f2 = ".k.TIP_HEIGHT" f3 = ".k.TIP_SPEED" f4 = ".k.TIP_ACCELERATION" f5 = ".k.SPIN" f6 = "2 * .k.ARM_SPIN"
-executive_control create sensor sensor_name = .k.LEVEL adams_id = 1 compare = le value = -0.5 error = 1e-6 codgen = off halt = on print = off restart = off return = off yydump = off function = ".k.TIP_HEIGHT"
+output_control create request request_name = .k.MEASURED adams_id = 1 comment = measured f2 = ".k.TIP_HEIGHT" f3 = ".k.TIP_SPEED" f4 = ".k.TIP_ACCELERATION" f5 = ".k.SPIN" f6 = "2 * .k.ARM_SPIN"
+executive_control create sensor sensor_name = .k.LEVEL adams_id = 1 compare = le value = -0.5 error = 1e-6 codgen = off halt = on print = off restart = off return = off yydump = off function = ".k.TIP_HEIGHT" evaluate = ""
 simulation single_run transient end_time = 3 number_of_steps = 30
 "#;
     let dataset = "the measured arm, by hand
@@ -2439,10 +2439,17 @@ part modify rigid_body initial_velocity part_name = .m.P vy = (.m.speed)
 /// function and initial conditions) drives a crank on its revolute joint
 /// as a motion on the joint does: a displacement, a velocity and an
 /// acceleration of its rotation (types 1, 2, 3), the other components
-/// free (0).
+/// free (0). A VARIABLE reads the torque of its rotation's motion by its
+/// name in the instance (`.m.general_motion_1.motion_r3`), as the joint
+/// motion's.
 #[test]
 fn a_general_motion_drives_as_a_motion_on_the_joint() {
     let model = |driver: &str| {
+        let motion = if driver.contains("general_motion") {
+            ".m.general_motion_1.motion_r3"
+        } else {
+            ".m.drive"
+        };
         format!(
             r#"defaults units length = mm angle = deg force = newton mass = kg time = sec
 model create model_name = m
@@ -2454,6 +2461,7 @@ part create rigid_body mass_properties part_name = .m.crank mass = 1 center_of_m
 constraint create joint revolute joint_name = .m.pin i_marker_name = .m.crank.A j_marker_name = .m.ground.O
 force create body gravitational gravity_field_name = .m.g y_component_gravity = -9806.65
 {driver}
+data_element create variable variable_name = .m.torque function = "MOTION({motion}, 0, 8, .m.ground.O)"
 "#
         )
     };
@@ -2487,8 +2495,7 @@ force create body gravitational gravity_field_name = .m.g y_component_gravity = 
             general(2, "30d + 10d * cos(time)", 0.0),
             on_joint("velocity", "30d + 10d * cos(time)", ""),
         ),
-        // An acceleration from rest, and from a turning start (in a model
-        // in degrees, a velocity is not an angle: given as written).
+        // An acceleration from rest.
         (
             general(3, "50d * sin(time)", 0.0),
             on_joint("acceleration", "50d * sin(time)", ""),
@@ -2500,10 +2507,10 @@ force create body gravitational gravity_field_name = .m.g y_component_gravity = 
         let crank: Vec<usize> = columns
             .iter()
             .enumerate()
-            .filter(|(_, name)| name.starts_with("PART/"))
+            .filter(|(_, name)| name.starts_with("PART/") || name.starts_with("VARIABLE/"))
             .map(|(at, _)| at)
             .collect();
-        assert_eq!(crank.len(), 13, "{columns:?}");
+        assert_eq!(crank.len(), 14, "{columns:?}");
         for (row_a, row_b) in a.iter().zip(&b) {
             for &at in &crank {
                 let other = reference_columns

@@ -19,10 +19,12 @@ fn span_of(pair: &Pair<'_, Rule>, base: usize) -> Span {
     Span::new(pair.as_span().start(), pair.as_span().end()).shifted(base)
 }
 
-/// Whether a parameter holds an expression: `function`, `*_function`, `f1` ... `f8`.
+/// Whether a parameter holds an expression: `function`, `*_function`, `f1` ... `f8`,
+/// a sensor's `evaluate`.
 fn holds_expression(name: &str) -> bool {
     let name = name.to_ascii_lowercase();
     name == "function"
+        || name == "evaluate"
         || name.ends_with("_function")
         || (name.len() == 2 && name.starts_with('f') && name.as_bytes()[1].is_ascii_digit())
 }

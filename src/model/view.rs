@@ -73,6 +73,25 @@ pub(crate) fn check_names(
                 objects.add(&item.text);
             }
         }
+        // View's general motion makes a motion for each component, named
+        // in the instance (`.m.general_motion_1.motion_t3`).
+        let first_of = |keyword: &str| {
+            statement
+                .arguments
+                .iter()
+                .find_map(|argument| match &argument.value {
+                    Value::List(items) if argument.keyword == keyword => items.first(),
+                    _ => None,
+                })
+        };
+        let (definition, instance) = (first_of("DEFINITION_NAME"), first_of("INSTANCE_NAME"));
+        if let (Some(definition), Some(instance)) = (definition, instance)
+            && super::view_key(&definition.text) == "MDI.CONSTRAINTS.GENERAL_MOTION"
+        {
+            for component in ["t1", "t2", "t3", "r1", "r2", "r3"] {
+                objects.add(&format!("{}.motion_{component}", instance.text));
+            }
+        }
     }
     for (index, found) in expressions.iter().enumerate() {
         let Some(tree) = &trees[index] else { continue };

@@ -79,6 +79,9 @@ pub(super) enum Becomes {
     PerAngle(&'static str),
     /// A function expression.
     Function(&'static str),
+    /// A function expression that may be left empty (`evaluate = ""`, as
+    /// View writes a sensor's when it has none): then nothing.
+    OptionalFunction(&'static str),
     /// One of several words, each a keyword of the statement.
     Choice(&'static [(&'static str, &'static str)]),
     /// A word, the value of the keyword (`COULOMB_FRICTION = ON`).
@@ -632,6 +635,7 @@ pub(super) const ELEMENTS: [ElementKind; 26] = [
             ("COMPONENT_UNITS", Becomes::Nothing),
             ("COMPONENT_LABELS", Becomes::Nothing),
             ("RESULTS_NAME", Becomes::Nothing),
+            ("COMMENT", Becomes::Nothing),
         ]],
     },
     ElementKind {
@@ -657,6 +661,7 @@ pub(super) const ELEMENTS: [ElementKind; 26] = [
             ("STEPSIZE", Becomes::Numbers("STEPSIZE")),
             ("BISECTION", Becomes::Nothing),
             ("TIME_ERROR", Becomes::Nothing),
+            ("EVALUATE", Becomes::OptionalFunction("EVALUATE")),
         ]],
     },
     ElementKind {

@@ -443,7 +443,12 @@ impl Reader<'_> {
             let Some(function) = self.solver_function(&checked, &text) else {
                 continue;
             };
-            let mut motion = new_statement("MOTION", ids.next(), span);
+            let id = ids.next();
+            if let Some(id) = id {
+                // Functions read it by its name in the instance.
+                self.name(format!("{instance}.MOTION_{prefix}"), Entity::Written(id));
+            }
+            let mut motion = new_statement("MOTION", id, span);
             ids_argument(&mut motion, "I", i, span);
             ids_argument(&mut motion, "J", j, span);
             flag_argument(&mut motion, component, span);

@@ -111,6 +111,9 @@ enum Entity {
     Design(usize),
     /// A point (`point create`), where a measure reads it.
     Point(usize),
+    /// A statement the reader writes itself, by its id: a general
+    /// motion's MOTION (`.m.general_motion_1.motion_t3`).
+    Written(u64),
     Model,
 }
 

@@ -280,7 +280,9 @@ impl Reader<'_> {
                         numbers_argument(&mut statement, solver_keyword, &values, argument_span);
                     }
                 }
-                Becomes::Function(solver_keyword) => {
+                Becomes::OptionalFunction(_) if matches!(&argument.value, Value::Expression { text, .. } if text.text.trim().is_empty()) =>
+                    {}
+                Becomes::Function(solver_keyword) | Becomes::OptionalFunction(solver_keyword) => {
                     if let Some(text) = self.function(index, position) {
                         statement.arguments.push(Argument {
                             keyword: solver_keyword.into(),
@@ -626,6 +628,7 @@ impl Reader<'_> {
                 Some(Entity::Marker(marker)) => self.markers[marker].id,
                 Some(Entity::Part(part)) => self.parts[part].id,
                 Some(Entity::Element(element)) => self.elements[element].id,
+                Some(Entity::Written(id)) => Some(id),
                 _ => None,
             };
             match id {
