@@ -177,7 +177,7 @@ impl Reader<'_> {
                     "has no variable {} (View writes every variable of the instance)",
                     parameter.to_ascii_lowercase()
                 ),
-                self.user_forces
+                self.user_elements
                     .iter()
                     .find(|(name, _, _)| name == instance)
                     .map(|&(_, index, _)| index),

@@ -215,7 +215,7 @@ struct Reader<'d> {
     /// (`ude create instance` of a force, of a constraint such as View's
     /// general motion, of an Adams Machinery part): the library springs
     /// are read, any other is refused unless made inactive.
-    user_forces: Vec<(String, usize, bool)>,
+    user_elements: Vec<(String, usize, bool)>,
     /// The command that sets each variable last (`variable create` or
     /// `modify`), by full name: a library spring's values.
     instance_variables: HashMap<String, usize>,
@@ -346,7 +346,7 @@ pub fn solver_dataset(
         densities: Vec::new(),
         designs: Vec::new(),
         reading: Vec::new(),
-        user_forces: Vec::new(),
+        user_elements: Vec::new(),
         instance_variables: HashMap::new(),
         instances: Vec::new(),
         coordinates: Frame::GROUND,
@@ -724,7 +724,7 @@ impl<'d> Reader<'d> {
         };
         if self.view.statements[index].name.contains(" CREATE ") {
             if !definition.starts_with("CONTROLS.") {
-                self.user_forces.push((self.full(&name), index, true));
+                self.user_elements.push((self.full(&name), index, true));
             }
             self.instances.push((self.full(&name), definition));
         }
@@ -1408,12 +1408,12 @@ impl<'d> Reader<'d> {
                 statement.span,
             ),
             // What the reading passes over (a measure, a graphic, a solid
-            // from a file) stays out; a user-defined force made inactive
-            // is not refused.
+            // from a file) stays out; a user-defined element made
+            // inactive is not refused.
             _ => {
                 let name = key(&name);
-                for (force, _, active) in &mut self.user_forces {
-                    if *force == name {
+                for (element, _, active) in &mut self.user_elements {
+                    if *element == name {
                         *active = false;
                     }
                 }

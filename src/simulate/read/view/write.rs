@@ -20,7 +20,7 @@ impl Reader<'_> {
     /// The solver statements.
     pub(super) fn write(&mut self) -> Vec<Statement> {
         self.assign_ids();
-        let (springs, spring_variables) = self.write_library_springs();
+        let (springs, spring_variables) = self.write_user_elements();
         let mut statements = Vec::new();
         let mut units = new_statement("UNITS", None, self.units_span);
         for (kind, unit) in self.units {
@@ -681,15 +681,16 @@ impl Reader<'_> {
         (1..).filter(move |id| !taken.contains(id))
     }
 
-    /// The active user-defined forces and constraints: each library
-    /// spring's SFORCE (the smallest ids no SFORCE has, in order) and its
-    /// VARIABLEs' names and functions; any other is refused.
-    fn write_library_springs(&mut self) -> (Vec<Statement>, Vec<(String, String, Span)>) {
+    /// The active user-defined elements: each library spring's SFORCE
+    /// (the smallest ids no SFORCE has, in order) and its VARIABLEs' names
+    /// and functions, each general motion's MOTIONs (the smallest ids no
+    /// MOTION has); any other is refused.
+    fn write_user_elements(&mut self) -> (Vec<Statement>, Vec<(String, String, Span)>) {
         let mut free = self.free_ids("SFORCE");
         let mut free_motions = self.free_ids("MOTION");
         let mut springs = Vec::new();
         let mut variables = Vec::new();
-        for (name, index, active) in self.user_forces.clone() {
+        for (name, index, active) in self.user_elements.clone() {
             if !active {
                 continue;
             }
