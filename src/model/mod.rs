@@ -25,6 +25,7 @@ pub use initial::{ConfigurationError, initial_scene};
 pub use references::{FoundExpression, ModelCheck, ModelError, Problem, check_model};
 pub use text::Embedded;
 pub use variables::evaluation_order;
+pub(crate) use view::{GENERAL_MOTION, GENERAL_MOTION_COMPONENTS};
 
 use crate::span::Span;
 use crate::syntax::MAX_NESTING;

@@ -11,6 +11,13 @@ use crate::catalog::{ArgKind, closest, did_you_mean};
 use crate::check::{Argument, Checked, NodeKind, Reference, visit};
 use crate::span::Span;
 
+/// View's general motion: its definition, as a name key, and its
+/// components, the prefixes of its variables (`t1_type`, `t1_func` ...)
+/// and of the motions it makes (`.m.general_motion_1.motion_t1`).
+pub(crate) const GENERAL_MOTION: &str = "MDI.CONSTRAINTS.GENERAL_MOTION";
+/// See [`GENERAL_MOTION`].
+pub(crate) const GENERAL_MOTION_COMPONENTS: [&str; 6] = ["T1", "T2", "T3", "R1", "R2", "R3"];
+
 /// The names the file creates, full and by every tail after a dot.
 #[derive(Default)]
 struct Created {
@@ -86,10 +93,10 @@ pub(crate) fn check_names(
         };
         let (definition, instance) = (first_of("DEFINITION_NAME"), first_of("INSTANCE_NAME"));
         if let (Some(definition), Some(instance)) = (definition, instance)
-            && super::view_key(&definition.text) == "MDI.CONSTRAINTS.GENERAL_MOTION"
+            && super::view_key(&definition.text) == GENERAL_MOTION
         {
-            for component in ["t1", "t2", "t3", "r1", "r2", "r3"] {
-                objects.add(&format!("{}.motion_{component}", instance.text));
+            for component in GENERAL_MOTION_COMPONENTS {
+                objects.add(&format!("{}.MOTION_{component}", instance.text));
             }
         }
     }

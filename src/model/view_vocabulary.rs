@@ -102,38 +102,40 @@ impl Command {
     }
 }
 
+/// The word `written` stands for among those that can follow `node`: its
+/// name and the node it leads to, or what it is instead.
+fn next_word(node: usize, written: &str) -> Result<(&'static str, usize), Meaning> {
+    let children = &VOCABULARY.nodes[node].words;
+    match meaning(children.iter().map(|(name, _)| name), written) {
+        Meaning::One(name) => Ok(*children
+            .iter()
+            .find(|(known, _)| *known == name)
+            .expect("a name found among the children is one of them")),
+        other => Err(other),
+    }
+}
+
 /// The command words `written` stand for, in full and upper case, each as
 /// far as each is one word's alone (the rest as written), and the command
 /// when they all are and make a whole command.
 pub(crate) fn command<S: AsRef<str>>(written: &[S]) -> (Vec<String>, Option<Command>) {
-    let vocabulary = &*VOCABULARY;
     let mut words = Vec::with_capacity(written.len());
     let mut at = Some(0);
     for word in written {
         let word = word.as_ref();
-        let known = at.and_then(|node| {
-            let children = &vocabulary.nodes[node].words;
-            match meaning(children.iter().map(|(name, _)| name), word) {
-                Meaning::One(name) => children
-                    .iter()
-                    .find(|(known, _)| *known == name)
-                    .map(|&(name, next)| (name, next)),
-                _ => None,
-            }
-        });
-        match known {
-            Some((name, next)) => {
+        match at.map(|node| next_word(node, word)) {
+            Some(Ok((name, next))) => {
                 words.push(name.to_ascii_uppercase());
                 at = Some(next);
             }
-            None => {
+            _ => {
                 words.push(word.to_ascii_uppercase());
                 at = None;
             }
         }
     }
     let command = at
-        .filter(|&node| vocabulary.nodes[node].parameters.is_some())
+        .filter(|&node| VOCABULARY.nodes[node].parameters.is_some())
         .map(|node| Command { node });
     (words, command)
 }
@@ -142,21 +144,14 @@ pub(crate) fn command<S: AsRef<str>>(written: &[S]) -> (Vec<String>, Option<Comm
 /// not be what its writer meant: a word or parameter written short that
 /// begins more than one of View's, named; `None` when none is.
 pub(crate) fn ambiguity(command_name: &str, parameter: Option<&str>) -> Option<String> {
-    let vocabulary = &*VOCABULARY;
     let mut at = 0;
     for word in command_name.split_whitespace() {
-        let children = &vocabulary.nodes[at].words;
-        match meaning(children.iter().map(|(name, _)| name), word) {
-            Meaning::One(name) => {
-                at = children
-                    .iter()
-                    .find(|(known, _)| *known == name)
-                    .map(|&(_, next)| next)?;
-            }
-            Meaning::Several(names) => {
+        match next_word(at, word) {
+            Ok((_, next)) => at = next,
+            Err(Meaning::Several(names)) => {
                 return Some(several(&word.to_ascii_lowercase(), "command word", &names));
             }
-            Meaning::Unknown => return None,
+            Err(_) => return None,
         }
     }
     let parameter = parameter?;

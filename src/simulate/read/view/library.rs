@@ -18,7 +18,7 @@
 
 use super::super::units;
 use super::{Entity, Frame, Reader, key};
-use crate::model::{Embedded, Statement};
+use crate::model::{Embedded, GENERAL_MOTION_COMPONENTS, Statement};
 use crate::span::Span;
 
 /// The library springs mbexpr writes as SFORCEs.
@@ -355,20 +355,16 @@ pub(super) fn spring_statement(
     statement
 }
 
-/// View's general motion (`ude create instance` of this definition): the
-/// six components of I's motion relative to J, each free or driven.
-pub(super) const GENERAL_MOTION: &str = "MDI.CONSTRAINTS.GENERAL_MOTION";
-
-/// A general motion's components: the prefix of their variables
-/// (`t1_type`, `t1_func`, `t1_ic_disp` ...), the MOTION's component, and
-/// whether it is a rotation.
-const MOTION_COMPONENTS: [(&str, &str, bool); 6] = [
-    ("T1", "X", false),
-    ("T2", "Y", false),
-    ("T3", "Z", false),
-    ("R1", "B1", true),
-    ("R2", "B2", true),
-    ("R3", "B3", true),
+/// A general motion's components, in the order of
+/// `GENERAL_MOTION_COMPONENTS`: the MOTION's component, and whether it
+/// is a rotation.
+const MOTION_COMPONENTS: [(&str, bool); 6] = [
+    ("X", false),
+    ("Y", false),
+    ("Z", false),
+    ("B1", true),
+    ("B2", true),
+    ("B3", true),
 ];
 
 impl Reader<'_> {
@@ -391,7 +387,9 @@ impl Reader<'_> {
         let i = self.spring_marker(instance, "I_MARKER")?.0;
         let j = self.spring_marker(instance, "J_MARKER")?.0;
         let mut motions = Vec::new();
-        for (prefix, component, rotation) in MOTION_COMPONENTS {
+        for (prefix, (component, rotation)) in
+            GENERAL_MOTION_COMPONENTS.into_iter().zip(MOTION_COMPONENTS)
+        {
             let kind_name = format!("{prefix}_TYPE");
             let index = self.spring_variable(instance, &kind_name)?;
             let kind = self

@@ -876,17 +876,7 @@ impl<'d> Reader<'d> {
             ("POINT", Some(verb)) => self.point(index, verb == "MODIFY"),
             ("FLOATING_MARKER", Some("CREATE")) => self.marker(index, false, true),
             ("SIMULATION SINGLE_RUN TRANSIENT", None) => {
-                let parameters: Vec<(String, String)> = statement
-                    .arguments
-                    .iter()
-                    .filter_map(|argument| match &argument.value {
-                        Value::List(items) => items
-                            .first()
-                            .map(|item| (argument.keyword.to_string(), key(&item.text))),
-                        _ => None,
-                    })
-                    .collect();
-                self.transient(&parameters, statement.span);
+                self.transient(&run_parameters(statement), statement.span);
             }
             ("SIMULATION SCRIPT", Some(_)) => self.script(index),
             _ if words.starts_with("GEOMETRY SHAPE ") => self.solid(index, &words[15..]),
@@ -1276,30 +1266,14 @@ impl<'d> Reader<'d> {
             return;
         };
         for item in items {
-            // Each command as View reads it, abbreviations in full.
-            let text = item.text.replace(" =", "=").replace("= ", "=");
-            let tokens: Vec<&str> = text.split_whitespace().collect();
-            let first_parameter = tokens
-                .iter()
-                .position(|token| token.contains('='))
-                .unwrap_or(tokens.len());
-            let (written, parameters) = tokens.split_at(first_parameter);
-            let (words, command) = view_vocabulary::command(written);
-            if words != ["SIMULATION", "SINGLE_RUN", "TRANSIENT"] {
-                continue;
+            // Each command as View reads it (abbreviations in full), by the
+            // command reader itself.
+            let commands = crate::model::read(&item.text, FileKind::Cmd);
+            for command in &commands.statements {
+                if command.name == "SIMULATION SINGLE_RUN TRANSIENT" {
+                    self.transient(&run_parameters(command), item.span);
+                }
             }
-            let parameters: Vec<(String, String)> = parameters
-                .iter()
-                .filter_map(|token| token.split_once('='))
-                .map(|(name, value)| {
-                    let name = match command.map(|command| command.parameter(name)) {
-                        Some(view_vocabulary::Meaning::One(full)) => full.to_ascii_uppercase(),
-                        _ => name.to_ascii_uppercase(),
-                    };
-                    (name, key(value))
-                })
-                .collect();
-            self.transient(&parameters, item.span);
         }
     }
 
@@ -1746,6 +1720,21 @@ impl<'d> Reader<'d> {
             }
         }
     }
+}
+
+/// A transient run command's parameters, each keyword with its first
+/// value as a key.
+fn run_parameters(statement: &Statement) -> Vec<(String, String)> {
+    statement
+        .arguments
+        .iter()
+        .filter_map(|argument| match &argument.value {
+            Value::List(items) => items
+                .first()
+                .map(|item| (argument.keyword.to_string(), key(&item.text))),
+            _ => None,
+        })
+        .collect()
 }
 
 /// Whether an argument holds a View expression: a value in brackets

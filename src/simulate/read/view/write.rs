@@ -6,10 +6,10 @@ use std::collections::HashSet;
 use std::f64::consts::PI;
 
 use super::elements::{Becomes, MEASURE, becomes};
-use super::library::{GENERAL_MOTION, LibrarySpring, spring_statement};
+use super::library::{LibrarySpring, spring_statement};
 use super::{Entity, Frame, Reader};
 use crate::check::{Argument as TreeArgument, Checked, NodeKind, Reference, visit};
-use crate::model::{Argument, Embedded, Statement, Value, ValueItem};
+use crate::model::{Argument, Embedded, GENERAL_MOTION, Statement, Value, ValueItem};
 use crate::span::Span;
 
 /// How deep function measures may read one another (each level a
